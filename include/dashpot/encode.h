@@ -1,0 +1,64 @@
+/* include/dashpot/encode.h - writing runs as JSON, NDJSON, SSE or CSV into a byte buffer.
+ *
+ * An encoder is a small state machine the front ends drive block by block, so that a stream of any length
+ * is written in memory bounded by one block. Numbers are written with round-trip precision: parsing the
+ * text gives back the same double, bit for bit.
+ */
+#ifndef DASHPOT_ENCODE_H
+#define DASHPOT_ENCODE_H
+
+#include <stddef.h>
+#include "dashpot/run.h"
+
+typedef struct dp_buf {
+    char *data;
+    size_t len, cap;
+} dp_buf;
+
+/* Makes room for `extra` more bytes. DP_OK or DP_ENOMEM (buffer unchanged). */
+int dp_buf_reserve(dp_buf *b, size_t extra);
+int dp_buf_append(dp_buf *b, const char *s, size_t n);
+void dp_buf_free(dp_buf *b);
+
+/* Writes the shortest-or-17-digit round-trip decimal form of a finite double into out (>= 32 bytes);
+ * returns its length. Non-finite input writes "null" (callers never pass one: runs produce none). */
+size_t dp_format_double(char *out, double x);
+
+typedef enum dp_format { DP_FORMAT_JSON, DP_FORMAT_NDJSON, DP_FORMAT_SSE, DP_FORMAT_CSV } dp_format;
+
+/* Parses "json", "ndjson", "sse", "csv"; -1 if unknown. */
+int dp_format_from_name(const char *name);
+const char *dp_format_content_type(dp_format f);
+
+#define DP_ENCODER_MAX_EVENTS 100000
+
+typedef struct dp_encoder {
+    dp_format format;
+    int nsamples_written;    /* JSON: a comma is due before the next sample */
+    dp_event *events;        /* JSON: events are held until the samples array closes */
+    size_t nevents, events_cap;
+    unsigned long long events_dropped;
+} dp_encoder;
+
+void dp_encoder_init(dp_encoder *e, dp_format f);
+void dp_encoder_clear(dp_encoder *e);
+
+/* The opening: the meta object (`meta_json`, a complete JSON object written by the caller) as the NDJSON
+ * meta line, SSE "meta" event, JSON document head, or the CSV header line (meta not written). */
+int dp_encoder_begin(dp_encoder *e, dp_buf *b, const char *meta_json);
+
+/* One record. CSV writes samples only. */
+int dp_encoder_record(dp_encoder *e, dp_buf *b, const dp_record *r);
+
+/* The closing summary. `extra_json` (may be NULL) is an object's members without braces appended inside
+ * the summary object (e.g. wall time). */
+int dp_encoder_end(dp_encoder *e, dp_buf *b, const dp_summary *s, const char *extra_json);
+
+/* A failure after the opening went out: a final error line/event (CSV: a "# error" line) so that the
+ * stream is never silently cut. JSON: closes the document with an "error" member. */
+int dp_encoder_fail(dp_encoder *e, dp_buf *b, int status, const char *message);
+
+/* Appends a JSON string literal (with quotes) for s, escaping as RFC 8259 requires. */
+int dp_json_quote(dp_buf *b, const char *s);
+
+#endif

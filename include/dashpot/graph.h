@@ -1,0 +1,56 @@
+/* include/dashpot/graph.h - constitutive relations as monotone graphs in the (kinematic, force) plane.
+ *
+ * One representation serves every law (mathematics.md §1): a piecewise-linear curve through vertices
+ * (y_i, F_i), non-decreasing in both coordinates, extended at both ends by rays. Vertical pieces (equal y)
+ * make the force multi-valued (Coulomb's stick interval, the taut rope); horizontal pieces make the kinematic
+ * variable multi-valued (Bingham's yield plateau seen from the force side). A curve that is monotone and
+ * unbounded at both ends is a maximal monotone graph, so every law built here is one, and the implicit
+ * step, the resolvent J_l = (I + l A)^-1 and the Yosida approximation are exact for it (no iteration).
+ */
+#ifndef DASHPOT_GRAPH_H
+#define DASHPOT_GRAPH_H
+
+#include <stddef.h>
+
+#define DP_GRAPH_MAX_POINTS 10000
+
+typedef struct dp_graph {
+    size_t n;          /* number of vertices, >= 1 */
+    double *y;         /* kinematic coordinates (x for springs, v for dampers), non-decreasing */
+    double *f;         /* forces, non-decreasing */
+    double left[2];    /* direction (dy, dF) >= 0 of the ray that leaves vertex 0 towards -infinity */
+    double right[2];   /* direction (dy, dF) >= 0 of the ray that leaves vertex n-1 towards +infinity */
+} dp_graph;
+
+/* Builds a graph from n vertices and end-ray directions; copies the arrays. Rays with dy = dF = 0 are
+ * invalid. Returns DP_OK, DP_EINVAL (not monotone, not finite, n == 0) or DP_ENOMEM; on error g is empty. */
+int dp_graph_init(dp_graph *g, size_t n, const double *y, const double *f,
+                  const double left[2], const double right[2]);
+
+/* Builds a graph through user points, extending the first and last segments as the end rays.
+ * Needs n >= 2 and a non-degenerate first and last segment. */
+int dp_graph_init_points(dp_graph *g, size_t n, const double *y, const double *f);
+
+/* Frees the vertex arrays; accepts an empty or zeroed graph. */
+void dp_graph_clear(dp_graph *g);
+
+/* Deep copy; dst must be empty. */
+int dp_graph_copy(dp_graph *dst, const dp_graph *src);
+
+/* The force interval [*lo, *hi] at kinematic value y (lo == hi where the graph is single-valued).
+ * Outside the graph's domain (a vertical end ray) lo = hi = +/-INFINITY on the side it lies. */
+void dp_graph_force(const dp_graph *g, double y, double *lo, double *hi);
+
+/* The kinematic interval [*lo, *hi] at force F (the inverse graph). */
+void dp_graph_kinematic(const dp_graph *g, double F, double *lo, double *hi);
+
+/* Resolvent J_l(s): the unique y with y + l*F = s for some F in A(y), l > 0 (1-Lipschitz in s). */
+double dp_graph_resolvent(const dp_graph *g, double l, double s);
+
+/* Yosida approximation A_l(y) = (y - J_l(y)) / l: single-valued, monotone, (1/l)-Lipschitz. */
+double dp_graph_yosida(const dp_graph *g, double l, double y);
+
+/* Largest slope dF/dy over the graph: its Lipschitz constant as a force law (INFINITY with a vertical piece). */
+double dp_graph_lipschitz(const dp_graph *g);
+
+#endif

@@ -1,0 +1,74 @@
+/* include/dashpot/run.h - a solver run as a pull iterator (architecture.md, "Solvers are iterators").
+ *
+ *     dp_run *run = dp_run_alloc(&spec, &errs, &status);
+ *     while ((s = dp_run_next(run, buf, cap, &n)) == DP_MORE) consume(buf, n);
+ *     if (s == DP_DONE) report(dp_run_summary(run));
+ *     dp_run_free(run);
+ *
+ * The run owns a deep copy of what it needs from the spec, so the spec may be freed after dp_run_alloc.
+ * Memory is fixed at allocation: a run of 10^9 steps uses what a run of 10 steps uses.
+ */
+#ifndef DASHPOT_RUN_H
+#define DASHPOT_RUN_H
+
+#include <stddef.h>
+#include "dashpot/spec.h"
+
+typedef enum dp_phase { DP_PHASE_NONE = 0, DP_PHASE_STICK = 1, DP_PHASE_SLIP = 2 } dp_phase;
+
+typedef struct dp_sample {
+    double t, x, v;
+    double Fs;       /* spring force */
+    double Fd;       /* damper force F_c - gamma */
+    double Fc;       /* the damper graph's force (Coulomb part with its viscous part) */
+    dp_phase phase;  /* DP_PHASE_NONE for dampers that cannot stick */
+} dp_sample;
+
+typedef enum dp_event_kind { DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2 } dp_event_kind;
+
+/* A phase change: DP_EVENT_STICK is slip -> stick, DP_EVENT_SLIP is stick -> slip. */
+typedef struct dp_event {
+    dp_event_kind kind;
+    double t, x, v;
+} dp_event;
+
+typedef enum dp_record_type { DP_RECORD_SAMPLE = 1, DP_RECORD_EVENT = 2 } dp_record_type;
+
+typedef struct dp_record {
+    dp_record_type type;
+    union { dp_sample sample; dp_event event; } u;
+} dp_record;
+
+typedef struct dp_summary {
+    dp_sample final;          /* state at t_end */
+    unsigned long long steps; /* time steps taken (stick-slip), arcs (analytic) */
+    unsigned long long samples, events;
+    double stick_time;        /* total time spent sticking */
+    unsigned long long iterations; /* thesis: fixed-point iterations; exact: bracketing evaluations */
+} dp_summary;
+
+typedef struct dp_run dp_run;
+
+/* Validates (dp_spec_check with `max_steps`, <= 0 for DP_SPEC_MAX_STEPS) and prepares a run.
+ * On failure returns NULL, sets *status (DP_EINVAL, DP_ELIMIT, DP_ENOMEM) and appends to errs. */
+dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int *status);
+
+/* Produces up to `cap` records (cap >= 1) into buf, *n of them. Returns DP_MORE while records remain,
+ * DP_DONE once the run is complete (possibly with *n > 0 final records), or an error (DP_ENONFINITE when
+ * the solution diverged, DP_ESOLVE) after which the run is finished; no record with a non-finite number
+ * is ever produced. */
+int dp_run_next(dp_run *run, dp_record *buf, size_t cap, size_t *n);
+
+/* Running totals; final once dp_run_next returned DP_DONE. */
+const dp_summary *dp_run_summary(const dp_run *run);
+
+/* Fraction of simulated time done, in [0, 1]. */
+double dp_run_progress(const dp_run *run);
+
+/* A description of the last error of dp_run_next, "" if none. */
+const char *dp_run_error(const dp_run *run);
+
+/* Accepts NULL. */
+void dp_run_free(dp_run *run);
+
+#endif

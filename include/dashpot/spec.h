@@ -1,0 +1,63 @@
+/* include/dashpot/spec.h - one simulation request as data: model, initial state, solver, output.
+ *
+ * Produced by the JSON layer (dp_spec_parse, json.h) and consumed by every solver (run.h), so the CLI and the
+ * daemon accept exactly the same documents (architecture.md, "The spec is data").
+ */
+#ifndef DASHPOT_SPEC_H
+#define DASHPOT_SPEC_H
+
+#include "dashpot/model.h"
+#include "dashpot/status.h"
+
+/* Hard ceiling on time steps of one run (front ends may set lower ones): 10^9 steps of a few ns each
+ * is seconds of CPU; beyond that a request is almost surely a mistake in dt or t_end. */
+#define DP_SPEC_MAX_STEPS 1000000000.0
+
+typedef enum dp_solver_kind { DP_SOLVER_STICK_SLIP, DP_SOLVER_ANALYTIC } dp_solver_kind;
+
+typedef enum dp_variant { DP_VARIANT_EXACT, DP_VARIANT_THESIS } dp_variant;
+
+/* How the stick-slip solver treats a phase change inside a step: DP_EVENTS_LOCATE splits the step at the
+ * event (keeps theta = 1/2 second order); DP_EVENTS_NONE is plain Moreau-Jean time stepping as in Siconos. */
+typedef enum dp_events_mode { DP_EVENTS_LOCATE, DP_EVENTS_NONE } dp_events_mode;
+
+typedef struct dp_solver_spec {
+    dp_solver_kind kind;
+    double dt;            /* step (stick-slip) or sample spacing (analytic) */
+    double t_end;
+    double theta;         /* [1/2, 1] */
+    dp_variant variant;
+    int Z;                /* thesis: maximum fixed-point iterations (4.13) */
+    double eps;           /* thesis: fixed-point stopping tolerance (4.13) */
+    dp_events_mode events;
+} dp_solver_spec;
+
+typedef struct dp_output_spec {
+    long every;           /* emit every n-th step as a sample, >= 1 */
+    int samples;          /* emit samples at all */
+    int events;           /* emit events */
+} dp_output_spec;
+
+typedef struct dp_spec {
+    dp_model model;
+    double x0, v0;
+    dp_solver_spec solver;
+    dp_output_spec output;
+} dp_spec;
+
+/* A spec with every default set (stick-slip, exact, theta 1, dt 1e-3, t_end 10, every 1) and an empty model. */
+void dp_spec_init(dp_spec *s);
+
+/* Frees what the spec owns; accepts an initialised or zeroed spec. */
+void dp_spec_clear(dp_spec *s);
+
+/* Checks the spec as a whole (the cross-field rules the JSON schema cannot state: theta only with linear
+ * parts, the contraction condition (4.10) for the thesis variant, x0 within the rope, the step count limit
+ * `max_steps`), appending located errors. Requires dp_model_prepare() to have run.
+ * Returns DP_OK or DP_EINVAL / DP_ELIMIT. */
+int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *errs);
+
+/* Number of steps the spec asks for: ceil(t_end / dt) (with a rounding guard). */
+double dp_spec_steps(const dp_spec *s);
+
+#endif
