@@ -1,0 +1,711 @@
+/* src/json/spec_json.c - dp_spec_parse (json.h): a simulation spec document (architecture.md, "The wire
+ * contract") into a dp_spec, every bad field reported with its JSON Pointer (RFC 6901) and what was expected.
+ *
+ * Three passes: a bracket scan bounds the nesting before cJSON recurses; cJSON builds the tree; a walk that
+ * never stops at the first error fills the spec. Only a document without field errors reaches the core's
+ * dp_model_prepare and dp_spec_check, whose cross-field rules need the whole spec.
+ *
+ * Message format: the pointer names the place; the message says what was expected and, where it helps, what
+ * was found: "must be a finite number > 0, got -1", "unknown law \"colomb\"; expected one of: none, ...",
+ * "unknown key \"foo\"; expected one of: mass, spring, damper, forcing", "missing required key \"mass\"
+ * (a finite number > 0)", "malformed JSON near byte 17".
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "dashpot/json.h"
+
+/* The walk's state: where errors go, how many this parse added, whether an allocation failed. */
+typedef struct ctx {
+    dp_errors *errs;
+    size_t nerr;
+    int nomem;
+} ctx;
+
+/* An accepted interval for a number, with the words that describe it in messages. */
+typedef struct range {
+    double lo, hi;
+    int lo_open;          /* lo itself excluded */
+    const char *text;     /* appended to "a finite number" / "an integer" */
+} range;
+
+static const range ANY = { -INFINITY, INFINITY, 0, "" };
+static const range POSITIVE = { 0, INFINITY, 1, " > 0" };
+static const range NONNEG = { 0, INFINITY, 0, " >= 0" };
+static const range ABOVE_ONE = { 1, INFINITY, 1, " > 1" };
+static const range THETA = { 0.5, 1, 0, " in [0.5, 1]" };
+static const range Z_RANGE = { 1, 1000000, 0, " in [1, 1000000]" };
+/* 2^53: past it not every integer is a double, and it still fits a long on LP64. */
+static const range EVERY = { 1, 9007199254740992.0, 0, " >= 1 (at most 2^53)" };
+
+#define MAX_KEYS 12       /* valid keys of any one object of the schema */
+
+/* A number-valued member stored at byte offset `off` of the struct being filled. */
+typedef struct param {
+    const char *key;
+    size_t off;
+    const range *r;
+    int required;
+} param;
+
+/* One value of a tag ("law", "kind"): its enum value, its numeric members, other members its caller reads. */
+typedef struct variant {
+    const char *name;
+    int id;
+    param params[5];              /* ends at key == NULL */
+    const char *extra[4];         /* ends at NULL */
+} variant;
+
+/* ---- errors, pointers, displayed values ------------------------------------------------------------- */
+
+static void fail(ctx *c, const char *ptr, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+static void fail(ctx *c, const char *ptr, const char *fmt, ...)
+{
+    char msg[DP_MESSAGE_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    dp_errors_add(c->errs, ptr, "%s", msg);
+    c->nerr++;
+}
+
+/* Drops a UTF-8 sequence cut short at the end of s[0..n), so a truncated string stays valid UTF-8. */
+static size_t utf8_trim(const char *s, size_t n)
+{
+    size_t i = n;
+    while (i > 0 && ((unsigned char)s[i - 1] & 0xC0) == 0x80)
+        i--;
+    if (i == 0 || (unsigned char)s[i - 1] < 0xC0)
+        return n;                                  /* ends in ASCII or a sequence with all its bytes */
+    unsigned char lead = (unsigned char)s[i - 1];
+    size_t need = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : 2;
+    return n - (i - 1) >= need ? n : i - 1;
+}
+
+/* out = parent + "/" + key with ~ and / escaped (RFC 6901 §3); cut to DP_POINTER_MAX on a character. */
+static void ptr_key(char out[DP_POINTER_MAX], const char *parent, const char *key)
+{
+    size_t n = (size_t)snprintf(out, DP_POINTER_MAX, "%s/", parent);
+    if (n >= DP_POINTER_MAX)
+        return;
+    const char *k = key;
+    for (; *k && n + 3 <= DP_POINTER_MAX; k++) {
+        if (*k == '~' || *k == '/') {
+            out[n++] = '~';
+            out[n++] = *k == '~' ? '0' : '1';
+        } else {
+            out[n++] = *k;
+        }
+    }
+    out[*k ? utf8_trim(out, n) : n] = '\0';
+}
+
+static void ptr_index(char out[DP_POINTER_MAX], const char *parent, size_t i)
+{
+    /* Only digits can be cut here (the parent is already valid); the check just uses the result. */
+    if (snprintf(out, DP_POINTER_MAX, "%s/%zu", parent, i) >= DP_POINTER_MAX)
+        out[DP_POINTER_MAX - 1] = '\0';
+}
+
+/* A user string fit for a message: at most 48 bytes (then "..."), control characters as '?'. */
+static const char *shown(const char *s, char buf[64])
+{
+    size_t n = 0;
+    for (; s[n] && n < 48; n++)
+        buf[n] = (unsigned char)s[n] < 0x20 ? '?' : s[n];
+    if (s[n]) {
+        n = utf8_trim(buf, n);
+        memcpy(buf + n, "...", 3);
+        n += 3;
+    }
+    buf[n] = '\0';
+    return buf;
+}
+
+/* The shortest of %.15g / %.17g that reads back as v, so 0.1 shows as "0.1" and nothing is misreported. */
+static const char *num_text(double v, char buf[32])
+{
+    snprintf(buf, 32, "%.15g", v);
+    if (strtod(buf, NULL) != v)
+        snprintf(buf, 32, "%.17g", v);
+    return buf;
+}
+
+static const char *type_name(const cJSON *v)
+{
+    if (cJSON_IsNumber(v)) return "a number";
+    if (cJSON_IsString(v)) return "a string";
+    if (cJSON_IsBool(v)) return "a boolean";
+    if (cJSON_IsNull(v)) return "null";
+    if (cJSON_IsArray(v)) return "an array";
+    if (cJSON_IsObject(v)) return "an object";
+    return "an unknown value";
+}
+
+/* "a, b, c" from a NULL-terminated list. */
+static const char *joined(const char *const *names, char *buf, size_t cap)
+{
+    size_t n = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; names[i] && n < cap; i++)
+        n += (size_t)snprintf(buf + n, cap - n, "%s%s", i ? ", " : "", names[i]);
+    return buf;
+}
+
+/* ---- typed members ---------------------------------------------------------------------------------- */
+
+/* Member `key` of object o (its pointer into p), or NULL; when absent and `what` is set, that is an error. */
+static const cJSON *member(ctx *c, const cJSON *o, const char *ptr, const char *key, const char *what,
+                           char p[DP_POINTER_MAX])
+{
+    ptr_key(p, ptr, key);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    if (v == NULL && what != NULL)
+        fail(c, p, "missing required key \"%s\" (%s)", key, what);
+    return v;
+}
+
+static int want_object(ctx *c, const cJSON *v, const char *ptr)
+{
+    if (cJSON_IsObject(v))
+        return 1;
+    fail(c, ptr, "must be an object, got %s", type_name(v));
+    return 0;
+}
+
+static int in_range(double x, const range *r)
+{
+    return x >= r->lo && x <= r->hi && !(r->lo_open && x == r->lo);
+}
+
+/* v as a finite number in r (an integer when `integral`) into *out; 0 and an error otherwise. */
+static int check_num(ctx *c, const cJSON *v, const char *ptr, const range *r, int integral, double *out)
+{
+    const char *what = integral ? "an integer" : "a finite number";
+    char nb[32];
+    if (!cJSON_IsNumber(v)) {
+        fail(c, ptr, "must be %s%s, got %s", what, r->text, type_name(v));
+        return 0;
+    }
+    double x = v->valuedouble;
+    if (!isfinite(x)) {
+        fail(c, ptr, "must be %s%s, got a literal too large for a double", what, r->text);
+        return 0;
+    }
+    if ((integral && x != floor(x)) || !in_range(x, r)) {
+        fail(c, ptr, "must be %s%s, got %s", what, r->text, num_text(x, nb));
+        return 0;
+    }
+    *out = x;
+    return 1;
+}
+
+/* Numeric member; *out untouched when it is absent (the default stays) or invalid. Returns 1 when set. */
+static int get_num(ctx *c, const cJSON *o, const char *ptr, const char *key, const range *r, int required,
+                   int integral, double *out)
+{
+    char p[DP_POINTER_MAX], what[64];
+    snprintf(what, sizeof what, "%s%s", integral ? "an integer" : "a finite number", r->text);
+    const cJSON *v = member(c, o, ptr, key, required ? what : NULL, p);
+    return v != NULL && check_num(c, v, p, r, integral, out);
+}
+
+static void get_bool(ctx *c, const cJSON *o, const char *ptr, const char *key, int *out)
+{
+    char p[DP_POINTER_MAX];
+    const cJSON *v = member(c, o, ptr, key, NULL, p);
+    if (v == NULL)
+        return;
+    if (cJSON_IsBool(v))
+        *out = cJSON_IsTrue(v);
+    else
+        fail(c, p, "must be true or false, got %s", type_name(v));
+}
+
+/* Index of the string member `key` in `names`; `def` when absent (-1 and an error when def < 0), -1 and an
+ * error when it is not one of them. */
+static int get_enum(ctx *c, const cJSON *o, const char *ptr, const char *key, const char *const *names,
+                    int def)
+{
+    char p[DP_POINTER_MAX], list[256], sb[64];
+    joined(names, list, sizeof list);
+    char what[300];
+    snprintf(what, sizeof what, "one of: %s", list);
+    const cJSON *v = member(c, o, ptr, key, def < 0 ? what : NULL, p);
+    if (v == NULL)
+        return def;
+    if (!cJSON_IsString(v)) {
+        fail(c, p, "must be a string, one of: %s; got %s", list, type_name(v));
+        return -1;
+    }
+    for (int i = 0; names[i]; i++)
+        if (strcmp(v->valuestring, names[i]) == 0)
+            return i;
+    fail(c, p, "unknown %s \"%s\"; expected one of: %s", key, shown(v->valuestring, sb), list);
+    return -1;
+}
+
+static int key_index(const char *const *keys, const char *k)
+{
+    for (int i = 0; keys[i]; i++)
+        if (strcmp(keys[i], k) == 0)
+            return i;
+    return -1;
+}
+
+/* Reports every member of o that is not in `keys` and every repeated one. `why` qualifies the list
+ * (" for law \"coulomb\"") or is "". O(members x keys): no quadratic blow-up on a hostile document. */
+static void check_keys(ctx *c, const cJSON *o, const char *ptr, const char *const *keys, const char *why)
+{
+    char p[DP_POINTER_MAX], list[256], sb[64];
+    unsigned char seen[MAX_KEYS] = { 0 };
+    for (const cJSON *m = o->child; m; m = m->next) {
+        int i = key_index(keys, m->string);
+        ptr_key(p, ptr, m->string);
+        if (i < 0)
+            fail(c, p, "unknown key \"%s\"%s; expected one of: %s", shown(m->string, sb), why,
+                 joined(keys, list, sizeof list));
+        else if (seen[i]++)
+            fail(c, p, "duplicate key \"%s\"", m->string);
+    }
+}
+
+/* ---- tagged objects: {"law": name, params...} -------------------------------------------------------- */
+
+/* Parses object o whose member `tag` picks one of `vs` (nv of them; `def` when absent, < 0: required).
+ * Checks its keys (tag, the variant's params and extras, `common`), stores the params into `base` and
+ * returns the variant, or NULL when o is no object or the tag is bad (its other members are then not
+ * checked: which keys are valid depends on the tag). */
+static const variant *parse_tagged(ctx *c, const cJSON *o, const char *ptr, const char *tag, int def,
+                                   const variant *vs, size_t nv, const char *const *common, void *base)
+{
+    const char *names[8], *keys[MAX_KEYS];
+    size_t nk = 0;
+    if (!want_object(c, o, ptr))
+        return NULL;
+    for (size_t i = 0; i < nv; i++)
+        names[i] = vs[i].name;
+    names[nv] = NULL;
+    int i = get_enum(c, o, ptr, tag, names, def);
+    if (i < 0)
+        return NULL;
+    const variant *v = &vs[i];
+    keys[nk++] = tag;
+    for (const param *pa = v->params; pa->key; pa++)
+        keys[nk++] = pa->key;
+    for (const char *const *e = v->extra; *e; e++)
+        keys[nk++] = *e;
+    for (const char *const *e = common; e && *e; e++)
+        keys[nk++] = *e;
+    keys[nk] = NULL;
+    char why[96];
+    snprintf(why, sizeof why, " for %s \"%s\"", tag, v->name);
+    check_keys(c, o, ptr, keys, why);
+    for (const param *pa = v->params; pa->key; pa++)
+        get_num(c, o, ptr, pa->key, pa->r, pa->required, 0, (double *)((char *)base + pa->off));
+    return v;
+}
+
+/* ---- point lists ------------------------------------------------------------------------------------ */
+
+/* One element of a point list: an array of exactly two finite numbers. */
+static int parse_pair(ctx *c, const cJSON *el, const char *p, const char *yname, double *y, double *f)
+{
+    char q[DP_POINTER_MAX];
+    int n = cJSON_GetArraySize(el);
+    if (!cJSON_IsArray(el) || n != 2) {
+        if (cJSON_IsArray(el))
+            fail(c, p, "must have exactly 2 elements [%s, F], got %d", yname, n);
+        else
+            fail(c, p, "must be a pair [%s, F] of numbers, got %s", yname, type_name(el));
+        return 0;
+    }
+    ptr_index(q, p, 0);
+    int ok = check_num(c, el->child, q, &ANY, 0, y);
+    ptr_index(q, p, 1);
+    return check_num(c, el->child->next, q, &ANY, 0, f) && ok;
+}
+
+/* Order rules between consecutive points: a graph is non-decreasing in both coordinates without repeated
+ * points (so its first and last segments, which become the end rays, are never degenerate); a table has
+ * strictly increasing t. */
+static void check_order(ctx *c, const char *ptr, const char *yname, int table, size_t n, const double *y,
+                        const double *f)
+{
+    char p[DP_POINTER_MAX], a[32], b[32];
+    for (size_t i = 1; i < n; i++) {
+        ptr_index(p, ptr, i);
+        if (table && y[i] <= y[i - 1])
+            fail(c, p, "t must be strictly increasing: %s after %s", num_text(y[i], a), num_text(y[i - 1], b));
+        if (table)
+            continue;
+        if (y[i] < y[i - 1])
+            fail(c, p, "%s must be non-decreasing: %s after %s", yname, num_text(y[i], a), num_text(y[i - 1], b));
+        if (f[i] < f[i - 1])
+            fail(c, p, "F must be non-decreasing: %s after %s", num_text(f[i], a), num_text(f[i - 1], b));
+        if (y[i] == y[i - 1] && f[i] == f[i - 1])
+            fail(c, p, "repeats the previous point (%s, %s)", num_text(y[i], a), num_text(f[i], b));
+    }
+}
+
+/* o["points"] into new arrays *y, *f of *n entries (caller frees them, also on failure). Returns 1 when
+ * the list is valid. A table needs >= 1 point, a graph >= 2. */
+static int parse_points(ctx *c, const cJSON *o, const char *ptr, const char *yname, int table, size_t *n,
+                        double **y, double **f)
+{
+    char p[DP_POINTER_MAX], q[DP_POINTER_MAX], what[96];
+    size_t lo = table ? 1 : 2;
+    snprintf(what, sizeof what, "an array of %zu..%d [%s, F] pairs", lo, DP_GRAPH_MAX_POINTS, yname);
+    const cJSON *a = member(c, o, ptr, "points", what, p);
+    if (a == NULL)
+        return 0;
+    size_t count = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
+    if (!cJSON_IsArray(a) || count < lo || count > DP_GRAPH_MAX_POINTS) {
+        if (cJSON_IsArray(a))
+            fail(c, p, "must be %s, got %zu", what, count);
+        else
+            fail(c, p, "must be %s, got %s", what, type_name(a));
+        return 0;
+    }
+    *y = malloc(count * sizeof **y);
+    *f = malloc(count * sizeof **f);
+    if (*y == NULL || *f == NULL) {
+        c->nomem = 1;
+        return 0;
+    }
+    size_t before = c->nerr, i = 0;
+    for (const cJSON *el = a->child; el; el = el->next, i++) {
+        ptr_index(q, p, i);
+        parse_pair(c, el, q, yname, &(*y)[i], &(*f)[i]);
+    }
+    if (c->nerr == before)
+        check_order(c, p, yname, table, count, *y, *f);
+    *n = count;
+    return c->nerr == before;
+}
+
+/* o["points"] as a user graph into g (dp_graph_init_points copies the arrays). */
+static void parse_graph(ctx *c, const cJSON *o, const char *ptr, const char *yname, dp_graph *g)
+{
+    double *y = NULL, *f = NULL;
+    size_t n = 0;
+    if (parse_points(c, o, ptr, yname, 0, &n, &y, &f)) {
+        int s = dp_graph_init_points(g, n, y, f);
+        char p[DP_POINTER_MAX];
+        ptr_key(p, ptr, "points");
+        if (s == DP_ENOMEM)
+            c->nomem = 1;
+        else if (s != DP_OK)
+            fail(c, p, "does not make a monotone graph (non-decreasing %s and F, end segments not degenerate)",
+                 yname);
+    }
+    free(y);
+    free(f);
+}
+
+/* ---- the schema ------------------------------------------------------------------------------------- */
+
+#define NUM(st, field, r, req) { #field, offsetof(st, field), &(r), (req) }
+
+static void parse_spring(ctx *c, const cJSON *o, const char *ptr, dp_spring *s)
+{
+    static const variant laws[] = {
+        { "linear", DP_SPRING_LINEAR, { NUM(dp_spring, k, NONNEG, 1) }, { NULL } },
+        { "rope", DP_SPRING_ROPE, { NUM(dp_spring, k, NONNEG, 1), NUM(dp_spring, length, ANY, 1) }, { NULL } },
+        { "graph", DP_SPRING_GRAPH, { { NULL } }, { "points", NULL } },
+    };
+    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, 3, NULL, s);
+    if (v == NULL)
+        return;
+    s->law = (dp_spring_law)v->id;
+    if (s->law == DP_SPRING_GRAPH)
+        parse_graph(c, o, ptr, "x", &s->graph);
+}
+
+static void parse_relaxation(ctx *c, const cJSON *o, const char *ptr, dp_relaxation *r)
+{
+    static const variant kinds[] = {
+        { "rational", DP_RELAX_RATIONAL,
+          { NUM(dp_relaxation, a, NONNEG, 1), NUM(dp_relaxation, b, POSITIVE, 1) }, { NULL } },
+        { "linear", DP_RELAX_LINEAR, { NUM(dp_relaxation, L, ANY, 1) }, { NULL } },
+        { "power", DP_RELAX_POWER, { NUM(dp_relaxation, N, ABOVE_ONE, 1) }, { NULL } },
+    };
+    const variant *v = parse_tagged(c, o, ptr, "kind", -1, kinds, 3, NULL, r);
+    if (v != NULL)
+        r->kind = (dp_relaxation_kind)v->id;
+}
+
+static void parse_damper(ctx *c, const cJSON *o, const char *ptr, dp_damper *d)
+{
+    static const variant laws[] = {
+        { "none", DP_DAMPER_NONE, { { NULL } }, { NULL } },
+        { "linear", DP_DAMPER_LINEAR, { NUM(dp_damper, c, NONNEG, 1) }, { NULL } },
+        { "coulomb", DP_DAMPER_COULOMB, { NUM(dp_damper, phi0, NONNEG, 1) }, { NULL } },
+        { "bingham", DP_DAMPER_BINGHAM, { NUM(dp_damper, tau, NONNEG, 1), NUM(dp_damper, c, NONNEG, 1) },
+          { NULL } },
+        { "generalized-coulomb", DP_DAMPER_GENERALIZED_COULOMB,
+          { NUM(dp_damper, phi0, NONNEG, 1), NUM(dp_damper, phi1, NONNEG, 1) }, { NULL } },
+        { "graph", DP_DAMPER_GRAPH, { { NULL } }, { "points", NULL } },
+    };
+    static const char *const common[] = { "relaxation", "belt_velocity", NULL };
+    size_t before = c->nerr;
+    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, 6, common, d);
+    if (v == NULL)
+        return;
+    d->law = (dp_damper_law)v->id;
+    char p[DP_POINTER_MAX], a[32], b[32];
+    if (d->law == DP_DAMPER_GENERALIZED_COULOMB && c->nerr == before && d->phi1 < d->phi0) {
+        ptr_key(p, ptr, "phi1");
+        fail(c, p, "must be >= phi0 (%s), got %s", num_text(d->phi0, a), num_text(d->phi1, b));
+    }
+    if (d->law == DP_DAMPER_GRAPH)
+        parse_graph(c, o, ptr, "v", &d->graph);
+    get_num(c, o, ptr, "belt_velocity", &ANY, 0, 0, &d->belt_velocity);
+    const cJSON *r = member(c, o, ptr, "relaxation", NULL, p);
+    if (r != NULL)
+        parse_relaxation(c, r, p, &d->relaxation);
+}
+
+static void parse_forcing(ctx *c, const cJSON *o, const char *ptr, dp_forcing *f, int depth);
+
+/* o["terms"]: 1..DP_FORCING_MAX_TERMS forcings one level deeper, into a calloc'd f->terms. */
+static void parse_terms(ctx *c, const cJSON *o, const char *ptr, dp_forcing *f, int depth)
+{
+    char p[DP_POINTER_MAX], q[DP_POINTER_MAX], what[64];
+    snprintf(what, sizeof what, "an array of 1..%d forcings", DP_FORCING_MAX_TERMS);
+    const cJSON *a = member(c, o, ptr, "terms", what, p);
+    if (a == NULL)
+        return;
+    if (depth >= DP_FORCING_MAX_DEPTH) {
+        fail(c, p, "sums nest at most %d deep", DP_FORCING_MAX_DEPTH);
+        return;
+    }
+    int n = cJSON_IsArray(a) ? cJSON_GetArraySize(a) : 0;
+    if (!cJSON_IsArray(a) || n < 1 || n > DP_FORCING_MAX_TERMS) {
+        if (cJSON_IsArray(a))
+            fail(c, p, "must be %s, got %d", what, n);
+        else
+            fail(c, p, "must be %s, got %s", what, type_name(a));
+        return;
+    }
+    f->terms = calloc((size_t)n, sizeof *f->terms);
+    if (f->terms == NULL) {
+        c->nomem = 1;
+        return;
+    }
+    f->nterms = (size_t)n;
+    size_t i = 0;
+    for (const cJSON *el = a->child; el; el = el->next, i++) {
+        ptr_index(q, p, i);
+        parse_forcing(c, el, q, &f->terms[i], depth + 1);
+    }
+}
+
+/* A forcing at nesting `depth` (the model's own is 1). */
+static void parse_forcing(ctx *c, const cJSON *o, const char *ptr, dp_forcing *f, int depth)
+{
+    static const variant kinds[] = {
+        { "constant", DP_FORCING_CONSTANT, { NUM(dp_forcing, value, ANY, 1) }, { NULL } },
+        { "harmonic", DP_FORCING_HARMONIC,
+          { NUM(dp_forcing, amplitude, ANY, 1), NUM(dp_forcing, omega, ANY, 1), NUM(dp_forcing, phase, ANY, 0) },
+          { NULL } },
+        { "table", DP_FORCING_TABLE, { { NULL } }, { "points", NULL } },
+        { "sum", DP_FORCING_SUM, { { NULL } }, { "terms", NULL } },
+    };
+    const variant *v = parse_tagged(c, o, ptr, "kind", -1, kinds, 4, NULL, f);
+    if (v == NULL)
+        return;
+    f->kind = (dp_forcing_kind)v->id;
+    if (f->kind == DP_FORCING_SUM)
+        parse_terms(c, o, ptr, f, depth);
+    if (f->kind != DP_FORCING_TABLE)
+        return;
+    size_t n = 0;
+    double *t = NULL, *F = NULL;
+    int ok = parse_points(c, o, ptr, "t", 1, &n, &t, &F);
+    f->t = t;          /* owned by f from here on, freed by dp_forcing_clear */
+    f->F = F;
+    f->n = ok ? n : 0;
+}
+
+static void parse_model(ctx *c, const cJSON *o, const char *ptr, dp_model *m)
+{
+    static const char *const keys[] = { "mass", "spring", "damper", "forcing", NULL };
+    char p[DP_POINTER_MAX];
+    if (!want_object(c, o, ptr))
+        return;
+    check_keys(c, o, ptr, keys, "");
+    get_num(c, o, ptr, "mass", &POSITIVE, 1, 0, &m->mass);
+    const cJSON *v = member(c, o, ptr, "spring", "an object with a \"law\"", p);
+    if (v != NULL)
+        parse_spring(c, v, p, &m->spring);
+    if ((v = member(c, o, ptr, "damper", "an object with a \"law\"", p)) != NULL)
+        parse_damper(c, v, p, &m->damper);
+    if ((v = member(c, o, ptr, "forcing", NULL, p)) != NULL)
+        parse_forcing(c, v, p, &m->forcing, 1);
+}
+
+static void parse_initial(ctx *c, const cJSON *o, const char *ptr, dp_spec *s)
+{
+    static const char *const keys[] = { "x", "v", NULL };
+    if (!want_object(c, o, ptr))
+        return;
+    check_keys(c, o, ptr, keys, "");
+    get_num(c, o, ptr, "x", &ANY, 0, 0, &s->x0);
+    get_num(c, o, ptr, "v", &ANY, 0, 0, &s->v0);
+}
+
+static void parse_solver(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec *s)
+{
+    static const variant kinds[] = {
+        { "stick-slip", DP_SOLVER_STICK_SLIP,
+          { NUM(dp_solver_spec, dt, POSITIVE, 0), NUM(dp_solver_spec, t_end, POSITIVE, 0),
+            NUM(dp_solver_spec, theta, THETA, 0), NUM(dp_solver_spec, eps, POSITIVE, 0) },
+          { "variant", "Z", "events", NULL } },
+        { "analytic", DP_SOLVER_ANALYTIC,
+          { NUM(dp_solver_spec, t_end, POSITIVE, 0), NUM(dp_solver_spec, dt, POSITIVE, 0) }, { NULL } },
+    };
+    static const char *const variants[] = { "exact", "thesis", NULL };
+    static const char *const events[] = { "locate", "none", NULL };
+    const variant *v = parse_tagged(c, o, ptr, "kind", DP_SOLVER_STICK_SLIP, kinds, 2, NULL, s);
+    if (v == NULL)
+        return;
+    s->kind = (dp_solver_kind)v->id;
+    if (s->kind != DP_SOLVER_STICK_SLIP)
+        return;
+    int i = get_enum(c, o, ptr, "variant", variants, (int)s->variant);
+    if (i >= 0)
+        s->variant = (dp_variant)i;
+    if ((i = get_enum(c, o, ptr, "events", events, (int)s->events)) >= 0)
+        s->events = (dp_events_mode)i;
+    double z;
+    if (get_num(c, o, ptr, "Z", &Z_RANGE, 0, 1, &z))
+        s->Z = (int)z;
+}
+
+static void parse_output(ctx *c, const cJSON *o, const char *ptr, dp_output_spec *out)
+{
+    static const char *const keys[] = { "every", "samples", "events", NULL };
+    if (!want_object(c, o, ptr))
+        return;
+    check_keys(c, o, ptr, keys, "");
+    double every;
+    if (get_num(c, o, ptr, "every", &EVERY, 0, 1, &every))
+        out->every = (long)every;
+    get_bool(c, o, ptr, "samples", &out->samples);
+    get_bool(c, o, ptr, "events", &out->events);
+}
+
+static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
+{
+    static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
+    char p[DP_POINTER_MAX];
+    if (!want_object(c, o, ""))
+        return;
+    check_keys(c, o, "", keys, "");
+    const cJSON *v = member(c, o, "", "model", "an object with mass, spring and damper", p);
+    if (v != NULL)
+        parse_model(c, v, p, &s->model);
+    if ((v = member(c, o, "", "initial", NULL, p)) != NULL)
+        parse_initial(c, v, p, s);
+    if ((v = member(c, o, "", "solver", NULL, p)) != NULL)
+        parse_solver(c, v, p, &s->solver);
+    if ((v = member(c, o, "", "output", NULL, p)) != NULL)
+        parse_output(c, v, p, &s->output);
+}
+
+/* ---- syntax ----------------------------------------------------------------------------------------- */
+
+/* Byte offset where the text first nests deeper than DP_JSON_MAX_DEPTH, or len. Brackets inside strings do
+ * not count; a stray closer never lowers the depth below 0, so no prefix can buy extra depth for cJSON. */
+static size_t too_deep(const char *s, size_t len)
+{
+    int depth = 0, in_string = 0;
+    for (size_t i = 0; i < len; i++) {
+        char ch = s[i];
+        if (in_string) {
+            if (ch == '\\')
+                i++;
+            else if (ch == '"')
+                in_string = 0;
+        } else if (ch == '"') {
+            in_string = 1;
+        } else if (ch == '[' || ch == '{') {
+            if (++depth > DP_JSON_MAX_DEPTH)
+                return i;
+        } else if ((ch == ']' || ch == '}') && depth > 0) {
+            depth--;
+        }
+    }
+    return len;
+}
+
+/* The cJSON tree of text[0..len), or NULL with the DP_ESYNTAX error added (*nomem set when no copy could be
+ * made). cJSON reads a NUL-terminated copy: its BOM check peeks 3 bytes regardless of the length. Trailing
+ * bytes other than JSON whitespace (a NUL among them) make the document malformed. */
+static cJSON *parse_json(const char *text, size_t len, dp_errors *errs, int *nomem)
+{
+    size_t at = too_deep(text, len);
+    if (at < len) {
+        dp_errors_add(errs, "", "malformed JSON near byte %zu: nested deeper than %d levels", at,
+                      DP_JSON_MAX_DEPTH);
+        return NULL;
+    }
+    char *buf = len < SIZE_MAX ? malloc(len + 1) : NULL;
+    if (buf == NULL) {
+        *nomem = 1;
+        return NULL;
+    }
+    if (len > 0)
+        memcpy(buf, text, len);
+    buf[len] = '\0';
+    const char *end = NULL;
+    const char *why = len == 0 ? " (empty document)" : "";
+    cJSON *root = cJSON_ParseWithLengthOpts(buf, len, &end, 0);
+    if (root != NULL) {
+        end += strspn(end, " \t\r\n");
+        if (end != buf + len) {
+            cJSON_Delete(root);
+            root = NULL;
+            why = " (data after the document)";
+        }
+    }
+    if (root == NULL)
+        dp_errors_add(errs, "", "malformed JSON near byte %zu%s", end ? (size_t)(end - buf) : 0, why);
+    free(buf);
+    return root;
+}
+
+int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs)
+{
+    ctx c = { errs, 0, 0 };
+    cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
+    if (root == NULL)
+        return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
+    parse_root(&c, root, spec);
+    cJSON_Delete(root);
+    if (c.nomem)
+        return DP_ENOMEM;
+    if (c.nerr > 0)
+        return DP_EINVAL;
+    int s = dp_model_prepare(&spec->model);
+    if (s == DP_ENOMEM)
+        return s;
+    if (s != DP_OK) {
+        fail(&c, "/model", "the model's graphs could not be built (%s)", dp_strerror(s));
+        return DP_EINVAL;
+    }
+    /* DP_SPEC_MAX_STEPS is a hard ceiling; front ends may only lower it. */
+    if (!(max_steps > 0) || max_steps > DP_SPEC_MAX_STEPS)
+        max_steps = DP_SPEC_MAX_STEPS;
+    return dp_spec_check(spec, max_steps, errs);
+}
