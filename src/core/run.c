@@ -1,0 +1,146 @@
+/* src/core/run.c - the pull iterator every solver is driven through (architecture.md, "Solvers are
+ * iterators"): one allocation per run, records written straight into the caller's block, the few that do
+ * not fit parked in a fixed queue. Dispatch on the solver happens once per block, not once per step. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "run_internal.h"
+
+void dp_run_emit(dp_run *r, const dp_record *rec)
+{
+    if (r->out_n < r->out_cap)
+        r->out[r->out_n++] = *rec;
+    else if (r->npending < DP_RUN_PENDING)
+        r->pending[r->npending++] = *rec;
+}
+
+void dp_run_emit_state(dp_run *r)
+{
+    int last = r->n >= r->nsteps;
+    if (--r->countdown > 0 && !last)
+        return;
+    r->countdown = r->spec.output.every;
+    if (!r->spec.output.samples)
+        return;
+    dp_record rec = { .type = DP_RECORD_SAMPLE, .u.sample = r->cur };
+    dp_run_emit(r, &rec);
+    r->sum.samples++;
+}
+
+void dp_run_emit_event(dp_run *r, dp_event_kind kind, double t, double x, double v)
+{
+    r->sum.events++;
+    if (!r->spec.output.events)
+        return;
+    dp_record rec = { .type = DP_RECORD_EVENT, .u.event = { .kind = kind, .t = t, .x = x, .v = v } };
+    dp_run_emit(r, &rec);
+}
+
+int dp_run_fail(dp_run *r, int status, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->error, sizeof r->error, fmt, ap);
+    va_end(ap);
+    r->status = status;
+    r->finished = 1;
+    return status;
+}
+
+dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int *status)
+{
+    int s = dp_spec_check(spec, max_steps, errs);
+    if (s != DP_OK) {
+        *status = s;
+        return NULL;
+    }
+    dp_run *r = calloc(1, sizeof *r);
+    if (r == NULL) {
+        *status = DP_ENOMEM;
+        return NULL;
+    }
+    r->spec = *spec;
+    if (dp_model_copy(&r->spec.model, &spec->model) != DP_OK) {
+        memset(&r->spec.model, 0, sizeof r->spec.model);
+        dp_run_free(r);
+        *status = DP_ENOMEM;
+        return NULL;
+    }
+    r->h = spec->solver.dt;
+    r->nsteps = (unsigned long long)dp_spec_steps(spec);
+    r->countdown = 1; /* the initial state is always a sample */
+    s = spec->solver.kind == DP_SOLVER_ANALYTIC ? dp_analytic_init(r) : dp_stick_slip_init(r);
+    if (s != DP_OK) {
+        dp_errors_add(errs, "", "%s", r->error[0] ? r->error : dp_strerror(s));
+        dp_run_free(r);
+        *status = s;
+        return NULL;
+    }
+    r->sum.final = r->cur;
+    dp_run_emit_state(r); /* queued in `pending`: no block yet */
+    *status = DP_OK;
+    return r;
+}
+
+static int advance(dp_run *r)
+{
+    if (r->spec.solver.kind == DP_SOLVER_ANALYTIC)
+        return dp_analytic_advance(r);
+    if (r->spec.solver.variant == DP_VARIANT_THESIS)
+        return dp_thesis_advance(r);
+    return dp_stick_slip_advance(r);
+}
+
+int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
+{
+    *n = 0;
+    if (r == NULL || buf == NULL || cap == 0)
+        return DP_EINVAL;
+    r->out = buf;
+    r->out_cap = cap;
+    r->out_n = 0;
+    while (r->ipending < r->npending && r->out_n < cap)
+        buf[r->out_n++] = r->pending[r->ipending++];
+    if (r->ipending == r->npending)
+        r->npending = r->ipending = 0;
+    if (dp_run_room(r)) {
+        int s = advance(r);
+        if (s < 0 && r->status == DP_OK)
+            dp_run_fail(r, s, "%s", dp_strerror(s));
+    }
+    *n = r->out_n;
+    r->out = NULL;
+    r->sum.final = r->cur;
+    if (r->status != DP_OK)
+        return r->status;
+    if (r->finished && r->npending == 0)
+        return DP_DONE;
+    return DP_MORE;
+}
+
+const dp_summary *dp_run_summary(const dp_run *r)
+{
+    return &r->sum;
+}
+
+double dp_run_progress(const dp_run *r)
+{
+    double p = r->nsteps ? (double)r->n / (double)r->nsteps : 1;
+    return p > 1 ? 1 : p;
+}
+
+const char *dp_run_error(const dp_run *r)
+{
+    return r->error;
+}
+
+void dp_run_free(dp_run *r)
+{
+    if (r == NULL)
+        return;
+    dp_spec_clear(&r->spec);
+    free(r);
+}

@@ -1,0 +1,75 @@
+/* src/core/run_internal.h - internal: the run object shared by the iterator plumbing (run.c) and the
+ * solvers (stick_slip.c, thesis.c, analytic.c). Not part of the public API. */
+#ifndef DASHPOT_CORE_RUN_INTERNAL_H
+#define DASHPOT_CORE_RUN_INTERNAL_H
+
+#include "dashpot/analytic.h"
+#include "dashpot/run.h"
+
+#define DP_RUN_PENDING 8
+
+/* The constants of one stick-slip run, fixed at allocation (mathematics.md §4 notation). */
+typedef struct dp_ss_law {
+    double m, k, c;      /* mass, linear spring stiffness (0 for a graph spring), viscous part of the damper */
+    double tau, tau_s;   /* kinetic and static stick thresholds (tau_s = phi1 for generalized Coulomb) */
+    double vb, theta;
+    int can_stick;       /* the damper graph has a vertical piece at zero relative velocity */
+    int closed;          /* linear spring, threshold damper, no relaxation: the soft-threshold closed form */
+    int locate;          /* split steps at phase changes (closed form only) */
+    const dp_graph *A, *S;
+    const dp_relaxation *gamma;
+    const dp_forcing *F;
+} dp_ss_law;
+
+struct dp_run {
+    dp_spec spec;               /* deep copy: the run owns it */
+    double h;                   /* nominal step */
+    unsigned long long nsteps;  /* steps to t_end */
+    unsigned long long n;       /* steps done */
+    long countdown;             /* steps until the next decimated sample */
+    dp_sample cur;              /* state at t = cur.t */
+    dp_summary sum;
+    dp_ss_law law;
+    int finished, status;
+    char error[256];
+    /* Output of the block being produced; overflow goes to `pending`, drained first on the next call. */
+    dp_record *out;
+    size_t out_n, out_cap;
+    dp_record pending[DP_RUN_PENDING];
+    size_t npending, ipending;
+    /* analytic solver */
+    double an_F0;
+    dp_coulomb_arc an_arc;
+};
+
+/* Queues one record for the caller. */
+void dp_run_emit(dp_run *r, const dp_record *rec);
+/* Emits a sample of the current state if due (decimation) or if it is the last one. */
+void dp_run_emit_state(dp_run *r);
+/* Emits a phase-change event at time t, position x, velocity v (if events are wanted). */
+void dp_run_emit_event(dp_run *r, dp_event_kind kind, double t, double x, double v);
+/* Marks the run failed with a status and message; returns the status. */
+int dp_run_fail(dp_run *r, int status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+/* Solver entry points: prepare at allocation, then advance until the block is full or the run ends. */
+int dp_stick_slip_init(dp_run *r);
+int dp_stick_slip_advance(dp_run *r);
+int dp_thesis_advance(dp_run *r);
+int dp_analytic_init(dp_run *r);
+int dp_analytic_advance(dp_run *r);
+
+/* The step length of step n (the last one ends exactly at t_end). */
+static inline double dp_run_step_length(const dp_run *r)
+{
+    if (r->n + 1 < r->nsteps)
+        return r->h;
+    return r->spec.solver.t_end - (double)(r->nsteps - 1) * r->h;
+}
+
+/* Whether the block being produced has room and the run goes on. */
+static inline int dp_run_room(const dp_run *r)
+{
+    return r->out_n < r->out_cap && r->npending == 0 && !r->finished;
+}
+
+#endif

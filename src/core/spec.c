@@ -1,0 +1,128 @@
+/* src/core/spec.c - spec defaults, lifetime and the cross-field rules a schema cannot state.
+ *
+ * The rules come from the mathematics: the thesis algorithm needs the contraction (4.10) and the bound
+ * (4.8); the exact step is uniquely solvable only while m + h theta c + h^2 theta^2 k > h theta L_gamma
+ * (its left side must stay strictly increasing, mathematics.md §4); theta-weighting is defined only for
+ * linear springs; the analytic solver exists only where the closed form (4.14) does.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "dashpot/spec.h"
+
+void dp_spec_init(dp_spec *s)
+{
+    memset(s, 0, sizeof *s);
+    s->model.mass = 1;
+    s->solver.kind = DP_SOLVER_STICK_SLIP;
+    s->solver.dt = 1e-3;
+    s->solver.t_end = 10;
+    s->solver.theta = 1;
+    s->solver.variant = DP_VARIANT_EXACT;
+    s->solver.Z = 100;
+    s->solver.eps = 1e-4;
+    s->solver.events = DP_EVENTS_LOCATE;
+    s->output.every = 1;
+    s->output.samples = 1;
+    s->output.events = 1;
+}
+
+void dp_spec_clear(dp_spec *s)
+{
+    if (s == NULL)
+        return;
+    dp_model_clear(&s->model);
+}
+
+double dp_spec_steps(const dp_spec *s)
+{
+    /* t_end/dt is usually meant to be a whole number; forgive the last bits of rounding in the quotient. */
+    double r = s->solver.t_end / s->solver.dt;
+    double n = ceil(r * (1 - 1e-12));
+    return n < 1 ? 1 : n;
+}
+
+static void check_analytic(const dp_spec *s, dp_errors *e)
+{
+    const dp_model *m = &s->model;
+    double F0;
+    if (m->spring.law != DP_SPRING_LINEAR || !(m->spring.k > 0))
+        dp_errors_add(e, "/model/spring", "the analytic solver needs a linear spring with k > 0");
+    if (m->damper.law != DP_DAMPER_COULOMB && m->damper.law != DP_DAMPER_NONE)
+        dp_errors_add(e, "/model/damper/law", "the analytic solver needs a coulomb (or no) damper, got %s",
+                      dp_damper_law_name(m->damper.law));
+    if (m->damper.relaxation.kind != DP_RELAX_NONE)
+        dp_errors_add(e, "/model/damper/relaxation", "the analytic solver has no closed form with relaxation");
+    if (m->damper.belt_velocity != 0)
+        dp_errors_add(e, "/model/damper/belt_velocity", "the analytic solver needs belt_velocity 0");
+    if (!dp_forcing_is_constant(&m->forcing, &F0))
+        dp_errors_add(e, "/model/forcing", "the analytic solver needs a constant forcing");
+}
+
+static void check_thesis(const dp_spec *s, dp_errors *e)
+{
+    const dp_model *m = &s->model;
+    const dp_damper *d = &m->damper;
+    if (m->spring.law != DP_SPRING_LINEAR || !(m->spring.k > 0))
+        dp_errors_add(e, "/model/spring", "variant \"thesis\" (algorithm 4.1) needs a linear spring with k > 0");
+    if (d->law != DP_DAMPER_COULOMB)
+        dp_errors_add(e, "/model/damper/law", "variant \"thesis\" needs a coulomb damper, got %s",
+                      dp_damper_law_name(d->law));
+    if (d->belt_velocity != 0)
+        dp_errors_add(e, "/model/damper/belt_velocity", "variant \"thesis\" has no belt; use variant \"exact\"");
+    if (s->solver.theta != 1)
+        dp_errors_add(e, "/solver/theta", "variant \"thesis\" is the backward Euler scheme: theta must be 1");
+    double A = dp_relaxation_bound(&d->relaxation);
+    if (d->law == DP_DAMPER_COULOMB && d->relaxation.kind != DP_RELAX_NONE && !(A < d->phi0))
+        dp_errors_add(e, "/model/damper/relaxation",
+                      "variant \"thesis\" needs |gamma| <= A < phi0 (thesis (4.8)) for its sign rule (4.12); "
+                      "sup|gamma| = %g, phi0 = %g", A, d->phi0);
+    double K = m->mass / s->solver.dt + s->solver.dt * m->spring.k;
+    double L = dp_relaxation_lipschitz(&d->relaxation);
+    if (!(L < K))
+        dp_errors_add(e, "/solver/dt",
+                      "the fixed-point iteration (4.13) does not contract: alpha = L_gamma/(m/dt + dt k) = %g/%g "
+                      ">= 1 (thesis (4.10)); choose a smaller dt", L, K);
+}
+
+static void check_exact(const dp_spec *s, dp_errors *e)
+{
+    const dp_model *m = &s->model;
+    double h = s->solver.dt, th = s->solver.theta;
+    if (th != 1 && m->spring.law != DP_SPRING_LINEAR)
+        dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring (the %s spring is stepped by "
+                      "backward Euler): use theta = 1", dp_spring_law_name(m->spring.law));
+    double k = m->spring.law == DP_SPRING_LINEAR ? m->spring.k : 0;
+    double c = (m->damper.law == DP_DAMPER_LINEAR || m->damper.law == DP_DAMPER_BINGHAM) ? m->damper.c : 0;
+    double W = m->mass + h * th * c + h * h * th * th * k;
+    double L = dp_relaxation_lipschitz(&m->damper.relaxation);
+    if (isfinite(L) && !(W > h * th * L))
+        dp_errors_add(e, "/solver/dt", "the implicit step is not uniquely solvable: m + h theta c + h^2 theta^2 k "
+                      "= %g must exceed h theta L_gamma = %g; choose a smaller dt", W, h * th * L);
+}
+
+int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    const dp_model *m = &s->model;
+    if (m->spring.law == DP_SPRING_ROPE && s->x0 > m->spring.length)
+        dp_errors_add(e, "/initial/x", "the rope is inextensible: x must be <= length = %g, got %g",
+                      m->spring.length, s->x0);
+    if (s->solver.kind == DP_SOLVER_ANALYTIC)
+        check_analytic(s, e);
+    else if (s->solver.variant == DP_VARIANT_THESIS)
+        check_thesis(s, e);
+    else
+        check_exact(s, e);
+    if (e->n + e->dropped > before)
+        return DP_EINVAL;
+    if (max_steps <= 0 || max_steps > DP_SPEC_MAX_STEPS)
+        max_steps = DP_SPEC_MAX_STEPS;
+    double n = s->solver.t_end / s->solver.dt;
+    if (!(n <= max_steps)) {
+        dp_errors_add(e, "/solver/dt", "t_end/dt = %.6g steps exceeds the limit of %.6g steps per run",
+                      n, max_steps);
+        return DP_ELIMIT;
+    }
+    return DP_OK;
+}
