@@ -19,4 +19,11 @@
  * listed), DP_ENOMEM. On failure the spec holds nothing that needs freeing beyond dp_spec_clear. */
 int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs);
 
+/* Writes the meta object of a run (solver, its parameters, step count, library version) as one JSON object
+ * into out (NUL-terminated, truncated to cap). Returns the length it needed, like snprintf. Shared by the
+ * CLI and the daemon so that both describe a run in the same words. */
+size_t dp_spec_meta_json(const dp_spec *spec, char *out, size_t cap);
+
+#define DP_VERSION "0.1.0"
+
 #endif

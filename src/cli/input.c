@@ -1,0 +1,54 @@
+/* src/cli/input.c - reading a spec from a file or a pipe, and reporting located errors, for every
+ * subcommand alike. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "commands.h"
+
+char *dp_cli_read_input(const char *path, size_t *len)
+{
+    FILE *f = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (f == NULL) {
+        fprintf(stderr, "dashpot: cannot open %s: %s\n", path, strerror(errno));
+        return NULL;
+    }
+    size_t cap = 4096, n = 0;
+    char *buf = malloc(cap);
+    const char *why = buf == NULL ? "out of memory" : NULL;
+    while (why == NULL) {
+        if (n + 1 == cap) {
+            char *bigger = cap > DP_CLI_MAX_INPUT ? NULL : realloc(buf, cap * 2);
+            if (bigger == NULL) {
+                why = cap > DP_CLI_MAX_INPUT ? "larger than 64 MiB" : "out of memory";
+                break;
+            }
+            buf = bigger;
+            cap *= 2;
+        }
+        size_t got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0)
+            why = ferror(f) ? strerror(errno) : "";
+    }
+    if (f != stdin)
+        fclose(f);
+    if (why[0] != '\0') {
+        fprintf(stderr, "dashpot: cannot read %s: %s\n", path, why);
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+void dp_cli_print_errors(const char *what, const dp_errors *errs)
+{
+    for (size_t i = 0; i < errs->n; i++)
+        fprintf(stderr, "dashpot: %s: %s: %s\n", what,
+                errs->item[i].pointer[0] ? errs->item[i].pointer : "(document)", errs->item[i].message);
+    if (errs->dropped)
+        fprintf(stderr, "dashpot: %s: ... and %zu more errors\n", what, errs->dropped);
+}

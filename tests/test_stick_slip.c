@@ -1,0 +1,236 @@
+/* tests/test_stick_slip.c - the stick-slip solver against the closed form (seed 000 (4.14)-(4.15)), the
+ * thesis algorithm 4.1, hand-computed steps and second methods (graph laws against their named twins).
+ *
+ * Reference problem (thesis ch. 4): m = k = phi0 = 1, F = 0, x(0) = x0, x'(0) = 0. Arcs are half circles
+ * about -/+ phi0/k; turning points shrink by 2 phi0/k; the mass rests at the first |x_j| <= phi0/k.
+ * x0 = 5: turns at -3 (t = pi), rests at 1 from t = 2 pi.  x0 = 4.5: -2.5 at pi, rest at 0.5 from 2 pi.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "dashpot/analytic.h"
+#include "trajectory.h"
+
+#define COULOMB_MODEL "{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":1}}"
+
+/* Exact x at time t from the arcs. */
+static double exact_x(const dp_coulomb_problem *p, const dp_coulomb_arc *a, size_t n, double t, double *v)
+{
+    size_t i = 0;
+    while (i + 1 < n && a[i + 1].t0 <= t)
+        i++;
+    double x, vv;
+    dp_coulomb_arc_eval(p, &a[i], t, &x, &vv);
+    if (v)
+        *v = vv;
+    return x;
+}
+
+/* Max |x - x_exact| over the samples of a free Coulomb decay from x0 with step dt. */
+static double decay_error(double x0, double dt, double theta, const char *events)
+{
+    char spec[512];
+    traj t;
+    SPEC(spec, "{\"model\":" COULOMB_MODEL ",\"initial\":{\"x\":%.17g},"
+         "\"solver\":{\"dt\":%.17g,\"t_end\":10,\"theta\":%.17g,\"events\":\"%s\"}}", x0, dt, theta, events);
+    assert_int_equal(traj_run(spec, &t), DP_OK);
+    assert_int_equal(t.status, DP_DONE);
+    dp_coulomb_problem p = { .m = 1, .k = 1, .phi0 = 1, .x0 = x0 };
+    dp_coulomb_arc arcs[64];
+    size_t na;
+    assert_int_equal(dp_coulomb_arcs(&p, 10, arcs, 64, &na), 0);
+    double err = 0;
+    for (size_t i = 0; i < t.n; i++)
+        err = fmax(err, fabs(t.s[i].x - exact_x(&p, arcs, na, t.s[i].t, NULL)));
+    traj_free(&t);
+    return err;
+}
+
+static void test_closed_form_arcs(void **state)
+{
+    (void)state;
+    dp_coulomb_problem p = { .m = 1, .k = 1, .phi0 = 1, .x0 = 5 };
+    dp_coulomb_arc a[16];
+    size_t n;
+    assert_int_equal(dp_coulomb_arcs(&p, 10, a, 16, &n), 0);
+    assert_int_equal(n, 3); /* left, right, rest */
+    assert_true(fabs(a[0].t1 - M_PI) < 1e-14 && fabs(a[0].x1 + 3) < 1e-14);
+    assert_true(fabs(a[1].t1 - 2 * M_PI) < 1e-14 && fabs(a[1].x1 - 1) < 1e-14);
+    assert_int_equal(a[2].dir, 0);
+    double x, v;
+    dp_coulomb_arc_eval(&p, &a[0], M_PI / 2, &x, &v); /* quarter way: at the centre +1, speed -R */
+    assert_true(fabs(x - 1) < 1e-14 && fabs(v + 4) < 1e-14);
+}
+
+/* Thesis Figs. 4.2-4.5 without relaxation: turning points, rest positions and stick times to O(dt). */
+static void test_thesis_figures_closed_form(void **state)
+{
+    (void)state;
+    for (int x0 = 0; x0 <= 5; x0++) {
+        char spec[512];
+        traj t;
+        SPEC(spec, "{\"model\":" COULOMB_MODEL ",\"initial\":{\"x\":%d},"
+             "\"solver\":{\"dt\":1e-3,\"t_end\":10,\"variant\":\"thesis\"}}", x0);
+        assert_int_equal(traj_run(spec, &t), DP_OK);
+        dp_coulomb_problem p = { .m = 1, .k = 1, .phi0 = 1, .x0 = x0 };
+        dp_coulomb_arc a[16];
+        size_t na;
+        dp_coulomb_arcs(&p, 10, a, 16, &na);
+        double rest_x = a[na - 1].x0, rest_t = a[na - 1].t0;
+        printf("x0=%d: rest %.6f (exact %.6f) stick time %.6f (exact %.6f)\n", x0, t.sum.final.x, rest_x,
+               t.sum.stick_time, 10 - rest_t);
+        /* O(dt): backward Euler loses ~ 2 pi dt phi0 per arc; 10 dt bounds it for the <= 3 arcs here. */
+        assert_true(fabs(t.sum.final.x - rest_x) < 10e-3);
+        assert_true(fabs(t.sum.stick_time - (10 - rest_t)) < 3e-3);
+        /* Turning points: the samples where v changes sign match the arcs' ends. */
+        size_t j = 0;
+        for (size_t i = 1; i < t.n && j + 1 < na; i++) {
+            if (t.s[i - 1].v * t.s[i].v < 0 || (t.s[i].v == 0 && t.s[i - 1].v != 0)) {
+                assert_true(fabs(t.s[i].x - a[j].x1) < 10e-3);
+                assert_true(fabs(t.s[i].t - a[j].t1) < 3e-3);
+                j++;
+            }
+        }
+        assert_int_equal(j, na - 1);
+        traj_free(&t);
+    }
+}
+
+static void test_convergence_orders(void **state)
+{
+    (void)state;
+    const double dts[3] = { 1e-2, 1e-3, 1e-4 };
+    const double thetas[2] = { 1, 0.5 };
+    for (int k = 0; k < 2; k++) {
+        double e[3];
+        for (int i = 0; i < 3; i++)
+            e[i] = decay_error(4.5, dts[i], thetas[k], "locate");
+        double o1 = log10(e[0] / e[1]), o2 = log10(e[1] / e[2]);
+        printf("theta=%.1f errors %.3e %.3e %.3e orders %.3f %.3f\n", thetas[k], e[0], e[1], e[2], o1, o2);
+        double want = thetas[k] == 1 ? 1 : 2;
+        assert_true(fabs(o1 - want) < 0.25 && fabs(o2 - want) < 0.25);
+    }
+}
+
+/* Runs spec text, asserting it completes. */
+static void run_ok(const char *spec, traj *t)
+{
+    assert_int_equal(traj_run(spec, t), DP_OK);
+    if (t->status != DP_DONE)
+        fprintf(stderr, "run failed: %s\n", t->error);
+    assert_int_equal(t->status, DP_DONE);
+}
+
+static double max_diff_x(const traj *a, const traj *b, double *dv)
+{
+    assert_int_equal(a->n, b->n);
+    double e = 0, ev = 0;
+    for (size_t i = 0; i < a->n; i++) {
+        assert_true(a->s[i].t == b->s[i].t);
+        e = fmax(e, fabs(a->s[i].x - b->s[i].x));
+        ev = fmax(ev, fabs(a->s[i].v - b->s[i].v));
+    }
+    if (dv)
+        *dv = ev;
+    return e;
+}
+
+/* Max |x| and |v| difference between algorithm 4.1 with stopping tolerance eps and the exact inclusion. */
+static double thesis_vs_exact(int x0, double eps, double *dv)
+{
+    char a[600], b[600];
+    const char *model = "{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\","
+                        "\"phi0\":1,\"relaxation\":{\"kind\":\"rational\",\"a\":0.5,\"b\":1}}}";
+    traj t1, t2;
+    run_ok(SPEC(a, "{\"model\":%s,\"initial\":{\"x\":%d},\"solver\":{\"dt\":1e-3,\"variant\":\"thesis\","
+                "\"Z\":100,\"eps\":%.17g}}", model, x0, eps), &t1);
+    run_ok(SPEC(b, "{\"model\":%s,\"initial\":{\"x\":%d},\"solver\":{\"dt\":1e-3,\"variant\":\"exact\"}}",
+                model, x0), &t2);
+    double dx = max_diff_x(&t1, &t2, dv);
+    assert_int_equal(t1.ne, t2.ne);
+    traj_free(&t1);
+    traj_free(&t2);
+    return dx;
+}
+
+/* With gamma = 0.5 v/(1+|v|) (thesis Figs. 4.2-4.5): algorithm 4.1 and the exact inclusion solve the same
+ * step, so they differ only by the fixed-point stopping rule |v_i - v_{i+1}| < eps. With the thesis' own
+ * eps = 1e-4 the iteration stops after its second pass, leaving ~alpha * 1e-6 per step (alpha = 5e-4):
+ * a few 1e-6 after 10^4 steps. With eps = 1e-6 they agree to 1e-6; with 1e-12, to rounding. */
+static void test_thesis_matches_exact_with_relaxation(void **state)
+{
+    (void)state;
+    for (int x0 = 0; x0 <= 5; x0++) {
+        double dv4, dv6, dv12;
+        double dx4 = thesis_vs_exact(x0, 1e-4, &dv4);
+        double dx6 = thesis_vs_exact(x0, 1e-6, &dv6);
+        double dx12 = thesis_vs_exact(x0, 1e-12, &dv12);
+        printf("x0=%d thesis vs exact: eps 1e-4 |dx| %.2e |dv| %.2e; eps 1e-6 %.2e %.2e; eps 1e-12 %.2e %.2e\n",
+               x0, dx4, dv4, dx6, dv6, dx12, dv12);
+        assert_true(dx4 < 1e-5 && dv4 < 1e-5);
+        assert_true(dx6 < 1e-6 && dv6 < 1e-6);
+        assert_true(dx12 < 1e-11 && dv12 < 1e-11);
+    }
+}
+
+/* Once at rest with |k x| < phi0 and no load, x stays bitwise constant (no creep). */
+static void test_exact_sticking(void **state)
+{
+    (void)state;
+    char spec[512];
+    traj t;
+    run_ok(SPEC(spec, "{\"model\":" COULOMB_MODEL ",\"initial\":{\"x\":4.5},\"solver\":{\"dt\":1e-3,"
+                "\"t_end\":20,\"theta\":0.5}}"), &t);
+    size_t first = 0;
+    while (first < t.n && t.s[first].phase != DP_PHASE_STICK)
+        first++;
+    assert_true(first < t.n && t.s[first].t < 2 * M_PI + 1e-3);
+    for (size_t i = first; i < t.n; i++) {
+        assert_true(t.s[i].x == t.s[first].x);
+        assert_true(t.s[i].v == 0);
+    }
+    assert_true(fabs(t.s[first].x - 0.5) < 1e-6);
+    assert_int_equal(t.ne, 1);
+    assert_int_equal(t.e[0].kind, DP_EVENT_STICK);
+    assert_true(fabs(t.e[0].t - 2 * M_PI) < 1e-6); /* located to O(dt^2) */
+    assert_true(fabs(t.sum.stick_time - (20 - 2 * M_PI)) < 1e-6);
+    traj_free(&t);
+}
+
+/* A user graph with the Coulomb shape goes through the general inclusion solver: same answer. */
+static void test_graph_damper_equals_coulomb(void **state)
+{
+    (void)state;
+    char a[600], b[600];
+    traj t1, t2;
+    const char *solver = "\"solver\":{\"dt\":1e-3,\"events\":\"none\"}";
+    run_ok(SPEC(a, "{\"model\":" COULOMB_MODEL ",\"initial\":{\"x\":5},%s}", solver), &t1);
+    run_ok(SPEC(b, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"graph\",\"points\":[[-1,-1],[1,1]]},"
+                "\"damper\":{\"law\":\"graph\",\"points\":[[-1,-1],[0,-1],[0,1],[1,1]]}},"
+                "\"initial\":{\"x\":5},%s}", solver), &t2);
+    double dv, dx = max_diff_x(&t1, &t2, &dv);
+    printf("graph vs coulomb: |dx| %.3e |dv| %.3e\n", dx, dv);
+    assert_true(dx < 1e-12 && dv < 1e-12);
+    for (size_t i = 0; i < t1.n; i++)
+        assert_int_equal(t1.s[i].phase, t2.s[i].phase);
+    assert_int_equal(t1.ne, t2.ne);
+    traj_free(&t1);
+    traj_free(&t2);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_closed_form_arcs),
+        cmocka_unit_test(test_thesis_figures_closed_form),
+        cmocka_unit_test(test_convergence_orders),
+        cmocka_unit_test(test_thesis_matches_exact_with_relaxation),
+        cmocka_unit_test(test_exact_sticking),
+        cmocka_unit_test(test_graph_damper_equals_coulomb),
+    };
+    return cmocka_run_group_tests_name("stick_slip", tests, NULL, NULL);
+}
