@@ -55,8 +55,16 @@ int dp_encoder_record(dp_encoder *e, dp_buf *b, const dp_record *r);
 int dp_encoder_end(dp_encoder *e, dp_buf *b, const dp_summary *s, const char *extra_json);
 
 /* A failure after the opening went out: a final error line/event (CSV: a "# error" line) so that the
- * stream is never silently cut. JSON: closes the document with an "error" member. */
+ * stream is never silently cut. JSON: closes the document with an "error" member. `status` is a dp_status
+ * (or an HTTP status); the object is {"status": dp_status_http(status), "title": dp_strerror(status),
+ * "detail": message}, the members of a problem document. */
 int dp_encoder_fail(dp_encoder *e, dp_buf *b, int status, const char *message);
+
+/* The HTTP status a dp_status stands for on the wire (the "status" of error lines and problem documents):
+ * DP_ESYNTAX 400; DP_EINVAL, DP_ELIMIT, DP_ESOLVE, DP_ENONFINITE 422; DP_ENOMEM, DP_ECANCEL 503. A value that
+ * already is an HTTP status (100..599) is returned unchanged. Never 500: every failure is the request's
+ * (422) or a temporary lack of resources (503). */
+int dp_status_http(int status);
 
 /* Appends a JSON string literal (with quotes) for s, escaping as RFC 8259 requires. */
 int dp_json_quote(dp_buf *b, const char *s);

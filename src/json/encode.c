@@ -1,0 +1,385 @@
+/* src/json/encode.c - runs as JSON, NDJSON, SSE or CSV (encode.h): the shapes of the wire contract.
+ *
+ *   NDJSON  {"type":"meta",...}\n  {"type":"sample","t":..,"x":..,"v":..,"Fs":..,"Fd":..,"Fc":..,"phase":..}\n
+ *           {"type":"event","kind":"stick"|"slip","t":..,"x":..,"v":..}\n  ...  {"type":"summary",...}\n
+ *           or, on failure, a last {"type":"error","status":..,"title":..,"detail":..}\n
+ *   SSE     the same objects, each as "event: <type>\ndata: <object>\n\n"
+ *   JSON    {"meta":{..},\n"samples":[\n{..},\n{..}\n],\n"events":[..],\n"summary":{..}}\n  (one sample a line)
+ *   CSV     t,x,v,Fs,Fd,Fc,phase\n then one row per sample; a failure adds "# error: <status> <detail>".
+ *
+ * Samples are the hot path (millions a second): they are written with pointer arithmetic into one
+ * reservation, numbers by dp_format_double, never through printf.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dashpot/encode.h"
+
+/* Bytes one sample may take in any format: 6 numbers of at most 25 characters, the keys, the phase and the
+ * SSE framing come to ~260; the rest is margin. */
+#define SAMPLE_MAX 384
+
+static inline char *put_lit(char *p, const char *lit, size_t n)
+{
+    memcpy(p, lit, n);
+    return p + n;
+}
+
+/* Appends a string literal at p (evaluated once), returns the end. */
+#define PUT(p, lit) put_lit((p), (lit), sizeof(lit) - 1)
+
+static const char *phase_name(dp_phase ph)
+{
+    return ph == DP_PHASE_STICK ? "stick" : ph == DP_PHASE_SLIP ? "slip" : NULL;
+}
+
+static char *put_num(char *p, double x)
+{
+    return p + dp_format_double(p, x);
+}
+
+/* "t":..,"x":..,"v":..,"Fs":..,"Fd":..,"Fc":..[,"phase":".."] */
+static char *put_sample_members(char *p, const dp_sample *s)
+{
+    p = put_num(PUT(p, "\"t\":"), s->t);
+    p = put_num(PUT(p, ",\"x\":"), s->x);
+    p = put_num(PUT(p, ",\"v\":"), s->v);
+    p = put_num(PUT(p, ",\"Fs\":"), s->Fs);
+    p = put_num(PUT(p, ",\"Fd\":"), s->Fd);
+    p = put_num(PUT(p, ",\"Fc\":"), s->Fc);
+    if (s->phase == DP_PHASE_STICK)
+        p = PUT(p, ",\"phase\":\"stick\"");
+    else if (s->phase == DP_PHASE_SLIP)
+        p = PUT(p, ",\"phase\":\"slip\"");
+    return p;
+}
+
+static char *put_event_members(char *p, const dp_event *ev)
+{
+    p = ev->kind == DP_EVENT_STICK ? PUT(p, "\"kind\":\"stick\"") : PUT(p, "\"kind\":\"slip\"");
+    p = put_num(PUT(p, ",\"t\":"), ev->t);
+    p = put_num(PUT(p, ",\"x\":"), ev->x);
+    return put_num(PUT(p, ",\"v\":"), ev->v);
+}
+
+static char *put_csv_row(char *p, const dp_sample *s)
+{
+    p = put_num(p, s->t);
+    p = put_num(PUT(p, ","), s->x);
+    p = put_num(PUT(p, ","), s->v);
+    p = put_num(PUT(p, ","), s->Fs);
+    p = put_num(PUT(p, ","), s->Fd);
+    p = put_num(PUT(p, ","), s->Fc);
+    *p++ = ',';
+    const char *ph = phase_name(s->phase);
+    if (ph) {
+        size_t n = strlen(ph);
+        memcpy(p, ph, n);
+        p += n;
+    }
+    *p++ = '\n';
+    return p;
+}
+
+/* Wraps members written by `put` as a line object of the streaming formats, or as a JSON array element. */
+static char *put_object(const dp_encoder *e, char *p, const char *type, size_t tlen)
+{
+    if (e->format == DP_FORMAT_SSE) {
+        p = PUT(p, "event: ");
+        memcpy(p, type, tlen);
+        p = PUT(p + tlen, "\ndata: ");
+    }
+    p = PUT(p, "{\"type\":\"");
+    memcpy(p, type, tlen);
+    return PUT(p + tlen, "\",");
+}
+
+static char *put_close(const dp_encoder *e, char *p)
+{
+    return e->format == DP_FORMAT_SSE ? PUT(p, "}\n\n") : PUT(p, "}\n");
+}
+
+static int encode_sample(dp_encoder *e, dp_buf *b, const dp_sample *s)
+{
+    if (dp_buf_reserve(b, SAMPLE_MAX) != DP_OK)
+        return DP_ENOMEM;
+    char *p = b->data + b->len;
+    switch (e->format) {
+    case DP_FORMAT_CSV:
+        p = put_csv_row(p, s);
+        break;
+    case DP_FORMAT_JSON:
+        p = e->nsamples_written ? PUT(p, ",\n{") : PUT(p, "\n{");
+        p = PUT(put_sample_members(p, s), "}");
+        break;
+    default:
+        p = put_close(e, put_sample_members(put_object(e, p, "sample", 6), s));
+    }
+    e->nsamples_written = 1;
+    b->len = (size_t)(p - b->data);
+    b->data[b->len] = '\0';
+    return DP_OK;
+}
+
+/* JSON holds events until the samples array closes; past DP_ENCODER_MAX_EVENTS they are only counted. */
+static int hold_event(dp_encoder *e, const dp_event *ev)
+{
+    if (e->nevents == e->events_cap) {
+        if (e->events_cap >= DP_ENCODER_MAX_EVENTS) {
+            e->events_dropped++;
+            return DP_OK;
+        }
+        size_t cap = e->events_cap ? 2 * e->events_cap : 64;
+        if (cap > DP_ENCODER_MAX_EVENTS)
+            cap = DP_ENCODER_MAX_EVENTS;
+        dp_event *ne = realloc(e->events, cap * sizeof *ne);
+        if (ne == NULL)
+            return DP_ENOMEM;
+        e->events = ne;
+        e->events_cap = cap;
+    }
+    e->events[e->nevents++] = *ev;
+    return DP_OK;
+}
+
+static int encode_event(dp_encoder *e, dp_buf *b, const dp_event *ev)
+{
+    if (e->format == DP_FORMAT_CSV)
+        return DP_OK;
+    if (e->format == DP_FORMAT_JSON)
+        return hold_event(e, ev);
+    if (dp_buf_reserve(b, SAMPLE_MAX) != DP_OK)
+        return DP_ENOMEM;
+    char *p = put_close(e, put_event_members(put_object(e, b->data + b->len, "event", 5), ev));
+    b->len = (size_t)(p - b->data);
+    b->data[b->len] = '\0';
+    return DP_OK;
+}
+
+int dp_encoder_record(dp_encoder *e, dp_buf *b, const dp_record *r)
+{
+    if (r->type == DP_RECORD_SAMPLE)
+        return encode_sample(e, b, &r->u.sample);
+    if (r->type == DP_RECORD_EVENT)
+        return encode_event(e, b, &r->u.event);
+    return DP_OK;
+}
+
+/* ---- framing: the opening, the closing summary, the error; not hot, so plain appends ---- */
+
+static int put_str(dp_buf *b, const char *s)
+{
+    return dp_buf_append(b, s, strlen(s));
+}
+
+static int put_double(dp_buf *b, double x)
+{
+    char t[32];
+    return dp_buf_append(b, t, dp_format_double(t, x));
+}
+
+static int put_ull(dp_buf *b, unsigned long long n)
+{
+    char t[24];
+    int len = snprintf(t, sizeof t, "%llu", n);
+    return dp_buf_append(b, t, (size_t)len);
+}
+
+/* The caller's meta object with "type":"meta" as its first member (line formats) or without it (JSON, where
+ * the member name already says it). A missing or non-object meta counts as {}. */
+static int put_meta(dp_buf *b, const char *meta, int with_type)
+{
+    static const char type_member[] = "\"type\":\"meta\"";
+    const char *body = "}";
+    if (meta) {
+        meta += strspn(meta, " \t\r\n");
+        if (*meta == '{')
+            body = meta + 1 + strspn(meta + 1, " \t\r\n");
+    }
+    int has_type = strncmp(body, type_member, sizeof type_member - 1) == 0;
+    if (has_type) {
+        body += sizeof type_member - 1;
+        body += strspn(body, " \t\r\n");
+        body += *body == ',';
+    }
+    size_t n = strlen(body);
+    while (n > 0 && strchr(" \t\r\n", body[n - 1]))
+        n--;
+    int empty = n <= 1; /* just the closing brace */
+    int s = put_str(b, with_type ? (empty ? "{\"type\":\"meta\"" : "{\"type\":\"meta\",") : "{");
+    return s ? s : dp_buf_append(b, body, n);
+}
+
+void dp_encoder_init(dp_encoder *e, dp_format f)
+{
+    memset(e, 0, sizeof *e);
+    e->format = f;
+}
+
+void dp_encoder_clear(dp_encoder *e)
+{
+    if (e == NULL)
+        return;
+    free(e->events);
+    e->events = NULL;
+    e->nevents = e->events_cap = 0;
+}
+
+int dp_encoder_begin(dp_encoder *e, dp_buf *b, const char *meta_json)
+{
+    switch (e->format) {
+    case DP_FORMAT_CSV:
+        return put_str(b, "t,x,v,Fs,Fd,Fc,phase\n");
+    case DP_FORMAT_JSON: {
+        int s = put_str(b, "{\"meta\":");
+        s = s ? s : put_meta(b, meta_json, 0);
+        return s ? s : put_str(b, ",\n\"samples\":[");
+    }
+    case DP_FORMAT_SSE: {
+        int s = put_str(b, "event: meta\ndata: ");
+        s = s ? s : put_meta(b, meta_json, 1);
+        return s ? s : put_str(b, "\n\n");
+    }
+    default: {
+        int s = put_meta(b, meta_json, 1);
+        return s ? s : put_str(b, "\n");
+    }
+    }
+}
+
+/* JSON: closes the samples array and writes the held events. */
+static int close_samples(dp_encoder *e, dp_buf *b)
+{
+    int s = put_str(b, e->nsamples_written ? "\n],\n\"events\":[" : "],\n\"events\":[");
+    for (size_t i = 0; i < e->nevents && s == DP_OK; i++) {
+        if ((s = dp_buf_reserve(b, SAMPLE_MAX)) != DP_OK)
+            break;
+        char *p = b->data + b->len;
+        p = i ? PUT(p, ",\n{") : PUT(p, "\n{");
+        p = PUT(put_event_members(p, &e->events[i]), "}");
+        b->len = (size_t)(p - b->data);
+        b->data[b->len] = '\0';
+    }
+    return s ? s : put_str(b, e->nevents ? "\n],\n" : "],\n");
+}
+
+static int summary_members(dp_buf *b, const dp_summary *sm)
+{
+    int s = dp_buf_reserve(b, SAMPLE_MAX);
+    if (s)
+        return s;
+    char *p = put_sample_members(PUT(b->data + b->len, "\"final\":{"), &sm->final);
+    b->len = (size_t)(PUT(p, "},\"steps\":") - b->data);
+    s = put_ull(b, sm->steps);
+    s = s ? s : put_str(b, ",\"samples\":");
+    s = s ? s : put_ull(b, sm->samples);
+    s = s ? s : put_str(b, ",\"events\":");
+    s = s ? s : put_ull(b, sm->events);
+    s = s ? s : put_str(b, ",\"stick_time\":");
+    s = s ? s : put_double(b, sm->stick_time);
+    s = s ? s : put_str(b, ",\"iterations\":");
+    return s ? s : put_ull(b, sm->iterations);
+}
+
+int dp_encoder_end(dp_encoder *e, dp_buf *b, const dp_summary *sm, const char *extra_json)
+{
+    if (e->format == DP_FORMAT_CSV)
+        return DP_OK;
+    int s = DP_OK;
+    if (e->format == DP_FORMAT_JSON) {
+        s = close_samples(e, b);
+        s = s ? s : put_str(b, "\"summary\":{");
+    } else {
+        s = dp_buf_reserve(b, 64);
+        if (s == DP_OK)
+            b->len = (size_t)(put_object(e, b->data + b->len, "summary", 7) - b->data);
+    }
+    s = s ? s : summary_members(b, sm);
+    if (e->format == DP_FORMAT_JSON) {
+        s = s ? s : put_str(b, ",\"events_dropped\":");
+        s = s ? s : put_ull(b, e->events_dropped);
+    }
+    if (extra_json && *extra_json) {
+        s = s ? s : put_str(b, ",");
+        s = s ? s : put_str(b, extra_json);
+    }
+    return s ? s : put_str(b, e->format == DP_FORMAT_JSON ? "}}\n" : e->format == DP_FORMAT_SSE ? "}\n\n" : "}\n");
+}
+
+/* "status":..,"title":..,"detail":.. */
+static int error_members(dp_buf *b, int status, const char *message)
+{
+    int s = put_str(b, "\"status\":");
+    s = s ? s : put_ull(b, (unsigned long long)dp_status_http(status));
+    s = s ? s : put_str(b, ",\"title\":");
+    s = s ? s : dp_json_quote(b, status < 0 ? dp_strerror(status) : "error");
+    s = s ? s : put_str(b, ",\"detail\":");
+    return s ? s : dp_json_quote(b, message ? message : "");
+}
+
+/* CSV has no place for an object: a comment line, with the message's line breaks flattened. */
+static int csv_error(dp_buf *b, int status, const char *message)
+{
+    char line[DP_MESSAGE_MAX + 64];
+    int n = snprintf(line, sizeof line, "# error: %d %s\n", dp_status_http(status), message ? message : "");
+    if (n < 0)
+        return DP_ENOMEM;
+    size_t len = (size_t)n < sizeof line ? (size_t)n : sizeof line - 1;
+    for (size_t i = 0; i + 1 < len; i++)
+        if ((unsigned char)line[i] < 0x20)
+            line[i] = ' ';
+    line[len - 1] = '\n';
+    return dp_buf_append(b, line, len);
+}
+
+int dp_encoder_fail(dp_encoder *e, dp_buf *b, int status, const char *message)
+{
+    int s;
+    switch (e->format) {
+    case DP_FORMAT_CSV:
+        return csv_error(b, status, message);
+    case DP_FORMAT_JSON:
+        s = close_samples(e, b);
+        s = s ? s : put_str(b, "\"error\":{");
+        s = s ? s : error_members(b, status, message);
+        return s ? s : put_str(b, "}}\n");
+    default:
+        s = dp_buf_reserve(b, 64);
+        if (s == DP_OK)
+            b->len = (size_t)(put_object(e, b->data + b->len, "error", 5) - b->data);
+        s = s ? s : error_members(b, status, message);
+        return s ? s : put_str(b, e->format == DP_FORMAT_SSE ? "}\n\n" : "}\n");
+    }
+}
+
+int dp_format_from_name(const char *name)
+{
+    static const char *const names[] = { "json", "ndjson", "sse", "csv" };
+    for (int i = 0; name && i < 4; i++)
+        if (strcmp(name, names[i]) == 0)
+            return i;
+    return -1;
+}
+
+const char *dp_format_content_type(dp_format f)
+{
+    switch (f) {
+    case DP_FORMAT_NDJSON: return "application/x-ndjson";
+    case DP_FORMAT_SSE: return "text/event-stream";
+    case DP_FORMAT_CSV: return "text/csv; charset=utf-8";
+    default: return "application/json";
+    }
+}
+
+int dp_status_http(int status)
+{
+    if (status >= 100 && status <= 599)
+        return status;
+    switch (status) {
+    case DP_ESYNTAX: return 400;
+    case DP_EINVAL: case DP_ELIMIT: case DP_ESOLVE: case DP_ENONFINITE: return 422;
+    case DP_ENOMEM: case DP_ECANCEL: return 503;
+    default: return 422;
+    }
+}
