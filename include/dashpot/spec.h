@@ -13,7 +13,19 @@
  * is seconds of CPU; beyond that a request is almost surely a mistake in dt or t_end. */
 #define DP_SPEC_MAX_STEPS 1000000000.0
 
-typedef enum dp_solver_kind { DP_SOLVER_STICK_SLIP, DP_SOLVER_ANALYTIC } dp_solver_kind;
+typedef enum dp_solver_kind { DP_SOLVER_STICK_SLIP, DP_SOLVER_ANALYTIC, DP_SOLVER_REGULARIZED } dp_solver_kind;
+
+/* The regularized existence schemes (mathematics.md §3): (PCn) F_c = g_n(x') with g_n the Yosida
+ * approximation A_(1/n) (seed 001 (17)); (PIk) F_s = f_k^-1(x), F_d = g_k^-1(x') with f_k = f + u/k
+ * (seed 000 ch. 2). */
+typedef enum dp_scheme { DP_SCHEME_PC, DP_SCHEME_PI } dp_scheme;
+
+/* GSL odeiv2 steppers: implicit ones (with the analytic Jacobian) for the stiff large-n regime. */
+typedef enum dp_stepper {
+    DP_STEPPER_MSBDF, DP_STEPPER_RK4IMP, DP_STEPPER_BSIMP, DP_STEPPER_RKF45, DP_STEPPER_RKCK, DP_STEPPER_RK8PD
+} dp_stepper;
+
+#define DP_SPEC_MAX_NLIST 16
 
 typedef enum dp_variant { DP_VARIANT_EXACT, DP_VARIANT_THESIS } dp_variant;
 
@@ -30,6 +42,12 @@ typedef struct dp_solver_spec {
     int Z;                /* thesis: maximum fixed-point iterations (4.13) */
     double eps;           /* thesis: fixed-point stopping tolerance (4.13) */
     dp_events_mode events;
+    /* regularized */
+    dp_scheme scheme;
+    double n_list[DP_SPEC_MAX_NLIST]; /* regularization parameters n (PCn) or k (PIk); a study when > 1 */
+    size_t n_count;
+    double rtol, atol;
+    dp_stepper stepper;
 } dp_solver_spec;
 
 typedef struct dp_output_spec {
@@ -56,6 +74,9 @@ void dp_spec_clear(dp_spec *s);
  * `max_steps`), appending located errors. Requires dp_model_prepare() to have run.
  * Returns DP_OK or DP_EINVAL / DP_ELIMIT. */
 int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *errs);
+
+/* The regularized solver's own rules (regularized.c): which laws each scheme takes, n/k > 0, tolerances. */
+void dp_regularized_check(const dp_spec *s, dp_errors *errs);
 
 /* Number of steps the spec asks for: ceil(t_end / dt) (with a rounding guard). */
 double dp_spec_steps(const dp_spec *s);

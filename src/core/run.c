@@ -72,7 +72,11 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
     r->h = spec->solver.dt;
     r->nsteps = (unsigned long long)dp_spec_steps(spec);
     r->countdown = 1; /* the initial state is always a sample */
-    s = spec->solver.kind == DP_SOLVER_ANALYTIC ? dp_analytic_init(r) : dp_stick_slip_init(r);
+    switch (spec->solver.kind) {
+    case DP_SOLVER_ANALYTIC: s = dp_analytic_init(r); break;
+    case DP_SOLVER_REGULARIZED: s = dp_regularized_init(r); break;
+    default: s = dp_stick_slip_init(r); break;
+    }
     if (s != DP_OK) {
         dp_errors_add(errs, "", "%s", r->error[0] ? r->error : dp_strerror(s));
         dp_run_free(r);
@@ -89,6 +93,8 @@ static int advance(dp_run *r)
 {
     if (r->spec.solver.kind == DP_SOLVER_ANALYTIC)
         return dp_analytic_advance(r);
+    if (r->spec.solver.kind == DP_SOLVER_REGULARIZED)
+        return dp_regularized_advance(r);
     if (r->spec.solver.variant == DP_VARIANT_THESIS)
         return dp_thesis_advance(r);
     return dp_stick_slip_advance(r);
@@ -141,6 +147,7 @@ void dp_run_free(dp_run *r)
 {
     if (r == NULL)
         return;
+    dp_regularized_free(r->reg);
     dp_spec_clear(&r->spec);
     free(r);
 }

@@ -40,6 +40,8 @@ struct dp_run {
     /* analytic solver */
     double an_F0;
     dp_coulomb_arc an_arc;
+    /* regularized solver (regularized.c): its GSL workspace */
+    struct dp_regularized *reg;
 };
 
 /* Queues one record for the caller. */
@@ -57,6 +59,9 @@ int dp_stick_slip_advance(dp_run *r);
 int dp_thesis_advance(dp_run *r);
 int dp_analytic_init(dp_run *r);
 int dp_analytic_advance(dp_run *r);
+int dp_regularized_init(dp_run *r);
+int dp_regularized_advance(dp_run *r);
+void dp_regularized_free(struct dp_regularized *reg);
 
 /* The step length of step n (the last one ends exactly at t_end). */
 static inline double dp_run_step_length(const dp_run *r)

@@ -22,6 +22,12 @@ void dp_spec_init(dp_spec *s)
     s->solver.Z = 100;
     s->solver.eps = 1e-4;
     s->solver.events = DP_EVENTS_LOCATE;
+    s->solver.scheme = DP_SCHEME_PC;
+    s->solver.n_list[0] = 1000;
+    s->solver.n_count = 1;
+    s->solver.rtol = 1e-8;
+    s->solver.atol = 1e-10;
+    s->solver.stepper = DP_STEPPER_MSBDF;
     s->output.every = 1;
     s->output.samples = 1;
     s->output.events = 1;
@@ -110,6 +116,8 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
                       m->spring.length, s->x0);
     if (s->solver.kind == DP_SOLVER_ANALYTIC)
         check_analytic(s, e);
+    else if (s->solver.kind == DP_SOLVER_REGULARIZED)
+        dp_regularized_check(s, e);
     else if (s->solver.variant == DP_VARIANT_THESIS)
         check_thesis(s, e);
     else
