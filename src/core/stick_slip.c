@@ -41,20 +41,23 @@ typedef struct step_state { double t, x, v; dp_phase phase; } step_state;
 static double moreau(const dp_ss_law *L, step_state *s, double h)
 {
     double W, u = free_velocity(L, s->t, h, s->x, s->v, &W);
-    double thr = h * L->tau / W, dir = sgn(s->v - L->vb), w;
+    double thr = h * L->tau / W, dir = sgn(s->v - L->vb), w, r;
     if (dir != 0 && u * dir > thr) {
         w = u - thr * dir;                  /* slip goes on */
+        r = L->tau * dir;
     } else if (L->can_stick && fabs(u) <= h * L->tau_s / W) {
         w = 0;                              /* stick: exactly at the belt's speed */
+        r = u * W / h;
     } else {
         w = u - thr * sgn(u);               /* slip from rest or reversal */
+        r = L->tau * sgn(u);
     }
     double v1 = L->vb + w;
     s->x += h * ((1 - L->theta) * s->v + L->theta * v1);
     s->v = v1;
     s->t += h;
     s->phase = !L->can_stick ? DP_PHASE_NONE : w == 0 ? DP_PHASE_STICK : DP_PHASE_SLIP;
-    return (u - w) * W / h;
+    return r;
 }
 
 typedef struct event_ctx { const dp_ss_law *L; step_state s; double dir; } event_ctx;
@@ -99,7 +102,7 @@ static double breakaway(dp_run *r, step_state *s, double h, double *force)
         s->x += rest * ((1 - L->theta) * s->v + L->theta * v1);
         s->v = v1;
         s->t += rest;
-        *force = (u - w) * W / rest;
+        *force = L->tau * dir;
     }
     s->phase = DP_PHASE_SLIP;
     return eta;
@@ -198,6 +201,16 @@ static int inclusion_step(dp_run *r, step_state *s, double h, double *fc, double
     return DP_OK;
 }
 
+/* No finite bracket for the step: either the state has already run away (report divergence) or the
+ * inclusion really has no solution at this state. */
+static int step_failed(dp_run *r, const step_state *s)
+{
+    if (!(fabs(s->x) < 1e100 && fabs(s->v) < 1e100))
+        return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g (|x| = %.3g, |v| = %.3g)",
+                           s->t, fabs(s->x), fabs(s->v));
+    return dp_run_fail(r, DP_ESOLVE, "the implicit step at t = %.17g has no solution", s->t);
+}
+
 /* ---- the run ---------------------------------------------------------------------------------------- */
 
 static void set_forces(dp_run *r, double fc_graph, double fs_graph)
@@ -230,7 +243,7 @@ int dp_stick_slip_advance(dp_run *r)
             if (L->closed)
                 fc = moreau(L, &s, h);
             else if (inclusion_step(r, &s, h, &fc, &fs) != DP_OK)
-                return dp_run_fail(r, DP_ESOLVE, "the implicit step at t = %.17g has no solution", s.t);
+                return step_failed(r, &s);
             if (s.phase == DP_PHASE_STICK)
                 r->sum.stick_time += h;
         }
