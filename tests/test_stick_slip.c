@@ -222,6 +222,33 @@ static void test_graph_damper_equals_coulomb(void **state)
     traj_free(&t2);
 }
 
+/* The analytic solver samples the closed form; the exact solver at theta = 1/2 agrees with it to O(dt^2),
+ * also under a constant load (arcs about (F0 -/+ phi0)/k) and from a moving start. */
+static void test_analytic_solver_matches_stick_slip(void **state)
+{
+    (void)state;
+    const char *model = "{\"mass\":2,\"spring\":{\"law\":\"linear\",\"k\":3},\"damper\":{\"law\":\"coulomb\","
+                        "\"phi0\":0.4},\"forcing\":{\"kind\":\"constant\",\"value\":0.3}}";
+    char a[600], b[600];
+    traj an, ss;
+    run_ok(SPEC(a, "{\"model\":%s,\"initial\":{\"x\":-2,\"v\":1.5},\"solver\":{\"kind\":\"analytic\",\"dt\":1e-3,"
+                "\"t_end\":40}}", model), &an);
+    run_ok(SPEC(b, "{\"model\":%s,\"initial\":{\"x\":-2,\"v\":1.5},\"solver\":{\"dt\":1e-3,\"t_end\":40,"
+                "\"theta\":0.5}}", model), &ss);
+    double dv, dx = max_diff_x(&an, &ss, &dv);
+    printf("analytic vs theta=1/2: |dx| %.3e |dv| %.3e, rest %.9f, events %zu/%zu\n", dx, dv, an.sum.final.x,
+           an.ne, ss.ne);
+    assert_true(dx < 1e-5 && dv < 1e-5);
+    assert_int_equal(an.ne, 1);
+    assert_int_equal(ss.ne, 1);
+    assert_true(fabs(an.e[0].t - ss.e[0].t) < 1e-5);
+    /* at rest the spring and the load balance within the stick interval */
+    assert_true(fabs(0.3 - 3 * an.sum.final.x) <= 0.4);
+    assert_true(fabs(an.sum.stick_time - ss.sum.stick_time) < 1e-5);
+    traj_free(&an);
+    traj_free(&ss);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -231,6 +258,7 @@ int main(void)
         cmocka_unit_test(test_thesis_matches_exact_with_relaxation),
         cmocka_unit_test(test_exact_sticking),
         cmocka_unit_test(test_graph_damper_equals_coulomb),
+        cmocka_unit_test(test_analytic_solver_matches_stick_slip),
     };
     return cmocka_run_group_tests_name("stick_slip", tests, NULL, NULL);
 }
