@@ -65,7 +65,7 @@ static uint64_t shortest(uint64_t c, int q, int *K)
     /* One digit fewer: the multiples of 10 around s, of which at most one is in R. */
     uint64_t sp10 = s / 10 * 10, tp10 = sp10 + 10;
     int upin = vbl + out <= sp10 << 2, wpin = (tp10 << 2) + out <= vbr;
-    uint64_t m10 = -(uint64_t)((s >= 100) & (upin ^ wpin));
+    uint64_t m10 = -(uint64_t)((s >= 10) & (upin ^ wpin));
     return (m10 & (sp10 + 10 * (uint64_t)!upin)) | (~m10 & on10k);
 }
 

@@ -202,6 +202,7 @@ static int put_meta(dp_buf *b, const char *meta, int with_type)
         body += sizeof type_member - 1;
         body += strspn(body, " \t\r\n");
         body += *body == ',';
+        body += strspn(body, " \t\r\n");
     }
     size_t n = strlen(body);
     while (n > 0 && strchr(" \t\r\n", body[n - 1]))
