@@ -1,0 +1,542 @@
+/* src/json/stability_json.c - POST /v1/stability and `dashpot stability`: request parsing with located
+ * errors, and the analysis / map encoded as JSON or CSV (SVG: stability_svg.c).
+ *
+ * The request mirrors dp_law (stability.h): {"mass", "law": {"lambda", "mu"}, "map"?}. Every field is
+ * checked here for type and shape, then by the core (dp_law_check, dp_map_axis_check) for domain and limits,
+ * so that each error names its JSON Pointer. The wire format is documented in docs/stability.md.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "dashpot/stability.h"
+#include "dashpot/stability_json.h"
+#include "stability_out.h"
+
+typedef struct request {
+    dp_law law;
+    int has_map;
+    dp_map_axis x, y;
+} request;
+
+typedef struct pctx {
+    dp_errors *errs;
+    int status;             /* DP_EINVAL outranks DP_ELIMIT outranks DP_OK */
+} pctx;
+
+static void merge(pctx *c, int s)
+{
+    if (s == DP_EINVAL || s == DP_ENOMEM || (s != DP_OK && c->status == DP_OK))
+        c->status = s;
+}
+
+static void bad(pctx *c, int status, const char *ptr, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
+
+static void bad(pctx *c, int status, const char *ptr, const char *fmt, ...)
+{
+    char msg[DP_MESSAGE_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    dp_errors_add(c->errs, ptr, "%s", msg);
+    merge(c, status);
+}
+
+/* ---- parsing ---- */
+
+static int want_object(pctx *c, const cJSON *v, const char *ptr)
+{
+    if (cJSON_IsObject(v))
+        return 1;
+    bad(c, DP_EINVAL, ptr, "expected an object");
+    return 0;
+}
+
+static void check_keys(pctx *c, const cJSON *o, const char *ptr, const char *const *keys, const char *list)
+{
+    for (const cJSON *m = o->child; m != NULL; m = m->next) {
+        int known = 0;
+        for (const char *const *k = keys; *k != NULL; k++)
+            known = known || strcmp(m->string, *k) == 0;
+        if (!known) {
+            char p[DP_POINTER_MAX];
+            snprintf(p, sizeof p, "%s/%s", ptr, m->string);
+            bad(c, DP_EINVAL, p, "unknown member (expected %s)", list);
+        }
+    }
+}
+
+/* The member `key` of o, or NULL with a "required" error. */
+static const cJSON *need(pctx *c, const cJSON *o, const char *ptr, const char *key, char *p)
+{
+    snprintf(p, DP_POINTER_MAX, "%s/%s", ptr, key);
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
+    if (v == NULL)
+        bad(c, DP_EINVAL, p, "required");
+    return v;
+}
+
+static int get_number(pctx *c, const cJSON *o, const char *ptr, const char *key, double *out)
+{
+    char p[DP_POINTER_MAX];
+    const cJSON *v = need(c, o, ptr, key, p);
+    if (v == NULL)
+        return 0;
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) {
+        bad(c, DP_EINVAL, p, "expected a finite number");
+        return 0;
+    }
+    *out = v->valuedouble;
+    return 1;
+}
+
+static void get_coefs(pctx *c, const cJSON *law, const char *key, double *dst, int *n)
+{
+    char p[DP_POINTER_MAX], q[DP_POINTER_MAX];
+    const cJSON *a = need(c, law, "/law", key, p);
+    *n = 0;
+    if (a == NULL)
+        return;
+    if (!cJSON_IsArray(a)) {
+        bad(c, DP_EINVAL, p, "expected an array of numbers, lowest derivative first");
+        return;
+    }
+    int count = cJSON_GetArraySize(a);
+    if (count == 0 || count > DP_STAB_MAX_ORDER + 1) {
+        bad(c, count ? DP_ELIMIT : DP_EINVAL, p, count ? "at most %d coefficients (derivative order <= %d)"
+                                                       : "expected at least one coefficient",
+            DP_STAB_MAX_ORDER + 1, DP_STAB_MAX_ORDER);
+        return;
+    }
+    int i = 0;
+    for (const cJSON *e = a->child; e != NULL; e = e->next, i++) {
+        if (cJSON_IsNumber(e) && isfinite(e->valuedouble)) {
+            dst[i] = e->valuedouble;
+            continue;
+        }
+        snprintf(q, sizeof q, "/law/%s/%d", key, i);
+        bad(c, DP_EINVAL, q, "expected a finite number");
+    }
+    *n = count;
+}
+
+static void parse_axis(pctx *c, const cJSON *o, const char *ptr, const dp_law *law, dp_map_axis *ax)
+{
+    static const char *const keys[] = { "param", "from", "to", "steps", NULL };
+    char p[DP_POINTER_MAX];
+    if (!want_object(c, o, ptr))
+        return;
+    check_keys(c, o, ptr, keys, "param, from, to, steps");
+    int before = c->status;
+    const cJSON *v = need(c, o, ptr, "param", p);
+    if (v != NULL && (!cJSON_IsString(v) || dp_param_parse(v->valuestring, &ax->kind, &ax->index) != 0))
+        bad(c, DP_EINVAL, p, "expected \"mass\", \"lambda[i]\" or \"mu[j]\" with i, j in 0..%d",
+            DP_STAB_MAX_ORDER);
+    get_number(c, o, ptr, "from", &ax->from);
+    get_number(c, o, ptr, "to", &ax->to);
+    double steps = 0;
+    if (get_number(c, o, ptr, "steps", &steps) && steps != floor(steps)) {
+        snprintf(p, sizeof p, "%s/steps", ptr);
+        bad(c, DP_EINVAL, p, "expected an integer");
+    }
+    ax->steps = steps < 0 ? -1 : steps > DP_STAB_MAP_MAX_STEPS ? DP_STAB_MAP_MAX_STEPS + 1 : (int)steps;
+    if (c->status == before && c->status == DP_OK)
+        merge(c, dp_map_axis_check(ax, law, ptr, c->errs));
+}
+
+static void parse_map(pctx *c, const cJSON *o, request *r)
+{
+    static const char *const keys[] = { "x", "y", NULL };
+    char p[DP_POINTER_MAX];
+    if (!want_object(c, o, "/map"))
+        return;
+    r->has_map = 1;
+    check_keys(c, o, "/map", keys, "x, y");
+    const cJSON *x = need(c, o, "/map", "x", p), *y = need(c, o, "/map", "y", p);
+    if (x != NULL)
+        parse_axis(c, x, "/map/x", &r->law, &r->x);
+    if (y != NULL)
+        parse_axis(c, y, "/map/y", &r->law, &r->y);
+    if (c->status == DP_OK && r->x.kind == r->y.kind && r->x.index == r->y.index)
+        bad(c, DP_EINVAL, "/map/y/param", "the two axes sweep the same coefficient");
+}
+
+static void parse_request(pctx *c, const cJSON *root, request *r)
+{
+    static const char *const keys[] = { "mass", "law", "map", NULL }, *const law_keys[] = { "lambda", "mu", NULL };
+    char p[DP_POINTER_MAX];
+    memset(r, 0, sizeof *r);
+    if (!want_object(c, root, ""))
+        return;
+    check_keys(c, root, "", keys, "mass, law, map");
+    int have_mass = get_number(c, root, "", "mass", &r->law.mass);
+    const cJSON *law = need(c, root, "", "law", p);
+    if (law == NULL || !want_object(c, law, "/law"))
+        return;
+    check_keys(c, law, "/law", law_keys, "lambda, mu");
+    get_coefs(c, law, "lambda", r->law.lambda, &r->law.nlambda);
+    get_coefs(c, law, "mu", r->law.mu, &r->law.nmu);
+    if (!have_mass || c->status != DP_OK)
+        return;
+    merge(c, dp_law_check(&r->law, "", c->errs));
+    const cJSON *map = cJSON_GetObjectItemCaseSensitive(root, "map");
+    if (map != NULL && c->status == DP_OK)
+        parse_map(c, map, r);
+}
+
+/* ---- the analysis as JSON ---- */
+
+static void numbers(stab_out *o, const double *x, int n)
+{
+    stab_put(o, "[");
+    for (int i = 0; i < n; i++) {
+        if (i)
+            stab_put(o, ",");
+        stab_num(o, x[i]);
+    }
+    stab_put(o, "]");
+}
+
+static void complexes(stab_out *o, const double *re, const double *im, const double *err, int n)
+{
+    stab_put(o, "[");
+    for (int i = 0; i < n; i++) {
+        stab_put(o, i ? ",{\"re\":" : "{\"re\":");
+        stab_num(o, re[i]);
+        stab_put(o, ",\"im\":");
+        stab_num(o, im[i]);
+        if (err != NULL) {
+            stab_put(o, ",\"error\":");
+            stab_num(o, err[i]);
+        }
+        stab_put(o, "}");
+    }
+    stab_put(o, "]");
+}
+
+static void matrix(stab_out *o, const double *m, int dim)
+{
+    stab_put(o, "[");
+    for (int i = 0; i < dim; i++) {
+        if (i)
+            stab_put(o, ",");
+        numbers(o, m + i * dim, dim);
+    }
+    stab_put(o, "]");
+}
+
+/* (x, x', F_V, F_V', F_V'', F_V^(3), ...) for the first dim variables. */
+static void variables(stab_out *o, int dim)
+{
+    static const char *const first[] = { "x", "x'", "F_V", "F_V'", "F_V''" };
+    stab_put(o, "[");
+    for (int i = 0; i < dim; i++) {
+        if (i)
+            stab_put(o, ",");
+        if (i < 5)
+            stab_str(o, first[i]);
+        else
+            stab_printf(o, "\"F_V^(%d)\"", i - 2);
+    }
+    stab_put(o, "]");
+}
+
+static void law_echo(stab_out *o, const dp_law *law)
+{
+    stab_put(o, "\"mass\":");
+    stab_num(o, law->mass);
+    stab_put(o, ",\"law\":{\"lambda\":");
+    numbers(o, law->lambda, law->nlambda);
+    stab_put(o, ",\"mu\":");
+    numbers(o, law->mu, law->nmu);
+    stab_put(o, "}");
+}
+
+static void named(stab_out *o, const char *key, double v, int comma)
+{
+    stab_printf(o, "%s\"%s\":", comma ? "," : "", key);
+    stab_num(o, v);
+}
+
+static void closed_form(stab_out *o, const dp_closed_form *cf, double m)
+{
+    if (cf->model == DP_MODEL_NONE) {
+        stab_put(o, "null");
+        return;
+    }
+    stab_printf(o, "{\"name\":\"%s\",\"condition\":\"%s\",\"expression\":", cf->name, cf->condition);
+    stab_str(o, cf->expression);
+    stab_put(o, ",\"parameters\":{");
+    named(o, "m", m, 0);
+    if (cf->model == DP_MODEL_1_2)
+        named(o, "lambda", cf->lambda1, 1);
+    else {
+        named(o, "lambda1", cf->lambda1, 1);
+        named(o, "lambda2", cf->lambda2, 1);
+    }
+    named(o, "mu1", cf->mu1, 1);
+    named(o, "mu2", cf->mu2, 1);
+    if (cf->model == DP_MODEL_1_4)
+        named(o, "mu3", cf->mu3, 1);
+    stab_put(o, "}");
+    named(o, "value", cf->value, 1);
+    named(o, "tolerance", cf->tolerance, 1);
+    stab_printf(o, ",\"applies\":%s,\"verdict\":", cf->applies ? "true" : "false");
+    if (cf->applies)
+        stab_str(o, dp_verdict_name(cf->verdict));
+    else
+        stab_put(o, "null");
+    stab_put(o, "}");
+}
+
+static void margin(stab_out *o, const dp_poly_report *r)
+{
+    stab_put(o, "{\"value\":");
+    if (r->has_abscissa)
+        stab_num(o, -r->abscissa);
+    else
+        stab_put(o, "null");
+    named(o, "tolerance", r->abscissa_err, 1);
+    stab_printf(o, ",\"near_boundary\":%s,\"by_hurwitz\":\"%s\",\"by_roots\":\"%s\",\"hurwitz_tolerances\":",
+                r->near_boundary ? "true" : "false", dp_verdict_name(r->by_hurwitz), dp_verdict_name(r->by_roots));
+    numbers(o, r->minor_tol, r->degree > 0 ? r->degree : 0);
+    stab_put(o, "}");
+}
+
+static void state_or_pencil(stab_out *o, const dp_stability *st)
+{
+    static const char *const eq[] = { NULL, "(1.9)", "(1.11)", "(1.13)" };
+    const dp_state_matrix *s = &st->state;
+    const dp_pencil *pc = &st->pencil;
+    if (st->dae) {
+        stab_put(o, ",\"state_matrix\":null,\"pencil\":{\"variables\":");
+        variables(o, pc->dim);
+        stab_put(o, ",\"E\":");
+        matrix(o, pc->e, pc->dim);
+        stab_put(o, ",\"A\":");
+        matrix(o, pc->a, pc->dim);
+        stab_put(o, ",\"finite_eigenvalues\":");
+        complexes(o, pc->fin_re, pc->fin_im, NULL, pc->nfinite);
+        stab_printf(o, ",\"infinite_eigenvalues\":%d,\"singular\":%s,\"deviation\":", pc->ninfinite,
+                    pc->singular ? "true" : "false");
+        if (pc->deviation >= 0)
+            stab_num(o, pc->deviation);
+        else
+            stab_put(o, "null");
+        stab_put(o, "}");
+        return;
+    }
+    stab_put(o, ",\"state_matrix\":{\"equation\":");
+    const char *e = eq[st->closed.model];
+    stab_put(o, e ? "\"" : "null");
+    stab_put(o, e ? e : "");
+    stab_put(o, e ? "\"" : "");
+    stab_put(o, ",\"variables\":");
+    variables(o, s->dim);
+    stab_put(o, ",\"rows\":");
+    matrix(o, s->s, s->dim);
+    stab_put(o, ",\"eigenvalues\":");
+    complexes(o, s->eig_re, s->eig_im, NULL, s->dim);
+    named(o, "deviation", s->deviation, 1);
+    stab_put(o, "},\"pencil\":null");
+}
+
+static void analysis_json(stab_out *o, const dp_law *law, const dp_stability *st)
+{
+    const dp_poly_report *r = &st->poly;
+    int d = r->degree > 0 ? r->degree : 0;
+    stab_put(o, "{");
+    law_echo(o, law);
+    stab_put(o, ",\"polynomial\":{\"coefficients\":");
+    numbers(o, st->coef, st->nominal_degree + 1);
+    stab_printf(o, ",\"nominal_degree\":%d,\"degree\":", st->nominal_degree);
+    if (r->degree >= 0)
+        stab_printf(o, "%d}", r->degree);
+    else
+        stab_put(o, "null}");
+    stab_put(o, ",\"roots\":");
+    complexes(o, r->root_re, r->root_im, r->root_err, d);
+    stab_put(o, ",\"spectral_abscissa\":");
+    if (r->has_abscissa)
+        stab_num(o, r->abscissa);
+    else
+        stab_put(o, "null");
+    stab_put(o, ",\"hurwitz_minors\":");
+    numbers(o, r->minor, d);
+    stab_put(o, ",\"verdict\":");
+    stab_str(o, dp_verdict_name(st->verdict));
+    stab_put(o, ",\"margin\":");
+    margin(o, r);
+    stab_put(o, ",\"model\":");
+    closed_form(o, &st->closed, law->mass);
+    state_or_pencil(o, st);
+    stab_put(o, "}\n");
+}
+
+/* ---- maps as JSON and CSV ---- */
+
+static void axis_json(stab_out *o, const dp_map_axis *ax)
+{
+    char name[32];
+    dp_param_name(ax->kind, ax->index, name, sizeof name);
+    stab_printf(o, "{\"param\":\"%s\"", name);
+    named(o, "from", ax->from, 1);
+    named(o, "to", ax->to, 1);
+    stab_printf(o, ",\"steps\":%d}", ax->steps);
+}
+
+static void map_counts(stab_out *o, const dp_map *map)
+{
+    size_t count[DP_VERDICT_UNDECIDED + 1] = { 0 };
+    for (size_t k = 0; k < map->nx * map->ny; k++)
+        count[map->verdict[k] <= DP_VERDICT_UNDECIDED ? map->verdict[k] : DP_VERDICT_UNDECIDED]++;
+    stab_put(o, "\"legend\":{");
+    for (int v = 0; v < DP_VERDICT_UNDECIDED; v++)
+        stab_printf(o, "%s\"%c\":\"%s\"", v ? "," : "", dp_verdict_letter(v), dp_verdict_name(v));
+    stab_put(o, "},\"counts\":{");
+    for (int v = 0; v < DP_VERDICT_UNDECIDED; v++)
+        stab_printf(o, "%s\"%c\":%zu", v ? "," : "", dp_verdict_letter(v), count[v]);
+    stab_put(o, "}");
+}
+
+static void map_json(stab_out *o, const dp_law *law, const dp_map *map)
+{
+    stab_put(o, "{");
+    law_echo(o, law);
+    stab_put(o, ",\"map\":{\"x\":");
+    axis_json(o, &map->x);
+    stab_put(o, ",\"y\":");
+    axis_json(o, &map->y);
+    stab_put(o, ",\"closed_form\":");
+    closed_form(o, &map->closed, law->mass);
+    stab_put(o, ",");
+    map_counts(o, map);
+    stab_put(o, ",\"verdict\":[");
+    for (size_t j = 0; j < map->ny && !o->failed; j++) {
+        stab_put(o, j ? ",\n\"" : "\n\"");
+        for (size_t i = 0; i < map->nx; i++)
+            stab_putn(o, &(char){ dp_verdict_letter(map->verdict[j * map->nx + i]) }, 1);
+        stab_put(o, "\"");
+    }
+    stab_put(o, "],\"spectral_abscissa\":[");
+    for (size_t j = 0; j < map->ny && !o->failed; j++) {
+        stab_put(o, j ? ",\n[" : "\n[");
+        for (size_t i = 0, k = j * map->nx; i < map->nx; i++, k++) {
+            if (i)
+                stab_put(o, ",");
+            if (map->has_abscissa[k])
+                stab_num(o, map->abscissa[k]);
+            else
+                stab_put(o, "null");
+        }
+        stab_put(o, "]");
+    }
+    stab_put(o, "]}}\n");
+}
+
+static void map_csv(stab_out *o, const dp_map *map)
+{
+    char xn[32], yn[32];
+    dp_param_name(map->x.kind, map->x.index, xn, sizeof xn);
+    dp_param_name(map->y.kind, map->y.index, yn, sizeof yn);
+    stab_printf(o, "%s,%s,spectral_abscissa,verdict\n", xn, yn);
+    for (size_t j = 0; j < map->ny && !o->failed; j++) {
+        double y = dp_map_axis_value(&map->y, (int)j);
+        for (size_t i = 0, k = j * map->nx; i < map->nx; i++, k++) {
+            stab_num(o, dp_map_axis_value(&map->x, (int)i));
+            stab_put(o, ",");
+            stab_num(o, y);
+            stab_put(o, ",");
+            if (map->has_abscissa[k])
+                stab_num(o, map->abscissa[k]);
+            stab_printf(o, ",%s\n", dp_verdict_name(map->verdict[k]));
+        }
+    }
+}
+
+/* ---- the entry point ---- */
+
+static cJSON *parse_text(const char *body, size_t len, dp_errors *errs, int *nomem)
+{
+    char *copy = malloc(len + 1);   /* cJSON peeks past the length for a BOM: hand it a terminated copy */
+    if (copy == NULL) {
+        *nomem = 1;
+        return NULL;
+    }
+    if (len)
+        memcpy(copy, body, len);
+    copy[len] = '\0';
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(copy, len, &end, 0);
+    if (root != NULL && end + strspn(end, " \t\r\n") != copy + len) {    /* data (or a NUL) after it */
+        cJSON_Delete(root);
+        root = NULL;
+    }
+    if (root == NULL)
+        dp_errors_add(errs, "", "malformed JSON near byte %zu%s", end ? (size_t)(end - copy) : 0,
+                      len == 0 ? " (empty document)" : "");
+    free(copy);
+    return root;
+}
+
+static int run(const request *r, int want, stab_out *o)
+{
+    dp_stability_ws *w = dp_stability_ws_alloc();
+    if (w == NULL)
+        return DP_ENOMEM;
+    int s;
+    if (r->has_map) {
+        dp_map map;
+        s = dp_stability_map(w, &r->law, &r->x, &r->y, &map);
+        if (s == DP_OK) {
+            if (want == DP_STABILITY_CSV)
+                map_csv(o, &map);
+            else if (want == DP_STABILITY_SVG)
+                stab_map_svg(o, &map);
+            else
+                map_json(o, &r->law, &map);
+        }
+        dp_map_clear(&map);
+    } else {
+        dp_stability *st = malloc(sizeof *st);
+        s = st == NULL ? DP_ENOMEM : dp_stability_analyse(w, &r->law, st);
+        if (s == DP_OK)
+            analysis_json(o, &r->law, st);
+        free(st);
+    }
+    dp_stability_ws_free(w);
+    return s == DP_OK && o->failed ? DP_ENOMEM : s;
+}
+
+int dp_stability_respond(const char *body, size_t len, int want, dp_buf *out, dp_errors *errs)
+{
+    pctx c = { errs, DP_OK };
+    int nomem = 0;
+    cJSON *root = parse_text(body ? body : "", body ? len : 0, errs, &nomem);
+    if (root == NULL)
+        return nomem ? DP_ENOMEM : DP_ESYNTAX;
+    request r;
+    parse_request(&c, root, &r);
+    cJSON_Delete(root);
+    if (c.status == DP_OK && want != DP_STABILITY_JSON && !r.has_map)
+        bad(&c, DP_EINVAL, "/map", "CSV and SVG describe a map: add a \"map\" member, or ask for JSON");
+    if (c.status == DP_OK && (want < DP_STABILITY_JSON || want > DP_STABILITY_SVG))
+        bad(&c, DP_EINVAL, "", "unknown response format %d", want);
+    if (c.status != DP_OK)
+        return c.status;
+    size_t before = out->len;
+    stab_out o = { out, 0 };
+    int s = run(&r, want, &o);
+    if (s != DP_OK) {
+        out->len = before;
+        if (out->data != NULL && before < out->cap)
+            out->data[before] = '\0';
+        dp_errors_add(errs, "", "%s", dp_strerror(s));
+    }
+    return s;
+}
