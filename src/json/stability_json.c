@@ -6,7 +6,6 @@
  * so that each error names its JSON Pointer. The wire format is documented in docs/stability.md.
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,18 +33,8 @@ static void merge(pctx *c, int s)
         c->status = s;
 }
 
-static void bad(pctx *c, int status, const char *ptr, const char *fmt, ...) __attribute__((format(printf, 4, 5)));
-
-static void bad(pctx *c, int status, const char *ptr, const char *fmt, ...)
-{
-    char msg[DP_MESSAGE_MAX];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    dp_errors_add(c->errs, ptr, "%s", msg);
-    merge(c, status);
-}
+/* Adds a located error (printf-style message) and ranks the request's status. */
+#define bad(c, status, ptr, ...) (dp_errors_add((c)->errs, (ptr), __VA_ARGS__), merge((c), (status)))
 
 /* ---- parsing ---- */
 
