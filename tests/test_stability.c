@@ -379,7 +379,7 @@ static void test_dae_pencils(void **state)
     assert_int_equal(st.poly.degree, -1);
 }
 
-/* A pencil found singular by QZ alone (not only by p = 0): check the QZ flag on the same law. */
+/* The simplest singular pencil: F_V = -m x'' restates Newton's law, p = z^2 - z^2 = 0, x is undetermined. */
 static void test_singular_pencil_qz(void **state)
 {
     dp_law law = law_of(1, 1, (double[]){ 1 }, 3, (double[]){ 0, 0, -1 });   /* F = -x'': p = z^2 - z^2 */

@@ -27,7 +27,7 @@ typedef enum dp_stability_want {
  *               for without a "map" (errors located by JSON Pointer);
  *   DP_ELIMIT   a documented limit is exceeded (order > 8, magnitudes beyond 1e12, more than 2000 steps);
  *   DP_ENOMEM   out of memory;
- *   DP_ESOLVE   an eigen solver did not converge (not seen in practice; a 500).
+ *   DP_ESOLVE   an eigen solver did not converge (not seen in practice; dp_status_http maps it to 422).
  * On any failure `out` is left as it was (its length restored) and errs says why. */
 int dp_stability_respond(const char *body, size_t len, int want, dp_buf *out, dp_errors *errs);
 
