@@ -31,6 +31,10 @@ int dp_graph_init(dp_graph *g, size_t n, const double *y, const double *f,
  * Needs n >= 2 and a non-degenerate first and last segment. */
 int dp_graph_init_points(dp_graph *g, size_t n, const double *y, const double *f);
 
+/* Stores points as they are, unchecked (NaN rows mark gaps), for the well-posedness analysis only: a raw
+ * graph may be non-monotone and must never reach a solver. Rays continue the end segments. */
+int dp_graph_init_raw(dp_graph *g, size_t n, const double *y, const double *f);
+
 /* Frees the vertex arrays; accepts an empty or zeroed graph. */
 void dp_graph_clear(dp_graph *g);
 

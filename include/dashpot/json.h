@@ -8,7 +8,9 @@
 
 #include <stddef.h>
 #include "dashpot/run.h"
+#include "dashpot/encode.h"
 #include "dashpot/spec.h"
+#include "dashpot/wellposedness.h"
 
 /* Max nesting of a spec document; deeper documents are rejected before cJSON recurses. */
 #define DP_JSON_MAX_DEPTH 64
@@ -19,10 +21,19 @@
  * listed), DP_ENOMEM. On failure the spec holds nothing that needs freeing beyond dp_spec_clear. */
 int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs);
 
-/* Writes the meta object of a run (solver, its parameters, step count, library version) as one JSON object
- * into out (NUL-terminated, truncated to cap). Returns the length it needed, like snprintf. Shared by the
- * CLI and the daemon so that both describe a run in the same words. */
-size_t dp_spec_meta_json(const dp_spec *spec, char *out, size_t cap);
+/* Parses {"model": {...}} (other members of a simulation spec are allowed and ignored) for a well-posedness
+ * report: like dp_spec_parse's model, except that user graphs
+ * may be non-monotone and may contain gaps (a null between two points), stored raw (dp_graph_init_raw)
+ * for analysis only; such a model must never be given to a solver. */
+int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_errors *errs);
+
+/* Appends the meta object of a run (solver, its parameters, step count, library version, and the model's
+ * well-posedness report) as one JSON object to out. Shared by the CLI and the daemon so that both describe
+ * a run in the same words. DP_OK or DP_ENOMEM. */
+int dp_spec_meta_json(const dp_spec *spec, dp_buf *out);
+
+/* Appends the well-posedness report as a JSON object. DP_OK or DP_ENOMEM. */
+int dp_wellposedness_json(const dp_wp_report *r, dp_buf *out);
 
 #define DP_VERSION "0.1.0"
 

@@ -33,6 +33,10 @@ typedef enum dp_variant { DP_VARIANT_EXACT, DP_VARIANT_THESIS } dp_variant;
  * event (keeps theta = 1/2 second order); DP_EVENTS_NONE is plain Moreau-Jean time stepping as in Siconos. */
 typedef enum dp_events_mode { DP_EVENTS_LOCATE, DP_EVENTS_NONE } dp_events_mode;
 
+/* Where solutions are not unique (seed 001 §4), which one to follow from rest: DP_BRANCH_REST stays at rest
+ * whenever rest is a solution; DP_BRANCH_MOTION leaves rest whenever a motion is a solution. */
+typedef enum dp_branch { DP_BRANCH_REST, DP_BRANCH_MOTION } dp_branch;
+
 typedef struct dp_solver_spec {
     dp_solver_kind kind;
     double dt;            /* step (stick-slip) or sample spacing (analytic) */
@@ -42,6 +46,7 @@ typedef struct dp_solver_spec {
     int Z;                /* thesis: maximum fixed-point iterations (4.13) */
     double eps;           /* thesis: fixed-point stopping tolerance (4.13) */
     dp_events_mode events;
+    dp_branch branch;
     /* regularized */
     dp_scheme scheme;
     double n_list[DP_SPEC_MAX_NLIST]; /* regularization parameters n (PCn) or k (PIk); a study when > 1 */

@@ -51,13 +51,13 @@ static int flush(dp_buf *b)
     return ok ? 0 : -1;
 }
 
-static int stream(dp_run *run, dp_format fmt, const char *meta, progress *pg)
+static int stream(dp_run *run, dp_format fmt, const dp_buf *meta, progress *pg)
 {
     dp_record *recs = malloc(BLOCK * sizeof *recs);
     dp_buf b = { 0 };
     dp_encoder enc;
     dp_encoder_init(&enc, fmt);
-    int s = recs ? dp_encoder_begin(&enc, &b, meta) : DP_ENOMEM, io = 0;
+    int s = recs ? dp_encoder_begin(&enc, &b, meta->data) : DP_ENOMEM, io = 0;
     size_t n;
     while (s == DP_OK || s == DP_MORE) {
         s = dp_run_next(run, recs, BLOCK, &n);
@@ -115,16 +115,22 @@ int dp_cli_simulate(int argc, char **argv)
     int s = dp_spec_parse(text, len, 0, &spec, &errs);
     free(text);
     dp_run *run = s == DP_OK ? dp_run_alloc(&spec, 0, &errs, &s) : NULL;
-    char meta[1024];
-    dp_spec_meta_json(&spec, meta, sizeof meta);
+    dp_buf meta = { 0 };
+    if (run != NULL && (dp_spec_meta_json(&spec, &meta) != DP_OK || dp_buf_append(&meta, "", 1) != DP_OK)) {
+        dp_run_free(run);
+        run = NULL;
+        s = DP_ENOMEM;
+    }
     double steps = spec.solver.t_end / spec.solver.dt;
     dp_spec_clear(&spec);
     if (run == NULL) {
+        dp_buf_free(&meta);
         dp_cli_print_errors(path, &errs);
         return s == DP_ENOMEM ? DP_EXIT_FAIL : DP_EXIT_USAGE;
     }
     progress pg = { .on = !quiet && isatty(STDERR_FILENO) && steps >= PROGRESS_MIN_STEPS };
-    int rc = stream(run, (dp_format)fmt, meta, &pg);
+    int rc = stream(run, (dp_format)fmt, &meta, &pg);
     dp_run_free(run);
+    dp_buf_free(&meta);
     return rc;
 }

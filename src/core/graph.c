@@ -53,6 +53,25 @@ int dp_graph_init_points(dp_graph *g, size_t n, const double *y, const double *f
     return dp_graph_init(g, n, y, f, left, right);
 }
 
+int dp_graph_init_raw(dp_graph *g, size_t n, const double *y, const double *f)
+{
+    memset(g, 0, sizeof *g);
+    if (n < 2 || n > DP_GRAPH_MAX_POINTS)
+        return DP_EINVAL;
+    g->y = malloc(n * sizeof *g->y);
+    g->f = malloc(n * sizeof *g->f);
+    if (g->y == NULL || g->f == NULL) {
+        dp_graph_clear(g);
+        return DP_ENOMEM;
+    }
+    memcpy(g->y, y, n * sizeof *y);
+    memcpy(g->f, f, n * sizeof *f);
+    g->n = n;
+    g->left[0] = y[1] - y[0], g->left[1] = f[1] - f[0];
+    g->right[0] = y[n - 1] - y[n - 2], g->right[1] = f[n - 1] - f[n - 2];
+    return DP_OK;
+}
+
 void dp_graph_clear(dp_graph *g)
 {
     if (g == NULL)

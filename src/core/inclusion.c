@@ -23,9 +23,11 @@ static void phi_with(const dp_inclusion *p, double w, double alo, double ahi, do
     double slo = 0, shi = 0;
     if (p->S)
         dp_graph_force(p->S, p->s_x + p->s_h * w, &slo, &shi);
-    double base = p->W * w - p->b - p->h * gamma_at(p, w);
-    *lo = base + p->h * (alo + slo);
-    *hi = base + p->h * (ahi + shi);
+    /* The graph forces balance the load b at rest; subtract them first so that what remains near rest
+     * (W w and the relaxation, both tiny there) is not rounded away. */
+    double g = p->h * gamma_at(p, w);
+    *lo = (p->h * (alo + slo) - p->b) + p->W * w - g;
+    *hi = (p->h * (ahi + shi) - p->b) + p->W * w - g;
 }
 
 static void phi(const dp_inclusion *p, double w, double *lo, double *hi)
@@ -142,6 +144,38 @@ int dp_inclusion_solve(const dp_inclusion *p, double *w, double *a, double *s, u
         return DP_ESOLVE;
     *w = root;
     split_forces(p, root, a, s);
+    if (evals)
+        *evals += ev;
+    return DP_OK;
+}
+
+typedef struct side_ctx { const dp_inclusion *p; double dir; } side_ctx;
+
+/* Phi at a_shift + dir e^u, signed so that it is negative just off rest and positive far out. */
+static double phi_log(void *ctx, double u)
+{
+    const side_ctx *c = ctx;
+    return c->dir * phi_mid((void *)c->p, c->p->a_shift + c->dir * exp(u));
+}
+
+int dp_inclusion_solve_side(const dp_inclusion *p, double dir, double *w, double *a, double *s,
+                            unsigned long long *evals)
+{
+    /* Off rest the solution may sit extremely close to it (it leaves like t^N), so search in log |w - v_b|:
+     * from the smallest normal distance up to where Phi has certainly turned positive. */
+    side_ctx c = { p, dir };
+    double lo = log(2.2250738585072014e-308), hi = 0, glo = phi_log(&c, lo), ghi = phi_log(&c, hi);
+    unsigned long long ev = 2;
+    while (!(ghi > 0) && hi < 700) {
+        hi += 8;
+        ghi = phi_log(&c, hi);
+        ev++;
+    }
+    if (!(glo < 0) || !(ghi > 0))
+        return DP_ESOLVE;
+    double u = dp_root_bracket(phi_log, &c, lo, hi, glo, ghi, 1e-13, &ev);
+    *w = p->a_shift + dir * exp(u);
+    split_forces(p, *w, a, s);
     if (evals)
         *evals += ev;
     return DP_OK;

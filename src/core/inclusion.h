@@ -25,6 +25,11 @@ typedef struct dp_inclusion {
  * Returns DP_OK or DP_ESOLVE (no finite bracket). */
 int dp_inclusion_solve(const dp_inclusion *p, double *w, double *a, double *s, unsigned long long *evals);
 
+/* A solution strictly on one side of rest, sgn(w - a_shift) = dir, if there is one (DP_ESOLVE if not):
+ * the motion branch where rest is also a solution (seed 001 (26)-(27)). */
+int dp_inclusion_solve_side(const dp_inclusion *p, double dir, double *w, double *a, double *s,
+                            unsigned long long *evals);
+
 /* Whether w solves the inclusion when A's interval at w is replaced by [flo, fhi] (a static threshold). */
 int dp_inclusion_holds_with(const dp_inclusion *p, double w, double flo, double fhi);
 

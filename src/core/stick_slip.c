@@ -179,6 +179,11 @@ static int inclusion_step(dp_run *r, step_state *s, double h, double *fc, double
     if (dp_inclusion_solve(&p, &w, &a, &sp, &r->sum.iterations) != DP_OK)
         return DP_ESOLVE;
     double dir = sgn(s->v - L->vb);
+    /* Motion branch: where rest solves the step but a motion in the direction of the free push does too
+     * (non-Lipschitz gamma), follow the motion. */
+    double push = sgn(p.b - p.W * L->vb);
+    if (L->motion && w == L->vb && dir == 0 && push != 0)
+        dp_inclusion_solve_side(&p, push, &w, &a, &sp, &r->sum.iterations);
     /* Generalized Coulomb (rest branch): where the motion stops or would start, the static interval
      * [-phi1, phi1] decides whether the mass stays at the belt's speed. */
     if (L->tau_s > L->tau && w != L->vb && (dir == 0 || sgn(w - L->vb) != dir)
@@ -302,7 +307,9 @@ int dp_stick_slip_init(dp_run *r)
     L->c = (d->law == DP_DAMPER_LINEAR || d->law == DP_DAMPER_BINGHAM) ? d->c : 0;
     L->tau = d->law == DP_DAMPER_BINGHAM ? d->tau : (d->law == DP_DAMPER_COULOMB
              || d->law == DP_DAMPER_GENERALIZED_COULOMB) ? d->phi0 : 0;
-    L->tau_s = d->law == DP_DAMPER_GENERALIZED_COULOMB ? d->phi1 : L->tau;
+    L->motion = r->spec.solver.branch == DP_BRANCH_MOTION;
+    /* The motion branch leaves rest as soon as kinetic friction allows: the static threshold drops out. */
+    L->tau_s = d->law == DP_DAMPER_GENERALIZED_COULOMB && !L->motion ? d->phi1 : L->tau;
     L->vb = d->belt_velocity;
     L->theta = r->spec.solver.theta;
     L->A = &d->graph;

@@ -27,6 +27,7 @@ typedef struct ctx {
     dp_errors *errs;
     size_t nerr;
     int nomem;
+    int lenient;   /* well-posedness requests: user graphs may be non-monotone or have gaps (null) */
 } ctx;
 
 /* An accepted interval for a number, with the words that describe it in messages. */
@@ -60,7 +61,7 @@ typedef struct variant {
     const char *name;
     int id;
     param params[5];              /* ends at key == NULL */
-    const char *extra[4];         /* ends at NULL */
+    const char *extra[6];         /* ends at NULL */
 } variant;
 
 /* ---- errors, pointers, displayed values ------------------------------------------------------------- */
@@ -322,6 +323,10 @@ static int parse_pair(ctx *c, const cJSON *el, const char *p, const char *yname,
 {
     char q[DP_POINTER_MAX];
     int n = cJSON_GetArraySize(el);
+    if (c->lenient && cJSON_IsNull(el)) { /* a gap: the curve is broken here */
+        *y = *f = NAN;
+        return 1;
+    }
     if (!cJSON_IsArray(el) || n != 2) {
         if (cJSON_IsArray(el))
             fail(c, p, "must have exactly 2 elements [%s, F], got %d", yname, n);
@@ -387,8 +392,10 @@ static int parse_points(ctx *c, const cJSON *o, const char *ptr, const char *yna
         ptr_index(q, p, i);
         parse_pair(c, el, q, yname, &(*y)[i], &(*f)[i]);
     }
-    if (c->nerr == before)
+    if (c->nerr == before && !c->lenient)
         check_order(c, p, yname, table, count, *y, *f);
+    if (c->nerr == before && c->lenient && (isnan((*y)[0]) || isnan((*y)[count - 1])))
+        fail(c, p, "a gap (null) must lie between two points");
     *n = count;
     return c->nerr == before;
 }
@@ -399,7 +406,7 @@ static void parse_graph(ctx *c, const cJSON *o, const char *ptr, const char *yna
     double *y = NULL, *f = NULL;
     size_t n = 0;
     if (parse_points(c, o, ptr, yname, 0, &n, &y, &f)) {
-        int s = dp_graph_init_points(g, n, y, f);
+        int s = c->lenient ? dp_graph_init_raw(g, n, y, f) : dp_graph_init_points(g, n, y, f);
         char p[DP_POINTER_MAX];
         ptr_key(p, ptr, "points");
         if (s == DP_ENOMEM)
@@ -570,12 +577,13 @@ static void parse_solver(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec
         { "stick-slip", DP_SOLVER_STICK_SLIP,
           { NUM(dp_solver_spec, dt, POSITIVE, 0), NUM(dp_solver_spec, t_end, POSITIVE, 0),
             NUM(dp_solver_spec, theta, THETA, 0), NUM(dp_solver_spec, eps, POSITIVE, 0) },
-          { "variant", "Z", "events", NULL } },
+          { "variant", "Z", "events", "branch", NULL } },
         { "analytic", DP_SOLVER_ANALYTIC,
           { NUM(dp_solver_spec, t_end, POSITIVE, 0), NUM(dp_solver_spec, dt, POSITIVE, 0) }, { NULL } },
     };
     static const char *const variants[] = { "exact", "thesis", NULL };
     static const char *const events[] = { "locate", "none", NULL };
+    static const char *const branches[] = { "rest", "motion", NULL };
     const variant *v = parse_tagged(c, o, ptr, "kind", DP_SOLVER_STICK_SLIP, kinds, 2, NULL, s);
     if (v == NULL)
         return;
@@ -587,6 +595,8 @@ static void parse_solver(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec
         s->variant = (dp_variant)i;
     if ((i = get_enum(c, o, ptr, "events", events, (int)s->events)) >= 0)
         s->events = (dp_events_mode)i;
+    if ((i = get_enum(c, o, ptr, "branch", branches, (int)s->branch)) >= 0)
+        s->branch = (dp_branch)i;
     double z;
     if (get_num(c, o, ptr, "Z", &Z_RANGE, 0, 1, &z))
         s->Z = (int)z;
@@ -708,4 +718,27 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
     if (!(max_steps > 0) || max_steps > DP_SPEC_MAX_STEPS)
         max_steps = DP_SPEC_MAX_STEPS;
     return dp_spec_check(spec, max_steps, errs);
+}
+
+int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_errors *errs)
+{
+    /* A whole simulation spec is welcome too: only its model is analysed. */
+    static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
+    ctx c = { errs, 0, 0, 1 };
+    char p[DP_POINTER_MAX];
+    cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
+    if (root == NULL)
+        return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
+    if (want_object(&c, root, "")) {
+        check_keys(&c, root, "", keys, "");
+        const cJSON *v = member(&c, root, "", "model", "an object with mass, spring and damper", p);
+        if (v != NULL)
+            parse_model(&c, v, p, model);
+    }
+    cJSON_Delete(root);
+    if (c.nomem)
+        return DP_ENOMEM;
+    if (c.nerr > 0)
+        return DP_EINVAL;
+    return dp_model_prepare(model);
 }

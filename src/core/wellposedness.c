@@ -1,0 +1,287 @@
+/* src/core/wellposedness.c - existence and uniqueness from the graphs' own properties (mathematics.md §5).
+ *
+ * (PC), linear spring: seed 001 Theorem 3 gives existence when A is maximal monotone (6)-(7), coercive (8),
+ * gamma continuous with linear growth (5) and F in L^2 (10); Theorem 2 adds uniqueness when gamma is
+ * Lipschitz (seed 000 Theorems 3.3, 3.2). (PI), spring and damper as x = f(F_s), x' = g(F_d): seed 000
+ * Theorem 2.1 gives existence for continuous non-decreasing f, g with f(0) = g(0) = 0 and the growth
+ * (2.6)-(2.7); Theorem 2.2 uniqueness for a constant load (piecewise-linear f meets its structure).
+ * Every failed hypothesis comes with a witness a person can check by hand.
+ */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "dashpot/wellposedness.h"
+
+/* A graph built on the stack for laws whose graph the model does not store whole (viscous parts). */
+typedef struct local_graph { dp_graph g; double y[2], f[2]; } local_graph;
+
+static void local_init(local_graph *l, size_t n, const double *y, const double *f, double ray_slope)
+{
+    memcpy(l->y, y, n * sizeof *y);
+    memcpy(l->f, f, n * sizeof *f);
+    l->g = (dp_graph){ .n = n, .y = l->y, .f = l->f, .left = { 1, ray_slope }, .right = { 1, ray_slope } };
+}
+
+/* The damper's whole graph A = (v - v_b, F_c), viscous part included. */
+static const dp_graph *damper_graph(const dp_damper *d, local_graph *l)
+{
+    double z[2] = { 0, 0 }, th[2];
+    switch (d->law) {
+    case DP_DAMPER_NONE: local_init(l, 1, z, z, 0); return &l->g;
+    case DP_DAMPER_LINEAR: local_init(l, 1, z, z, d->c); return &l->g;
+    case DP_DAMPER_BINGHAM:
+        th[0] = -d->tau, th[1] = d->tau;
+        local_init(l, d->tau > 0 ? 2 : 1, z, d->tau > 0 ? th : z, d->c);
+        return &l->g;
+    default: return &d->graph;
+    }
+}
+
+static void add_check(dp_wp_report *r, const char *name, int holds, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static void add_check(dp_wp_report *r, const char *name, int holds, const char *fmt, ...)
+{
+    if (r->nchecks == DP_WP_MAX_CHECKS)
+        return;
+    dp_wp_check *c = &r->check[r->nchecks++];
+    c->name = name;
+    c->holds = holds;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->detail, sizeof c->detail, fmt, ap);
+    va_end(ap);
+}
+
+/* ---- properties of one graph (NaN rows of a raw graph mark gaps) ------------------------------------- */
+
+/* 1 if monotone; else writes a witness: two points with (y1 - y2)(F1 - F2) < 0. */
+static int monotone(const dp_graph *g, const char *yn, char *why, size_t cap)
+{
+    size_t prev = 0;
+    for (size_t i = 1; i < g->n; i++) {
+        if (isnan(g->y[i]))
+            continue;
+        if (g->y[i] < g->y[prev] || g->f[i] < g->f[prev]) {
+            for (size_t j = 0; j < i; j++) {
+                if (!isnan(g->y[j]) && (g->y[i] - g->y[j]) * (g->f[i] - g->f[j]) < 0) {
+                    snprintf(why, cap, "points (%s, F) = (%.17g, %.17g) and (%.17g, %.17g) have "
+                             "(%s1 - %s2)(F1 - F2) < 0", yn, g->y[j], g->f[j], g->y[i], g->f[i], yn, yn);
+                    return 0;
+                }
+            }
+            snprintf(why, cap, "the curve turns back at point %zu (%.17g, %.17g)", i, g->y[i], g->f[i]);
+            return 0;
+        }
+        prev = i;
+    }
+    snprintf(why, cap, "non-decreasing in both %s and F", yn);
+    return 1;
+}
+
+/* 1 if the curve has no gap; else the gap as a witness. */
+static int no_gap(const dp_graph *g, char *why, size_t cap)
+{
+    for (size_t i = 1; i + 1 < g->n; i++) {
+        if (isnan(g->y[i])) {
+            const size_t a = i - 1, b = i + 1;
+            snprintf(why, cap, "gap between (%.17g, %.17g) and (%.17g, %.17g): the point (%.17g, %.17g) "
+                     "can be added without breaking monotonicity", g->y[a], g->f[a], g->y[b], g->f[b],
+                     (g->y[a] + g->y[b]) / 2, (g->f[a] + g->f[b]) / 2);
+            return 0;
+        }
+    }
+    snprintf(why, cap, "a connected curve unbounded at both ends (rotated by 45 degrees it is the graph of "
+             "a 1-Lipschitz function, seed 001 Lemma 1)");
+    return 1;
+}
+
+/* Coercivity (8): F v >= c2 F^2 - c3 on A. Bounded parts are absorbed by c3; only the rays matter. */
+static int coercive(const dp_graph *g, char *why, size_t cap)
+{
+    size_t n = g->n;
+    if (g->right[0] == 0 || g->left[0] == 0) {
+        double y = g->right[0] == 0 ? g->y[n - 1] : g->y[0];
+        snprintf(why, cap, "F is unbounded at the fixed velocity v = %.17g, so F v grows like |F| while "
+                 "c2 F^2 grows faster", y);
+        return 0;
+    }
+    if ((g->right[1] == 0 && g->f[n - 1] < 0) || (g->left[1] == 0 && g->f[0] > 0)) {
+        int r = g->right[1] == 0 && g->f[n - 1] < 0;
+        snprintf(why, cap, "F stays %.17g for every v %s %.17g, so F v -> -infinity", r ? g->f[n - 1] : g->f[0],
+                 r ? ">" : "<", r ? g->y[n - 1] : g->y[0]);
+        return 0;
+    }
+    snprintf(why, cap, "F grows at most linearly with v and has the sign of v far out");
+    return 1;
+}
+
+/* x = f(F): a function of F with the growth (2.6) (c1|u| - c2 <= |f(u)| <= c3(|u| + 1)). */
+static int function_of_force(const dp_graph *g, const char *yn, char *why, size_t cap)
+{
+    for (size_t i = 1; i < g->n; i++)
+        if (!isnan(g->y[i]) && !isnan(g->y[i - 1]) && g->f[i] == g->f[i - 1] && g->y[i] > g->y[i - 1]) {
+            snprintf(why, cap, "F = %.17g for every %s in [%.17g, %.17g]: %s is not a function of F", g->f[i], yn,
+                     g->y[i - 1], g->y[i], yn);
+            return 0;
+        }
+    if (g->right[1] == 0 || g->left[1] == 0) {
+        int r = g->right[1] == 0;
+        snprintf(why, cap, "F = %.17g for every %s %s %.17g: %s is not a function of F", r ? g->f[g->n - 1] : g->f[0],
+                 yn, r ? ">" : "<", r ? g->y[g->n - 1] : g->y[0], yn);
+        return 0;
+    }
+    snprintf(why, cap, "%s is a continuous non-decreasing function of F", yn);
+    return 1;
+}
+
+static int growth(const dp_graph *g, const char *yn, char *why, size_t cap)
+{
+    if (g->right[0] == 0 || g->left[0] == 0) {
+        int r = g->right[0] == 0;
+        snprintf(why, cap, "%s = %.17g for every F %s %.17g: |f(u)| >= c1|u| - c2 fails as |u| -> infinity", yn,
+                 r ? g->y[g->n - 1] : g->y[0], r ? ">=" : "<=", r ? g->f[g->n - 1] : g->f[0]);
+        return 0;
+    }
+    snprintf(why, cap, "%s grows linearly in F at both ends", yn);
+    return 1;
+}
+
+static int through_origin(const dp_graph *g, const char *yn, char *why, size_t cap)
+{
+    double lo, hi;
+    dp_graph_kinematic(g, 0, &lo, &hi);
+    if (lo <= 0 && 0 <= hi) {
+        snprintf(why, cap, "%s = 0 at F = 0", yn);
+        return 1;
+    }
+    snprintf(why, cap, "at F = 0 the graph has %s in [%.17g, %.17g], not 0", yn, lo, hi);
+    return 0;
+}
+
+/* ---- the two frameworks ------------------------------------------------------------------------------ */
+
+static void relaxation_checks(dp_wp_report *r, const dp_relaxation *g)
+{
+    add_check(r, "gamma continuous with |gamma(u)| <= c1(1 + |u|) (seed 001 (5))", 1, "%s",
+              g->kind == DP_RELAX_NONE ? "gamma = 0" : g->kind == DP_RELAX_POWER
+              ? "N |u|^(1-1/N) sgn u is continuous for N > 1 and grows sublinearly"
+              : "continuous, at most linear growth");
+    double L = dp_relaxation_lipschitz(g);
+    if (isfinite(L))
+        add_check(r, "gamma Lipschitz", 1, "Lipschitz constant %.17g", L);
+    else /* power law: gamma(u)/u = N u^(-1/N) is unbounded near 0 */
+        add_check(r, "gamma Lipschitz", 0, "gamma(u)/u = %.6g at u = 1e-6 and %.6g at u = 1e-12: unbounded as "
+                  "u -> 0", dp_relaxation_eval(g, 1e-6) / 1e-6, dp_relaxation_eval(g, 1e-12) / 1e-12);
+}
+
+static void framework_pc(const dp_model *m, dp_wp_report *r)
+{
+    char why[DP_WP_TEXT];
+    local_graph l;
+    const dp_damper *d = &m->damper;
+    r->framework = "PC";
+    add_check(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = %.17g", m->spring.k);
+    if (d->law == DP_DAMPER_GENERALIZED_COULOMB && d->phi1 > d->phi0) {
+        add_check(r, "A monotone (seed 001 (6))", 0, "points (v, F) = (0, %.17g) and (1, %.17g) have (v1 - v2)"
+                  "(F1 - F2) < 0: the static threshold phi1 exceeds the dynamic phi0", d->phi1, d->phi0);
+        add_check(r, "A maximal (seed 001 (7))", 0, "not applicable: A is not monotone");
+        add_check(r, "A coercive (seed 001 (8))", 1, "|F| <= phi1 is bounded");
+    } else {
+        const dp_graph *A = damper_graph(d, &l);
+        int mono = monotone(A, "v", why, sizeof why);
+        add_check(r, "A monotone (seed 001 (6))", mono, "%s", why);
+        if (mono) {
+            add_check(r, "A maximal (seed 001 (7))", no_gap(A, why, sizeof why), "%s", why);
+            add_check(r, "A coercive (seed 001 (8))", coercive(A, why, sizeof why), "%s", why);
+        } else {
+            add_check(r, "A maximal (seed 001 (7))", 0, "not applicable: A is not monotone");
+            add_check(r, "A coercive (seed 001 (8))", 0, "not applicable: A is not monotone");
+        }
+    }
+    relaxation_checks(r, &d->relaxation);
+    add_check(r, "F in L^2(0, T) (seed 001 (10))", 1, "every forcing kind is bounded and piecewise continuous");
+}
+
+static void framework_pi(const dp_model *m, dp_wp_report *r)
+{
+    char why[DP_WP_TEXT];
+    local_graph l;
+    r->framework = "PI";
+    const struct { const dp_graph *g; const char *y, *mono, *fn, *zero, *grow; } part[2] = {
+        { &m->spring.graph, "x", "f continuous and non-decreasing (seed 000 (PI))", "x = f(F_s) a function",
+          "f(0) = 0", "growth of f (seed 000 (2.6))" },
+        { damper_graph(&m->damper, &l), "v", "g continuous and non-decreasing (seed 000 (PI))",
+          "x' = g(F_d) a function", "g(0) = 0", "growth of g (seed 000 (2.7))" },
+    };
+    for (int i = 0; i < 2; i++) {
+        const dp_graph *g = part[i].g;
+        int ok = m->damper.law != DP_DAMPER_GENERALIZED_COULOMB || i == 0 || m->damper.phi1 == m->damper.phi0;
+        if (ok)
+            ok = monotone(g, part[i].y, why, sizeof why) && no_gap(g, why, sizeof why);
+        else
+            snprintf(why, sizeof why, "generalized Coulomb (phi1 > phi0) is not monotone");
+        add_check(r, part[i].mono, ok, "%s", why);
+        if (!ok)
+            continue;
+        add_check(r, part[i].fn, function_of_force(g, part[i].y, why, sizeof why), "%s", why);
+        add_check(r, part[i].zero, through_origin(g, part[i].y, why, sizeof why), "%s", why);
+        add_check(r, part[i].grow, growth(g, part[i].y, why, sizeof why), "%s", why);
+    }
+    int relaxed = m->damper.relaxation.kind != DP_RELAX_NONE;
+    add_check(r, "no relaxation (seed 000 (PI) has none)", !relaxed, "%s", relaxed
+              ? "(PI) has no relaxation term; (PC) would cover it but needs a linear spring" : "gamma = 0");
+    add_check(r, "F in L^2(0, T) (seed 000 Theorem 2.1)", 1, "every forcing kind is bounded and piecewise "
+              "continuous");
+}
+
+/* Joins the names of the failing checks (skipping `skip`) into why; returns how many failed. */
+static int failures(const dp_wp_report *r, const char *skip, char *why, size_t cap)
+{
+    int n = 0;
+    size_t len = 0;
+    why[0] = '\0';
+    for (size_t i = 0; i < r->nchecks; i++) {
+        if (r->check[i].holds || (skip && strcmp(r->check[i].name, skip) == 0))
+            continue;
+        int w = snprintf(why + len, cap - len, "%s%s", n ? "; " : "fails: ", r->check[i].name);
+        len = w > 0 && len + (size_t)w < cap ? len + (size_t)w : cap - 1;
+        n++;
+    }
+    if (n == 0)
+        snprintf(why, cap, "all hypotheses hold");
+    return n;
+}
+
+void dp_wellposedness(const dp_model *m, dp_wp_report *r)
+{
+    memset(r, 0, sizeof *r);
+    int pc = m->spring.law == DP_SPRING_LINEAR;
+    if (pc)
+        framework_pc(m, r);
+    else
+        framework_pi(m, r);
+    double F0;
+    int constant = dp_forcing_is_constant(&m->forcing, &F0);
+    if (!pc)
+        add_check(r, "constant load (seed 000 Theorem 2.2)", constant, "%s", constant ? "F is constant"
+                  : "F varies in time: Theorem 2.2 covers constant loads only");
+    r->existence.guaranteed = failures(r, pc ? "gamma Lipschitz" : "constant load (seed 000 Theorem 2.2)",
+                                       r->existence.reason, sizeof r->existence.reason) == 0;
+    r->uniqueness.guaranteed = failures(r, NULL, r->uniqueness.reason, sizeof r->uniqueness.reason) == 0;
+    if (pc) {
+        r->existence.theorem = r->existence.guaranteed ? "seed 001 Theorem 3 (seed 000 Theorem 3.3)" : NULL;
+        r->uniqueness.theorem = r->uniqueness.guaranteed ? "seed 001 Theorem 2 (seed 000 Theorem 3.2)" : NULL;
+    } else {
+        r->existence.theorem = r->existence.guaranteed ? "seed 000 Theorem 2.1" : NULL;
+        r->uniqueness.theorem = r->uniqueness.guaranteed ? "seed 000 Theorem 2.2" : NULL;
+    }
+    if (m->damper.law == DP_DAMPER_GENERALIZED_COULOMB && m->damper.phi1 > m->damper.phi0)
+        r->counterexample = "seed 001 section 4, (24)-(25): with F = phi1 from rest both x = 0 and "
+                            "x = (phi1 - phi0)(1 - cos t) solve";
+    else if (m->damper.relaxation.kind == DP_RELAX_POWER)
+        r->counterexample = "seed 001 section 4, (26)-(27): with F = phi0 from rest both x = 0 and a solution "
+                            "leaving rest like t^(N+1)/(N+1) solve";
+}
