@@ -1,0 +1,140 @@
+/* src/http/http.h - what the files of dashpotd share: its configuration, the server and request state, and
+ * the functions each file offers the others (main.c, config.c, server.c, routes.c, simulate.c,
+ * stability.c, negotiate.c, problem.c, metrics.c, log.c).
+ *
+ * Ownership: the server outlives every request (MHD_stop_daemon returns only after the last one is freed).
+ * A request is allocated on MHD's first call for it and freed in the NOTIFY_COMPLETED callback, except that a
+ * streamed response holds a second reference (released by the response's free callback), so whichever comes
+ * last frees it. Shared counters are atomics; nothing else is shared between threads.
+ */
+#ifndef DASHPOT_HTTP_H
+#define DASHPOT_HTTP_H
+
+#include <microhttpd.h>
+#include <stdatomic.h>
+#include <stddef.h>
+
+#include "dashpot/encode.h"
+#include "dashpot/status.h"
+
+/* ---- configuration (config.c) ---- */
+
+typedef struct config {
+    unsigned port;               /* 0: an ephemeral port, printed in the start-up line */
+    char bind[64];               /* IPv4 or IPv6 literal */
+    unsigned threads;            /* MHD thread pool */
+    unsigned max_connections;    /* open connections served; beyond: 503 */
+    double max_steps;            /* per request, passed to dp_spec_parse and dp_run_alloc */
+    double max_wall;             /* seconds one request may take */
+    unsigned timeout;            /* seconds a connection may stay idle */
+    size_t body_limit;           /* bytes of a request body; beyond: 413 */
+    double shutdown_grace;       /* seconds runs in flight get to finish after SIGTERM */
+    char openapi[4096];          /* path of api/openapi.yaml */
+    char bench_static[4096];     /* a file served at GET /bench/static (benchmarks only); "" = route off */
+} config;
+
+/* Fills c from defaults, DASHPOT_* variables and argv (flags win). Returns 0 to run, 1 when --help or
+ * --version was printed, -1 on a bad value (message printed to stderr). */
+int config_load(config *c, int argc, char **argv);
+
+/* ---- metrics (metrics.c) ---- */
+
+enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
+       ROUTE_STATIC, ROUTE_NONE, NROUTES };
+enum { NSTATUS = 10, NBUCKETS = 12 };
+
+typedef struct metrics {
+    atomic_ullong requests[NROUTES][NSTATUS];    /* by route and status (metrics.c: status_slot) */
+    atomic_ullong duration_bucket[NROUTES][NBUCKETS]; /* cumulative only when rendered */
+    atomic_ullong duration_us_sum[NROUTES];
+    atomic_ullong samples_streamed, bytes_streamed;
+    atomic_ullong runs_started, runs_completed, runs_failed, runs_cancelled;
+    atomic_llong runs_in_flight, connections_open;
+    atomic_ullong connections_rejected;
+} metrics;
+
+void metrics_request(metrics *m, int route, int status, double seconds);
+/* The Prometheus text exposition (version 0.0.4) of every counter into out. */
+int metrics_render(const metrics *m, dp_buf *out);
+const char *route_name(int route);
+
+/* ---- the server (server.c) ---- */
+
+typedef struct server {
+    config cfg;
+    struct MHD_Daemon *daemon;
+    metrics m;
+    char *openapi;               /* the file's text, NULL if it could not be read */
+    size_t openapi_len;
+    atomic_int draining;         /* SIGTERM seen: /readyz says 503 */
+    atomic_int abort_streams;    /* grace period over: streams end with an error line */
+} server;
+
+typedef struct stream stream;
+
+typedef struct request {
+    server *srv;
+    atomic_int refs;             /* 1, or 2 while a streamed response holds it */
+    int route;                   /* ROUTE_* */
+    const char *allow;           /* ROUTE_NONE on a known path: the methods it takes (a static string) */
+    int status;                  /* HTTP status queued, 0 until then */
+    int too_large;               /* the body passed cfg.body_limit */
+    double t_start;              /* monotonic seconds */
+    unsigned long long bytes;    /* body bytes sent (streams count as they go) */
+    dp_buf body;                 /* the request body as it arrives */
+    char method[16];
+    char path[256];              /* the URL as received, truncated */
+    stream *stream;              /* the streamed response's state, if any */
+} request;
+
+int server_start(server *s);
+/* Stops accepting, lets runs finish within the grace period, then ends the rest with an error line. */
+void server_shutdown(server *s);
+void server_free(server *s);
+/* Port actually bound. */
+unsigned server_port(const server *s);
+double now_seconds(void);
+
+/* Drops a reference; the last one frees the request (and logs it). */
+void request_release(request *r);
+
+/* ---- responses (problem.c) ---- */
+
+/* Queues a buffer response (takes ownership of body->data) with a content type; records the status. */
+enum MHD_Result respond_buffer(struct MHD_Connection *c, request *r, int status, const char *type, dp_buf *body);
+/* Queues an application/problem+json document (RFC 9457) with type, title, status, detail and, when errs has
+ * any, "errors": [{"pointer", "detail"}]. `allow` (may be NULL) becomes an Allow header. */
+enum MHD_Result respond_problem(struct MHD_Connection *c, request *r, int status, const char *type,
+                                const char *detail, const dp_errors *errs, const char *allow);
+/* The problem for a failed dp_status (syntax 400, invalid 422, limit 422, memory 503, ...). */
+enum MHD_Result respond_status(struct MHD_Connection *c, request *r, int status, const char *detail,
+                               const dp_errors *errs);
+
+/* ---- routes (routes.c, simulate.c, stability.c) ---- */
+
+/* Resolves method + url to a ROUTE_*; ROUTE_NONE with *allow set when the path exists but not the method. */
+int route_find(const server *s, const char *method, const char *url, const char **allow);
+int route_needs_body(int route);
+enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r);
+
+enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r);
+enum MHD_Result handle_stability(struct MHD_Connection *c, request *r);
+/* GET /bench/static: the --bench-static file through the same chunked content-reader path as a stream. */
+enum MHD_Result handle_bench_static(struct MHD_Connection *c, request *r);
+/* Called by the stream's free callback: the run is gone; counts it as cancelled if it had not finished. */
+void stream_free(stream *st);
+
+/* ---- content negotiation (negotiate.c) ---- */
+
+/* Index of the media type in offers[0..n) that the Accept header prefers (q > 0), offers[0] when the header
+ * is absent or empty, -1 when it accepts none of them. */
+int negotiate(const char *accept, const char *const *offers, int n);
+
+/* ---- logging (log.c) ---- */
+
+/* One line on stderr per request: time, method, path (escaped), status, bytes, duration. */
+void log_request(const request *r, double seconds);
+/* A free-form line prefixed with the time, for start-up and shutdown. */
+void log_line(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+#endif

@@ -1,0 +1,287 @@
+/* src/http/server.c - libmicrohttpd set-up and the request lifecycle (style.md item 12).
+ *
+ * MHD calls the access handler at least twice per request: the first call allocates the request state and
+ * resolves the route; it answers only an overload (503) or a declared Content-Length over the limit (413):
+ * refusing before the upload saves reading it, and MHD then skips "100 Continue" and closes. Later calls
+ * accumulate the body under the cap (only for routes that take one); the call with *upload_data_size == 0
+ * dispatches. The NOTIFY_COMPLETED callback logs, counts and releases the request.
+ */
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "http.h"
+
+/* Per-connection memory: the read buffer for headers and the write buffer the content reader fills; 256 KiB
+ * lets a stream hand over ~64 KiB per call. Stream block size requested from MHD, below. */
+#define CONNECTION_MEMORY (256u << 10)
+/* Connections MHD accepts beyond --max-connections, to tell them "503" rather than drop them silently. */
+#define OVERLOAD_HEADROOM 64u
+
+double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static request *request_new(server *s, const char *method, const char *url)
+{
+    request *r = calloc(1, sizeof *r);
+    if (r == NULL)
+        return NULL;
+    r->srv = s;
+    atomic_init(&r->refs, 1);
+    r->t_start = now_seconds();
+    snprintf(r->method, sizeof r->method, "%s", method);
+    snprintf(r->path, sizeof r->path, "%s", url);
+    return r;
+}
+
+void request_release(request *r)
+{
+    if (r == NULL || atomic_fetch_sub(&r->refs, 1) != 1)
+        return;
+    dp_buf_free(&r->body);
+    free(r);
+}
+
+/* Content-Length above the limit: known before any byte of the body is read. */
+static int declared_too_large(struct MHD_Connection *c, size_t limit)
+{
+    const char *cl = MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_CONTENT_LENGTH);
+    if (cl == NULL)
+        return 0;
+    char *end;
+    unsigned long long n = strtoull(cl, &end, 10);
+    return end != cl && n > limit;
+}
+
+/* The first call: answers what can be answered without the body, or returns -1 to go on. */
+static int first_call(struct MHD_Connection *c, request *r, const char *method, const char *url)
+{
+    server *s = r->srv;
+    r->route = route_find(s, method, url, &r->allow);
+    if (atomic_load(&s->m.connections_open) > (long long)s->cfg.max_connections) {
+        atomic_fetch_add(&s->m.connections_rejected, 1);
+        return respond_problem(c, r, 503, "/problems/overloaded", "too many open connections; retry shortly",
+                               NULL, NULL);
+    }
+    if (route_needs_body(r->route) && declared_too_large(c, s->cfg.body_limit)) {
+        char detail[96];
+        snprintf(detail, sizeof detail, "the request body is larger than %zu bytes", s->cfg.body_limit);
+        return respond_problem(c, r, 413, NULL, detail, NULL, NULL);
+    }
+    return -1;
+}
+
+/* Appends an upload piece, or only notes that the body passed the limit (the rest is read and dropped). */
+static void accumulate(request *r, const char *data, size_t n)
+{
+    if (r->too_large || !route_needs_body(r->route))
+        return;
+    if (r->body.len + n > r->srv->cfg.body_limit || dp_buf_append(&r->body, data, n) != DP_OK) {
+        r->too_large = 1;
+        dp_buf_free(&r->body);
+    }
+}
+
+static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const char *url, const char *method,
+                                  const char *version, const char *upload_data, size_t *upload_data_size,
+                                  void **con_cls)
+{
+    (void)version;
+    request *r = *con_cls;
+    if (r == NULL) {
+        if ((r = request_new(cls, method, url)) == NULL)
+            return MHD_NO;
+        *con_cls = r;
+        int answered = first_call(c, r, method, url);
+        return answered < 0 ? MHD_YES : (enum MHD_Result)answered;
+    }
+    if (*upload_data_size) {
+        if (r->status == 0)
+            accumulate(r, upload_data, *upload_data_size);
+        *upload_data_size = 0;
+        return MHD_YES;
+    }
+    return r->status ? MHD_YES : route_dispatch(c, r);
+}
+
+static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls, enum MHD_RequestTerminationCode toe)
+{
+    (void)c;
+    (void)toe;
+    server *s = cls;
+    request *r = *con_cls;
+    if (r == NULL)
+        return;
+    *con_cls = NULL;
+    double dt = now_seconds() - r->t_start;
+    metrics_request(&s->m, r->route, r->status, dt);
+    log_request(r, dt);
+    request_release(r);
+}
+
+static void on_connection(void *cls, struct MHD_Connection *c, void **socket_context,
+                          enum MHD_ConnectionNotificationCode code)
+{
+    (void)c;
+    (void)socket_context;
+    server *s = cls;
+    atomic_fetch_add(&s->m.connections_open, code == MHD_CONNECTION_NOTIFY_STARTED ? 1 : -1);
+}
+
+static void on_mhd_error(void *cls, const char *fmt, va_list ap)
+{
+    (void)cls;
+    char msg[512];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    msg[strcspn(msg, "\n")] = '\0';
+    log_line("libmicrohttpd: %s", msg);
+}
+
+/* Reads a whole file into a malloc'd buffer; NULL if it cannot. */
+static char *read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL)
+        return NULL;
+    dp_buf b = { 0 };
+    char chunk[8192];
+    size_t n;
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0)
+        if (dp_buf_append(&b, chunk, n) != DP_OK)
+            break;
+    int bad = ferror(f) || !feof(f);
+    fclose(f);
+    if (bad || b.data == NULL) {
+        dp_buf_free(&b);
+        return NULL;
+    }
+    *len = b.len;
+    return b.data;
+}
+
+/* --openapi as given (relative to the working directory), else relative to the binary and its parent
+ * directory, so that `build/dashpotd` finds api/openapi.yaml from anywhere. */
+static void load_openapi(server *s)
+{
+    char exe[4096], path[8300];
+    s->openapi = read_file(s->cfg.openapi, &s->openapi_len);
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (s->openapi == NULL && s->cfg.openapi[0] != '/' && n > 0) {
+        exe[n] = '\0';
+        *strrchr(exe, '/') = '\0';
+        snprintf(path, sizeof path, "%s/%s", exe, s->cfg.openapi);
+        s->openapi = read_file(path, &s->openapi_len);
+        snprintf(path, sizeof path, "%s/../%s", exe, s->cfg.openapi);
+        if (s->openapi == NULL)
+            s->openapi = read_file(path, &s->openapi_len);
+    }
+    if (s->openapi == NULL)
+        log_line("warning: %s not found; /openapi.yaml will answer 404", s->cfg.openapi);
+}
+
+static int make_address(const config *cfg, struct sockaddr_storage *sa, int *ipv6)
+{
+    memset(sa, 0, sizeof *sa);
+    struct sockaddr_in *v4 = (struct sockaddr_in *)sa;
+    struct sockaddr_in6 *v6 = (struct sockaddr_in6 *)sa;
+    if (inet_pton(AF_INET, cfg->bind, &v4->sin_addr) == 1) {
+        v4->sin_family = AF_INET;
+        v4->sin_port = htons((uint16_t)cfg->port);
+        *ipv6 = 0;
+        return 0;
+    }
+    if (inet_pton(AF_INET6, cfg->bind, &v6->sin6_addr) == 1) {
+        v6->sin6_family = AF_INET6;
+        v6->sin6_port = htons((uint16_t)cfg->port);
+        *ipv6 = 1;
+        return 0;
+    }
+    return -1;
+}
+
+int server_start(server *s)
+{
+    struct sockaddr_storage sa;
+    int ipv6;
+    if (make_address(&s->cfg, &sa, &ipv6) != 0) {
+        log_line("error: --bind %s is not an IPv4 or IPv6 address", s->cfg.bind);
+        return -1;
+    }
+    load_openapi(s);
+    unsigned flags = MHD_USE_EPOLL_INTERNAL_THREAD | MHD_USE_ITC | MHD_USE_TURBO | MHD_USE_ERROR_LOG |
+                     (ipv6 ? MHD_USE_IPv6 : 0);
+    s->daemon = MHD_start_daemon(
+        flags, (uint16_t)s->cfg.port, NULL, NULL, on_request, s,
+        MHD_OPTION_EXTERNAL_LOGGER, on_mhd_error, s, /* first, so that it sees every message */
+        MHD_OPTION_SOCK_ADDR, (struct sockaddr *)&sa,
+        MHD_OPTION_THREAD_POOL_SIZE, (unsigned)(s->cfg.threads > 1 ? s->cfg.threads : 0),
+        MHD_OPTION_CONNECTION_LIMIT, s->cfg.max_connections + OVERLOAD_HEADROOM,
+        MHD_OPTION_CONNECTION_TIMEOUT, s->cfg.timeout,
+        MHD_OPTION_CONNECTION_MEMORY_LIMIT, (size_t)CONNECTION_MEMORY,
+        MHD_OPTION_NOTIFY_COMPLETED, on_completed, s,
+        MHD_OPTION_NOTIFY_CONNECTION, on_connection, s,
+        MHD_OPTION_END);
+    if (s->daemon == NULL) {
+        log_line("error: cannot listen on %s port %u", s->cfg.bind, s->cfg.port);
+        return -1;
+    }
+    return 0;
+}
+
+unsigned server_port(const server *s)
+{
+    const union MHD_DaemonInfo *info = MHD_get_daemon_info(s->daemon, MHD_DAEMON_INFO_BIND_PORT);
+    return info ? info->port : s->cfg.port;
+}
+
+/* Waits until no run is in flight or `seconds` pass; returns the runs still in flight. */
+static long long wait_runs(server *s, double seconds)
+{
+    double until = now_seconds() + seconds;
+    long long n;
+    while ((n = atomic_load(&s->m.runs_in_flight)) > 0 && now_seconds() < until) {
+        struct timespec ts = { 0, 20 * 1000 * 1000 };
+        nanosleep(&ts, NULL);
+    }
+    return n;
+}
+
+/* Seconds streams get to write their error line once the grace period is over. */
+#define ABORT_WAIT 2.0
+
+void server_shutdown(server *s)
+{
+    atomic_store(&s->draining, 1);
+    MHD_socket fd = MHD_quiesce_daemon(s->daemon);
+    if (fd != MHD_INVALID_SOCKET)
+        close(fd);
+    long long left = wait_runs(s, s->cfg.shutdown_grace);
+    if (left > 0) {
+        log_line("shutdown: grace period over, ending %lld run(s) with an error line", left);
+        atomic_store(&s->abort_streams, 1);
+        left = wait_runs(s, ABORT_WAIT);
+    }
+    if (left > 0)
+        log_line("shutdown: closing %lld stalled stream(s)", left);
+    MHD_stop_daemon(s->daemon);
+    s->daemon = NULL;
+}
+
+void server_free(server *s)
+{
+    if (s == NULL)
+        return;
+    if (s->daemon)
+        MHD_stop_daemon(s->daemon);
+    free(s->openapi);
+    free(s);
+}

@@ -1,0 +1,218 @@
+/* src/http/simulate.c - POST /v1/simulate: parse, run, and stream the samples as the client reads them.
+ *
+ * The response is chunked and pulled: MHD calls stream_read only when the socket can take more, and only
+ * then does the solver advance by one block (BLOCK records, ~50 KiB of text). So a run of 10^8 steps
+ * streams in the memory of one block, a slow client slows the run down instead of filling memory, and a
+ * client that hangs up stops its run at once (MHD stops calling, then frees the response: stream_free).
+ *
+ * Everything that can fail before the first byte (format, body, spec, the first block) is answered with a
+ * problem document; a failure later (divergence, the wall-time limit, shutdown) becomes the format's error
+ * line, so a stream is never silently cut.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dashpot/json.h"
+#include "dashpot/run.h"
+#include "http.h"
+
+/* Records per solver block: ~100 bytes each as NDJSON, so a block is ~50 KiB, about what MHD asks for. */
+#define BLOCK 512
+/* Bytes MHD asks the reader for at most per call (bounded by the connection's memory too). */
+#define READ_BLOCK (64u << 10)
+
+struct stream {
+    request *r;
+    server *s;
+    dp_run *run;
+    dp_encoder enc;
+    dp_buf out;           /* encoded text not yet handed to MHD: out.data[off..len) */
+    size_t off;
+    int closed;           /* the summary or the error line is in `out` */
+    int failed;           /* ...and it was an error */
+    int delivered;        /* MHD was told END_OF_STREAM: the client got everything */
+    double deadline;      /* monotonic seconds */
+    dp_record recs[BLOCK];
+};
+
+static const char *const offers[] = { "application/json", "application/x-ndjson", "text/event-stream",
+                                      "text/csv" };
+static const dp_format offer_format[] = { DP_FORMAT_JSON, DP_FORMAT_NDJSON, DP_FORMAT_SSE, DP_FORMAT_CSV };
+
+/* Writes the closing error (its encoding failing too leaves the stream to end as it is). */
+static void stream_fail(stream *st, int status, const char *detail)
+{
+    dp_encoder_fail(&st->enc, &st->out, status, detail);
+    st->closed = st->failed = 1;
+}
+
+/* One block: the solver's next records, encoded and appended to `out`. Returns the run's status. */
+static int stream_fill(stream *st)
+{
+    if (atomic_load_explicit(&st->s->abort_streams, memory_order_relaxed)) {
+        stream_fail(st, DP_ECANCEL, "the server is shutting down");
+        return DP_ECANCEL;
+    }
+    if (now_seconds() > st->deadline) {
+        char detail[96];
+        snprintf(detail, sizeof detail, "the run exceeded the wall-time limit of %g s", st->s->cfg.max_wall);
+        stream_fail(st, DP_ECANCEL, detail);
+        return DP_ECANCEL;
+    }
+    size_t n = 0, samples = 0;
+    int s = dp_run_next(st->run, st->recs, BLOCK, &n);
+    for (size_t i = 0; i < n; i++) {
+        samples += st->recs[i].type == DP_RECORD_SAMPLE;
+        if (dp_encoder_record(&st->enc, &st->out, &st->recs[i]) != DP_OK) {
+            stream_fail(st, DP_ENOMEM, dp_strerror(DP_ENOMEM));
+            return DP_ENOMEM;
+        }
+    }
+    atomic_fetch_add_explicit(&st->s->m.samples_streamed, samples, memory_order_relaxed);
+    if (s == DP_DONE) {
+        st->closed = 1;
+        if (dp_encoder_end(&st->enc, &st->out, dp_run_summary(st->run), NULL) != DP_OK)
+            stream_fail(st, DP_ENOMEM, dp_strerror(DP_ENOMEM));
+    } else if (s < 0) {
+        const char *why = dp_run_error(st->run);
+        stream_fail(st, s, why && *why ? why : dp_strerror(s));
+    }
+    return s;
+}
+
+static ssize_t stream_read(void *cls, uint64_t pos, char *buf, size_t max)
+{
+    (void)pos;
+    stream *st = cls;
+    while (st->off == st->out.len) {
+        if (st->closed) {
+            st->delivered = 1;
+            return MHD_CONTENT_READER_END_OF_STREAM;
+        }
+        st->out.len = st->off = 0;
+        stream_fill(st);
+    }
+    size_t n = st->out.len - st->off < max ? st->out.len - st->off : max;
+    memcpy(buf, st->out.data + st->off, n);
+    st->off += n;
+    st->r->bytes += n;
+    atomic_fetch_add_explicit(&st->s->m.bytes_streamed, n, memory_order_relaxed);
+    return (ssize_t)n;
+}
+
+void stream_free(stream *st)
+{
+    if (st == NULL)
+        return;
+    metrics *m = &st->s->m;
+    if (!st->delivered)
+        atomic_fetch_add(&m->runs_cancelled, 1);
+    else
+        atomic_fetch_add(st->failed ? &m->runs_failed : &m->runs_completed, 1);
+    atomic_fetch_sub(&m->runs_in_flight, 1);
+    dp_run_free(st->run);
+    dp_encoder_clear(&st->enc);
+    dp_buf_free(&st->out);
+    request_release(st->r);
+    free(st);
+}
+
+static void stream_free_cb(void *cls)
+{
+    stream_free(cls);
+}
+
+/* Parses the body into a run, writing its meta object; on failure answers with the problem (*answer) and
+ * returns NULL. */
+static dp_run *prepare(struct MHD_Connection *c, request *r, dp_buf *meta, enum MHD_Result *answer)
+{
+    const config *cfg = &r->srv->cfg;
+    dp_spec spec;
+    dp_errors errs;
+    dp_spec_init(&spec);
+    dp_errors_init(&errs);
+    int st = dp_spec_parse(r->body.data ? r->body.data : "", r->body.len, cfg->max_steps, &spec, &errs);
+    dp_run *run = NULL;
+    if (st == DP_OK) {
+        run = dp_run_alloc(&spec, cfg->max_steps, &errs, &st);
+        if (run && dp_spec_meta_json(&spec, meta) != DP_OK) {
+            dp_run_free(run);
+            run = NULL;
+            st = DP_ENOMEM;
+        }
+    }
+    dp_spec_clear(&spec);
+    if (run == NULL)
+        *answer = respond_status(c, r, st, st == DP_ESYNTAX && errs.n ? errs.item[0].message : NULL, &errs);
+    return run;
+}
+
+/* A stream over run (owned from here on, also on failure) with the opening already encoded. */
+static stream *stream_new(request *r, dp_run *run, dp_format f, const char *meta)
+{
+    stream *st = calloc(1, sizeof *st);
+    if (st == NULL) {
+        dp_run_free(run);
+        return NULL;
+    }
+    st->r = r;
+    st->s = r->srv;
+    st->run = run;
+    st->deadline = r->t_start + r->srv->cfg.max_wall;
+    atomic_fetch_add(&r->refs, 1);
+    atomic_fetch_add(&st->s->m.runs_started, 1);
+    atomic_fetch_add(&st->s->m.runs_in_flight, 1);
+    dp_encoder_init(&st->enc, f);
+    if (dp_encoder_begin(&st->enc, &st->out, meta) != DP_OK) {
+        st->delivered = st->failed = 1; /* not a client's cancellation */
+        stream_free(st);
+        return NULL;
+    }
+    return st;
+}
+
+/* The first block failed before any byte went out: a problem document instead of a stream. */
+static enum MHD_Result early_failure(struct MHD_Connection *c, stream *st, int s)
+{
+    char why[DP_MESSAGE_MAX];
+    snprintf(why, sizeof why, "%s", *dp_run_error(st->run) ? dp_run_error(st->run) : dp_strerror(s));
+    request *r = st->r;
+    st->delivered = st->failed = 1;
+    stream_free(st);
+    return respond_status(c, r, s, why, NULL);
+}
+
+enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r)
+{
+    int f = negotiate(MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_ACCEPT), offers, 4);
+    if (f < 0)
+        return respond_problem(c, r, 406, NULL, "this route answers application/json, application/x-ndjson, "
+                               "text/event-stream or text/csv", NULL, NULL);
+    dp_buf meta = { 0 };
+    enum MHD_Result answer = MHD_NO;
+    dp_run *run = prepare(c, r, &meta, &answer);
+    stream *st = run ? stream_new(r, run, offer_format[f], meta.data) : NULL;
+    dp_buf_free(&meta);
+    if (run == NULL)
+        return answer;
+    if (st == NULL)
+        return respond_status(c, r, DP_ENOMEM, NULL, NULL);
+    int s = stream_fill(st);
+    if (s < 0 && s != DP_ECANCEL)
+        return early_failure(c, st, s);
+    struct MHD_Response *resp =
+        MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, READ_BLOCK, stream_read, st, stream_free_cb);
+    if (resp == NULL) {
+        stream_free(st);
+        return MHD_NO;
+    }
+    MHD_add_response_header(resp, MHD_HTTP_HEADER_CONTENT_TYPE, dp_format_content_type(offer_format[f]));
+    MHD_add_response_header(resp, MHD_HTTP_HEADER_CACHE_CONTROL, "no-store");
+    MHD_add_response_header(resp, "X-Accel-Buffering", "no"); /* proxies: pass the stream through */
+    r->status = 200;
+    r->stream = st;
+    enum MHD_Result ok = MHD_queue_response(c, 200, resp);
+    MHD_destroy_response(resp); /* MHD holds it now; stream_free_cb runs when it is done with it */
+    return ok;
+}
