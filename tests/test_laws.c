@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
 
 #include "dashpot/graph.h"
 #include "dashpot/model.h"
@@ -240,6 +242,60 @@ static void test_harmonic_forcing_cross_check(void **state)
     traj_free(&t2);
 }
 
+/* x'' + c x' + k x = F(t), integrated independently by GSL rk8pd. */
+typedef struct smooth { double c, k; } smooth;
+
+static double forcing_sum(double t)
+{
+    /* 0.5 cos(1.3 t + 0.2) + table (0, 0) (2, 1) (4, -1) (6, 0), the forcing of the spec below */
+    double tab = t <= 0 ? 0 : t < 2 ? t / 2 : t < 4 ? 1 - (t - 2) : t < 6 ? -1 + (t - 4) / 2 : 0;
+    return 0.5 * cos(1.3 * t + 0.2) + tab;
+}
+
+static int smooth_rhs(double t, const double y[], double f[], void *p)
+{
+    const smooth *s = p;
+    f[0] = y[1];
+    f[1] = forcing_sum(t) - s->c * y[1] - s->k * y[0];
+    return GSL_SUCCESS;
+}
+
+/* Harmonic + table forcing through a sum, with no damper and with a linear damper whose viscosity is
+ * partly cancelled by a linear relaxation (F_d = c v - L v): theta = 1/2 against rk8pd, second order. */
+static void test_forcing_and_relaxation_against_rk8pd(void **state)
+{
+    (void)state;
+    const char *dampers[2] = { "{\"law\":\"none\"}",
+                               "{\"law\":\"linear\",\"c\":1,\"relaxation\":{\"kind\":\"linear\",\"L\":0.4}}" };
+    const double ceff[2] = { 0, 0.6 };
+    for (int k = 0; k < 2; k++) {
+        double err[2];
+        for (int j = 0; j < 2; j++) {
+            char spec[1024];
+            traj t;
+            run_ok(SPEC(spec, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":2},\"damper\":%s,"
+                        "\"forcing\":{\"kind\":\"sum\",\"terms\":[{\"kind\":\"harmonic\",\"amplitude\":0.5,"
+                        "\"omega\":1.3,\"phase\":0.2},{\"kind\":\"table\",\"points\":[[0,0],[2,1],[4,-1],[6,0]]}]}},"
+                        "\"initial\":{\"x\":0.3,\"v\":-0.2},\"solver\":{\"dt\":%g,\"t_end\":8,\"theta\":0.5},"
+                        "\"output\":{\"every\":%d}}", dampers[k], j ? 1e-3 : 1e-2, j ? 100 : 10), &t);
+            smooth p = { ceff[k], 2 };
+            gsl_odeiv2_system sys = { smooth_rhs, NULL, 2, &p };
+            gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-3, 1e-13, 1e-13);
+            double y[2] = { 0.3, -0.2 }, tt = 0, e = 0;
+            for (size_t i = 1; i < t.n; i++) {
+                assert_int_equal(gsl_odeiv2_driver_apply(d, &tt, t.s[i].t, y), GSL_SUCCESS);
+                e = fmax(e, fabs(t.s[i].x - y[0]));
+            }
+            gsl_odeiv2_driver_free(d);
+            err[j] = e;
+            traj_free(&t);
+        }
+        printf("forcing sum, damper %d: errors %.3e %.3e order %.3f\n", k, err[0], err[1], log10(err[0] / err[1]));
+        /* the table's kinks cost a local O(dt^2) each, still second order globally */
+        assert_true(err[1] < 1e-5 && log10(err[0] / err[1]) > 1.7);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -252,6 +308,7 @@ int main(void)
         cmocka_unit_test(test_rope_holds),
         cmocka_unit_test(test_belt_stick_slip),
         cmocka_unit_test(test_harmonic_forcing_cross_check),
+        cmocka_unit_test(test_forcing_and_relaxation_against_rk8pd),
     };
     return cmocka_run_group_tests_name("laws", tests, NULL, NULL);
 }
