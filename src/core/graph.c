@@ -17,6 +17,21 @@ static int ray_ok(const double d[2])
     return isfinite(d[0]) && isfinite(d[1]) && d[0] >= 0 && d[1] >= 0 && (d[0] > 0 || d[1] > 0);
 }
 
+/* Copies the vertices into g's own arrays; on failure g is left empty. */
+static int store(dp_graph *g, size_t n, const double *y, const double *f)
+{
+    g->y = malloc(n * sizeof *g->y);
+    g->f = malloc(n * sizeof *g->f);
+    if (g->y == NULL || g->f == NULL) {
+        dp_graph_clear(g);
+        return DP_ENOMEM;
+    }
+    memcpy(g->y, y, n * sizeof *y);
+    memcpy(g->f, f, n * sizeof *f);
+    g->n = n;
+    return DP_OK;
+}
+
 int dp_graph_init(dp_graph *g, size_t n, const double *y, const double *f,
                   const double left[2], const double right[2])
 {
@@ -29,15 +44,8 @@ int dp_graph_init(dp_graph *g, size_t n, const double *y, const double *f,
         if (i > 0 && (y[i] < y[i - 1] || f[i] < f[i - 1]))
             return DP_EINVAL;
     }
-    g->y = malloc(n * sizeof *g->y);
-    g->f = malloc(n * sizeof *g->f);
-    if (g->y == NULL || g->f == NULL) {
-        dp_graph_clear(g);
+    if (store(g, n, y, f) != DP_OK)
         return DP_ENOMEM;
-    }
-    memcpy(g->y, y, n * sizeof *y);
-    memcpy(g->f, f, n * sizeof *f);
-    g->n = n;
     memcpy(g->left, left, sizeof g->left);
     memcpy(g->right, right, sizeof g->right);
     return DP_OK;
@@ -58,15 +66,8 @@ int dp_graph_init_raw(dp_graph *g, size_t n, const double *y, const double *f)
     memset(g, 0, sizeof *g);
     if (n < 2 || n > DP_GRAPH_MAX_POINTS)
         return DP_EINVAL;
-    g->y = malloc(n * sizeof *g->y);
-    g->f = malloc(n * sizeof *g->f);
-    if (g->y == NULL || g->f == NULL) {
-        dp_graph_clear(g);
+    if (store(g, n, y, f) != DP_OK)
         return DP_ENOMEM;
-    }
-    memcpy(g->y, y, n * sizeof *y);
-    memcpy(g->f, f, n * sizeof *f);
-    g->n = n;
     g->left[0] = y[1] - y[0], g->left[1] = f[1] - f[0];
     g->right[0] = y[n - 1] - y[n - 2], g->right[1] = f[n - 1] - f[n - 2];
     return DP_OK;
