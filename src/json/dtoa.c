@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "dashpot/encode.h"
+#include "dtoa.h"
 #include "pow10_g.h"
 
 __extension__ typedef unsigned __int128 u128;
@@ -74,20 +75,35 @@ static const char pairs[201] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
-/* Writes n < 10^8 as 8 digits. y / 2^57 ~ n / 10^6 in fixed point with a multiplier rounded up (error below
+/* n < 10^8 as 8 ASCII digits in a register, first digit in the lowest byte (the memory order of a little
+ * endian store). y / 2^57 ~ n / 10^6 in fixed point with a multiplier rounded up (error below
  * 10^8 / 2^57 ~ 7e-10, so even after three multiplications by 100 it cannot carry into a digit): each step
- * takes the integral part as the next pair of digits and scales the fraction by 100. */
-static void write8(char *p, uint32_t n)
+ * takes the integral part as the next pair of digits and scales the fraction by 100. Building the digits in
+ * a register and storing once avoids reading back bytes just stored in pieces (a store-forwarding stall). */
+static uint64_t eight_digits(uint32_t n)
 {
     const uint64_t mask = (1ULL << 57) - 1;
-    uint64_t y = n * 144115188076ULL; /* ceil(2^57 / 10^6) */
-    memcpy(p, pairs + 2 * (y >> 57), 2);
-    y = (y & mask) * 100;
-    memcpy(p + 2, pairs + 2 * (y >> 57), 2);
-    y = (y & mask) * 100;
-    memcpy(p + 4, pairs + 2 * (y >> 57), 2);
-    y = (y & mask) * 100;
-    memcpy(p + 6, pairs + 2 * (y >> 57), 2);
+    uint64_t y = n * 144115188076ULL, v = 0; /* ceil(2^57 / 10^6) */
+    for (int i = 0; i < 4; i++) {
+        uint16_t pair;
+        memcpy(&pair, pairs + 2 * (y >> 57), 2);
+        v |= (uint64_t)pair << (16 * i);
+        y = (y & mask) * 100;
+    }
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    v = __builtin_bswap64(v);
+#endif
+    return v;
+}
+
+/* Trailing '0' characters of 8 digits (from eight_digits) that are not all '0': the zero bytes at the top
+ * of (digits XOR "00000000"), one clz instead of a loop. */
+static int trailing_zero_chars(uint64_t v)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    v = __builtin_bswap64(v);
+#endif
+    return __builtin_clzll(v ^ 0x3030303030303030ULL) >> 3;
 }
 
 static const uint64_t pow10_u64[19] = {
@@ -105,28 +121,22 @@ static int count_digits(uint64_t f)
     return t + (f >= pow10_u64[t]);
 }
 
-/* Trailing decimal zeros of 0 < n < 10^8, by independent divisibility tests rather than a loop whose exit
- * would be mispredicted. */
-static int trailing_zeros8(uint32_t n)
+/* Writes the 18 decimal digits of 0 < f < 10^18 into buf (>= 64 bytes, so that layout may copy fixed
+ * lengths) and returns a pointer to the first non-zero one; *len receives the count of digits up to the
+ * last non-zero one, and *K grows by the trailing zeros cut. */
+static const char *digits(uint64_t f, char *buf, int *len, int *K)
 {
-    return (n % 10 == 0) + (n % 100 == 0) + (n % 1000 == 0) + (n % 10000 == 0) + (n % 100000 == 0) +
-           (n % 1000000 == 0) + (n % 10000000 == 0);
-}
-
-/* Writes the decimal digits of 0 < f < 10^18 into buf[18] and returns a pointer to the first non-zero one;
- * *len receives the count of digits up to the last non-zero one, and *K grows by the trailing zeros cut. */
-static const char *digits(uint64_t f, char buf[18], int *len, int *K)
-{
-    uint32_t lo = (uint32_t)(f % 100000000), mid = (uint32_t)(f / 100000000 % 100000000);
-    uint32_t hi = (uint32_t)(f / 10000000000000000ULL);
+    uint64_t q = f / 100000000;
+    uint32_t lo = (uint32_t)(f - q * 100000000), mid = (uint32_t)(q % 100000000), hi = (uint32_t)(q / 100000000);
+    uint64_t vmid = eight_digits(mid), vlo = eight_digits(lo);
     memcpy(buf, pairs + 2 * hi, 2);
-    write8(buf + 2, mid);
-    write8(buf + 10, lo);
+    memcpy(buf + 2, &vmid, 8);
+    memcpy(buf + 10, &vlo, 8);
     int n = count_digits(f), tz;
     if (lo != 0)
-        tz = trailing_zeros8(lo);
+        tz = trailing_zero_chars(vlo);
     else if (mid != 0)
-        tz = 8 + trailing_zeros8(mid);
+        tz = 8 + trailing_zero_chars(vmid);
     else
         tz = 16 + (hi % 10 == 0);
     *K += tz;
@@ -152,38 +162,35 @@ static char *write_exponent(char *p, int x)
 }
 
 /* Lays out d[0..len) * 10^K as JavaScript's Number#toString does: plain notation while the decimal point is
- * at most 21 places after the first digit and at most 6 places before it, exponent notation (1.5e+300) beyond. */
+ * at most 21 places after the first digit and at most 6 places before it, exponent notation (1.5e+300) beyond.
+ * Copies are of fixed length (17 or 16 bytes, len <= 17), cheaper than exact ones: d must be readable and p
+ * writable 48 bytes on; bytes past the returned end are scratch. */
 static char *layout(char *p, const char *d, int len, int K)
 {
     int kk = len + K; /* position of the decimal point relative to the first digit */
     if (K >= 0 && kk <= 21) {
-        memcpy(p, d, (size_t)len);
+        memcpy(p, d, 17);
         memset(p + len, '0', (size_t)K);
         return p + kk;
     }
-    if (kk > 0 && kk <= 21) {
-        memcpy(p, d, (size_t)kk);
+    if (kk > 0 && kk <= 21) { /* K < 0: the point falls inside the digits, 1 <= kk <= 16 */
+        memcpy(p, d, 16);
         p[kk] = '.';
-        memcpy(p + kk + 1, d + kk, (size_t)(len - kk));
+        memcpy(p + kk + 1, d + kk, 16);
         return p + len + 1;
     }
     if (kk > -6 && kk <= 0) {
-        p[0] = '0';
-        p[1] = '.';
-        memset(p + 2, '0', (size_t)-kk);
-        memcpy(p + 2 - kk, d, (size_t)len);
+        memcpy(p, "0.00000", 8);
+        memcpy(p + 2 - kk, d, 17);
         return p + 2 - kk + len;
     }
-    *p++ = d[0];
-    if (len > 1) {
-        *p++ = '.';
-        memcpy(p, d + 1, (size_t)(len - 1));
-        p += len - 1;
-    }
-    return write_exponent(p, kk - 1);
+    p[0] = d[0];
+    p[1] = '.';
+    memcpy(p + 2, d + 1, 16);
+    return write_exponent(p + (len > 1 ? len + 1 : 1), kk - 1);
 }
 
-size_t dp_format_double(char *out, double x)
+size_t dp_format_double_wide(char *out, double x)
 {
     uint64_t bits;
     memcpy(&bits, &x, sizeof bits);
@@ -193,8 +200,7 @@ size_t dp_format_double(char *out, double x)
         memcpy(out, "null", 5);
         return 4;
     }
-    char *p = out, buf[18];
-    const char *d;
+    char *p = out, buf[64];
     if (bits >> 63)
         *p++ = '-';
     int K = 0, len;
@@ -203,12 +209,23 @@ size_t dp_format_double(char *out, double x)
     if (c == 0) {
         *p++ = '0';
     } else if (q <= 0 && q > -53 && (c & ((1ULL << -q) - 1)) == 0) { /* an integer below 2^53 */
-        d = digits(c >> -q, buf, &len, &K);
+        const char *d = digits(c >> -q, buf, &len, &K);
         p = layout(p, d, len, K);
     } else {
-        d = digits(shortest(c, q, &K), buf, &len, &K);
+        int k;
+        uint64_t f = shortest(c, q, &k);
+        K = k;
+        const char *d = digits(f, buf, &len, &K);
         p = layout(p, d, len, K);
     }
     *p = '\0';
     return (size_t)(p - out);
+}
+
+size_t dp_format_double(char *out, double x)
+{
+    char wide[DP_DTOA_WIDE];
+    size_t n = dp_format_double_wide(wide, x);
+    memcpy(out, wide, 32); /* n < 26: the text and its NUL fit the caller's 32 bytes */
+    return n;
 }

@@ -15,9 +15,10 @@
 #include <string.h>
 
 #include "dashpot/encode.h"
+#include "dtoa.h"
 
 /* Bytes one sample may take in any format: 6 numbers of at most 25 characters, the keys, the phase and the
- * SSE framing come to ~260; the rest is margin. */
+ * SSE framing come to ~260; the last number may scribble DP_DTOA_WIDE bytes: 384 covers both. */
 #define SAMPLE_MAX 384
 
 static inline char *put_lit(char *p, const char *lit, size_t n)
@@ -36,7 +37,7 @@ static const char *phase_name(dp_phase ph)
 
 static char *put_num(char *p, double x)
 {
-    return p + dp_format_double(p, x);
+    return p + dp_format_double_wide(p, x); /* may scribble DP_DTOA_WIDE bytes: within SAMPLE_MAX */
 }
 
 /* "t":..,"x":..,"v":..,"Fs":..,"Fd":..,"Fc":..[,"phase":".."] */
