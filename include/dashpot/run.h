@@ -41,10 +41,13 @@ typedef struct dp_record {
 
 typedef struct dp_summary {
     dp_sample final;          /* state at t_end */
-    unsigned long long steps; /* time steps taken (stick-slip), arcs (analytic) */
+    unsigned long long steps; /* time steps taken (stick-slip), arcs (analytic), accepted steps (regularized) */
     unsigned long long samples, events;
     double stick_time;        /* total time spent sticking */
-    unsigned long long iterations; /* thesis: fixed-point iterations; exact: bracketing evaluations */
+    unsigned long long iterations; /* thesis: fixed-point iterations; exact: bracketing evaluations;
+                                    * regularized: Jacobian evaluations */
+    unsigned long long rejected;   /* regularized: steps the error control rejected (0 elsewhere) */
+    unsigned long long fevals;     /* regularized: right-hand side evaluations (0 elsewhere) */
 } dp_summary;
 
 typedef struct dp_run dp_run;

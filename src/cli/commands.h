@@ -22,5 +22,6 @@ void dp_cli_print_errors(const char *what, const dp_errors *errs);
 int dp_cli_simulate(int argc, char **argv);
 int dp_cli_stability(int argc, char **argv);
 int dp_cli_wellposedness(int argc, char **argv);
+int dp_cli_convergence(int argc, char **argv);
 
 #endif

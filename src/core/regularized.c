@@ -1,24 +1,328 @@
-/* src/core/regularized.c - the regularized existence schemes (PCn) and (PIk) as solvers (issue 5).
- * Not implemented yet: every spec asking for it is rejected with a clear error, never run. */
+/* src/core/regularized.c - the regularized existence schemes (PCn) and (PIk) as solvers (mathematics.md §3).
+ *
+ *   (PCn), seed 001 (17)-(18):  m x'' + F_s(x) + F_c - gamma(u) = F(t),  u = x' - v_b,
+ *                               F_c = c u + g_n(u),  g_n = A_(1/n) (yosida.c),
+ *                               F_s = k x for a linear spring, S_(1/n)(x) for a graph spring (rope, points);
+ *   (PIk), seed 000 ch. 2:      x'' = F - f_k^-1(x) - g_k^-1(x'),  f_k^-1 = S_(1/k),  g_k^-1 = (A + c I)_(1/k),
+ *                               the whole law regularized, as (FIk) does; no relaxation (the thesis has none).
+ * The ODE's Lipschitz constant grows like n/m, so it is stiff: GSL odeiv2 with the analytic Jacobian
+ * (piecewise constant: the slopes of the Yosida pieces, yosida.c) and an implicit stepper by default.
+ *
+ * Samples fall on the output grid t_j = j dt whatever the internal steps: gsl_odeiv2_evolve_apply is asked
+ * to reach each sample time exactly (it clips its last step there and keeps its step-size proposal). A
+ * regularized solution never sticks exactly, so every sample has phase NONE and F_c = g_n(u).
+ * The workspace is allocated once per run; the step path allocates nothing. Every GSL return is checked:
+ * a right-hand side that leaves the finite numbers is DP_ENONFINITE, any other failure DP_ESOLVE.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+
+#include "dashpot/regularized.h"
 #include "run_internal.h"
+
+/* Integrator steps taken per dp_run_next call at most, so that a front end can cancel a hard run between
+ * blocks (~10 ms of msbdf work); the run resumes where it stopped. */
+#define REG_STEPS_PER_CALL 100000ULL
+
+struct dp_regularized {
+    double m, c, k, vb;         /* c: viscous part kept exact (PC); k: linear spring kept exact (PC) */
+    int spring_exact;
+    double ls, ld;              /* Yosida parameters: 1/n (PC) or 1/k (PI) */
+    const dp_graph *S, *D;      /* spring and damper graphs that are regularized */
+    dp_graph DI;                /* PI: the damper graph with its viscous part, A + c I (owned) */
+    const dp_relaxation *gamma;
+    const dp_forcing *F;
+    gsl_odeiv2_system sys;
+    gsl_odeiv2_driver *drv;
+    double t, y[2], h;
+    unsigned long long fevals, jevals;
+};
+
+/* ---- the law ------------------------------------------------------------------------------------------- */
+
+/* gamma'(u); power relaxation is rejected by dp_regularized_check (unbounded slope at 0). */
+static double relaxation_rate(const dp_relaxation *r, double u)
+{
+    if (r->kind == DP_RELAX_RATIONAL) {
+        double d = r->b + fabs(u);
+        return r->a * r->b / (d * d);
+    }
+    return r->kind == DP_RELAX_LINEAR ? r->L : 0;
+}
+
+/* dF/dt of a table: the slope of the segment holding t, 0 beyond the ends (constant there). */
+static double table_rate(const dp_forcing *f, double t)
+{
+    if (f->n < 2 || !(t >= f->t[0]) || t >= f->t[f->n - 1])
+        return 0;
+    size_t lo = 0, hi = f->n - 1;
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (f->t[mid] <= t)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return (f->F[hi] - f->F[lo]) / (f->t[hi] - f->t[lo]);
+}
+
+/* dF/dt, the non-autonomous part of the Jacobian (bsimp and rk4imp use it). */
+static double forcing_rate(const dp_forcing *f, double t)
+{
+    double s = 0;
+    switch (f->kind) {
+    case DP_FORCING_HARMONIC:
+        return -f->amplitude * f->omega * sin(f->omega * t + f->phase);
+    case DP_FORCING_TABLE:
+        return table_rate(f, t);
+    case DP_FORCING_SUM:
+        for (size_t i = 0; i < f->nterms; i++)
+            s += forcing_rate(&f->terms[i], t);
+        return s;
+    default:
+        return 0;
+    }
+}
+
+/* Spring force and its slope at x. */
+static double spring_force(const struct dp_regularized *g, double x, double *slope)
+{
+    if (g->spring_exact) {
+        *slope = g->k;
+        return g->k * x;
+    }
+    return dp_graph_yosida_slope(g->S, g->ls, x, slope);
+}
+
+/* F_c = c u + D_l(u) at relative velocity u, and d(F_c - gamma)/du. */
+static double damper_force(const struct dp_regularized *g, double u, double *slope)
+{
+    double s, fc = g->c * u + dp_graph_yosida_slope(g->D, g->ld, u, &s);
+    *slope = g->c + s - relaxation_rate(g->gamma, u);
+    return fc;
+}
+
+static int rhs(double t, const double y[], double f[], void *p)
+{
+    struct dp_regularized *g = p;
+    double ss, sd, u = y[1] - g->vb;
+    double fs = spring_force(g, y[0], &ss);
+    double fd = damper_force(g, u, &sd) - dp_relaxation_eval(g->gamma, u);
+    g->fevals++;
+    f[0] = y[1];
+    f[1] = (dp_forcing_eval(g->F, t) - fs - fd) / g->m;
+    return isfinite(f[0]) && isfinite(f[1]) ? GSL_SUCCESS : GSL_EBADFUNC;
+}
+
+/* d(x, v)'/d(x, v) = [0 1; -F_s'(x)/m -F_d'(u)/m], row-major; dfdt = (0, F'(t)/m). */
+static int jacobian(double t, const double y[], double *dfdy, double dfdt[], void *p)
+{
+    struct dp_regularized *g = p;
+    double ks, kd;
+    spring_force(g, y[0], &ks);
+    damper_force(g, y[1] - g->vb, &kd);
+    g->jevals++;
+    dfdy[0] = 0, dfdy[1] = 1, dfdy[2] = -ks / g->m, dfdy[3] = -kd / g->m;
+    dfdt[0] = 0, dfdt[1] = forcing_rate(g->F, t) / g->m;
+    return isfinite(dfdy[2]) && isfinite(dfdy[3]) && isfinite(dfdt[1]) ? GSL_SUCCESS : GSL_EBADFUNC;
+}
+
+/* The graph A + c I: the same vertices lifted by c y, the rays by c dy. */
+static int add_viscosity(dp_graph *dst, const dp_graph *A, double c)
+{
+    int s = dp_graph_copy(dst, A);
+    if (s != DP_OK)
+        return s;
+    for (size_t i = 0; i < dst->n; i++)
+        dst->f[i] += c * dst->y[i];
+    dst->left[1] += c * dst->left[0];
+    dst->right[1] += c * dst->right[0];
+    return DP_OK;
+}
+
+static int set_law(struct dp_regularized *g, const dp_spec *spec)
+{
+    const dp_model *m = &spec->model;
+    const dp_damper *d = &m->damper;
+    double n = spec->solver.n_list[0];
+    double c = (d->law == DP_DAMPER_LINEAR || d->law == DP_DAMPER_BINGHAM) ? d->c : 0;
+    g->m = m->mass;
+    g->vb = d->belt_velocity;
+    g->gamma = &d->relaxation;
+    g->F = &m->forcing;
+    g->ls = g->ld = 1 / n;
+    g->S = &m->spring.graph;
+    if (spec->solver.scheme == DP_SCHEME_PI) {
+        g->D = &g->DI;
+        return add_viscosity(&g->DI, &d->graph, c);
+    }
+    g->D = &d->graph;
+    g->c = c;
+    g->spring_exact = m->spring.law == DP_SPRING_LINEAR;
+    g->k = m->spring.k;
+    return DP_OK;
+}
+
+/* ---- the rules ------------------------------------------------------------------------------------------ */
 
 void dp_regularized_check(const dp_spec *s, dp_errors *e)
 {
-    (void)s;
-    dp_errors_add(e, "/solver/kind", "the regularized solver is not available in this version");
+    const dp_solver_spec *sv = &s->solver;
+    const dp_damper *d = &s->model.damper;
+    const char *np = sv->scheme == DP_SCHEME_PI ? "/solver/k" : "/solver/n";
+    if (sv->n_count < 1 || sv->n_count > DP_SPEC_MAX_NLIST)
+        dp_errors_add(e, np, "needs 1..%d values, got %zu", DP_SPEC_MAX_NLIST, sv->n_count);
+    for (size_t i = 0; i < sv->n_count && i < DP_SPEC_MAX_NLIST; i++) {
+        if (!(sv->n_list[i] > 0) || !isfinite(sv->n_list[i]))
+            dp_errors_add(e, np, "must be finite numbers > 0, got %g", sv->n_list[i]);
+        else if (i > 0 && !(sv->n_list[i] > sv->n_list[i - 1]))
+            dp_errors_add(e, np, "a study's values must be strictly increasing: %g after %g", sv->n_list[i],
+                          sv->n_list[i - 1]);
+    }
+    if (!(sv->rtol >= 0 && sv->atol >= 0 && sv->rtol + sv->atol > 0) || !isfinite(sv->rtol + sv->atol))
+        dp_errors_add(e, "/solver/rtol", "rtol and atol must be finite, >= 0 and not both 0");
+    if ((unsigned)sv->stepper > DP_STEPPER_RK8PD)
+        dp_errors_add(e, "/solver/stepper", "unknown stepper");
+    if (d->law == DP_DAMPER_GENERALIZED_COULOMB)
+        dp_errors_add(e, "/model/damper/law", "the regularized schemes need a maximal monotone damper graph "
+                      "(seed 001 Lemma 1); generalized-coulomb (phi1 > phi0) is not monotone");
+    if (d->relaxation.kind == DP_RELAX_POWER)
+        dp_errors_add(e, "/model/damper/relaxation", "power relaxation is not Lipschitz at 0 (seed 001 (26)): "
+                      "the regularized ODE has no unique solution and no bounded Jacobian");
+    else if (sv->scheme == DP_SCHEME_PI && d->relaxation.kind != DP_RELAX_NONE)
+        dp_errors_add(e, "/model/damper/relaxation", "scheme PI (thesis ch. 2, x' = g(F_d)) has no relaxation; "
+                      "use scheme PC");
+}
+
+/* ---- the run ------------------------------------------------------------------------------------------- */
+
+static const gsl_odeiv2_step_type *step_type(dp_stepper s)
+{
+    switch (s) {
+    case DP_STEPPER_RK4IMP: return gsl_odeiv2_step_rk4imp;
+    case DP_STEPPER_BSIMP: return gsl_odeiv2_step_bsimp;
+    case DP_STEPPER_RKF45: return gsl_odeiv2_step_rkf45;
+    case DP_STEPPER_RKCK: return gsl_odeiv2_step_rkck;
+    case DP_STEPPER_RK8PD: return gsl_odeiv2_step_rk8pd;
+    default: return gsl_odeiv2_step_msbdf;
+    }
+}
+
+/* The current state as a sample: forces from the regularized laws, no phase. */
+static void set_sample(dp_run *r)
+{
+    const struct dp_regularized *g = r->reg;
+    dp_sample *c = &r->cur;
+    double sl, u = g->y[1] - g->vb;
+    c->t = g->t, c->x = g->y[0], c->v = g->y[1];
+    c->Fs = spring_force(g, c->x, &sl);
+    c->Fc = damper_force(g, u, &sl);
+    c->Fd = c->Fc - dp_relaxation_eval(g->gamma, u);
+    c->phase = DP_PHASE_NONE;
 }
 
 int dp_regularized_init(dp_run *r)
 {
-    return dp_run_fail(r, DP_EINVAL, "the regularized solver is not available in this version");
+    struct dp_regularized *g = calloc(1, sizeof *g);
+    if (g == NULL)
+        return DP_ENOMEM;
+    r->reg = g; /* from here on dp_run_free releases whatever was built */
+    if (set_law(g, &r->spec) != DP_OK)
+        return dp_run_fail(r, DP_ENOMEM, "out of memory building the regularized damper graph");
+    const dp_solver_spec *sv = &r->spec.solver;
+    g->sys = (gsl_odeiv2_system){ rhs, jacobian, 2, g };
+    /* A first step far below any time scale of the ODE (the fastest is ~ m/n): the control grows it by up to
+     * 5x per accepted step, so the few steps this costs are cheaper than rejections from too large a guess. */
+    g->h = fmin(sv->dt, 1e-3 * g->m / (sv->n_list[0] + 1));
+    g->drv = gsl_odeiv2_driver_alloc_y_new(&g->sys, step_type(sv->stepper), g->h, sv->atol, sv->rtol);
+    if (g->drv == NULL)
+        return dp_run_fail(r, DP_ENOMEM, "out of memory allocating the %s integrator",
+                           dp_stepper_name(sv->stepper));
+    g->t = 0, g->y[0] = r->spec.x0, g->y[1] = r->spec.v0;
+    set_sample(r);
+    if (!isfinite(r->cur.Fs) || !isfinite(r->cur.Fc))
+        return dp_run_fail(r, DP_ENONFINITE, "the regularized forces are not finite at the initial state");
+    return DP_OK;
+}
+
+static int gsl_failure(dp_run *r, int s, double t)
+{
+    if (s == GSL_EBADFUNC)
+        return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g (non-finite right-hand side)", t);
+    return dp_run_fail(r, DP_ESOLVE, "the %s integrator failed at t = %.17g: %s",
+                       dp_stepper_name(r->spec.solver.stepper), t, gsl_strerror(s));
+}
+
+/* Integrates up to t1 exactly. DP_OK there, DP_MORE when *budget ran out first, or the run's error. */
+static int integrate_to(dp_run *r, double t1, unsigned long long *budget)
+{
+    struct dp_regularized *g = r->reg;
+    gsl_odeiv2_driver *d = g->drv;
+    while (g->t < t1) {
+        if (*budget == 0)
+            return DP_MORE;
+        if ((double)d->e->count >= DP_SPEC_MAX_STEPS)
+            return dp_run_fail(r, DP_ELIMIT, "more than %.0f integrator steps by t = %.17g: choose an implicit "
+                               "stepper or a smaller n", DP_SPEC_MAX_STEPS, g->t);
+        (*budget)--;
+        /* Split what is left to t1 into equal steps no longer than the proposal: a short remainder step
+         * before each sample time would make msbdf see a step-size drop and lower its order (its
+         * stability heuristic), which at dense output costs up to 5x the steps. */
+        double t = g->t, rem = t1 - t, h = g->h < rem ? rem / ceil(rem / g->h) : rem;
+        int s = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &g->sys, &t, t1, &h, g->y);
+        if (s != GSL_SUCCESS)
+            return gsl_failure(r, s, g->t);
+        if (!isfinite(g->y[0]) || !isfinite(g->y[1]))
+            return gsl_failure(r, GSL_EBADFUNC, t);
+        if (t < t1)
+            g->h = h; /* the control's proposal; a final (clipped) step leaves it as it was */
+        g->t = t;
+    }
+    return DP_OK;
+}
+
+static void update_summary(dp_run *r)
+{
+    const struct dp_regularized *g = r->reg;
+    r->sum.steps = g->drv->e->count;
+    r->sum.rejected = g->drv->e->failed_steps;
+    r->sum.fevals = g->fevals;
+    r->sum.iterations = g->jevals;
 }
 
 int dp_regularized_advance(dp_run *r)
 {
-    return dp_run_fail(r, DP_EINVAL, "the regularized solver is not available in this version");
+    unsigned long long budget = REG_STEPS_PER_CALL, every = (unsigned long long)r->spec.output.every;
+    while (dp_run_room(r)) {
+        /* Straight to the next sample that is kept: decimated grid points cost no clipped steps. */
+        unsigned long long next = r->nsteps - r->n > every ? r->n + every : r->nsteps;
+        double t1 = next < r->nsteps ? (double)next * r->h : r->spec.solver.t_end;
+        int s = integrate_to(r, t1, &budget);
+        update_summary(r);
+        if (s == DP_MORE)
+            return DP_OK;
+        if (s != DP_OK)
+            return s;
+        r->n = next;
+        set_sample(r);
+        r->countdown = 1;
+        if (r->n >= r->nsteps)
+            r->finished = 1;
+        dp_run_emit_state(r);
+    }
+    return DP_OK;
 }
 
-void dp_regularized_free(struct dp_regularized *reg)
+void dp_regularized_free(struct dp_regularized *g)
 {
-    (void)reg;
+    if (g == NULL)
+        return;
+    if (g->drv != NULL)
+        gsl_odeiv2_driver_free(g->drv);
+    dp_graph_clear(&g->DI);
+    free(g);
 }

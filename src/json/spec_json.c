@@ -571,6 +571,45 @@ static void parse_initial(ctx *c, const cJSON *o, const char *ptr, dp_spec *s)
     get_num(c, o, ptr, "v", &ANY, 0, 0, &s->v0);
 }
 
+/* The regularized solver's "n" (scheme PC) or "k" (scheme PI): a number > 0 or, for a convergence study, a
+ * strictly increasing array of 1..DP_SPEC_MAX_NLIST of them. The other scheme's key is an error. */
+static void parse_nlist(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec *s)
+{
+    int pi = s->scheme == DP_SCHEME_PI;
+    const char *key = pi ? "k" : "n", *other = pi ? "n" : "k";
+    char p[DP_POINTER_MAX], q[DP_POINTER_MAX], what[96], a[32], b[32];
+    if (member(c, o, ptr, other, NULL, p) != NULL)
+        fail(c, p, "\"%s\" belongs to scheme %s; scheme %s takes \"%s\"", other, pi ? "PC" : "PI",
+             pi ? "PI" : "PC", key);
+    const cJSON *v = member(c, o, ptr, key, NULL, p);
+    double x;
+    if (v == NULL)
+        return;
+    if (cJSON_IsNumber(v)) {
+        if (check_num(c, v, p, &POSITIVE, 0, &x))
+            s->n_list[0] = x, s->n_count = 1;
+        return;
+    }
+    int n = cJSON_IsArray(v) ? cJSON_GetArraySize(v) : 0;
+    snprintf(what, sizeof what, "a finite number > 0 or an array of 1..%d of them", DP_SPEC_MAX_NLIST);
+    if (!cJSON_IsArray(v) || n < 1 || n > DP_SPEC_MAX_NLIST) {
+        if (cJSON_IsArray(v))
+            fail(c, p, "must be %s, got %d elements", what, n);
+        else
+            fail(c, p, "must be %s, got %s", what, type_name(v));
+        return;
+    }
+    size_t before = c->nerr, i = 0;
+    for (const cJSON *el = v->child; el; el = el->next, i++) {
+        ptr_index(q, p, i);
+        if (check_num(c, el, q, &POSITIVE, 0, &s->n_list[i]) && i > 0 && !(s->n_list[i] > s->n_list[i - 1]))
+            fail(c, q, "must be strictly increasing: %s after %s", num_text(s->n_list[i], a),
+                 num_text(s->n_list[i - 1], b));
+    }
+    if (c->nerr == before)
+        s->n_count = (size_t)n;
+}
+
 static void parse_solver(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec *s)
 {
     static const variant kinds[] = {
@@ -580,17 +619,31 @@ static void parse_solver(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec
           { "variant", "Z", "events", "branch", NULL } },
         { "analytic", DP_SOLVER_ANALYTIC,
           { NUM(dp_solver_spec, t_end, POSITIVE, 0), NUM(dp_solver_spec, dt, POSITIVE, 0) }, { NULL } },
+        { "regularized", DP_SOLVER_REGULARIZED,
+          { NUM(dp_solver_spec, t_end, POSITIVE, 0), NUM(dp_solver_spec, dt, POSITIVE, 0),
+            NUM(dp_solver_spec, rtol, NONNEG, 0), NUM(dp_solver_spec, atol, NONNEG, 0) },
+          { "scheme", "n", "k", "stepper", NULL } },
     };
     static const char *const variants[] = { "exact", "thesis", NULL };
     static const char *const events[] = { "locate", "none", NULL };
     static const char *const branches[] = { "rest", "motion", NULL };
-    const variant *v = parse_tagged(c, o, ptr, "kind", DP_SOLVER_STICK_SLIP, kinds, 2, NULL, s);
+    static const char *const schemes[] = { "PC", "PI", NULL };
+    static const char *const steppers[] = { "msbdf", "rk4imp", "bsimp", "rkf45", "rkck", "rk8pd", NULL };
+    const variant *v = parse_tagged(c, o, ptr, "kind", DP_SOLVER_STICK_SLIP, kinds, 3, NULL, s);
     if (v == NULL)
         return;
     s->kind = (dp_solver_kind)v->id;
+    int i;
+    if (s->kind == DP_SOLVER_REGULARIZED) {
+        if ((i = get_enum(c, o, ptr, "scheme", schemes, (int)s->scheme)) >= 0)
+            s->scheme = (dp_scheme)i;
+        if ((i = get_enum(c, o, ptr, "stepper", steppers, (int)s->stepper)) >= 0)
+            s->stepper = (dp_stepper)i;
+        parse_nlist(c, o, ptr, s);
+    }
     if (s->kind != DP_SOLVER_STICK_SLIP)
         return;
-    int i = get_enum(c, o, ptr, "variant", variants, (int)s->variant);
+    i = get_enum(c, o, ptr, "variant", variants, (int)s->variant);
     if (i >= 0)
         s->variant = (dp_variant)i;
     if ((i = get_enum(c, o, ptr, "events", events, (int)s->events)) >= 0)
