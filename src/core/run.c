@@ -17,11 +17,8 @@ void dp_run_emit(dp_run *r, const dp_record *rec)
         r->pending[r->npending++] = *rec;
 }
 
-void dp_run_emit_state(dp_run *r)
+void dp_run_emit_sample(dp_run *r)
 {
-    int last = r->n >= r->nsteps;
-    if (--r->countdown > 0 && !last)
-        return;
     r->countdown = r->spec.output.every;
     if (!r->spec.output.samples)
         return;

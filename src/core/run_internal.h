@@ -8,6 +8,10 @@
 
 #define DP_RUN_PENDING 8
 
+/* The coefficients of the closed-form step for one step length h (stick_slip.c): u = cv v + cx x + cf F + c0,
+ * stick widths thr = h tau / W and thr_s = h tau_s / W. */
+typedef struct dp_ss_coef { double W, cv, cx, cf, c0, thr, thr_s; } dp_ss_coef;
+
 /* The constants of one stick-slip run, fixed at allocation (mathematics.md §4 notation). */
 typedef struct dp_ss_law {
     double m, k, c;      /* mass, linear spring stiffness (0 for a graph spring), viscous part of the damper */
@@ -20,6 +24,10 @@ typedef struct dp_ss_law {
     const dp_graph *A, *S;
     const dp_relaxation *gamma;
     const dp_forcing *F;
+    int F_const;         /* F is `none` or `constant`: F0 */
+    double F0;
+    double h;            /* the nominal step */
+    dp_ss_coef nominal;  /* its coefficients */
 } dp_ss_law;
 
 struct dp_run {
@@ -47,8 +55,22 @@ struct dp_run {
 
 /* Queues one record for the caller. */
 void dp_run_emit(dp_run *r, const dp_record *rec);
-/* Emits a sample of the current state if due (decimation) or if it is the last one. */
-void dp_run_emit_state(dp_run *r);
+/* Emits a sample of the current state (the decimation said it is due). */
+void dp_run_emit_sample(dp_run *r);
+
+/* Whether the step just done produces a sample (every n-th step, and the last one). */
+static inline int dp_run_sample_due(const dp_run *r)
+{
+    return (r->countdown <= 1 && r->spec.output.samples) || r->n >= r->nsteps;
+}
+
+/* Emits a sample of the current state if due; inline so that decimated steps cost one decrement. */
+static inline void dp_run_emit_state(dp_run *r)
+{
+    if (--r->countdown > 0 && r->n < r->nsteps)
+        return;
+    dp_run_emit_sample(r);
+}
 /* Emits a phase-change event at time t, position x, velocity v (if events are wanted). */
 void dp_run_emit_event(dp_run *r, dp_event_kind kind, double t, double x, double v);
 /* Marks the run failed with a status and message; returns the status. */
@@ -56,6 +78,7 @@ int dp_run_fail(dp_run *r, int status, const char *fmt, ...) __attribute__((form
 
 /* Solver entry points: prepare at allocation, then advance until the block is full or the run ends. */
 int dp_stick_slip_init(dp_run *r);
+void dp_ss_coef_init(const dp_ss_law *L, double h, dp_ss_coef *c);
 int dp_stick_slip_advance(dp_run *r);
 int dp_thesis_advance(dp_run *r);
 int dp_analytic_init(dp_run *r);

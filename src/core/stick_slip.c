@@ -25,31 +25,52 @@ static double sgn(double x)
 
 /* ---- the closed form ------------------------------------------------------------------------------ */
 
-/* Relative free velocity u and stick width thr of a step of length h from (t, x, v); W returned. */
-static double free_velocity(const dp_ss_law *L, double t, double h, double x, double v, double *W)
+/* F(t), without the call for the usual constant load. */
+static inline double load(const dp_ss_law *L, double t)
+{
+    return L->F_const ? L->F0 : dp_forcing_eval(L->F, t);
+}
+
+/* The affine map (v, x, F) -> u of a step of length h, folded once per step length:
+ * u = [m v - h(1-theta) c v + h c v_b - h k (x + h theta (1-theta) v) + h F] / W - v_b. */
+void dp_ss_coef_init(const dp_ss_law *L, double h, dp_ss_coef *c)
 {
     double th = L->theta;
-    *W = L->m + h * th * L->c + h * h * th * th * L->k;
-    double num = L->m * v - h * (1 - th) * L->c * v + h * L->c * L->vb
-               - h * L->k * (x + h * th * (1 - th) * v) + h * dp_forcing_eval(L->F, t + th * h);
-    return num / *W - L->vb;
+    c->W = L->m + h * th * L->c + h * h * th * th * L->k;
+    double iW = 1 / c->W;
+    c->cv = (L->m - h * (1 - th) * L->c - h * h * L->k * th * (1 - th)) * iW;
+    c->cx = -h * L->k * iW;
+    c->cf = h * iW;
+    c->c0 = h * L->c * L->vb * iW - L->vb;
+    c->thr = h * L->tau * iW;
+    c->thr_s = h * L->tau_s * iW;
+}
+
+/* Relative free velocity u of a step of length h from (t, x, v), with the step's coefficients in *c. */
+static inline double free_velocity(const dp_ss_law *L, double t, double h, double x, double v, dp_ss_coef *c)
+{
+    if (h != L->h)
+        dp_ss_coef_init(L, h, c);
+    else
+        *c = L->nominal;
+    return c->cv * v + c->cx * x + c->cf * load(L, t + L->theta * h) + c->c0;
 }
 
 typedef struct step_state { double t, x, v; dp_phase phase; } step_state;
 
-/* Advances s by a step of length h with the Moreau rule; returns the friction's mean force over it. */
-static double moreau(const dp_ss_law *L, step_state *s, double h)
+/* Advances s by a step of length h whose free velocity u and coefficients c are known, with the Moreau
+ * rule; returns the friction's mean force over the step. */
+static inline double moreau_from(const dp_ss_law *L, step_state *s, double h, double u, const dp_ss_coef *c)
 {
-    double W, u = free_velocity(L, s->t, h, s->x, s->v, &W);
-    double thr = h * L->tau / W, dir = sgn(s->v - L->vb), w, r;
-    if (dir != 0 && u * dir > thr) {
-        w = u - thr * dir;                  /* slip goes on */
+    double dir = sgn(s->v - L->vb), w, r;
+    if (dir != 0 && u * dir > c->thr) {
+        w = u - c->thr * dir;               /* slip goes on */
         r = L->tau * dir;
-    } else if (L->can_stick && fabs(u) <= h * L->tau_s / W) {
+    } else if (L->can_stick && fabs(u) <= c->thr_s) {
         w = 0;                              /* stick: exactly at the belt's speed */
-        r = u * W / h;
+        r = u * c->W / h;
     } else {
-        w = u - thr * sgn(u);               /* slip from rest or reversal */
+        w = u - c->thr * sgn(u);            /* slip from rest or reversal */
         r = L->tau * sgn(u);
     }
     double v1 = L->vb + w;
@@ -60,6 +81,13 @@ static double moreau(const dp_ss_law *L, step_state *s, double h)
     return r;
 }
 
+static double moreau(const dp_ss_law *L, step_state *s, double h)
+{
+    dp_ss_coef c;
+    double u = free_velocity(L, s->t, h, s->x, s->v, &c);
+    return moreau_from(L, s, h, u, &c);
+}
+
 typedef struct event_ctx { const dp_ss_law *L; step_state s; double dir; } event_ctx;
 
 /* Relative velocity at the end of a step of length eta with the friction held at tau * dir. */
@@ -68,8 +96,9 @@ static double slip_velocity(void *p, double eta)
     event_ctx *e = p;
     if (eta == 0)
         return e->s.v - e->L->vb;
-    double W, u = free_velocity(e->L, e->s.t, eta, e->s.x, e->s.v, &W);
-    return u - eta * e->L->tau * e->dir / W;
+    dp_ss_coef c;
+    double u = free_velocity(e->L, e->s.t, eta, e->s.x, e->s.v, &c);
+    return u - c.thr * e->dir;
 }
 
 /* Distance of the force needed to hold the mass at the belt's speed from the static interval. */
@@ -95,8 +124,9 @@ static double breakaway(dp_run *r, step_state *s, double h, double *force)
     dp_run_emit_event(r, DP_EVENT_SLIP, s->t, s->x, s->v);
     double rest = h - eta, dir = sgn(dp_forcing_eval(L->F, s->t) - L->k * s->x);
     if (rest > 0) {
-        double W, u = free_velocity(L, s->t, rest, s->x, s->v, &W);
-        double w = u - rest * L->tau * dir / W;
+        dp_ss_coef c;
+        double u = free_velocity(L, s->t, rest, s->x, s->v, &c);
+        double w = u - c.thr * dir;
         w = w * dir > 0 ? w : 0; /* starts from zero acceleration: never backwards */
         double v1 = L->vb + w;
         s->x += rest * ((1 - L->theta) * s->v + L->theta * v1);
@@ -113,15 +143,16 @@ static double located_step(dp_run *r, step_state *s, double h, double *force)
 {
     const dp_ss_law *L = &r->law;
     event_ctx e = { .L = L, .s = *s, .dir = sgn(s->v - L->vb) };
-    double tol = 4 * 2.220446049250313e-16 * (s->t + h);
     if (e.dir != 0) {
-        double W, u = free_velocity(L, s->t, h, s->x, s->v, &W);
-        if (u * e.dir > h * L->tau / W) {
-            *force = moreau(L, s, h);
+        dp_ss_coef c;
+        double u = free_velocity(L, s->t, h, s->x, s->v, &c);
+        if (u * e.dir > c.thr) {
+            *force = moreau_from(L, s, h, u, &c);
             return 0;
         }
         /* The relative velocity reaches zero inside the step: stop there, then go on from rest. */
-        double g1 = u - h * L->tau * e.dir / W;
+        double tol = 4 * 2.220446049250313e-16 * (s->t + h);
+        double g1 = u - c.thr * e.dir;
         double eta = dp_root_bracket(slip_velocity, &e, 0, h, s->v - L->vb, g1, tol, &r->sum.iterations);
         s->x += eta * ((1 - L->theta) * s->v + L->theta * L->vb);
         s->v = L->vb;
@@ -224,7 +255,7 @@ static void set_forces(dp_run *r, double fc_graph, double fs_graph)
     dp_sample *c = &r->cur;
     c->Fs = L->S ? fs_graph : L->k * c->x;
     c->Fc = fc_graph + L->c * (c->v - L->vb);
-    c->Fd = c->Fc - dp_relaxation_eval(L->gamma, c->v - L->vb);
+    c->Fd = L->gamma->kind == DP_RELAX_NONE ? c->Fc : c->Fc - dp_relaxation_eval(L->gamma, c->v - L->vb);
 }
 
 static void phase_event(dp_run *r, dp_phase before)
@@ -235,10 +266,43 @@ static void phase_event(dp_run *r, dp_phase before)
     dp_run_emit_event(r, now == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP, r->cur.t, r->cur.x, r->cur.v);
 }
 
+/* The hot loop: nominal steps of the closed form while the slip goes on in one direction under a constant
+ * load, up to (not including) the next step that emits a sample or is the last. The same arithmetic as
+ * moreau_from's first branch, so the result is bit for bit the general path's; it only leaves out what a
+ * continuing slip cannot need (events, forces, the bracket). */
+static void glide(dp_run *r)
+{
+    const dp_ss_law *L = &r->law;
+    const dp_ss_coef *c = &L->nominal;
+    unsigned long long stop = r->nsteps - 1;
+    if (r->spec.output.samples && r->n + (unsigned long long)r->countdown - 1 < stop)
+        stop = r->n + (unsigned long long)r->countdown - 1;
+    double x = r->cur.x, v = r->cur.v, dir = sgn(v - L->vb), h = L->h, th = L->theta;
+    double fterm = c->cf * L->F0 + c->c0;
+    unsigned long long n = r->n;
+    for (; n < stop; n++) {
+        double u = c->cv * v + c->cx * x + fterm;
+        if (!(u * dir > c->thr))
+            break;
+        double v1 = L->vb + (u - c->thr * dir);
+        x += h * ((1 - th) * v + th * v1);
+        v = v1;
+    }
+    r->countdown -= (long)(n - r->n);
+    r->n = n;
+    r->cur.x = x, r->cur.v = v, r->cur.t = (double)n * r->h;
+}
+
 int dp_stick_slip_advance(dp_run *r)
 {
     const dp_ss_law *L = &r->law;
+    int fast = L->closed && L->F_const;
     while (dp_run_room(r)) {
+        if (fast && r->cur.phase == DP_PHASE_SLIP && r->cur.v != L->vb) {
+            glide(r);
+            if (!isfinite(r->cur.x) || !isfinite(r->cur.v))
+                return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
+        }
         double h = dp_run_step_length(r), fc = 0, fs = 0;
         step_state s = { r->cur.t, r->cur.x, r->cur.v, r->cur.phase };
         dp_phase before = s.phase;
@@ -257,7 +321,8 @@ int dp_stick_slip_advance(dp_run *r)
         if (!isfinite(s.x) || !isfinite(s.v) || !isfinite(fc) || !isfinite(fs))
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", s.t);
         r->cur.t = s.t, r->cur.x = s.x, r->cur.v = s.v, r->cur.phase = s.phase;
-        set_forces(r, fc, fs);
+        if (dp_run_sample_due(r) || r->n >= r->nsteps) /* forces are only read in samples and the summary */
+            set_forces(r, fc, fs);
         if (!(L->closed && L->locate))
             phase_event(r, before);
         r->sum.steps = r->n;
@@ -320,6 +385,10 @@ int dp_stick_slip_init(dp_run *r)
     L->can_stick = threshold ? L->tau_s > 0 : lo < hi;
     L->closed = linear_spring && threshold && d->relaxation.kind == DP_RELAX_NONE;
     /* Only a stick interval makes the dynamics nonsmooth; smooth reversals need no splitting. */
+    L->h = r->h;
+    L->F_const = m->forcing.kind == DP_FORCING_NONE || m->forcing.kind == DP_FORCING_CONSTANT;
+    L->F0 = dp_forcing_eval(&m->forcing, 0);
+    dp_ss_coef_init(L, L->h, &L->nominal);
     L->locate = r->spec.solver.events == DP_EVENTS_LOCATE && L->tau > 0;
     initial_state(r);
     return DP_OK;
