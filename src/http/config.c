@@ -65,8 +65,8 @@ static void defaults(config *c)
 static void help(void)
 {
     printf("usage: dashpotd [--FLAG VALUE | --FLAG=VALUE]...\n\n"
-           "The dashpot HTTP daemon: POST /v1/simulate, POST /v1/stability, GET /healthz /readyz /metrics\n"
-           "/openapi.yaml. Every flag can also be set by its environment variable; a flag wins.\n\n");
+           "The dashpot HTTP daemon: POST /v1/simulate, /v1/stability, /v1/wellposedness; GET /healthz,\n"
+           "/readyz, /metrics, /openapi.yaml. Every flag can also be set by its environment variable; a flag wins.\n\n");
     for (int i = 0; i < NOPTIONS; i++)
         printf("  --%-17s %-25s %s\n", options[i].flag, options[i].env, options[i].help);
     printf("  --%-17s %-25s %s\n  --%-17s %-25s %s\n", "help", "", "this text", "version", "", "the version");

@@ -22,6 +22,7 @@ static const struct route {
 } routes[] = {
     { "/v1/simulate", "POST", "POST", ROUTE_SIMULATE, 1, handle_simulate },
     { "/v1/stability", "POST", "POST", ROUTE_STABILITY, 1, handle_stability },
+    { "/v1/wellposedness", "POST", "POST", ROUTE_WELLPOSEDNESS, 1, handle_wellposedness },
     { "/healthz", "GET", "GET, HEAD", ROUTE_HEALTHZ, 0, handle_healthz },
     { "/readyz", "GET", "GET, HEAD", ROUTE_READYZ, 0, handle_readyz },
     { "/metrics", "GET", "GET, HEAD", ROUTE_METRICS, 0, handle_metrics },
