@@ -282,6 +282,31 @@ static void test_forcing_depth_limit_ok(void **state)
     dp_spec_clear(&s);
 }
 
+/* The regularized solver's fields (spec.h): scheme, the n / k list, tolerances, stepper. */
+static void test_regularized_fields(void **state)
+{
+    (void)state;
+    dp_spec s;
+    parse_ok("regularized PI fields",
+             TOP(",'solver':{'kind':'regularized','scheme':'PI','k':[10,100,1e4],'t_end':3,'dt':0.1,"
+                 "'rtol':1e-6,'atol':0,'stepper':'bsimp'}"), &s);
+    assert_int_equal(s.solver.kind, DP_SOLVER_REGULARIZED);
+    assert_int_equal(s.solver.scheme, DP_SCHEME_PI);
+    assert_int_equal(s.solver.n_count, 3);
+    CHECK_NUM("k[2]", s.solver.n_list[2], 1e4);
+    CHECK_NUM("rtol", s.solver.rtol, 1e-6);
+    CHECK_NUM("atol", s.solver.atol, 0);
+    CHECK_NUM("dt", s.solver.dt, 0.1);
+    assert_int_equal(s.solver.stepper, DP_STEPPER_BSIMP);
+    dp_spec_clear(&s);
+    parse_ok("regularized defaults", TOP(",'solver':{'kind':'regularized','n':50}"), &s);
+    assert_int_equal(s.solver.scheme, DP_SCHEME_PC);
+    assert_int_equal(s.solver.stepper, DP_STEPPER_MSBDF);
+    assert_int_equal(s.solver.n_count, 1);
+    CHECK_NUM("n", s.solver.n_list[0], 50);
+    dp_spec_clear(&s);
+}
+
 static void test_solver_initial_output(void **state)
 {
     (void)state;
@@ -603,6 +628,42 @@ static const row rows[] = {
     { "Z = 2.5", TOP(",'solver':{'Z':2.5}"), NULL, DP_EINVAL, "/solver/Z", "integer in [1, 1000000], got 2.5", 0 },
     { "Z too large", TOP(",'solver':{'Z':1e7}"), NULL, DP_EINVAL, "/solver/Z", "got 10000000", 0 },
     { "eps = 0", TOP(",'solver':{'eps':0}"), NULL, DP_EINVAL, "/solver/eps", "> 0, got 0", 0 },
+    /* the regularized solver */
+    { "n = 0", TOP(",'solver':{'kind':'regularized','n':0}"), NULL, DP_EINVAL, "/solver/n",
+      "must be a finite number > 0, got 0", 0 },
+    { "n a string", TOP(",'solver':{'kind':'regularized','n':'100'}"), NULL, DP_EINVAL, "/solver/n",
+      "must be a finite number > 0 or an array of 1..16 of them, got a string", 0 },
+    { "n an empty array", TOP(",'solver':{'kind':'regularized','n':[]}"), NULL, DP_EINVAL, "/solver/n",
+      "got 0 elements", 0 },
+    { "n with 17 values", TOP(",'solver':{'kind':'regularized','n':[1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17]}"),
+      NULL, DP_EINVAL, "/solver/n", "array of 1..16 of them, got 17 elements", 0 },
+    { "n decreasing", TOP(",'solver':{'kind':'regularized','n':[10,100,100]}"), NULL, DP_EINVAL, "/solver/n/2",
+      "must be strictly increasing: 100 after 100", 0 },
+    { "n element negative", TOP(",'solver':{'kind':'regularized','n':[10,-1]}"), NULL, DP_EINVAL, "/solver/n/1",
+      "must be a finite number > 0, got -1", 0 },
+    { "k with scheme PC", TOP(",'solver':{'kind':'regularized','k':100}"), NULL, DP_EINVAL, "/solver/k",
+      "\"k\" belongs to scheme PI; scheme PC takes \"n\"", 0 },
+    { "n with scheme PI", TOP(",'solver':{'kind':'regularized','scheme':'PI','n':100}"), NULL, DP_EINVAL,
+      "/solver/n", "\"n\" belongs to scheme PC; scheme PI takes \"k\"", 0 },
+    { "unknown scheme", TOP(",'solver':{'kind':'regularized','scheme':'PCn'}"), NULL, DP_EINVAL,
+      "/solver/scheme", "unknown scheme \"PCn\"; expected one of: PC, PI", 0 },
+    { "unknown stepper", TOP(",'solver':{'kind':'regularized','stepper':'rk4'}"), NULL, DP_EINVAL,
+      "/solver/stepper", "expected one of: msbdf, rk4imp, bsimp, rkf45, rkck, rk8pd", 0 },
+    { "rtol < 0", TOP(",'solver':{'kind':'regularized','rtol':-1e-8}"), NULL, DP_EINVAL, "/solver/rtol",
+      "must be a finite number >= 0, got -1e-08", 0 },
+    { "rtol and atol 0", TOP(",'solver':{'kind':'regularized','rtol':0,'atol':0}"), NULL, DP_EINVAL,
+      "/solver/rtol", "not both 0", 0 },
+    { "theta with regularized", TOP(",'solver':{'kind':'regularized','theta':0.5}"), NULL, DP_EINVAL,
+      "/solver/theta", "unknown key \"theta\" for kind \"regularized\"", 0 },
+    { "regularized generalized coulomb", "{'model':{'mass':1," SPRING_OK ",'damper':{'law':'generalized-coulomb',"
+      "'phi0':1,'phi1':2}},'solver':{'kind':'regularized'}}", NULL, DP_EINVAL, "/model/damper/law",
+      "generalized-coulomb (phi1 > phi0) is not monotone", 0 },
+    { "regularized power relaxation", "{'model':{'mass':1," SPRING_OK ",'damper':{'law':'coulomb','phi0':1,"
+      "'relaxation':{'kind':'power','N':2}}},'solver':{'kind':'regularized'}}", NULL, DP_EINVAL,
+      "/model/damper/relaxation", "not Lipschitz at 0", 0 },
+    { "PI with relaxation", "{'model':{'mass':1," SPRING_OK ",'damper':{'law':'coulomb','phi0':1,"
+      "'relaxation':{'kind':'linear','L':0.1}}},'solver':{'kind':'regularized','scheme':'PI'}}", NULL,
+      DP_EINVAL, "/model/damper/relaxation", "has no relaxation; use scheme PC", 0 },
     /* output */
     { "every = 0", TOP(",'output':{'every':0}"), NULL, DP_EINVAL, "/output/every", "must be an integer >= 1", 0 },
     { "every = 1.5", TOP(",'output':{'every':1.5}"), NULL, DP_EINVAL, "/output/every", "got 1.5", 0 },
@@ -654,6 +715,7 @@ int main(void)
         cmocka_unit_test(test_forcing_kinds),
         cmocka_unit_test(test_forcing_depth_limit_ok),
         cmocka_unit_test(test_solver_initial_output),
+        cmocka_unit_test(test_regularized_fields),
         cmocka_unit_test(test_length_not_nul),
         cmocka_unit_test(test_depth_boundary),
         cmocka_unit_test(test_multiple_errors),

@@ -1,0 +1,454 @@
+/* tests/test_regularized.c - the regularized schemes (PCn), (PIk) (seed 001 (17), seed 000 ch. 2) and their
+ * convergence to the exact stick-slip solution.
+ *
+ * Reference problem (thesis ch. 4): m = k = phi0 = 1, F = 0, x(0) = 4.5, x'(0) = 0. Exact: half circles about
+ * -/+1, turning at -2.5 (t = pi), at rest at x = 0.5 from t = 2 pi on. Regularized with g_n(v) =
+ * clamp(n v, -1, 1): once |n v| < 1 the motion is m x'' + n x' + k x = 0, whose slow mode
+ * z = (-n + sqrt(n^2 - 4 m k)) / (2 m) ~ -k/n makes x creep from 0.5 towards 0 (mathematics.md §3).
+ * Over [2 pi, T] the creep is 0.5 (1 - exp(-k (T - 2 pi)/n)) ~ 0.5 (T - 2 pi)/n: the O(1/n) error, and
+ * the creep speed right after stopping, 0.5 k/n, is the error in v.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <cjson/cJSON.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_rng.h>
+
+#include "dashpot/encode.h"
+#include "dashpot/regularized.h"
+#include "trajectory.h"
+
+#define COULOMB "{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":1}"
+#define DECADES "[10,100,1000,10000]"
+
+/* ---- helpers ---------------------------------------------------------------------------------------- */
+
+static void run_ok(const char *spec, traj *t)
+{
+    assert_int_equal(traj_run(spec, t), DP_OK);
+    if (t->status != DP_DONE)
+        fprintf(stderr, "run failed: %s\n", t->error);
+    assert_int_equal(t->status, DP_DONE);
+}
+
+/* Parses spec text and runs the study (asserting both succeed). */
+static void study(const char *json, dp_convergence *c)
+{
+    dp_spec spec;
+    dp_errors e;
+    dp_spec_init(&spec);
+    dp_errors_init(&e);
+    int s = dp_spec_parse(json, strlen(json), 0, &spec, &e);
+    if (s == DP_OK)
+        s = dp_convergence_study(&spec, 0, 0, c, &e);
+    if (s != DP_OK && e.n)
+        fprintf(stderr, "study: %s: %s\n", e.item[0].pointer, e.item[0].message);
+    dp_spec_clear(&spec);
+    assert_int_equal(s, DP_OK);
+}
+
+static void print_study(const char *what, const dp_convergence *c)
+{
+    printf("%s (reference %s):\n", what, c->reference == DP_REFERENCE_ANALYTIC ? "closed form" : "stick-slip");
+    for (size_t i = 0; i < c->nrows; i++) {
+        const dp_convergence_row *r = &c->row[i];
+        printf("  n=%-8g err_x %.3e err_v %.3e rate %.3f %.3f  steps %llu rejected %llu fevals %llu\n", r->n,
+               r->err_x, r->err_v, r->rate_x, r->rate_v, r->steps, r->rejected, r->fevals);
+    }
+    printf("  fitted rates %.4f %.4f\n", c->rate_x, c->rate_v);
+}
+
+/* Every consecutive rate and the fitted one within [lo, hi], for x and v. */
+static void assert_rates(const dp_convergence *c, double lo, double hi)
+{
+    for (size_t i = 1; i < c->nrows; i++) {
+        assert_true(c->row[i].rate_x >= lo && c->row[i].rate_x <= hi);
+        assert_true(c->row[i].rate_v >= lo && c->row[i].rate_v <= hi);
+    }
+    assert_true(c->rate_x >= lo && c->rate_x <= hi);
+    assert_true(c->rate_v >= lo && c->rate_v <= hi);
+}
+
+/* ---- g_n: the Yosida form, the rotated form (17), Coulomb's clamp ---------------------------------------- */
+
+static double rotation_of(void *g, double s)
+{
+    return dp_graph_rotation(g, s);
+}
+
+static int coulomb_graph(dp_graph *g, double phi0)
+{
+    double y[2] = { 0, 0 }, f[2] = { -phi0, phi0 }, r[2] = { 1, 0 };
+    return dp_graph_init(g, 2, y, f, r, r);
+}
+
+/* phi of Lemma 1 for Coulomb (mathematics.md §1) and g_n = clamp(n v, -phi0, phi0) both ways. */
+static void test_coulomb_gn_is_clamp(void **state)
+{
+    (void)state;
+    dp_graph g;
+    double phi0 = 0.75;
+    assert_int_equal(coulomb_graph(&g, phi0), DP_OK);
+    for (double s = -3; s <= 3; s += 0.125) {
+        double want = fabs(s) <= phi0 ? s : s > 0 ? 2 * phi0 - s : -2 * phi0 - s;
+        assert_true(fabs(dp_graph_rotation(&g, s) - want) < 1e-15);
+    }
+    const double ns[] = { 1, 3, 10, 1e3, 1e6 };
+    for (size_t i = 0; i < 5; i++) {
+        for (double v = -2; v <= 2; v += 1.0 / 64) {
+            double n = ns[i], want = fmin(fmax(n * v, -phi0), phi0), slope;
+            double y = dp_graph_yosida_slope(&g, 1 / n, v, &slope);
+            double r = dp_regularized_gn(rotation_of, &g, n, v, NULL);
+            assert_true(fabs(y - want) <= 1e-15 * fmax(1, n * fabs(v)));
+            assert_true(fabs(r - want) <= 1e-12);
+            /* The slope on the vertical piece is 1/(1/n), n to rounding. */
+            assert_true(fabs(slope - (fabs(n * v) < phi0 ? n : 0)) <= 4e-16 * n || fabs(n * v) == phi0);
+        }
+    }
+    dp_graph_clear(&g);
+}
+
+/* A random maximal monotone piecewise-linear graph: vertical, horizontal and sloped pieces, and rays of
+ * each kind, through distinct vertices. */
+static int random_graph(gsl_rng *rng, dp_graph *g)
+{
+    size_t n = 1 + gsl_rng_uniform_int(rng, 8);
+    double y[8], f[8], d[3][2] = { { 0, 1 }, { 1, 0 }, { 1, 0 } };
+    y[0] = 4 * gsl_rng_uniform(rng) - 2, f[0] = 4 * gsl_rng_uniform(rng) - 2;
+    for (size_t i = 1; i < n; i++) {
+        unsigned kind = (unsigned)gsl_rng_uniform_int(rng, 3); /* vertical, horizontal, sloped */
+        double a = 0.05 + gsl_rng_uniform(rng), b = 0.05 + 3 * gsl_rng_uniform(rng);
+        y[i] = y[i - 1] + (kind == 0 ? 0 : a);
+        f[i] = f[i - 1] + (kind == 1 ? 0 : b);
+    }
+    d[2][1] = 0.01 + 5 * gsl_rng_uniform(rng);
+    const double *left = d[gsl_rng_uniform_int(rng, 3)], *right = d[gsl_rng_uniform_int(rng, 3)];
+    return dp_graph_init(g, n, y, f, left, right);
+}
+
+/* Paper (17) says (F_c, v - F_c/n) is on the graph; Lemma 1 says that is F - y = phi(F + y). g_n is
+ * monotone and n-Lipschitz (the Yosida approximation A_(1/n)); the rotated fixed point agrees with it. */
+static void check_gn_pair(dp_graph *g, double n, double v1, double v2, double *worst)
+{
+    double s1, s2, a = dp_graph_yosida_slope(g, 1 / n, v1, &s1), b = dp_graph_yosida_slope(g, 1 / n, v2, &s2);
+    /* a = n (v - J): J carries the rounding of the vertices (|y| <= ~11 here), which n amplifies. */
+    double scale = 1 + fabs(a) + fabs(b) + n * (fabs(v1) + fabs(v2) + 11);
+    double tol = 16 * 2.220446049250313e-16 * scale;
+    double r = dp_regularized_gn(rotation_of, g, n, v1, NULL);
+    assert_true(fabs(r - a) <= 1e-10 * scale);
+    double y = v1 - a / n;
+    assert_true(fabs((a - y) - dp_graph_rotation(g, a + y)) <= tol);
+    if (v1 < v2)
+        assert_true(a <= b + tol);
+    assert_true(fabs(b - a) <= n * fabs(v2 - v1) * (1 + 1e-12) + tol);
+    assert_true(s1 >= 0 && s1 <= n * (1 + 1e-12));
+    *worst = fmax(*worst, fabs(r - a) / scale);
+}
+
+static void test_gn_monotone_lipschitz_random(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, 20160117);
+    double worst = 0;
+    for (int k = 0; k < 300; k++) {
+        dp_graph g;
+        assert_int_equal(random_graph(rng, &g), DP_OK);
+        double n = pow(10, 4 * gsl_rng_uniform(rng));
+        for (int j = 0; j < 200; j++) {
+            double v1 = 6 * gsl_rng_uniform(rng) - 3, v2 = v1 + 0.1 * gsl_rng_uniform(rng) * (j % 2 ? 1 : 1e-4);
+            check_gn_pair(&g, n, v1, v2, &worst);
+        }
+        dp_graph_clear(&g);
+    }
+    printf("300 random graphs x 200 pairs: |g_n by (17) - A_(1/n)| <= %.2e (relative)\n", worst);
+    gsl_rng_free(rng);
+}
+
+/* The Jacobian's slope is the derivative of the Yosida approximation: central differences agree wherever
+ * no kink lies within h. */
+static void test_yosida_slope_is_derivative(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    gsl_rng_set(rng, 7);
+    int checked = 0;
+    for (int k = 0; k < 200; k++) {
+        dp_graph g;
+        assert_int_equal(random_graph(rng, &g), DP_OK);
+        double l = pow(10, -3 * gsl_rng_uniform(rng)), h = 1e-6, s, sm, sp;
+        for (int j = 0; j < 50; j++) {
+            double y = 6 * gsl_rng_uniform(rng) - 3;
+            dp_graph_yosida_slope(&g, l, y, &s);
+            dp_graph_yosida_slope(&g, l, y - h, &sm);
+            dp_graph_yosida_slope(&g, l, y + h, &sp);
+            if (sm != s || sp != s)
+                continue; /* a kink nearby */
+            double fd = (dp_graph_yosida(&g, l, y + h) - dp_graph_yosida(&g, l, y - h)) / (2 * h);
+            assert_true(fabs(fd - s) <= 1e-6 * (1 + s));
+            checked++;
+        }
+        dp_graph_clear(&g);
+    }
+    assert_true(checked > 5000);
+    gsl_rng_free(rng);
+}
+
+/* ---- (PCn) against the closed form ------------------------------------------------------------------ */
+
+static void test_coulomb_free_decay_first_order(void **state)
+{
+    (void)state;
+    dp_convergence c;
+    study("{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},"
+          "\"solver\":{\"kind\":\"regularized\",\"n\":" DECADES ",\"t_end\":10,\"dt\":0.01}}", &c);
+    print_study("Coulomb free decay, PC", &c);
+    assert_int_equal(c.reference, DP_REFERENCE_ANALYTIC);
+    assert_int_equal(c.samples, 1001);
+    assert_rates(&c, 0.8, 1.2);
+    /* The creep law predicts the constants: n err_x -> 0.5 (10 - 2 pi), n err_v -> 0.5 (see the top). */
+    const dp_convergence_row *r = &c.row[3];
+    assert_true(fabs(r->n * r->err_x / (0.5 * (10 - 2 * M_PI)) - 1) < 0.01);
+    assert_true(fabs(r->n * r->err_v / 0.5 - 1) < 0.01);
+    assert_true(isnan(c.row[0].diff_x) && isnan(c.row[0].rate_x));
+    /* Successive differences shrink like the errors (a Cauchy sequence at rate 1). */
+    assert_true(fabs(c.row[3].diff_x / c.row[2].diff_x - 0.1) < 0.02);
+}
+
+/* F = 2 cos(1.3 t): stick phases start and end while the load turns; against stick-slip theta 1/2. */
+static void test_coulomb_harmonic_first_order(void **state)
+{
+    (void)state;
+    dp_convergence c;
+    study("{\"model\":" COULOMB ",\"forcing\":{\"kind\":\"harmonic\",\"amplitude\":2,\"omega\":1.3}},"
+          "\"initial\":{\"x\":1},\"solver\":{\"kind\":\"regularized\",\"n\":" DECADES ",\"t_end\":10,"
+          "\"dt\":0.01}}", &c);
+    print_study("Coulomb, harmonic forcing, PC", &c);
+    assert_int_equal(c.reference, DP_REFERENCE_STICK_SLIP);
+    assert_true(c.ref_theta == 0.5 && c.ref_dt == 1e-4);
+    assert_rates(&c, 0.8, 1.2);
+    assert_true(c.row[3].err_x < 2e-4 && c.row[3].err_x > 2e-5);
+}
+
+/* In a stick phase F_c = g_n(v) = n v exactly and x decays with the slow root of m z^2 + n z + k. */
+static void test_creep_law(void **state)
+{
+    (void)state;
+    const double n = 100, z = (-n + sqrt(n * n - 4)) / 2; /* m = k = 1 */
+    traj t;
+    run_ok("{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":\"regularized\",\"n\":100,"
+           "\"t_end\":30,\"dt\":0.5,\"rtol\":1e-10,\"atol\":1e-12}}", &t);
+    assert_int_equal(t.n, 61);
+    const dp_sample *a = &t.s[20], *b = &t.s[60]; /* t = 10 and 30: long after the stop at ~2 pi */
+    assert_true(a->t == 10 && b->t == 30);
+    double want = exp(z * 20), got = b->x / a->x;
+    printf("creep x(30)/x(10) = %.12f, exp(z 20) = %.12f, exp(-20 k/n) = %.12f\n", got, want, exp(-0.2));
+    assert_true(fabs(got / want - 1) < 1e-7);
+    assert_true(fabs(a->v / a->x - z) < 1e-7 * fabs(z)); /* on the slow eigenvector */
+    for (size_t i = 0; i < t.n; i++) {
+        assert_int_equal(t.s[i].phase, DP_PHASE_NONE);
+        /* (v - J(v)) n cancels: a few ulps of n |v|. */
+        double clamp = fmin(fmax(n * t.s[i].v, -1), 1);
+        assert_true(fabs(t.s[i].Fc - clamp) <= 8 * 2.220446049250313e-16 * (1 + n * fabs(t.s[i].v)));
+        assert_true(t.s[i].Fd == t.s[i].Fc && t.s[i].Fs == t.s[i].x);
+    }
+    assert_int_equal(t.ne, 0);
+    traj_free(&t);
+}
+
+/* ---- (PIk) ------------------------------------------------------------------------------------------ */
+
+/* Bingham (tau = 1, c = 0.3): both laws regularized, k from 1e2 to 1e5, against stick-slip theta 1/2. */
+static void test_pi_bingham_converges(void **state)
+{
+    (void)state;
+    dp_convergence c;
+    study("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"bingham\","
+          "\"tau\":1,\"c\":0.3}},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":\"regularized\",\"scheme\":\"PI\","
+          "\"k\":[100,1000,10000,100000],\"t_end\":10,\"dt\":0.01}}", &c);
+    print_study("Bingham, PI", &c);
+    assert_int_equal(c.scheme, DP_SCHEME_PI);
+    assert_rates(&c, 0.8, 1.2);
+    assert_true(c.row[3].err_x < 1e-4 && c.row[3].err_v < 1e-4);
+}
+
+/* The max of x over a PI run with a rope of length 1 and a constant pull F0. */
+static double rope_peak(double k, double x0, double F0, double *final_x)
+{
+    char spec[600];
+    traj t;
+    run_ok(SPEC(spec, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"rope\",\"k\":1,\"length\":1},"
+                "\"damper\":{\"law\":\"bingham\",\"tau\":0.2,\"c\":0.5},\"forcing\":{\"kind\":\"constant\","
+                "\"value\":%g}},\"initial\":{\"x\":%g},\"solver\":{\"kind\":\"regularized\",\"scheme\":\"PI\","
+                "\"k\":%g,\"t_end\":20,\"dt\":0.001}}", F0, x0, k), &t);
+    double peak = -INFINITY;
+    for (size_t i = 0; i < t.n; i++)
+        peak = fmax(peak, t.s[i].x);
+    *final_x = t.s[t.n - 1].x;
+    traj_free(&t);
+    return peak;
+}
+
+/* The rope (x <= L = 1) regularized: S_(1/k)(x) = x / (1/k_s + 1/k) below L + k_s L/k, k (x - L) beyond (the
+ * vertical ray seen through (FIk): x = L + F/k). Loaded from rest at L by F0 = 3 (k_s = 1), it settles where
+ * F_s = 3, at x - L = 3/k, and (damped) overshoots it at most twice: x <= L + 6/k = L + O(1/k). Arriving
+ * at speed v_c instead, the overshoot is ~ v_c sqrt(m/k): O(k^-1/2), the price of an impact. */
+static void test_pi_rope(void **state)
+{
+    (void)state;
+    const double ks[] = { 1e2, 1e3, 1e4 };
+    double over[3], impact[3], fx;
+    for (int i = 0; i < 3; i++) {
+        over[i] = rope_peak(ks[i], 1, 3, &fx) - 1;
+        printf("k=%g: quasi-static peak x - L %.4e (bound 6/k = %.4e), final x - L = %.4e (3/k = %.4e)\n", ks[i],
+               over[i], 6 / ks[i], fx - 1, 3 / ks[i]);
+        assert_true(over[i] > 3 / ks[i] && over[i] <= 6 / ks[i]);
+        assert_true(fabs((fx - 1) * ks[i] / 3 - 1) < 0.02);
+        impact[i] = rope_peak(ks[i], 0, 3, &fx) - 1;
+    }
+    for (int i = 1; i < 3; i++) {
+        double p = log10(over[i - 1] / over[i]), q = log10(impact[i - 1] / impact[i]);
+        printf("decade %d: static overshoot order %.3f, impact overshoot order %.3f\n", i, p, q);
+        assert_true(p > 0.9 && p < 1.1);
+        assert_true(q > 0.4 && q < 0.6);
+    }
+}
+
+/* ---- the run: grid, decimation, steppers, failures ------------------------------------------------------ */
+
+static void test_samples_on_grid_and_decimation(void **state)
+{
+    (void)state;
+    traj a, b;
+    run_ok("{\"model\":" COULOMB "},\"initial\":{\"x\":3},\"solver\":{\"kind\":\"regularized\",\"n\":1000,"
+           "\"t_end\":1.05,\"dt\":0.1,\"rtol\":1e-11,\"atol\":1e-12}}", &a);
+    run_ok("{\"model\":" COULOMB "},\"initial\":{\"x\":3},\"solver\":{\"kind\":\"regularized\",\"n\":1000,"
+           "\"t_end\":1.05,\"dt\":0.1,\"rtol\":1e-11,\"atol\":1e-12},\"output\":{\"every\":4}}", &b);
+    assert_int_equal(a.n, 12); /* 0, 0.1, ..., 1.0, 1.05 */
+    for (size_t i = 0; i + 1 < a.n; i++)
+        assert_true(a.s[i].t == (double)i * 0.1);
+    assert_true(a.s[11].t == 1.05);
+    assert_int_equal(b.n, 4); /* 0, 0.4, 0.8, 1.05 */
+    for (size_t i = 0; i < b.n; i++) {
+        const dp_sample *s = &a.s[i < 3 ? 4 * i : 11];
+        assert_true(b.s[i].t == s->t);
+        printf("t=%g every 4 vs 1: |dx| %.2e |dv| %.2e\n", s->t, fabs(b.s[i].x - s->x), fabs(b.s[i].v - s->v));
+        assert_true(fabs(b.s[i].x - s->x) < 1e-8 && fabs(b.s[i].v - s->v) < 1e-8);
+    }
+    assert_true(a.sum.fevals > a.sum.steps && a.sum.iterations > 0 && a.sum.steps > 10);
+    traj_free(&a);
+    traj_free(&b);
+}
+
+/* Every stepper solves the same ODE: x(t_end) agrees to the tolerance's order. */
+static void test_steppers_agree(void **state)
+{
+    (void)state;
+    const char *names[] = { "msbdf", "rk4imp", "bsimp", "rkf45", "rkck", "rk8pd" };
+    double x0 = 0;
+    for (int i = 0; i < 6; i++) {
+        char spec[512];
+        traj t;
+        run_ok(SPEC(spec, "{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":\"regularized\","
+                    "\"n\":100,\"t_end\":10,\"dt\":1,\"stepper\":\"%s\",\"rtol\":1e-10,\"atol\":1e-10}}", names[i]),
+               &t);
+        double x = t.sum.final.x;
+        printf("%-7s x(10) = %.12f steps %llu rejected %llu fevals %llu\n", names[i], x, t.sum.steps,
+               t.sum.rejected, t.sum.fevals);
+        if (i == 0)
+            x0 = x;
+        assert_true(fabs(x - x0) < 1e-7);
+        traj_free(&t);
+    }
+}
+
+/* Negative damping gamma = 100 v: the solution grows like e^(100 t) and leaves the doubles near t = 7;
+ * the run fails with DP_ENONFINITE and no sample holds a non-finite number. */
+static void test_divergence_is_an_error(void **state)
+{
+    (void)state;
+    traj t;
+    assert_int_equal(traj_run("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":"
+                              "\"coulomb\",\"phi0\":1,\"relaxation\":{\"kind\":\"linear\",\"L\":100}}},"
+                              "\"initial\":{\"x\":1},\"solver\":{\"kind\":\"regularized\",\"n\":10,\"t_end\":20,"
+                              "\"dt\":0.1}}", &t), DP_OK);
+    printf("diverging run: status %d, %zu samples, \"%s\"\n", t.status, t.n, t.error);
+    assert_int_equal(t.status, DP_ENONFINITE);
+    assert_true(t.n > 10 && t.n < 200);
+    for (size_t i = 0; i < t.n; i++)
+        assert_true(isfinite(t.s[i].x) && isfinite(t.s[i].v) && isfinite(t.s[i].Fd));
+    traj_free(&t);
+}
+
+static void test_rules(void **state)
+{
+    (void)state;
+    traj t;
+    const char *bad[] = {
+        "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"generalized-coulomb\","
+        "\"phi0\":1,\"phi1\":2}},\"solver\":{\"kind\":\"regularized\"}}",
+        "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":1,"
+        "\"relaxation\":{\"kind\":\"power\",\"N\":2}}},\"solver\":{\"kind\":\"regularized\"}}",
+        "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":1,"
+        "\"relaxation\":{\"kind\":\"linear\",\"L\":0.1}}},\"solver\":{\"kind\":\"regularized\",\"scheme\":\"PI\"}}",
+    };
+    for (int i = 0; i < 3; i++)
+        assert_int_equal(traj_run(bad[i], &t), DP_EINVAL);
+    dp_convergence c;
+    dp_spec spec;
+    dp_errors e;
+    dp_spec_init(&spec);
+    dp_errors_init(&e);
+    assert_int_equal(dp_convergence_study(&spec, 0, 0, &c, &e), DP_EINVAL); /* not the regularized solver */
+    assert_string_equal(e.item[0].pointer, "/solver/kind");
+}
+
+/* The JSON of a study parses back with its numbers and nulls. */
+static void test_study_json(void **state)
+{
+    (void)state;
+    dp_convergence c;
+    study("{\"model\":" COULOMB "},\"initial\":{\"x\":2},\"solver\":{\"kind\":\"regularized\",\"n\":[10,100],"
+          "\"t_end\":2,\"dt\":0.5}}", &c);
+    dp_buf b = { 0 };
+    assert_int_equal(dp_convergence_json(&c, &b), DP_OK);
+    cJSON *root = cJSON_Parse(b.data);
+    assert_non_null(root);
+    assert_string_equal(cJSON_GetObjectItem(root, "scheme")->valuestring, "PC");
+    assert_string_equal(cJSON_GetObjectItem(cJSON_GetObjectItem(root, "reference"), "solver")->valuestring,
+                        "analytic");
+    cJSON *rows = cJSON_GetObjectItem(root, "rows");
+    assert_int_equal(cJSON_GetArraySize(rows), 2);
+    cJSON *r0 = cJSON_GetArrayItem(rows, 0), *r1 = cJSON_GetArrayItem(rows, 1);
+    assert_true(cJSON_IsNull(cJSON_GetObjectItem(r0, "rate_x")));
+    assert_true(cJSON_GetObjectItem(r1, "err_x")->valuedouble == c.row[1].err_x);
+    assert_true(cJSON_GetObjectItem(r1, "steps")->valuedouble == (double)c.row[1].steps);
+    cJSON_Delete(root);
+    dp_buf_free(&b);
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_coulomb_gn_is_clamp),
+        cmocka_unit_test(test_gn_monotone_lipschitz_random),
+        cmocka_unit_test(test_yosida_slope_is_derivative),
+        cmocka_unit_test(test_coulomb_free_decay_first_order),
+        cmocka_unit_test(test_coulomb_harmonic_first_order),
+        cmocka_unit_test(test_creep_law),
+        cmocka_unit_test(test_pi_bingham_converges),
+        cmocka_unit_test(test_pi_rope),
+        cmocka_unit_test(test_samples_on_grid_and_decimation),
+        cmocka_unit_test(test_steppers_agree),
+        cmocka_unit_test(test_divergence_is_an_error),
+        cmocka_unit_test(test_rules),
+        cmocka_unit_test(test_study_json),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
