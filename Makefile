@@ -7,6 +7,7 @@
 #   make bench      benchmarks with their peers, ratios printed (kept out of `test`)
 #   make deps       installs the Debian packages this needs (as root)
 
+SHELL   := /bin/bash
 CC      ?= cc
 SAN     ?=
 BUILD   ?= $(if $(SAN),build-san,build)
@@ -36,7 +37,7 @@ TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 TEST_SH  := $(wildcard tests/*.sh)
 PROGS    := $(BUILD)/dashpot $(if $(HTTP_SRC),$(BUILD)/dashpotd)
 
-.PHONY: all test unit integration run bench deps deps-ok clean thesis-figures
+.PHONY: all test unit integration run bench deps deps-ok clean thesis-figures fuzz
 
 all: $(LIB) $(PROGS)
 
@@ -79,10 +80,30 @@ run: deps-ok
 thesis-figures: $(BUILD)/dashpot
 	bash scripts/thesis-figures.sh $(BUILD)/dashpot data/thesis
 
+# libFuzzer targets (tests/fuzz/fuzz_*.c) over an instrumented build of the library in build-fuzz/; each runs
+# FUZZ_SECONDS from the seed corpus tests/fuzz/corpus (copied, so new finds do not dirty the tree) and fails
+# on any crash, leak, timeout or sanitizer report.
+FUZZ_SECONDS ?= 60
+FUZZ_FLAGS := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all
+FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
+fuzz:
+	@bash scripts/install-deps.sh --fuzz
+	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang OPT=-O1 SANFLAGS="$(FUZZ_FLAGS)" build-fuzz/libdashpot.a
+	@fail=0; for f in $(FUZZ_SRC); do \
+	  t=build-fuzz/$$(basename $$f .c); \
+	  clang $(CPPFLAGS) $(WARN) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $$f \
+	    build-fuzz/libdashpot.a $(LDLIBS_JSON) $(LDLIBS_CORE) -o $$t || exit 1; \
+	  rm -rf $$t.corpus && mkdir -p $$t.corpus && cp tests/fuzz/corpus/* $$t.corpus/; \
+	  echo "== $$t for $(FUZZ_SECONDS) s"; \
+	  $$t -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
+	      -print_final_stats=1 $$t.corpus 2>&1 | grep -E 'Done|stat::number_of_executed_units|ERROR|SUMMARY|==[0-9]+==' ; \
+	  [ $${PIPESTATUS[0]} -eq 0 ] || fail=1; \
+	done; exit $$fail
+
 bench: all
 	@bash bench/run.sh $(BUILD)
 
 clean:
-	rm -rf build build-san
+	rm -rf build build-san build-fuzz
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

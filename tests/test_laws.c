@@ -296,6 +296,31 @@ static void test_forcing_and_relaxation_against_rk8pd(void **state)
     }
 }
 
+/* Found by the fuzzer: a user spring graph whose last piece is vertical bounds x like a rope; a start
+ * beyond it has no solution and must be refused at /initial/x (and likewise for a velocity limit). */
+static void test_initial_state_outside_graph_domain(void **state)
+{
+    (void)state;
+    const char *docs[2] = {
+        "{\"model\":{\"mass\":2,\"spring\":{\"law\":\"graph\",\"points\":[[-1,-2],[0,0],[1,1],[1,5]]},"
+        "\"damper\":{\"law\":\"none\"}},\"initial\":{\"x\":5.5}}",
+        "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"graph\","
+        "\"points\":[[-1,-1],[0,0],[0,1]],\"belt_velocity\":0.3}},\"initial\":{\"v\":0.5}}",
+    };
+    const char *ptr[2] = { "/initial/x", "/initial/v" };
+    for (int i = 0; i < 2; i++) {
+        dp_spec spec;
+        dp_errors errs;
+        dp_spec_init(&spec);
+        dp_errors_init(&errs);
+        assert_int_equal(dp_spec_parse(docs[i], strlen(docs[i]), 0, &spec, &errs), DP_EINVAL);
+        assert_int_equal(errs.n, 1);
+        assert_string_equal(errs.item[0].pointer, ptr[i]);
+        assert_non_null(strstr(errs.item[0].message, i ? "v - belt_velocity <= 0" : "x <= 1"));
+        dp_spec_clear(&spec);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -309,6 +334,7 @@ int main(void)
         cmocka_unit_test(test_belt_stick_slip),
         cmocka_unit_test(test_harmonic_forcing_cross_check),
         cmocka_unit_test(test_forcing_and_relaxation_against_rk8pd),
+        cmocka_unit_test(test_initial_state_outside_graph_domain),
     };
     return cmocka_run_group_tests_name("laws", tests, NULL, NULL);
 }

@@ -207,7 +207,7 @@ int dp_poly_roots(dp_poly_ws *w, const double *a, int n, double *re, double *im,
     for (int i = 0; i < d; i++) {
         if (!isfinite(re[i]) || !isfinite(im[i]))
             return DP_ESOLVE;
-        err[i] = root_radius(a, n, CMPLX(re[i], im[i]));
+        err[i] = root_radius(a, n, re[i] + im[i] * I); /* finite parts: exact (CMPLX is GCC-only in glibc) */
     }
     return DP_OK;
 }

@@ -107,6 +107,20 @@ static void check_exact(const dp_spec *s, dp_errors *e)
                       "= %g must exceed h theta L_gamma = %g; choose a smaller dt", W, h * th * L);
 }
 
+/* A graph whose end ray is vertical bounds its kinematic variable (a rope bounds x, a velocity limit v);
+ * the initial state must lie inside, or the first step has no solution. */
+static void check_domain(const dp_graph *g, double y, const char *ptr, const char *name, dp_errors *e)
+{
+    if (g->n == 0)
+        return;
+    if (g->right[0] == 0 && y > g->y[g->n - 1])
+        dp_errors_add(e, ptr, "the graph allows %s <= %g only (its last piece is vertical), got %g", name,
+                      g->y[g->n - 1], y);
+    if (g->left[0] == 0 && y < g->y[0])
+        dp_errors_add(e, ptr, "the graph allows %s >= %g only (its first piece is vertical), got %g", name,
+                      g->y[0], y);
+}
+
 int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
@@ -114,6 +128,9 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
     if (m->spring.law == DP_SPRING_ROPE && s->x0 > m->spring.length)
         dp_errors_add(e, "/initial/x", "the rope is inextensible: x must be <= length = %g, got %g",
                       m->spring.length, s->x0);
+    else
+        check_domain(&m->spring.graph, s->x0, "/initial/x", "x", e);
+    check_domain(&m->damper.graph, s->v0 - m->damper.belt_velocity, "/initial/v", "v - belt_velocity", e);
     if (s->solver.kind == DP_SOLVER_ANALYTIC)
         check_analytic(s, e);
     else if (s->solver.kind == DP_SOLVER_REGULARIZED)
