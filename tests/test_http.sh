@@ -1,0 +1,215 @@
+#!/usr/bin/env bash
+# tests/test_http.sh - dashpotd against curl on loopback: every route, every format, every error class
+# (400, 404, 405 + Allow, 406, 413, 422 with pointers, 503 beyond --max-connections), a 10^7-sample NDJSON
+# stream, a client that hangs up mid-stream (its run stops: /metrics), the wall-time limit as an error line,
+# and SIGTERM with a stream in flight (exit 0; the stream ends with its summary or an error line).
+# Env BUILD (default build). Prints "N passed, M failed"; exit 1 on any failure.
+source "$(dirname "$0")/lib/daemon.bash"
+
+BODY=$SCRATCH/body
+HDRS=$SCRATCH/headers
+
+# req METHOD URL [curl args...]: status in STATUS, body in $BODY, headers in $HDRS.
+req() {
+    local m=$1 u=$2
+    shift 2
+    STATUS=$(hcurl -X "$m" -D "$HDRS" -o "$BODY" -w '%{http_code}' "$@" "$u")
+}
+header() { grep -i "^$1:" "$HDRS" | head -1 | cut -d: -f2- | tr -d '\r' | sed 's/^ *//'; }
+is() { [ "$1" = "$2" ] || { echo "    got '$1', expected '$2'"; return 1; }; }
+# pyjson FILE EXPR: EXPR holds for d = the JSON in FILE (a Python expression).
+pyjson() {
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); sys.exit(0 if eval(sys.argv[2]) else 1)' "$1" "$2" ||
+        { echo "    $2 fails for: $(head -c 600 "$1")"; return 1; }
+}
+problem() { # problem STATUS [TYPE]: the body is a problem document with that status (and type)
+    pyjson "$BODY" "d['status'] == $1 and {'type','title','status','detail'} <= d.keys()" &&
+        is "$(header Content-Type)" application/problem+json &&
+        { [ -z "${2:-}" ] || pyjson "$BODY" "d['type'] == '$2'"; }
+}
+metric() { hcurl "$1/metrics" | awk -v n="$2" '$1 == n { print $2 }'; }
+
+# Sticks and slips three times each within t_end (6 events).
+SPEC='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.5},
+ "forcing": {"kind": "harmonic", "amplitude": 1, "omega": 0.5}}, "initial": {"x": 1, "v": 0},
+ "solver": {"kind": "stick-slip", "dt": 0.01, "t_end": 20}}'
+# t_end / dt steps at output every 1: LONG is 10^8 steps (the default --max-steps), BIG is 10^7.
+long_spec() { echo "{\"model\": {\"mass\": 1, \"spring\": {\"law\": \"linear\", \"k\": 1}, \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.3}, \"forcing\": {\"kind\": \"harmonic\", \"amplitude\": 0.5, \"omega\": 1.3}}, \"initial\": {\"x\": 1, \"v\": 0}, \"solver\": {\"dt\": 1e-6, \"t_end\": $1}}"; }
+
+start_daemon main || finish
+U=$URL_main
+
+# ---- operations routes ----
+req GET "$U/healthz"
+check "GET /healthz is 200 {status: ok}" pyjson "$BODY" "d == {'status': 'ok'}"
+check "GET /healthz is application/json" is "$(header Content-Type)" application/json
+check "HEAD /healthz is 200" is "$(hcurl -I -o /dev/null -w '%{http_code}' "$U/healthz")" 200
+req GET "$U/readyz"
+check "GET /readyz is 200 {status: ready}" pyjson "$BODY" "d == {'status': 'ready'}"
+req GET "$U/openapi.yaml"
+check "GET /openapi.yaml is 200 application/yaml" is "$STATUS $(header Content-Type)" "200 application/yaml"
+check "GET /openapi.yaml serves api/openapi.yaml" cmp -s "$BODY" "$ROOT/api/openapi.yaml"
+
+# ---- error classes ----
+req GET "$U/no/such/route"
+check "unknown route is 404 problem+json" problem 404 about:blank
+req DELETE "$U/healthz"
+check "DELETE /healthz is 405" problem 405
+check "405 has Allow: GET, HEAD" is "$(header Allow)" "GET, HEAD"
+req GET "$U/v1/simulate"
+check "GET /v1/simulate is 405 with Allow: POST" is "$STATUS $(header Allow)" "405 POST"
+req POST "$U/v1/simulate" -H 'Accept: text/html' --data-binary "$SPEC"
+check "Accept: text/html is 406" problem 406
+req POST "$U/v1/simulate" -H 'Accept: application/x-ndjson;q=0, text/html' --data-binary "$SPEC"
+check "Accept with q=0 for the only match is 406" problem 406
+req POST "$U/v1/simulate" --data-binary '{"model": '
+check "malformed JSON is 400 /problems/malformed-json" problem 400 /problems/malformed-json
+check "400 locates the document (pointer \"\")" pyjson "$BODY" "d['errors'][0]['pointer'] == ''"
+req POST "$U/v1/simulate" --data-binary '{"model": {"mass": -1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.3}}, "solver": {"dt": 0}}'
+check "invalid spec is 422 /problems/invalid-spec" problem 422 /problems/invalid-spec
+check "422 lists every error by pointer" pyjson "$BODY" "[e['pointer'] for e in d['errors']] == ['/model/mass', '/solver/dt']"
+req POST "$U/v1/simulate" --data-binary "$(long_spec 1e6)"
+check "10^12 steps is 422 /problems/over-limit (--max-steps)" problem 422 /problems/over-limit
+head -c 2000000 /dev/zero | tr '\0' ' ' >"$SCRATCH/big"
+req POST "$U/v1/simulate" --data-binary @"$SCRATCH/big"
+check "a 2 MB body is 413 (Content-Length over --body-limit)" problem 413
+req POST "$U/v1/simulate" -H 'Transfer-Encoding: chunked' --data-binary @"$SCRATCH/big"
+check "a 2 MB chunked body is 413 (read and dropped past the limit)" problem 413
+req GET "$U/a%22b%01c"
+check "a hostile path is escaped in the log" grep -qF '"/a\x22b\x01c" 404' "$LOG_main"
+
+# ---- formats ----
+req POST "$U/v1/simulate" --data-binary "$SPEC"
+check "simulate without Accept is JSON" is "$STATUS $(header Content-Type)" "200 application/json"
+check "simulate streams chunked" is "$(header Transfer-Encoding)" chunked
+check "JSON document: meta, 2001 samples, events, summary" pyjson "$BODY" \
+    "list(d) == ['meta','samples','events','summary'] and len(d['samples']) == 2001 and d['summary']['samples'] == 2001 and d['meta']['steps'] == 2000 and d['meta']['solver'] == 'stick-slip'"
+check "JSON samples have t x v Fs Fd Fc phase" pyjson "$BODY" "all(set(s) == {'t','x','v','Fs','Fd','Fc','phase'} for s in d['samples'])"
+check "JSON events are stick/slip with t x v" pyjson "$BODY" "len(d['events']) == 6 and all(e['kind'] in ('stick','slip') and set(e) == {'kind','t','x','v'} for e in d['events'])"
+cp "$BODY" "$SCRATCH/doc.json"
+if [ -x "$BUILD/dashpot" ]; then
+    printf '%s' "$SPEC" >"$SCRATCH/spec.json"
+    "$BUILD/dashpot" simulate "$SCRATCH/spec.json" --format json --quiet >"$SCRATCH/cli.json"
+    check "daemon JSON is byte-identical to the CLI's" cmp -s "$SCRATCH/doc.json" "$SCRATCH/cli.json"
+fi
+req POST "$U/v1/simulate" -H 'Accept: */*' --data-binary "$SPEC"
+check "Accept: */* gets the default JSON" cmp -s "$BODY" "$SCRATCH/doc.json"
+
+req POST "$U/v1/simulate" -H 'Accept: application/x-ndjson' --data-binary "$SPEC"
+check "NDJSON content type" is "$(header Content-Type)" application/x-ndjson
+check "NDJSON: every line is JSON; meta, samples and events, summary" python3 -c '
+import json, sys
+objs = [json.loads(l) for l in open(sys.argv[1])]
+types = [o["type"] for o in objs]
+ok = types[0] == "meta" and types[-1] == "summary" and set(types[1:-1]) == {"sample", "event"}
+ok = ok and types.count("sample") == 2001 and objs[-1]["samples"] == 2001
+doc = json.load(open(sys.argv[2]))
+ok = ok and [ {k: v for k, v in o.items() if k != "type"} for o in objs if o["type"] == "sample"] == doc["samples"]
+sys.exit(0 if ok else 1)' "$BODY" "$SCRATCH/doc.json"
+
+req POST "$U/v1/simulate" -H 'Accept: text/event-stream' --data-binary "$SPEC"
+check "SSE content type" is "$(header Content-Type)" text/event-stream
+check "SSE: event/data pairs with matching types" python3 -c '
+import json, sys
+blocks = open(sys.argv[1]).read().split("\n\n")
+assert blocks[-1] == ""
+evs = [b.split("\n") for b in blocks[:-1]]
+ok = all(len(e) == 2 and e[0].startswith("event: ") and e[1].startswith("data: ") and
+         json.loads(e[1][6:])["type"] == e[0][7:] for e in evs)
+ok = ok and evs[0][0] == "event: meta" and evs[-1][0] == "event: summary"
+sys.exit(0 if ok else 1)' "$BODY"
+
+req POST "$U/v1/simulate" -H 'Accept: text/csv' --data-binary "$SPEC"
+check "CSV content type" is "$(header Content-Type)" "text/csv; charset=utf-8"
+check "CSV: header and 2001 rows of 7 fields" python3 -c '
+import sys
+rows = open(sys.argv[1]).read().splitlines()
+ok = rows[0] == "t,x,v,Fs,Fd,Fc,phase" and len(rows) == 2002 and all(len(r.split(",")) == 7 for r in rows[1:])
+ok = ok and all(float(r.split(",")[0]) >= 0 for r in rows[1:])
+sys.exit(0 if ok else 1)' "$BODY"
+req POST "$U/v1/simulate" -H 'Accept: text/html;q=0.9, text/csv;q=0.5' --data-binary "$SPEC"
+check "Accept picks the best acceptable offer (text/csv)" is "$STATUS $(header Content-Type)" "200 text/csv; charset=utf-8"
+
+STAB='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}}'
+MAP='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}, "map": {"x": {"param": "mu[1]", "from": 0, "to": 2, "steps": 3},
+ "y": {"param": "lambda[1]", "from": 0.25, "to": 1.75, "steps": 2}}}'
+req POST "$U/v1/stability" --data-binary "$STAB"
+check "stability JSON: verdict asymptotically stable" pyjson "$BODY" "d['verdict'] == 'asymptotically stable'"
+req POST "$U/v1/stability" -H 'Accept: text/csv' --data-binary "$MAP"
+check "stability map CSV: header and 3 x 2 rows" is "$STATUS $(header Content-Type) $(wc -l <"$BODY")" "200 text/csv; charset=utf-8 7"
+req POST "$U/v1/stability" -H 'Accept: image/svg+xml' --data-binary "$MAP"
+check "stability map SVG" is "$STATUS $(header Content-Type) $(head -c 4 "$BODY")" "200 image/svg+xml <svg"
+req POST "$U/v1/stability" -H 'Accept: application/x-ndjson' --data-binary "$STAB"
+check "stability with Accept: application/x-ndjson is 406" problem 406
+req POST "$U/v1/stability" --data-binary '{"mass": 0, "law": {"lambda": [1], "mu": [1]}}'
+check "stability with mass 0 is 422 at /mass" pyjson "$BODY" "d['status'] == 422 and d['errors'][0]['pointer'] == '/mass'"
+req POST "$U/v1/wellposedness" --data-binary "$SPEC"
+check "wellposedness: existence and uniqueness guaranteed" pyjson "$BODY" "d['existence']['guaranteed'] and d['uniqueness']['guaranteed']"
+
+# ---- a 10^7-sample stream: t_end = 10, dt = 1e-6, every step a sample ----
+t0=$(date +%s.%N)
+CURL_TIME=600 hcurl -H 'Accept: application/x-ndjson' --data-binary "$(long_spec 10)" "$U/v1/simulate" |
+    tee >(wc -l >"$SCRATCH/lines") | tail -n 1 >"$SCRATCH/last"
+t1=$(date +%s.%N)
+sleep 0.2 # the wc in the process substitution may still be writing
+echo "    10^7 samples in $(echo "$t1 - $t0" | bc) s"
+check "10^7-sample NDJSON: meta + 10000001 samples + summary lines" is "$(tr -d ' ' <"$SCRATCH/lines")" 10000003
+check "10^7-sample NDJSON ends with its summary" pyjson "$SCRATCH/last" \
+    "d['type'] == 'summary' and d['samples'] == 10000001 and d['steps'] == 10000000 and d['final']['t'] == 10"
+
+# ---- a client that hangs up: the run stops and is counted as cancelled ----
+before=$(metric "$U" dashpot_runs_cancelled_total)
+hcurl -H 'Accept: application/x-ndjson' --data-binary "$(long_spec 100)" "$U/v1/simulate" | head -c 1000000 >/dev/null
+cancelled=
+for i in $(seq 100); do
+    [ "$(metric "$U" dashpot_runs_cancelled_total)" = $((before + 1)) ] && [ "$(metric "$U" dashpot_runs_in_flight)" = 0 ] &&
+        { cancelled=yes; break; }
+    sleep 0.1
+done
+check "a client hanging up cancels its run (dashpot_runs_cancelled_total + 1, none in flight)" is "$cancelled" yes
+s1=$(metric "$U" dashpot_samples_streamed_total)
+sleep 0.5
+check "...and the solver stopped (samples streamed unchanged)" is "$(metric "$U" dashpot_samples_streamed_total)" "$s1"
+check "/metrics counts requests by route and status" \
+    grep -q 'dashpot_http_requests_total{route="/v1/simulate",status="422"} 2' <(hcurl "$U/metrics")
+check "/metrics has the duration histogram" \
+    grep -q 'dashpot_http_request_duration_seconds_bucket{route="/healthz",le="+Inf"} 2' <(hcurl "$U/metrics")
+check "one log line per request (method, path, status, bytes, duration)" \
+    grep -qE '^[0-9T:.-]+Z POST "/v1/stability" 200 [0-9]+B [0-9.]+ms$' "$LOG_main"
+
+stop_daemon main
+check "SIGTERM when idle: exit 0" is "$RC_main" 0
+
+# ---- limits: connections and wall time ----
+start_daemon small --max-connections 2 --max-wall 0.5 || finish
+exec 5<>"/dev/tcp/127.0.0.1/$PORT_small" 6<>"/dev/tcp/127.0.0.1/$PORT_small"
+sleep 0.3
+req GET "$URL_small/healthz"
+check "a third connection over --max-connections 2 is 503 /problems/overloaded" problem 503 /problems/overloaded
+check "503 carries Retry-After" is "$(header Retry-After)" 1
+exec 5>&- 6>&-
+sleep 0.3
+req GET "$URL_small/healthz"
+check "after the idle connections close it is 200 again" is "$STATUS" 200
+CURL_TIME=60 hcurl -H 'Accept: application/x-ndjson' --data-binary "$(long_spec 100)" "$URL_small/v1/simulate" |
+    tail -n 1 >"$SCRATCH/last"
+check "over --max-wall the stream ends with an error line (503, wall-time)" pyjson "$SCRATCH/last" \
+    "d['type'] == 'error' and d['status'] == 503 and 'wall-time' in d['detail']"
+stop_daemon small
+check "SIGTERM: exit 0" is "$RC_small" 0
+
+# ---- SIGTERM with a stream in flight ----
+start_daemon drain --shutdown-grace 1 || finish
+CURL_TIME=60 hcurl -H 'Accept: application/x-ndjson' --data-binary "$(long_spec 100)" "$URL_drain/v1/simulate" \
+    >"$SCRATCH/drain.ndjson" &
+CURL_PID=$!
+for i in $(seq 100); do [ -s "$SCRATCH/drain.ndjson" ] && break; sleep 0.1; done
+stop_daemon drain 30
+check "SIGTERM with a stream in flight: exit 0 within the grace period" is "$RC_drain" 0
+wait_pid "$CURL_PID" 10
+tail -n 1 "$SCRATCH/drain.ndjson" >"$SCRATCH/last"
+check "...and the stream ends with an error line, not a cut" pyjson "$SCRATCH/last" \
+    "d['type'] == 'error' and d['status'] == 503 and 'shutting down' in d['detail']"
+check "...after the meta line and samples" pyjson <(head -n 1 "$SCRATCH/drain.ndjson") "d['type'] == 'meta'"
+
+finish
