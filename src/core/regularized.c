@@ -88,30 +88,38 @@ static double forcing_rate(const dp_forcing *f, double t)
     }
 }
 
-/* Spring force and its slope at x. */
+/* A_l(y), and its slope into *slope unless NULL (the right-hand side needs no slope: one search fewer). */
+static double yosida(const dp_graph *A, double l, double y, double *slope)
+{
+    return slope ? dp_graph_yosida_slope(A, l, y, slope) : dp_graph_yosida(A, l, y);
+}
+
+/* Spring force at x and (slope != NULL) its derivative. */
 static double spring_force(const struct dp_regularized *g, double x, double *slope)
 {
     if (g->spring_exact) {
-        *slope = g->k;
+        if (slope)
+            *slope = g->k;
         return g->k * x;
     }
-    return dp_graph_yosida_slope(g->S, g->ls, x, slope);
+    return yosida(g->S, g->ls, x, slope);
 }
 
-/* F_c = c u + D_l(u) at relative velocity u, and d(F_c - gamma)/du. */
+/* F_c = c u + D_l(u) at relative velocity u and (slope != NULL) d(F_c - gamma)/du. */
 static double damper_force(const struct dp_regularized *g, double u, double *slope)
 {
-    double s, fc = g->c * u + dp_graph_yosida_slope(g->D, g->ld, u, &s);
-    *slope = g->c + s - relaxation_rate(g->gamma, u);
+    double fc = g->c * u + yosida(g->D, g->ld, u, slope);
+    if (slope)
+        *slope += g->c - relaxation_rate(g->gamma, u);
     return fc;
 }
 
 static int rhs(double t, const double y[], double f[], void *p)
 {
     struct dp_regularized *g = p;
-    double ss, sd, u = y[1] - g->vb;
-    double fs = spring_force(g, y[0], &ss);
-    double fd = damper_force(g, u, &sd) - dp_relaxation_eval(g->gamma, u);
+    double u = y[1] - g->vb;
+    double fs = spring_force(g, y[0], NULL);
+    double fd = damper_force(g, u, NULL) - dp_relaxation_eval(g->gamma, u);
     g->fevals++;
     f[0] = y[1];
     f[1] = (dp_forcing_eval(g->F, t) - fs - fd) / g->m;
@@ -217,10 +225,10 @@ static void set_sample(dp_run *r)
 {
     const struct dp_regularized *g = r->reg;
     dp_sample *c = &r->cur;
-    double sl, u = g->y[1] - g->vb;
+    double u = g->y[1] - g->vb;
     c->t = g->t, c->x = g->y[0], c->v = g->y[1];
-    c->Fs = spring_force(g, c->x, &sl);
-    c->Fc = damper_force(g, u, &sl);
+    c->Fs = spring_force(g, c->x, NULL);
+    c->Fc = damper_force(g, u, NULL);
     c->Fd = c->Fc - dp_relaxation_eval(g->gamma, u);
     c->phase = DP_PHASE_NONE;
 }
