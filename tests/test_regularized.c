@@ -141,6 +141,7 @@ static void check_gn_pair(dp_graph *g, double n, double v1, double v2, double *w
     double tol = 16 * 2.220446049250313e-16 * scale;
     double r = dp_regularized_gn(rotation_of, g, n, v1, NULL);
     assert_true(fabs(r - a) <= 1e-10 * scale);
+    assert_true(fabs(dp_graph_yosida(g, 1 / n, v1) - a) <= tol); /* graph.c's (y - J(y)) / l */
     double y = v1 - a / n;
     assert_true(fabs((a - y) - dp_graph_rotation(g, a + y)) <= tol);
     if (v1 < v2)

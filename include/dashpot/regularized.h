@@ -21,9 +21,9 @@
  * (J_1(s), s - J_1(s)), so phi(s) = s - 2 J_1(s): 1-Lipschitz. Coulomb: s on |s| <= phi0, 2 phi0 - s beyond. */
 double dp_graph_rotation(const dp_graph *g, double s);
 
-/* The Yosida approximation A_l(y) and its derivative (*slope, the one-sided slope from the right at a kink):
- * dF/(dy + l dF) on the piece the resolvent lands on, 1/l on a vertical piece. The value equals
- * dp_graph_yosida(g, l, y). */
+/* The Yosida approximation A_l(y) and (slope != NULL) its derivative, the one from the right at a kink:
+ * dF/(dy + l dF) on the piece the resolvent lands on, 1/l on a vertical piece. The value is
+ * dp_graph_yosida(g, l, y) up to rounding, computed from the piece's vertex: exact on flat pieces. */
 double dp_graph_yosida_slope(const dp_graph *g, double l, double y, double *slope);
 
 /* A 1-Lipschitz function phi: R -> R (Lemma 1), as a callback. */

@@ -7,6 +7,8 @@
  *                               the whole law regularized, as (FIk) does; no relaxation (the thesis has none).
  * The ODE's Lipschitz constant grows like n/m, so it is stiff: GSL odeiv2 with the analytic Jacobian
  * (piecewise constant: the slopes of the Yosida pieces, yosida.c) and an implicit stepper by default.
+ * Note: GSL 2.7's gsl_linalg_LU_decomp allocates its pivot vector on every call, so the implicit steppers
+ * allocate (and free) once per Newton-matrix factorization; dashpot's own step path allocates nothing.
  *
  * Samples fall on the output grid t_j = j dt whatever the internal steps: gsl_odeiv2_evolve_apply is asked
  * to reach each sample time exactly (it clips its last step there and keeps its step-size proposal). A
@@ -88,12 +90,6 @@ static double forcing_rate(const dp_forcing *f, double t)
     }
 }
 
-/* A_l(y), and its slope into *slope unless NULL (the right-hand side needs no slope: one search fewer). */
-static double yosida(const dp_graph *A, double l, double y, double *slope)
-{
-    return slope ? dp_graph_yosida_slope(A, l, y, slope) : dp_graph_yosida(A, l, y);
-}
-
 /* Spring force at x and (slope != NULL) its derivative. */
 static double spring_force(const struct dp_regularized *g, double x, double *slope)
 {
@@ -102,13 +98,13 @@ static double spring_force(const struct dp_regularized *g, double x, double *slo
             *slope = g->k;
         return g->k * x;
     }
-    return yosida(g->S, g->ls, x, slope);
+    return dp_graph_yosida_slope(g->S, g->ls, x, slope);
 }
 
 /* F_c = c u + D_l(u) at relative velocity u and (slope != NULL) d(F_c - gamma)/du. */
 static double damper_force(const struct dp_regularized *g, double u, double *slope)
 {
-    double fc = g->c * u + yosida(g->D, g->ld, u, slope);
+    double fc = g->c * u + dp_graph_yosida_slope(g->D, g->ld, u, slope);
     if (slope)
         *slope += g->c - relaxation_rate(g->gamma, u);
     return fc;

@@ -19,16 +19,17 @@ double dp_graph_rotation(const dp_graph *g, double s)
     return s - 2 * dp_graph_resolvent(g, 1, s);
 }
 
-/* The piece (dy, dF) of the curve on which u = y + l F passes the value s (the right one at a vertex). */
-static void piece_at(const dp_graph *g, double l, double s, double *dy, double *dF)
+/* The piece of the curve on which u = y + l F passes the value s (the right one at a vertex): its first
+ * vertex (*yb, *fb) and direction (*dy, *dF); for the left ray, vertex 0 and the ray's direction. */
+static void piece_at(const dp_graph *g, double l, double s, double *yb, double *fb, double *dy, double *dF)
 {
     size_t n = g->n, lo = 0, hi = n - 1;
     if (s < g->y[0] + l * g->f[0]) {
-        *dy = g->left[0], *dF = g->left[1];
+        *yb = g->y[0], *fb = g->f[0], *dy = g->left[0], *dF = g->left[1];
         return;
     }
     if (s >= g->y[n - 1] + l * g->f[n - 1]) {
-        *dy = g->right[0], *dF = g->right[1];
+        *yb = g->y[n - 1], *fb = g->f[n - 1], *dy = g->right[0], *dF = g->right[1];
         return;
     }
     /* u strictly increases along distinct vertices (l > 0): invariant u(lo) <= s < u(hi). */
@@ -39,16 +40,20 @@ static void piece_at(const dp_graph *g, double l, double s, double *dy, double *
         else
             hi = mid;
     }
-    *dy = g->y[hi] - g->y[lo], *dF = g->f[hi] - g->f[lo];
+    *yb = g->y[lo], *fb = g->f[lo], *dy = g->y[hi] - g->y[lo], *dF = g->f[hi] - g->f[lo];
 }
 
 double dp_graph_yosida_slope(const dp_graph *g, double l, double y, double *slope)
 {
-    double dy, dF;
-    piece_at(g, l, y, &dy, &dF);
-    /* Along the piece y moves by dy + l dF while A_l = (y - J_l(y))/l moves by dF: d A_l / dy. */
-    *slope = dF / (dy + l * dF);
-    return dp_graph_yosida(g, l, y);
+    double yb, fb, dy, dF;
+    piece_at(g, l, y, &yb, &fb, &dy, &dF);
+    /* Along the piece u = y + l F moves by dy + l dF while A_l = (u - J_l(u))/l moves by dF. Taken from the
+     * piece's vertex, the value is exact on flat pieces (Coulomb's +-phi0 in slip) and never cancels
+     * y - J_l(y) the way (y - J_l(y))/l does. */
+    double s = dF / (dy + l * dF);
+    if (slope)
+        *slope = s;
+    return fb + (y - (yb + l * fb)) * s;
 }
 
 /* ---- paper (17) by its contraction --------------------------------------------------------------------- */
