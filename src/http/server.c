@@ -17,9 +17,10 @@
 
 #include "http.h"
 
-/* Per-connection memory: the read buffer for headers and the write buffer the content reader fills; 256 KiB
- * lets a stream hand over ~64 KiB per call. Stream block size requested from MHD, below. */
-#define CONNECTION_MEMORY (256u << 10)
+/* Per-connection memory: the read buffer for headers and the write buffer the content reader fills. MHD
+ * clears the whole pool between requests, so a larger pool costs small requests (256 KiB: -30% requests/s)
+ * while streams gain nothing measurable beyond ~32 KiB per send. */
+#define CONNECTION_MEMORY (64u << 10)
 /* Connections MHD accepts beyond --max-connections, to tell them "503" rather than drop them silently. */
 #define OVERLOAD_HEADROOM 64u
 

@@ -40,19 +40,22 @@ static char *put_num(char *p, double x)
     return p + dp_format_double_wide(p, x); /* may scribble DP_DTOA_WIDE bytes: within SAMPLE_MAX */
 }
 
-/* Writes x, or copies its text when one of the recent numbers had the same bits: entries before `slot` hold
- * this sample's earlier numbers, the others the previous sample's. The text is the same either way (the
- * output stays deterministic); a copy is ~10x cheaper than formatting. */
+/* Writes x, or copies its text when a recent number had the same bits: the same member of the previous
+ * sample (a force constant while slipping or sticking) or one of the two members before it in this sample
+ * (F_s = x when k = 1, F_c = F_d without relaxation). Entries before `slot` hold this sample's numbers, the
+ * others the previous sample's. The text is the same either way; a copy is ~10x cheaper than formatting. */
 static char *put_num_cached(dp_number_text *recent, int slot, char *p, double x)
 {
     unsigned long long bits;
     memcpy(&bits, &x, sizeof bits);
-    for (int j = 0; j < 6; j++)
-        if (recent[j].bits == bits && recent[j].len) {
-            memcpy(p, recent[j].text, sizeof recent[j].text); /* fixed length: p has room (SAMPLE_MAX) */
+    int j = recent[slot].bits == bits ? slot : slot >= 1 && recent[slot - 1].bits == bits ? slot - 1
+          : slot >= 2 && recent[slot - 2].bits == bits ? slot - 2 : -1;
+    if (j >= 0 && recent[j].len) {
+        memcpy(p, recent[j].text, sizeof recent[j].text); /* fixed length: p has room (SAMPLE_MAX) */
+        if (j != slot)
             recent[slot] = recent[j];
-            return p + recent[slot].len;
-        }
+        return p + recent[slot].len;
+    }
     size_t n = dp_format_double_wide(p, x);
     recent[slot].bits = bits;
     recent[slot].len = (unsigned)n;
