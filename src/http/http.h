@@ -76,7 +76,7 @@ typedef struct request {
     server *srv;
     atomic_int refs;             /* 1, or 2 while a streamed response holds it */
     int route;                   /* ROUTE_* */
-    const char *allow;           /* ROUTE_NONE on a known path: the methods it takes (a static string) */
+    const char *allow;           /* wrong method: the methods the path takes (a static string), else NULL */
     int status;                  /* HTTP status queued, 0 until then */
     int too_large;               /* the body passed cfg.body_limit */
     double t_start;              /* monotonic seconds */
@@ -112,7 +112,8 @@ enum MHD_Result respond_status(struct MHD_Connection *c, request *r, int status,
 
 /* ---- routes (routes.c, simulate.c, stability.c) ---- */
 
-/* Resolves method + url to a ROUTE_*; ROUTE_NONE with *allow set when the path exists but not the method. */
+/* The ROUTE_* of a path (ROUTE_NONE if unknown); *allow is set to the methods it takes when `method` is not
+ * one of them (then the answer is 405), NULL otherwise. */
 int route_find(const server *s, const char *method, const char *url, const char **allow);
 int route_needs_body(int route);
 enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r);

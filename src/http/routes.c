@@ -1,7 +1,8 @@
 /* src/http/routes.c - the route table and the small handlers (health, readiness, metrics, OpenAPI).
  *
  * Paths match exactly (MHD hands over the path without its query string). GET routes answer HEAD too.
- * A path that exists with another method is a 405 with an Allow header; anything else is a 404.
+ * A path that exists with another method is a 405 with an Allow header (counted under its route in the
+ * metrics); anything else is a 404.
  */
 #include <stdio.h>
 #include <string.h>
@@ -38,10 +39,9 @@ int route_find(const server *s, const char *method, const char *url, const char 
         const struct route *rt = &routes[i];
         if (strcmp(rt->path, url) != 0 || (rt->id == ROUTE_STATIC && s->cfg.bench_static[0] == '\0'))
             continue;
-        if (strcmp(rt->method, method) == 0 || (strcmp(rt->method, "GET") == 0 && strcmp(method, "HEAD") == 0))
-            return rt->id;
-        *allow = rt->allow;
-        return ROUTE_NONE;
+        if (strcmp(rt->method, method) != 0 && !(strcmp(rt->method, "GET") == 0 && strcmp(method, "HEAD") == 0))
+            *allow = rt->allow;
+        return rt->id;
     }
     return ROUTE_NONE;
 }
@@ -61,9 +61,10 @@ enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r)
         snprintf(detail, sizeof detail, "the request body is larger than %zu bytes", r->srv->cfg.body_limit);
         return respond_problem(c, r, 413, NULL, detail, NULL, NULL);
     }
+    if (r->allow)
+        return respond_problem(c, r, 405, NULL, "this path does not take that method", NULL, r->allow);
     if (r->route == ROUTE_NONE)
-        return r->allow ? respond_problem(c, r, 405, NULL, "this path does not take that method", NULL, r->allow)
-                        : respond_problem(c, r, 404, NULL, "no such route", NULL, NULL);
+        return respond_problem(c, r, 404, NULL, "no such route", NULL, NULL);
     for (int i = 0; i < NTABLE; i++)
         if (routes[i].id == r->route)
             return routes[i].h(c, r);

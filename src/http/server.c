@@ -73,7 +73,7 @@ static int first_call(struct MHD_Connection *c, request *r, const char *method, 
         return respond_problem(c, r, 503, "/problems/overloaded", "too many open connections; retry shortly",
                                NULL, NULL);
     }
-    if (route_needs_body(r->route) && declared_too_large(c, s->cfg.body_limit)) {
+    if (r->allow == NULL && route_needs_body(r->route) && declared_too_large(c, s->cfg.body_limit)) {
         char detail[96];
         snprintf(detail, sizeof detail, "the request body is larger than %zu bytes", s->cfg.body_limit);
         return respond_problem(c, r, 413, NULL, detail, NULL, NULL);
@@ -84,7 +84,7 @@ static int first_call(struct MHD_Connection *c, request *r, const char *method, 
 /* Appends an upload piece, or only notes that the body passed the limit (the rest is read and dropped). */
 static void accumulate(request *r, const char *data, size_t n)
 {
-    if (r->too_large || !route_needs_body(r->route))
+    if (r->too_large || r->allow || !route_needs_body(r->route))
         return;
     if (r->body.len + n > r->srv->cfg.body_limit || dp_buf_append(&r->body, data, n) != DP_OK) {
         r->too_large = 1;
