@@ -62,15 +62,34 @@ static void defaults(config *c)
     snprintf(c->openapi, sizeof c->openapi, "api/openapi.yaml");
 }
 
+/* The value of an option's field as text (for --help). */
+static void show(const config *c, const option *o, char *out, size_t cap)
+{
+    const char *field = (const char *)c + o->offset;
+    switch (o->kind) {
+    case K_UINT: snprintf(out, cap, "%u", *(const unsigned *)(const void *)field); break;
+    case K_SIZE: snprintf(out, cap, "%zu", *(const size_t *)(const void *)field); break;
+    case K_DOUBLE: snprintf(out, cap, "%g", *(const double *)(const void *)field); break;
+    default: snprintf(out, cap, "%s", *field ? field : "(none)");
+    }
+}
+
 static void help(void)
 {
+    config d;
+    defaults(&d);
     printf("usage: dashpotd [--FLAG VALUE | --FLAG=VALUE]...\n\n"
            "The dashpot HTTP daemon: POST /v1/simulate, /v1/stability, /v1/wellposedness; GET /healthz,\n"
-           "/readyz, /metrics, /openapi.yaml. Every flag can also be set by its environment variable; a flag wins.\n\n");
-    for (int i = 0; i < NOPTIONS; i++)
-        printf("  --%-17s %-25s %s\n", options[i].flag, options[i].env, options[i].help);
-    printf("  --%-17s %-25s %s\n  --%-17s %-25s %s\n", "help", "", "this text", "version", "", "the version");
-    printf("\nSIGTERM or SIGINT: stop accepting, let runs finish (--shutdown-grace), exit 0.\n");
+           "/readyz, /metrics, /openapi.yaml. Every flag can also be set by its environment variable; a flag wins.\n\n"
+           "  %-17s %-25s %-17s %s\n", "flag", "variable", "default", "");
+    for (int i = 0; i < NOPTIONS; i++) {
+        char value[64];
+        show(&d, &options[i], value, sizeof value);
+        printf("  --%-15s %-25s %-17s %s\n", options[i].flag, options[i].env, value, options[i].help);
+    }
+    printf("  --%-15s %-25s %-17s %s\n  --%-15s %-25s %-17s %s\n", "help", "", "", "this text", "version", "", "",
+           "the version");
+    printf("\nSIGTERM or SIGINT: stop accepting, let runs finish (--shutdown-grace), then exit 0.\n");
 }
 
 /* Parses and range-checks one value into its field. */
