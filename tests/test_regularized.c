@@ -386,6 +386,22 @@ static void test_divergence_is_an_error(void **state)
     traj_free(&t);
 }
 
+/* atol = 1e-300 with rtol = 0 asks for more digits than doubles hold: the step size collapses at t = 0 and
+ * the run stops with DP_ESOLVE at once (not after 10^9 steps of 1e-150), with only the initial sample. */
+static void test_impossible_tolerance_is_an_error(void **state)
+{
+    (void)state;
+    traj t;
+    assert_int_equal(traj_run("{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":"
+                              "\"regularized\",\"n\":1000,\"dt\":1,\"rtol\":0,\"atol\":1e-300}}", &t), DP_OK);
+    printf("impossible tolerance: status %d after %llu steps: \"%s\"\n", t.status, t.sum.steps, t.error);
+    assert_int_equal(t.status, DP_ESOLVE);
+    assert_true(strstr(t.error, "cannot be met") != NULL);
+    assert_true(t.sum.steps < 1000);
+    assert_int_equal(t.n, 1);
+    traj_free(&t);
+}
+
 static void test_rules(void **state)
 {
     (void)state;
@@ -448,6 +464,7 @@ int main(void)
         cmocka_unit_test(test_samples_on_grid_and_decimation),
         cmocka_unit_test(test_steppers_agree),
         cmocka_unit_test(test_divergence_is_an_error),
+        cmocka_unit_test(test_impossible_tolerance_is_an_error),
         cmocka_unit_test(test_rules),
         cmocka_unit_test(test_study_json),
     };

@@ -41,6 +41,7 @@ struct dp_regularized {
     gsl_odeiv2_system sys;
     gsl_odeiv2_driver *drv;
     double t, y[2], h;
+    double h_floor;             /* an accepted (unclipped) step below it means the tolerances cannot be met */
     unsigned long long fevals, jevals;
 };
 
@@ -242,6 +243,12 @@ int dp_regularized_init(dp_run *r)
     /* A first step far below any time scale of the ODE (the fastest is ~ m/n): the control grows it by up to
      * 5x per accepted step, so the few steps this costs are cheaper than rejections from too large a guess. */
     g->h = fmin(sv->dt, 1e-3 * g->m / (sv->n_list[0] + 1));
+    /* The fastest time scale is m / L, L <= n + k + c + L_gamma (the Yosida pieces are at most n steep).
+     * Sound runs never step below ~1e-6 of it (measured down to rtol = 1e-12, n = 1e7); an error control
+     * asking for 1e-12 of it is asking for more digits than doubles hold (atol = 1e-300 would otherwise
+     * crawl through 10^9 steps near t = 0 before the step limit stops it). */
+    double L = sv->n_list[0] + g->k + g->c + dp_relaxation_lipschitz(g->gamma);
+    g->h_floor = 1e-12 * g->m / L;
     g->drv = gsl_odeiv2_driver_alloc_y_new(&g->sys, step_type(sv->stepper), g->h, sv->atol, sv->rtol);
     if (g->drv == NULL)
         return dp_run_fail(r, DP_ENOMEM, "out of memory allocating the %s integrator",
@@ -282,6 +289,10 @@ static int integrate_to(dp_run *r, double t1, unsigned long long *budget)
             return gsl_failure(r, s, g->t);
         if (!isfinite(g->y[0]) || !isfinite(g->y[1]))
             return gsl_failure(r, GSL_EBADFUNC, t);
+        if (t < t1 && d->e->last_step < g->h_floor)
+            return dp_run_fail(r, DP_ESOLVE, "the %s integrator's step fell to %.3g at t = %.17g: rtol = %g, "
+                               "atol = %g cannot be met in double precision", dp_stepper_name(r->spec.solver.stepper),
+                               d->e->last_step, t, r->spec.solver.rtol, r->spec.solver.atol);
         if (t < t1)
             g->h = h; /* the control's proposal; a final (clipped) step leaves it as it was */
         g->t = t;
