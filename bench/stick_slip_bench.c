@@ -226,33 +226,69 @@ static void closed_at(closed *c, double t, double *x, double *v)
     closed_eval(c, t, x, v);
 }
 
-/* dashpot's closed form (vb = 0) against the one above on the same problem: the belt-free half of the
- * construction must reproduce dp_coulomb_arcs to rounding, or the belt figures mean nothing. */
-static int closed_self_check(const params *p)
+/* The reference a run is measured against: on the ground (vb = 0) dashpot's own dp_coulomb_arcs, with a
+ * belt the construction above (whose belt-free half is checked against dp_coulomb_arcs on every run). */
+typedef struct reference {
+    dp_coulomb_problem cp;
+    dp_coulomb_arc *arcs; /* NULL: use `c` */
+    size_t n, j;
+    closed c;
+} reference;
+
+static int reference_init(reference *ref, const params *p, int belt)
 {
-    dp_coulomb_problem cp = { .m = p->m, .k = p->k, .phi0 = p->phi0, .F0 = p->F0, .x0 = p->x0, .v0 = p->v0 };
-    double t_end = (double)p->steps * p->dt;
-    size_t cap = 1 << 16, n, j = 0;
-    dp_coulomb_arc *arcs = malloc(cap * sizeof *arcs);
-    if (arcs == NULL || dp_coulomb_arcs(&cp, t_end, arcs, cap, &n) != 0) {
-        free(arcs);
+    memset(ref, 0, sizeof *ref);
+    closed_init(&ref->c, p);
+    if (belt)
+        return 0;
+    ref->cp = (dp_coulomb_problem){ .m = p->m, .k = p->k, .phi0 = p->phi0, .F0 = p->F0, .x0 = p->x0, .v0 = p->v0 };
+    size_t cap = 1 << 16;
+    ref->arcs = malloc(cap * sizeof *ref->arcs);
+    if (ref->arcs == NULL || dp_coulomb_arcs(&ref->cp, (double)p->steps * p->dt, ref->arcs, cap, &ref->n) != 0) {
+        free(ref->arcs);
+        ref->arcs = NULL;
         return -1;
     }
+    return 0;
+}
+
+/* The reference at t (t non-decreasing between calls). */
+static void reference_at(reference *ref, double t, double *x, double *v)
+{
+    if (ref->arcs == NULL) {
+        closed_at(&ref->c, t, x, v);
+        return;
+    }
+    while (ref->j + 1 < ref->n && ref->arcs[ref->j + 1].t0 <= t)
+        ref->j++;
+    dp_coulomb_arc_eval(&ref->cp, &ref->arcs[ref->j], t, x, v);
+}
+
+static void reference_free(reference *ref)
+{
+    free(ref->arcs);
+}
+
+/* The construction above with the belt removed against dp_coulomb_arcs on the same problem: it must
+ * reproduce dashpot's closed form to rounding, or the belt figures mean nothing. */
+static int closed_self_check(const params *p)
+{
     params q = *p;
     q.vb = 0;
-    closed c;
-    closed_init(&c, &q);
+    reference dp_ref, own;
+    if (reference_init(&dp_ref, &q, 0) != 0 || reference_init(&own, &q, 1) != 0) {
+        reference_free(&dp_ref);
+        return -1;
+    }
     double worst = 0, scale = 1;
     for (long long i = 0; i <= p->steps; i += 1 + p->steps / 4096) {
         double t = (double)i * p->dt, xa, va, xb, vb;
-        while (j + 1 < n && arcs[j + 1].t0 <= t)
-            j++;
-        dp_coulomb_arc_eval(&cp, &arcs[j], t, &xa, &va);
-        closed_at(&c, t, &xb, &vb);
+        reference_at(&dp_ref, t, &xa, &va);
+        reference_at(&own, t, &xb, &vb);
         worst = fmax(worst, fmax(fabs(xa - xb), fabs(va - vb)));
         scale = fmax(scale, fabs(xa));
     }
-    free(arcs);
+    reference_free(&dp_ref);
     printf("closed_form_self_check %.3g\n", worst);
     return worst <= 1e-9 * scale ? 0 : -1;
 }
@@ -268,7 +304,7 @@ typedef struct diff {
 } diff;
 
 /* Runs dashpot (events mode `events`) over the case; with `sic` open, compares step by step with Siconos'
- * records (rewound first); with `cf`, against the closed form. Returns 0, or -1 on a failure (printed). */
+ * records (rewound first); with `with_closed`, both against the closed form. Returns 0, or -1 on failure. */
 static int sweep(const params *p, const char *events, FILE *sic, int with_closed, diff *d)
 {
     memset(d, 0, sizeof *d);
@@ -279,8 +315,12 @@ static int sweep(const params *p, const char *events, FILE *sic, int with_closed
         free(buf);
         return -1;
     }
-    closed c;
-    closed_init(&c, p);
+    reference ref;
+    if (with_closed && reference_init(&ref, p, p->vb != 0) != 0) {
+        dp_run_free(run);
+        free(buf);
+        return -1;
+    }
     if (sic)
         rewind(sic);
     int s, bad = 0;
@@ -310,7 +350,7 @@ static int sweep(const params *p, const char *events, FILE *sic, int with_closed
             }
             if (with_closed) {
                 double x, v;
-                closed_at(&c, a->t, &x, &v);
+                reference_at(&ref, a->t, &x, &v);
                 d->ex = fmax(d->ex, fabs(a->x - x));
                 d->ev = fmax(d->ev, fabs(a->v - v));
                 if (sic) {
@@ -327,6 +367,8 @@ static int sweep(const params *p, const char *events, FILE *sic, int with_closed
     }
     dp_run_free(run);
     free(buf);
+    if (with_closed)
+        reference_free(&ref);
     if (!bad && d->n != p->steps) {
         fprintf(stderr, "stick_slip_bench: %lld steps compared, expected %lld\n", d->n, p->steps);
         bad = 1;
