@@ -93,7 +93,7 @@ for c in "${names[@]}"; do
       "$(kv "$out" max_dv)" "$(kv "$out" max_dF)" "$verdict" "$(kv "$out" err_x_dashpot)" \
       "$(kv "$out" err_x_siconos)" "$(kv "$out" err_v_dashpot)" "$(kv "$out" err_v_siconos)" \
       "$(kv "$out" err_x_located)"
-    if [ "$(kv "$out" rounding)" != 1 ]; then
+    if [ "$(kv "$out" matched_load_max_dx)" != - ] && [ "$(kv "$out" rounding)" != 1 ]; then
       printf '  %-16s load quadrature matched (Siconos weights theta F(t+h) + (1-theta) F(t)): max|dx| %s max|dv| %s max|dF| %s\n' \
         '' "$(kv "$out" matched_load_max_dx)" "$(kv "$out" matched_load_max_dv)" "$(kv "$out" matched_load_max_dF)"
     fi
