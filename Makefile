@@ -37,7 +37,7 @@ TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 TEST_SH  := $(wildcard tests/*.sh)
 PROGS    := $(BUILD)/dashpot $(if $(HTTP_SRC),$(BUILD)/dashpotd)
 
-.PHONY: all test unit integration run bench deps deps-ok clean thesis-figures fuzz
+.PHONY: all test unit integration run bench deps deps-ok clean thesis-figures fuzz bench-peers
 
 all: $(LIB) $(PROGS)
 
@@ -103,7 +103,50 @@ fuzz:
 bench: all
 	@bash bench/run.sh $(BUILD)
 
+# dashpot's stick-slip solver next to Siconos (installed from Debian if missing): accuracy and speed.
+bench-peers: all
+	BUILD=$(BUILD) bash bench/siconos.sh
+
 clean:
 	rm -rf build build-san build-fuzz
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
+
+# ---- make install / make uninstall --------------------------------------------------------------------------
+# make install [PREFIX=/usr/local] [DESTDIR=/staging]: dashpotd and dashpot into $(bindir), libdashpot.a into
+# $(libdir), the public headers into $(includedir)/dashpot, dashpot.pc (from dashpot.pc.in; it names the final
+# PREFIX, its directories relative to ${prefix}; a staged copy is used with PKG_CONFIG_SYSROOT_DIR=$(DESTDIR))
+# into $(pkgconfigdir), and api/openapi.yaml into $(datadir)/dashpot, where DASHPOT_OPENAPI must point the
+# daemon: dashpotd has no compiled-in path under PREFIX (docs/operations.md). `make uninstall` with the same
+# variables removes what `make install` put there.
+PREFIX       ?= /usr/local
+DESTDIR      ?=
+bindir       ?= $(PREFIX)/bin
+libdir       ?= $(PREFIX)/lib
+includedir   ?= $(PREFIX)/include
+datadir      ?= $(PREFIX)/share
+pkgconfigdir ?= $(libdir)/pkgconfig
+INSTALL      ?= install
+INSTALL_HEADERS := $(wildcard include/dashpot/*.h)
+INSTALL_OPENAPI := $(wildcard api/openapi.yaml)
+DP_VERSION_STRING = $(shell sed -n 's/^#define DP_VERSION "\(.*\)"$$/\1/p' include/dashpot/json.h)
+
+install: all
+	$(INSTALL) -d $(DESTDIR)$(bindir) $(DESTDIR)$(libdir) $(DESTDIR)$(includedir)/dashpot \
+	    $(DESTDIR)$(pkgconfigdir) $(DESTDIR)$(datadir)/dashpot
+	$(INSTALL) -m 755 $(PROGS) $(DESTDIR)$(bindir)/
+	$(INSTALL) -m 644 $(LIB) $(DESTDIR)$(libdir)/
+	$(INSTALL) -m 644 $(INSTALL_HEADERS) $(DESTDIR)$(includedir)/dashpot/
+	sed -e 's|@prefix@|$(PREFIX)|g' -e 's|@version@|$(DP_VERSION_STRING)|g' \
+	    -e 's|@libdir@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(libdir))|g' \
+	    -e 's|@includedir@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(includedir))|g' dashpot.pc.in > $(BUILD)/dashpot.pc
+	$(INSTALL) -m 644 $(BUILD)/dashpot.pc $(DESTDIR)$(pkgconfigdir)/dashpot.pc
+	$(if $(INSTALL_OPENAPI),$(INSTALL) -m 644 $(INSTALL_OPENAPI) $(DESTDIR)$(datadir)/dashpot/)
+
+uninstall:
+	rm -f $(addprefix $(DESTDIR)$(bindir)/,$(notdir $(PROGS))) $(DESTDIR)$(libdir)/$(notdir $(LIB)) \
+	    $(addprefix $(DESTDIR)$(includedir)/dashpot/,$(notdir $(INSTALL_HEADERS))) \
+	    $(DESTDIR)$(pkgconfigdir)/dashpot.pc $(DESTDIR)$(datadir)/dashpot/openapi.yaml
+	-rmdir $(DESTDIR)$(includedir)/dashpot $(DESTDIR)$(datadir)/dashpot 2>/dev/null
+
+.PHONY: install uninstall

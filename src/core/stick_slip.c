@@ -266,43 +266,89 @@ static void phase_event(dp_run *r, dp_phase before)
     dp_run_emit_event(r, now == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP, r->cur.t, r->cur.x, r->cur.v);
 }
 
-/* The hot loop: nominal steps of the closed form while the slip goes on in one direction under a constant
- * load, up to (not including) the next step that emits a sample or is the last. The same arithmetic as
- * moreau_from's first branch, so the result is bit for bit the general path's; it only leaves out what a
- * continuing slip cannot need (events, forces, the bracket). */
+/* The hot loops below take nominal steps of the closed form up to (not including) the next step that
+ * emits a sample or is the last; this is where they must stop. */
+static unsigned long long fast_stop(const dp_run *r)
+{
+    unsigned long long stop = r->nsteps - 1;
+    if (r->spec.output.samples && r->n + (unsigned long long)r->countdown - 1 < stop)
+        stop = r->n + (unsigned long long)r->countdown - 1;
+    return stop;
+}
+
+static void fast_done(dp_run *r, unsigned long long n, double x, double v)
+{
+    r->countdown -= (long)(n - r->n);
+    r->n = n;
+    r->cur.x = x, r->cur.v = v, r->cur.t = (double)n * r->h;
+}
+
+/* Glide: the slip goes on in one direction. The same arithmetic as free_velocity and moreau_from's first
+ * branch, so the result is bit for bit the general path's; it leaves out only what a continuing slip
+ * cannot need (events, forces, the bracket). */
 static void glide(dp_run *r)
 {
     const dp_ss_law *L = &r->law;
     const dp_ss_coef *c = &L->nominal;
-    unsigned long long stop = r->nsteps - 1;
-    if (r->spec.output.samples && r->n + (unsigned long long)r->countdown - 1 < stop)
-        stop = r->n + (unsigned long long)r->countdown - 1;
+    unsigned long long n = r->n, stop = fast_stop(r);
     double x = r->cur.x, v = r->cur.v, dir = sgn(v - L->vb), h = L->h, th = L->theta;
-    double fterm = c->cf * L->F0 + c->c0;
-    unsigned long long n = r->n;
     for (; n < stop; n++) {
-        double u = c->cv * v + c->cx * x + fterm;
+        double u = c->cv * v + c->cx * x + c->cf * load(L, (double)n * h + th * h) + c->c0;
         if (!(u * dir > c->thr))
             break;
         double v1 = L->vb + (u - c->thr * dir);
         x += h * ((1 - th) * v + th * v1);
         v = v1;
     }
-    r->countdown -= (long)(n - r->n);
-    r->n = n;
-    r->cur.x = x, r->cur.v = v, r->cur.t = (double)n * r->h;
+    fast_done(r, n, x, v);
+}
+
+/* Hold: the mass sits at the belt's speed and the holding force stays inside the static interval (tested
+ * as the located step tests it, or as Moreau's rule does with events "none"). Same arithmetic as
+ * located_step's stick branch and moreau_from's stick branch. */
+static void hold(dp_run *r)
+{
+    const dp_ss_law *L = &r->law;
+    const dp_ss_coef *c = &L->nominal;
+    unsigned long long n = r->n, stop = fast_stop(r);
+    double x = r->cur.x, vb = L->vb, h = L->h, th = L->theta;
+    for (; n < stop; n++) {
+        double t = (double)n * h;
+        if (L->locate) {
+            if (fabs(dp_forcing_eval(L->F, t + h) - L->k * (x + h * vb)) - L->tau_s > 0)
+                break;
+            x += h * vb;
+        } else {
+            if (!(fabs(c->cv * vb + c->cx * x + c->cf * load(L, t + th * h) + c->c0) <= c->thr_s))
+                break;
+            x += h * ((1 - th) * vb + th * vb);
+        }
+        r->sum.stick_time += h;
+    }
+    fast_done(r, n, x, vb);
+}
+
+/* Runs the hot loop that fits the current phase, if any; DP_OK or DP_ENONFINITE. */
+static int fast_steps(dp_run *r)
+{
+    const dp_ss_law *L = &r->law;
+    if (r->cur.phase == DP_PHASE_SLIP && r->cur.v != L->vb)
+        glide(r);
+    else if (r->cur.phase == DP_PHASE_STICK && r->cur.v == L->vb)
+        hold(r);
+    else
+        return DP_OK;
+    if (!isfinite(r->cur.x) || !isfinite(r->cur.v))
+        return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
+    return DP_OK;
 }
 
 int dp_stick_slip_advance(dp_run *r)
 {
     const dp_ss_law *L = &r->law;
-    int fast = L->closed && L->F_const;
     while (dp_run_room(r)) {
-        if (fast && r->cur.phase == DP_PHASE_SLIP && r->cur.v != L->vb) {
-            glide(r);
-            if (!isfinite(r->cur.x) || !isfinite(r->cur.v))
-                return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
-        }
+        if (L->closed && fast_steps(r) != DP_OK)
+            return r->status;
         double h = dp_run_step_length(r), fc = 0, fs = 0;
         step_state s = { r->cur.t, r->cur.x, r->cur.v, r->cur.phase };
         dp_phase before = s.phase;
