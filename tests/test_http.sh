@@ -179,12 +179,21 @@ check "one log line per request (method, path, status, bytes, duration)" \
 
 stop_daemon main
 check "SIGTERM when idle: exit 0" is "$RC_main" 0
+check "--help prints the flags and exits 0" grep -q -- '--max-connections' <("$DAEMON" --help)
+timeout 5 "$DAEMON" --port 99999 2>"$SCRATCH/err"
+check "a bad flag value exits 2 with a message" is "$? $(cat "$SCRATCH/err")" \
+    '2 dashpotd: --port: expected an integer in [0, 65535], got "99999"'
+DASHPOT_BODY_LIMIT=12kb timeout 5 "$DAEMON" 2>"$SCRATCH/err"
+check "a bad environment value exits 2" is "$?" 2
 
 # ---- limits: connections and wall time ----
 start_daemon small --max-connections 2 --max-wall 0.5 || finish
 exec 5<>"/dev/tcp/127.0.0.1/$PORT_small" 6<>"/dev/tcp/127.0.0.1/$PORT_small"
-sleep 0.3
-req GET "$URL_small/healthz"
+for i in $(seq 50); do # until the daemon has accepted the two idle connections
+    req GET "$URL_small/healthz"
+    [ "$STATUS" = 503 ] && break
+    sleep 0.1
+done
 check "a third connection over --max-connections 2 is 503 /problems/overloaded" problem 503 /problems/overloaded
 check "503 carries Retry-After" is "$(header Retry-After)" 1
 exec 5>&- 6>&-
