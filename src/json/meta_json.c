@@ -21,20 +21,30 @@ static const char *solver_name(const dp_solver_spec *s)
     }
 }
 
+/* Appends "key":number with the shortest round-trip text, like every other number dashpot writes. */
+static int num(dp_buf *out, const char *key, double x)
+{
+    char t[64];
+    size_t n = (size_t)snprintf(t, sizeof t, ",\"%s\":", key);
+    n += dp_format_double(t + n, x);
+    return dp_buf_append(out, t, n);
+}
+
 int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
 {
     const dp_solver_spec *sv = &s->solver;
-    char head[768];
-    int n = snprintf(head, sizeof head,
-        "{\"type\":\"meta\",\"version\":\"%s\",\"solver\":\"%s\",\"variant\":\"%s\",\"theta\":%.17g,"
-        "\"events_mode\":\"%s\",\"branch\":\"%s\",\"dt\":%.17g,\"t_end\":%.17g,\"steps\":%.17g,\"every\":%ld,"
-        "\"spring\":\"%s\",\"damper\":\"%s\",\"wellposedness\":",
-        DP_VERSION, solver_name(sv), variant_name(sv), sv->theta, sv->events == DP_EVENTS_LOCATE ? "locate" : "none",
-        sv->branch == DP_BRANCH_MOTION ? "motion" : "rest", sv->dt, sv->t_end, dp_spec_steps(s), s->output.every,
-        dp_spring_law_name(s->model.spring.law), dp_damper_law_name(s->model.damper.law));
+    char head[512], tail[256];
+    int n = snprintf(head, sizeof head, "{\"type\":\"meta\",\"version\":\"%s\",\"solver\":\"%s\",\"variant\":\"%s\","
+                     "\"events_mode\":\"%s\",\"branch\":\"%s\"", DP_VERSION, solver_name(sv), variant_name(sv),
+                     sv->events == DP_EVENTS_LOCATE ? "locate" : "none", sv->branch == DP_BRANCH_MOTION ? "motion" : "rest");
+    int m = snprintf(tail, sizeof tail, ",\"every\":%ld,\"spring\":\"%s\",\"damper\":\"%s\",\"wellposedness\":",
+                     s->output.every, dp_spring_law_name(s->model.spring.law), dp_damper_law_name(s->model.damper.law));
+    int st = dp_buf_append(out, head, n > 0 && (size_t)n < sizeof head ? (size_t)n : 0);
+    st |= num(out, "theta", sv->theta) | num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
+    st |= num(out, "steps", dp_spec_steps(s));
+    st |= dp_buf_append(out, tail, m > 0 && (size_t)m < sizeof tail ? (size_t)m : 0);
     dp_wp_report wp;
     dp_wellposedness(&s->model, &wp);
-    int st = dp_buf_append(out, head, n > 0 && (size_t)n < sizeof head ? (size_t)n : 0);
     st |= dp_wellposedness_json(&wp, out);
     st |= dp_buf_append(out, "}", 1);
     return st ? DP_ENOMEM : DP_OK;
