@@ -84,6 +84,8 @@ int dp_model_copy(dp_model *dst, const dp_model *src);
 
 /* F(t). */
 double dp_forcing_eval(const dp_forcing *f, double t);
+/* dF/dt (one-sided at table vertices: the slope of the segment to the right; 0 beyond the ends). */
+double dp_forcing_rate(const dp_forcing *f, double t);
 int dp_forcing_copy(dp_forcing *dst, const dp_forcing *src);
 void dp_forcing_clear(dp_forcing *f);
 /* True when F is constant in time (none, constant, or a sum of those); *value receives it. */

@@ -4,6 +4,7 @@
 
 #include <stddef.h>
 
+#include "dashpot/spec.h"
 #include "dashpot/status.h"
 
 /* Exit codes: 0 success, 1 a failure while running, 2 bad usage or an invalid spec. */
@@ -15,6 +16,10 @@ enum { DP_EXIT_OK = 0, DP_EXIT_FAIL = 1, DP_EXIT_USAGE = 2 };
 /* Reads a whole file, or standard input for "-", into a malloc'd NUL-terminated buffer; NULL on failure
  * with a message on stderr. */
 char *dp_cli_read_input(const char *path, size_t *len);
+
+/* Reads and parses the spec at path ("-": stdin) into spec (always to be dp_spec_clear'ed), printing any
+ * error to stderr. Returns dp_spec_parse's status (DP_EINVAL when the input cannot be read). */
+int dp_cli_parse_spec(const char *path, dp_spec *spec);
 
 /* Prints located errors to stderr as "dashpot: POINTER: message" lines. */
 void dp_cli_print_errors(const char *what, const dp_errors *errs);

@@ -54,21 +54,9 @@ int dp_cli_convergence(int argc, char **argv)
     double ref_dt = argc >= 2 ? ref_dt_arg(argc, argv) : -1;
     if (ref_dt < 0 || (argv[1][0] == '-' && argv[1][1] != '\0'))
         return usage();
-    size_t len;
-    char *text = dp_cli_read_input(argv[1], &len);
-    if (text == NULL)
-        return DP_EXIT_USAGE;
     dp_spec spec;
-    dp_errors errs;
-    dp_spec_init(&spec);
-    dp_errors_init(&errs);
-    int s = dp_spec_parse(text, len, 0, &spec, &errs);
-    free(text);
-    int rc = DP_EXIT_USAGE;
-    if (s != DP_OK)
-        dp_cli_print_errors(argv[1], &errs);
-    else
-        rc = study(&spec, ref_dt, argv[1]);
+    int s = dp_cli_parse_spec(argv[1], &spec);
+    int rc = s == DP_OK ? study(&spec, ref_dt, argv[1]) : DP_EXIT_USAGE;
     dp_spec_clear(&spec);
     return s == DP_ENOMEM ? DP_EXIT_FAIL : rc;
 }

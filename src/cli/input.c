@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "dashpot/json.h"
 
 char *dp_cli_read_input(const char *path, size_t *len)
 {
@@ -51,4 +52,20 @@ void dp_cli_print_errors(const char *what, const dp_errors *errs)
                 errs->item[i].pointer[0] ? errs->item[i].pointer : "(document)", errs->item[i].message);
     if (errs->dropped)
         fprintf(stderr, "dashpot: %s: ... and %zu more errors\n", what, errs->dropped);
+}
+
+int dp_cli_parse_spec(const char *path, dp_spec *spec)
+{
+    size_t len;
+    char *text = dp_cli_read_input(path, &len);
+    dp_spec_init(spec);
+    if (text == NULL)
+        return DP_EINVAL;
+    dp_errors errs;
+    dp_errors_init(&errs);
+    int s = dp_spec_parse(text, len, 0, spec, &errs);
+    free(text);
+    if (s != DP_OK)
+        dp_cli_print_errors(path, &errs);
+    return s;
 }

@@ -104,16 +104,10 @@ int dp_cli_simulate(int argc, char **argv)
     int fmt = dp_format_from_name(format);
     if (path == NULL || fmt < 0 || fmt == DP_FORMAT_SSE)
         return usage();
-    size_t len;
-    char *text = dp_cli_read_input(path, &len);
-    if (text == NULL)
-        return DP_EXIT_USAGE;
     dp_spec spec;
     dp_errors errs;
-    dp_spec_init(&spec);
     dp_errors_init(&errs);
-    int s = dp_spec_parse(text, len, 0, &spec, &errs);
-    free(text);
+    int s = dp_cli_parse_spec(path, &spec);
     dp_run *run = s == DP_OK ? dp_run_alloc(&spec, 0, &errs, &s) : NULL;
     dp_buf meta = { 0 };
     if (run != NULL && (dp_spec_meta_json(&spec, &meta) != DP_OK || dp_buf_append(&meta, "", 1) != DP_OK)) {

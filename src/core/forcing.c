@@ -7,23 +7,57 @@
 #include "dashpot/model.h"
 #include "dashpot/status.h"
 
+/* The table segment [t[*lo], t[*hi]] holding t, for t strictly inside the table's span. */
+static void table_segment(const dp_forcing *f, double t, size_t *lo, size_t *hi)
+{
+    size_t a = 0, b = f->n - 1; /* invariant: t[a] <= t < t[b] */
+    while (b - a > 1) {
+        size_t mid = a + (b - a) / 2;
+        if (f->t[mid] <= t)
+            a = mid;
+        else
+            b = mid;
+    }
+    *lo = a, *hi = b;
+}
+
 static double table_eval(const dp_forcing *f, double t)
 {
-    size_t n = f->n;
+    size_t n = f->n, lo, hi;
     if (t <= f->t[0])
         return f->F[0];
     if (t >= f->t[n - 1])
         return f->F[n - 1];
-    size_t lo = 0, hi = n - 1; /* invariant: t[lo] < t < t[hi] (or equal at hi) */
-    while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (f->t[mid] <= t)
-            lo = mid;
-        else
-            hi = mid;
-    }
+    table_segment(f, t, &lo, &hi);
     double s = (t - f->t[lo]) / (f->t[hi] - f->t[lo]);
     return f->F[lo] + s * (f->F[hi] - f->F[lo]);
+}
+
+/* dF/dt of a table: the slope of the segment holding t, 0 beyond the ends (constant there). */
+static double table_rate(const dp_forcing *f, double t)
+{
+    size_t lo, hi;
+    if (f->n < 2 || !(t >= f->t[0]) || t >= f->t[f->n - 1])
+        return 0;
+    table_segment(f, t, &lo, &hi);
+    return (f->F[hi] - f->F[lo]) / (f->t[hi] - f->t[lo]);
+}
+
+double dp_forcing_rate(const dp_forcing *f, double t)
+{
+    double s = 0;
+    switch (f->kind) {
+    case DP_FORCING_HARMONIC:
+        return -f->amplitude * f->omega * sin(f->omega * t + f->phase);
+    case DP_FORCING_TABLE:
+        return table_rate(f, t);
+    case DP_FORCING_SUM:
+        for (size_t i = 0; i < f->nterms; i++)
+            s += dp_forcing_rate(&f->terms[i], t);
+        return s;
+    default:
+        return 0;
+    }
 }
 
 double dp_forcing_eval(const dp_forcing *f, double t)

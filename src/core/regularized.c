@@ -57,40 +57,6 @@ static double relaxation_rate(const dp_relaxation *r, double u)
     return r->kind == DP_RELAX_LINEAR ? r->L : 0;
 }
 
-/* dF/dt of a table: the slope of the segment holding t, 0 beyond the ends (constant there). */
-static double table_rate(const dp_forcing *f, double t)
-{
-    if (f->n < 2 || !(t >= f->t[0]) || t >= f->t[f->n - 1])
-        return 0;
-    size_t lo = 0, hi = f->n - 1;
-    while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (f->t[mid] <= t)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return (f->F[hi] - f->F[lo]) / (f->t[hi] - f->t[lo]);
-}
-
-/* dF/dt, the non-autonomous part of the Jacobian (bsimp and rk4imp use it). */
-static double forcing_rate(const dp_forcing *f, double t)
-{
-    double s = 0;
-    switch (f->kind) {
-    case DP_FORCING_HARMONIC:
-        return -f->amplitude * f->omega * sin(f->omega * t + f->phase);
-    case DP_FORCING_TABLE:
-        return table_rate(f, t);
-    case DP_FORCING_SUM:
-        for (size_t i = 0; i < f->nterms; i++)
-            s += forcing_rate(&f->terms[i], t);
-        return s;
-    default:
-        return 0;
-    }
-}
-
 /* Spring force at x and (slope != NULL) its derivative. */
 static double spring_force(const struct dp_regularized *g, double x, double *slope)
 {
@@ -132,7 +98,7 @@ static int jacobian(double t, const double y[], double *dfdy, double dfdt[], voi
     damper_force(g, y[1] - g->vb, &kd);
     g->jevals++;
     dfdy[0] = 0, dfdy[1] = 1, dfdy[2] = -ks / g->m, dfdy[3] = -kd / g->m;
-    dfdt[0] = 0, dfdt[1] = forcing_rate(g->F, t) / g->m;
+    dfdt[0] = 0, dfdt[1] = dp_forcing_rate(g->F, t) / g->m;
     return isfinite(dfdy[2]) && isfinite(dfdy[3]) && isfinite(dfdt[1]) ? GSL_SUCCESS : GSL_EBADFUNC;
 }
 
