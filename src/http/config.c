@@ -43,6 +43,7 @@ static const option options[] = {
     OPT("openapi", "DASHPOT_OPENAPI", K_STRING, openapi, 0, 0, "the OpenAPI document served at /openapi.yaml"),
     OPT("bench-static", "DASHPOT_BENCH_STATIC", K_STRING, bench_static, 0, 0,
         "benchmarks only: serve this file at GET /bench/static"),
+    OPT("web-dir", "DASHPOT_WEB_DIR", K_STRING, web_dir, 0, 0, "the browser page's files, served at /"),
 };
 enum { NOPTIONS = sizeof options / sizeof options[0] };
 
@@ -60,6 +61,7 @@ static void defaults(config *c)
     c->body_limit = 1u << 20;
     c->shutdown_grace = 10;
     snprintf(c->openapi, sizeof c->openapi, "api/openapi.yaml");
+    snprintf(c->web_dir, sizeof c->web_dir, "web");
 }
 
 /* The value of an option's field as text (for --help). */

@@ -31,6 +31,7 @@ typedef struct config {
     double shutdown_grace;       /* seconds runs in flight get to finish after SIGTERM */
     char openapi[4096];          /* path of api/openapi.yaml */
     char bench_static[4096];     /* a file served at GET /bench/static (benchmarks only); "" = route off */
+    char web_dir[4096];          /* the browser page's files (web/), served at / (page.c) */
 } config;
 
 /* Fills c from defaults, DASHPOT_* variables and argv (flags win). Returns 0 to run, 1 when --help or
@@ -40,7 +41,7 @@ int config_load(config *c, int argc, char **argv);
 /* ---- metrics (metrics.c) ---- */
 
 enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
-       ROUTE_STATIC, ROUTE_NONE, NROUTES };
+       ROUTE_STATIC, ROUTE_PAGE, ROUTE_NONE, NROUTES };
 enum { NSTATUS = 10, NBUCKETS = 12 };
 
 typedef struct metrics {
@@ -66,6 +67,7 @@ typedef struct server {
     metrics m;
     char *openapi;               /* the file's text, NULL if it could not be read */
     size_t openapi_len;
+    struct web *web;             /* the page's files, read at start-up (page.c) */
     atomic_int draining;         /* SIGTERM seen: /readyz says 503 */
     atomic_int abort_streams;    /* grace period over: streams end with an error line */
 } server;
@@ -125,6 +127,11 @@ enum MHD_Result handle_wellposedness(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_bench_static(struct MHD_Connection *c, request *r);
 /* Called by the stream's free callback: the run is gone; counts it as cancelled if it had not finished. */
 void stream_free(stream *st);
+/* The browser page (page.c): reads --web-dir at start-up; "/" and "/FILE" name it (page_route); GET / HEAD. */
+void page_load(server *s);
+void page_free(server *s);
+int page_route(const server *s, const char *url);
+enum MHD_Result handle_page(struct MHD_Connection *c, request *r);
 
 /* ---- content negotiation (negotiate.c) ---- */
 

@@ -29,6 +29,7 @@ static const struct route {
     { "/metrics", "GET", "GET, HEAD", ROUTE_METRICS, 0, handle_metrics },
     { "/openapi.yaml", "GET", "GET, HEAD", ROUTE_OPENAPI, 0, handle_openapi },
     { "/bench/static", "GET", "GET, HEAD", ROUTE_STATIC, 0, handle_bench_static },
+    { "/", "GET", "GET, HEAD", ROUTE_PAGE, 0, handle_page }, /* and every file of --web-dir: page.c */
 };
 enum { NTABLE = sizeof routes / sizeof routes[0] };
 
@@ -37,7 +38,8 @@ int route_find(const server *s, const char *method, const char *url, const char 
     *allow = NULL;
     for (int i = 0; i < NTABLE; i++) {
         const struct route *rt = &routes[i];
-        if (strcmp(rt->path, url) != 0 || (rt->id == ROUTE_STATIC && s->cfg.bench_static[0] == '\0'))
+        if ((rt->id == ROUTE_PAGE ? !page_route(s, url) : strcmp(rt->path, url) != 0) ||
+            (rt->id == ROUTE_STATIC && s->cfg.bench_static[0] == '\0'))
             continue;
         if (strcmp(rt->method, method) != 0 && !(strcmp(rt->method, "GET") == 0 && strcmp(method, "HEAD") == 0))
             *allow = rt->allow;

@@ -218,6 +218,7 @@ int server_start(server *s)
         return -1;
     }
     load_openapi(s);
+    page_load(s);
     unsigned flags = MHD_USE_EPOLL_INTERNAL_THREAD | MHD_USE_ITC | MHD_USE_TURBO | MHD_USE_ERROR_LOG |
                      (ipv6 ? MHD_USE_IPv6 : 0);
     s->daemon = MHD_start_daemon(
@@ -284,5 +285,6 @@ void server_free(server *s)
     if (s->daemon)
         MHD_stop_daemon(s->daemon);
     free(s->openapi);
+    page_free(s);
     free(s);
 }
