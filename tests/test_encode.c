@@ -232,7 +232,7 @@ static const dp_record run_records[] = {
 static char *encode_run(dp_format f, int fail, const char *extra)
 {
     dp_summary sm = { .final = run_records[3].u.sample, .steps = 2, .samples = 3, .events = 1,
-                      .stick_time = 0.25, .iterations = 7 };
+                      .stick_time = 0.25, .iterations = 7, .rejected = 3, .fevals = 41 };
     dp_buf b = { 0 };
     dp_encoder e;
     dp_encoder_init(&e, f);
@@ -252,7 +252,8 @@ static char *encode_run(dp_format f, int fail, const char *extra)
 #define S1 "\"t\":0.5,\"x\":0.875,\"v\":-0.5,\"Fs\":0.875,\"Fd\":-1,\"Fc\":-1,\"phase\":\"slip\""
 #define S2 "\"t\":1,\"x\":0.1,\"v\":-0.3,\"Fs\":0.1,\"Fd\":1e-7,\"Fc\":0"
 #define EV "\"kind\":\"slip\",\"t\":0.25,\"x\":1,\"v\":0"
-#define SUM "\"final\":{" S2 "},\"steps\":2,\"samples\":3,\"events\":1,\"stick_time\":0.25,\"iterations\":7"
+#define SUM "\"final\":{" S2 "},\"steps\":2,\"samples\":3,\"events\":1,\"stick_time\":0.25,\"iterations\":7," \
+            "\"rejected\":3,\"fevals\":41"
 #define ERR "\"status\":422,\"title\":\"the solution diverged (non-finite values)\"," \
             "\"detail\":\"x left \\\"finite\\\"\\nnumbers\""
 

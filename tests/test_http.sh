@@ -130,6 +130,14 @@ sys.exit(0 if ok else 1)' "$BODY"
 req POST "$U/v1/simulate" -H 'Accept: text/html;q=0.9, text/csv;q=0.5' --data-binary "$SPEC"
 check "Accept picks the best acceptable offer (text/csv)" is "$STATUS $(header Content-Type)" "200 text/csv; charset=utf-8"
 
+REG='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 1}},
+ "initial": {"x": 4.5, "v": 0}, "solver": {"kind": "regularized", "n": 1000, "dt": 1, "t_end": 10}}'
+req POST "$U/v1/simulate" -H 'Accept: application/x-ndjson' --data-binary "$REG"
+check "regularized summary counts rejected steps and right-hand side evaluations" pyjson <(tail -n 1 "$BODY") \
+    "d['type'] == 'summary' and d['rejected'] > 0 and d['fevals'] > d['steps'] > 0"
+check "stick-slip summary has rejected 0 and fevals 0" pyjson "$SCRATCH/doc.json" \
+    "d['summary']['rejected'] == 0 and d['summary']['fevals'] == 0"
+
 STAB='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}}'
 MAP='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}, "map": {"x": {"param": "mu[1]", "from": 0, "to": 2, "steps": 3},
  "y": {"param": "lambda[1]", "from": 0.25, "to": 1.75, "steps": 2}}}'

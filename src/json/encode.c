@@ -313,7 +313,11 @@ static int summary_members(dp_buf *b, const dp_summary *sm)
     s = s ? s : put_str(b, ",\"stick_time\":");
     s = s ? s : put_double(b, sm->stick_time);
     s = s ? s : put_str(b, ",\"iterations\":");
-    return s ? s : put_ull(b, sm->iterations);
+    s = s ? s : put_ull(b, sm->iterations);
+    s = s ? s : put_str(b, ",\"rejected\":");
+    s = s ? s : put_ull(b, sm->rejected);
+    s = s ? s : put_str(b, ",\"fevals\":");
+    return s ? s : put_ull(b, sm->fevals);
 }
 
 int dp_encoder_end(dp_encoder *e, dp_buf *b, const dp_summary *sm, const char *extra_json)
