@@ -77,6 +77,24 @@ req POST "$U/v1/simulate" -H 'Transfer-Encoding: chunked' --data-binary @"$SCRAT
 check "a 2 MB chunked body is 413 (read and dropped past the limit)" problem 413
 req GET "$U/a%22b%01c"
 check "a hostile path is escaped in the log" grep -qF '"/a\x22b\x01c" 404' "$LOG_main"
+# Raw bytes on the wire, no client escaping: ESC, a quote, a backslash, DEL and a byte >= 0x80 in the path,
+# a quote in the method. The log keeps one line per request, with every such byte as \xHH.
+python3 - "$PORT_main" <<'PY' >"$SCRATCH/raw"
+import socket, sys
+for line in (b'GET /x\x1b[31m"\\\x7f\xff HTTP/1.1\r\nHost: a\r\nConnection: close\r\n\r\n',
+             b'GE"T /y HTTP/1.1\r\nHost: a\r\nConnection: close\r\n\r\n'):
+    s = socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=5)
+    s.sendall(line)
+    print(s.recv(100).split(b"\r\n")[0].decode())
+    s.close()
+PY
+check "raw control bytes in a path: answered 404" grep -q '^HTTP/1.1 404' "$SCRATCH/raw"
+check "...and logged escaped (\x1b \x22 \x5c \x7f \xff), never raw" \
+    grep -qF 'GET "/x\x1b[31m\x22\x5c\x7f\xff" 404' "$LOG_main"
+check "the log has no raw control byte or byte >= 0x80 at all" bash -c "! LC_ALL=C grep -q \$'[\x01-\x09\x0b-\x1f\x7f-\xff]' '$LOG_main'"
+check "a quote in the method is escaped too" grep -qF 'GE\x22T "/y" 404' "$LOG_main"
+check "the daemon listens on 127.0.0.1 only by default (/proc/net/tcp)" \
+    grep -qE "^ *[0-9]+: 0100007F:$(printf %04X "$PORT_main") 00000000:0000 0A" /proc/net/tcp
 
 # ---- formats ----
 req POST "$U/v1/simulate" --data-binary "$SPEC"
@@ -154,6 +172,27 @@ check "stability with mass 0 is 422 at /mass" pyjson "$BODY" "d['status'] == 422
 req POST "$U/v1/wellposedness" --data-binary "$SPEC"
 check "wellposedness: existence and uniqueness guaranteed" pyjson "$BODY" "d['existence']['guaranteed'] and d['uniqueness']['guaranteed']"
 
+# ---- the convergence study ----
+STUDY='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 1}},
+ "initial": {"x": 4.5, "v": 0}, "solver": {"kind": "regularized", "n": [10, 100, 1000], "t_end": 10, "dt": 0.5}}'
+req POST "$U/v1/convergence" --data-binary "$STUDY"
+check "convergence: 200 application/json" is "$STATUS $(header Content-Type)" "200 application/json"
+check "convergence: 3 rows against the closed form, order 1 (0.9 .. 1.1), n err_x -> 0.5 (10 - 2 pi)" pyjson "$BODY" \
+    "len(d['rows']) == 3 and d['reference']['solver'] == 'analytic' and 0.9 < d['rate_x'] < 1.1 and abs(1000 * d['rows'][2]['err_x'] - 0.5 * (10 - 2 * 3.141592653589793)) < 0.01 and d['rows'][0]['rate_x'] is None"
+if [ -x "$BUILD/dashpot" ]; then
+    printf '%s' "$STUDY" | "$BUILD/dashpot" convergence - >"$SCRATCH/study.json"
+    check "convergence: byte-identical to dashpot convergence" cmp -s "$BODY" "$SCRATCH/study.json"
+fi
+req POST "$U/v1/convergence" --data-binary "$SPEC"
+check "convergence of a stick-slip spec is 422 at /solver/kind" pyjson "$BODY" \
+    "d['status'] == 422 and d['type'] == '/problems/invalid-spec' and d['errors'][0]['pointer'] == '/solver/kind'"
+req POST "$U/v1/convergence" --data-binary '{"solver": '
+check "convergence of malformed JSON is 400" problem 400 /problems/malformed-json
+req POST "$U/v1/convergence" -H 'Accept: text/csv' --data-binary "$STUDY"
+check "convergence with Accept: text/csv is 406" problem 406
+req GET "$U/v1/convergence"
+check "GET /v1/convergence is 405 with Allow: POST" is "$STATUS $(header Allow)" "405 POST"
+
 # ---- a 10^7-sample stream: t_end = 10, dt = 1e-6, every step a sample ----
 t0=$(date +%s.%N)
 CURL_TIME=600 hcurl -H 'Accept: application/x-ndjson' --data-binary "$(long_spec 10)" "$U/v1/simulate" |
@@ -194,6 +233,47 @@ check "a bad flag value exits 2 with a message" is "$? $(cat "$SCRATCH/err")" \
 DASHPOT_BODY_LIMIT=12kb timeout 5 "$DAEMON" 2>"$SCRATCH/err"
 check "a bad environment value exits 2" is "$?" 2
 
+# ---- the bearer token: /v1/ needs it, the rest stays open ----
+TINY='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.3}}, "solver": {"dt": 1, "t_end": 2}}'
+DASHPOT_TOKEN='tok.en-42~/+=' start_daemon tok || finish
+T=$URL_tok
+check "with a token the start-up line says so" grep -q '/v1/ routes: bearer token required' "$LOG_tok"
+req POST "$T/v1/simulate" --data-binary "$TINY"
+check "no Authorization: 401 /problems/unauthorized" problem 401 /problems/unauthorized
+check "401 carries WWW-Authenticate: Bearer" is "$(header WWW-Authenticate)" 'Bearer realm="dashpot"'
+for bad in 'Bearer tok.en-42~/+' 'Bearer tok.en-42~/+==' 'Bearer xok.en-42~/+=' 'Basic tok.en-42~/+=' 'Bearer'; do
+    req POST "$T/v1/simulate" -H "Authorization: $bad" --data-binary "$TINY"
+    check "Authorization: '$bad' is 401" is "$STATUS" 401
+done
+req POST "$T/v1/simulate" -H 'Authorization: Bearer tok.en-42~/+=' --data-binary "$TINY"
+check "the right token: 200" is "$STATUS" 200
+req POST "$T/v1/stability" -H 'authorization: bearer tok.en-42~/+=' --data-binary "$STAB"
+check "the scheme and header name are case-insensitive (RFC 6750, 9110)" is "$STATUS" 200
+req POST "$T/v1/no-such-route" --data-binary '{}'
+check "an unknown /v1/ path without the token is 401, not 404 (nothing to learn without it)" is "$STATUS" 401
+for path in /healthz /readyz /metrics /openapi.yaml; do
+    req GET "$T$path"
+    check "GET $path stays open without the token" is "$STATUS" 200
+done
+head -c 2000000 /dev/zero | tr '\0' ' ' >"$SCRATCH/big"
+req POST "$T/v1/simulate" --data-binary @"$SCRATCH/big"
+check "a 2 MB body without the token is 401 (refused before the upload)" is "$STATUS" 401
+check "/metrics counts the 401s" grep -q 'dashpot_http_requests_total{route="/v1/simulate",status="401"} 7' <(hcurl "$T/metrics")
+check "the token never reaches the log" bash -c "! grep -q 'tok.en' '$LOG_tok'"
+stop_daemon tok
+printf 'from-a-file\n' >"$SCRATCH/token"
+start_daemon tokfile --token-file "$SCRATCH/token" || finish
+req POST "$URL_tokfile/v1/simulate" -H 'Authorization: Bearer from-a-file' --data-binary "$TINY"
+check "--token-file: its first line is the token" is "$STATUS" 200
+req POST "$URL_tokfile/v1/simulate" -H 'Authorization: Bearer from-a-file\n' --data-binary "$TINY"
+check "--token-file: the line break is not part of it" is "$STATUS" 401
+stop_daemon tokfile
+printf 'two words\n' >"$SCRATCH/token"
+timeout 5 "$DAEMON" --port 0 --token-file "$SCRATCH/token" 2>"$SCRATCH/err"
+check "a token with a space is refused at start (exit 2)" is "$?" 2
+timeout 5 "$DAEMON" --port 0 --token-file "$SCRATCH/no-such-file" 2>"$SCRATCH/err"
+check "an unreadable --token-file is refused at start (exit 2)" is "$?" 2
+
 # ---- limits: connections and wall time ----
 start_daemon small --max-connections 2 --max-wall 0.5 || finish
 exec 5<>"/dev/tcp/127.0.0.1/$PORT_small" 6<>"/dev/tcp/127.0.0.1/$PORT_small"
@@ -212,6 +292,15 @@ CURL_TIME=60 hcurl -H 'Accept: application/x-ndjson' --data-binary "$(long_spec 
     tail -n 1 >"$SCRATCH/last"
 check "over --max-wall the stream ends with an error line (503, wall-time)" pyjson "$SCRATCH/last" \
     "d['type'] == 'error' and d['status'] == 503 and 'wall-time' in d['detail']"
+# An explicit stepper at n = 10^5, 10^6: about 8 s of work, stopped at the wall-time limit of 0.5 s.
+t0=$(date +%s.%N)
+req POST "$URL_small/v1/convergence" --data-binary '{"model": {"mass": 1, "spring": {"law": "linear", "k": 1},
+ "damper": {"law": "coulomb", "phi0": 1}}, "initial": {"x": 4.5, "v": 0}, "solver": {"kind": "regularized",
+ "n": [100000, 1000000], "stepper": "rkf45", "t_end": 100, "dt": 0.5}}'
+t1=$(date +%s.%N)
+check "a convergence study over --max-wall is 503 /problems/timeout" problem 503 /problems/timeout
+check "...answered within 1.5 s of a 0.5 s limit" python3 -c "import sys; sys.exit(0 if $t1 - $t0 < 1.5 else 1)"
+check "...and no study is left computing" is "$(metric "$URL_small" dashpot_studies_in_flight)" 0
 stop_daemon small
 check "SIGTERM: exit 0" is "$RC_small" 0
 

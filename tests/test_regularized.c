@@ -425,6 +425,41 @@ static void test_rules(void **state)
     assert_string_equal(e.item[0].pointer, "/solver/kind");
 }
 
+/* A stop callback that answers "stop" on its n-th call. */
+static int stop_after(void *ctx)
+{
+    int *left = ctx;
+    return --*left <= 0;
+}
+
+/* dp_convergence_study_until: a study that is asked to stop ends with DP_ECANCEL and an error at "", after
+ * asking once per block; one that is never asked to stop gives what dp_convergence_study gives. */
+static void test_study_stop(void **state)
+{
+    (void)state;
+    const char *json = "{\"model\":" COULOMB "},\"initial\":{\"x\":2},\"solver\":{\"kind\":\"regularized\","
+                       "\"n\":[10,100],\"t_end\":20,\"dt\":0.01}}";
+    dp_spec spec;
+    dp_errors e;
+    dp_spec_init(&spec);
+    dp_errors_init(&e);
+    assert_int_equal(dp_spec_parse(json, strlen(json), 0, &spec, &e), DP_OK);
+    dp_convergence a, b;
+    int left = 5;
+    assert_int_equal(dp_convergence_study_until(&spec, 0, 0, stop_after, &left, &a, &e), DP_ECANCEL);
+    assert_int_equal(e.n, 1);
+    assert_string_equal(e.item[0].pointer, "");
+    assert_true(a.samples < 2001);
+    printf("stopped after %llu of 2001 output times: %s\n", a.samples, e.item[0].message);
+    dp_errors_init(&e);
+    left = 1 << 30;
+    assert_int_equal(dp_convergence_study_until(&spec, 0, 0, stop_after, &left, &a, &e), DP_OK);
+    assert_int_equal(dp_convergence_study(&spec, 0, 0, &b, &e), DP_OK);
+    assert_int_equal(a.samples, 2001);
+    assert_true(a.row[1].err_x == b.row[1].err_x && a.rate_x == b.rate_x);
+    dp_spec_clear(&spec);
+}
+
 /* The JSON of a study parses back with its numbers and nulls. */
 static void test_study_json(void **state)
 {
@@ -467,6 +502,7 @@ int main(void)
         cmocka_unit_test(test_impossible_tolerance_is_an_error),
         cmocka_unit_test(test_rules),
         cmocka_unit_test(test_study_json),
+        cmocka_unit_test(test_study_stop),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

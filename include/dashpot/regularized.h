@@ -73,6 +73,12 @@ typedef struct dp_convergence {
 int dp_convergence_study(const dp_spec *spec, double max_steps, double ref_dt, dp_convergence *out,
                          dp_errors *errs);
 
+/* The same, asking stop(ctx) (may be NULL) before each block of every run (at most 64 records or 10^5
+ * integrator steps apart): when it answers nonzero the study ends with DP_ECANCEL and an error at "".
+ * This is how a server holds a study to a wall-time limit. */
+int dp_convergence_study_until(const dp_spec *spec, double max_steps, double ref_dt, int (*stop)(void *ctx),
+                               void *ctx, dp_convergence *out, dp_errors *errs);
+
 struct dp_buf;
 
 /* Appends the study as one JSON object (json layer, src/json/convergence_json.c):

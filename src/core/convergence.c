@@ -29,6 +29,8 @@ typedef struct stream {
     dp_run *run;
     int status;
     size_t n, i;
+    int (*stop)(void *ctx);  /* asked before every block: nonzero ends the run with DP_ECANCEL */
+    void *ctx;
     dp_record buf[BLOCK];
 } stream;
 
@@ -46,6 +48,10 @@ static int next_sample(stream *s, dp_sample *out)
         if (s->status != DP_MORE)
             return 0;
         s->i = 0;
+        if (s->stop && s->stop(s->ctx)) {
+            s->status = DP_ECANCEL, s->n = 0;
+            return 0;
+        }
         s->status = dp_run_next(s->run, s->buf, BLOCK, &s->n);
         if (s->status < 0)
             s->n = 0; /* a failed run's last records are not compared */
@@ -138,12 +144,16 @@ static int compare(dp_convergence *c, const dp_sample *ref, const dp_sample *s, 
 /* Pulls every stream to its end in lockstep. */
 static int sweep(dp_convergence *c, stream *st, size_t k, dp_sample *cur, dp_errors *errs)
 {
-    dp_sample ref;
+    dp_sample ref = { 0 };
     for (;;) {
-        int got = next_sample(&st[0], &ref), all = got, none = !got;
+        int got = next_sample(&st[0], &ref), all = got, none = !got, stopped = st[0].status == DP_ECANCEL;
         for (size_t i = 0; i < k; i++) {
             int g = next_sample(&st[i + 1], &cur[i]);
-            all = all && g, none = none && !g;
+            all = all && g, none = none && !g, stopped = stopped || st[i + 1].status == DP_ECANCEL;
+        }
+        if (stopped) {
+            dp_errors_add(errs, "", "the study was stopped after %llu of its output times", c->samples);
+            return DP_ECANCEL;
         }
         if (none)
             break;
@@ -193,6 +203,12 @@ static void init_rows(dp_convergence *c, const dp_spec *spec)
 int dp_convergence_study(const dp_spec *spec, double max_steps, double ref_dt, dp_convergence *out,
                          dp_errors *errs)
 {
+    return dp_convergence_study_until(spec, max_steps, ref_dt, NULL, NULL, out, errs);
+}
+
+int dp_convergence_study_until(const dp_spec *spec, double max_steps, double ref_dt, int (*stop)(void *ctx),
+                               void *ctx, dp_convergence *out, dp_errors *errs)
+{
     memset(out, 0, sizeof *out);
     if (spec->solver.kind != DP_SOLVER_REGULARIZED) {
         dp_errors_add(errs, "/solver/kind", "a convergence study needs the regularized solver");
@@ -208,6 +224,8 @@ int dp_convergence_study(const dp_spec *spec, double max_steps, double ref_dt, d
     stream *st = calloc(k + 1, sizeof *st);
     dp_sample *cur = calloc(k, sizeof *cur);
     s = st && cur ? open_streams(spec, &ref, max_steps, st, k, errs) : DP_ENOMEM;
+    for (size_t i = 0; st && i <= k; i++)
+        st[i].stop = stop, st[i].ctx = ctx;
     if (s == DP_OK)
         s = sweep(out, st, k, cur, errs);
     if (s == DP_OK)

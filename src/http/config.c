@@ -35,7 +35,8 @@ static const option options[] = {
         "connections served at once; more get 503"),
     OPT("max-steps", "DASHPOT_MAX_STEPS", K_DOUBLE, max_steps, 1, 1e9, "time steps one request may ask for"),
     OPT("max-wall", "DASHPOT_MAX_WALL", K_DOUBLE, max_wall, 0.001, 86400, "seconds one request may run"),
-    OPT("timeout", "DASHPOT_TIMEOUT", K_UINT, timeout, 1, 86400, "seconds a connection may stay idle"),
+    OPT("timeout", "DASHPOT_TIMEOUT", K_UINT, timeout, 1, 86400,
+        "seconds a connection may stay idle or take to send a request"),
     OPT("body-limit", "DASHPOT_BODY_LIMIT", K_SIZE, body_limit, 1, 1073741824.0,
         "bytes of a request body; larger gets 413"),
     OPT("shutdown-grace", "DASHPOT_SHUTDOWN_GRACE", K_DOUBLE, shutdown_grace, 0, 3600,
@@ -44,6 +45,8 @@ static const option options[] = {
     OPT("bench-static", "DASHPOT_BENCH_STATIC", K_STRING, bench_static, 0, 0,
         "benchmarks only: serve this file at GET /bench/static"),
     OPT("web-dir", "DASHPOT_WEB_DIR", K_STRING, web_dir, 0, 0, "the browser page's files, served at /"),
+    OPT("token-file", "DASHPOT_TOKEN_FILE", K_STRING, token_file, 0, 0,
+        "file whose first line is the bearer token /v1/ requires"),
 };
 enum { NOPTIONS = sizeof options / sizeof options[0] };
 
@@ -81,7 +84,7 @@ static void help(void)
     config d;
     defaults(&d);
     printf("usage: dashpotd [--FLAG VALUE | --FLAG=VALUE]...\n\n"
-           "The dashpot HTTP daemon: POST /v1/simulate, /v1/stability, /v1/wellposedness; GET /healthz,\n"
+           "The dashpot HTTP daemon: POST /v1/simulate, /v1/stability, /v1/wellposedness, /v1/convergence; GET /healthz,\n"
            "/readyz, /metrics, /openapi.yaml. Every flag can also be set by its environment variable; a flag wins.\n\n"
            "  %-17s %-25s %-17s %s\n", "flag", "variable", "default", "");
     for (int i = 0; i < NOPTIONS; i++) {
@@ -91,6 +94,8 @@ static void help(void)
     }
     printf("  --%-15s %-25s %-17s %s\n  --%-15s %-25s %-17s %s\n", "help", "", "", "this text", "version", "", "",
            "the version");
+    printf("\nDASHPOT_TOKEN: the bearer token itself, when no --token-file is given (no flag: it would show in ps).\n"
+           "With a token, /v1/ answers 401 without \"Authorization: Bearer TOKEN\"; the other routes stay open.\n");
     printf("\nSIGTERM or SIGINT: stop accepting, let runs finish (--shutdown-grace), then exit 0.\n");
 }
 

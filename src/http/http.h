@@ -11,6 +11,7 @@
 #define DASHPOT_HTTP_H
 
 #include <microhttpd.h>
+#include <pthread.h>
 #include <stdatomic.h>
 #include <stddef.h>
 
@@ -26,12 +27,14 @@ typedef struct config {
     unsigned max_connections;    /* open connections served; beyond: 503 */
     double max_steps;            /* per request, passed to dp_spec_parse and dp_run_alloc */
     double max_wall;             /* seconds one request may take */
-    unsigned timeout;            /* seconds a connection may stay idle */
+    unsigned timeout;            /* seconds a connection may stay idle, and a request may take to arrive */
     size_t body_limit;           /* bytes of a request body; beyond: 413 */
     double shutdown_grace;       /* seconds runs in flight get to finish after SIGTERM */
     char openapi[4096];          /* path of api/openapi.yaml */
     char bench_static[4096];     /* a file served at GET /bench/static (benchmarks only); "" = route off */
     char web_dir[4096];          /* the browser page's files (web/), served at / (page.c) */
+    char token_file[4096];       /* a file holding the bearer token that /v1/ requires; "" = DASHPOT_TOKEN */
+    char token[1024];            /* the token itself (auth_load); "" = /v1/ is open */
 } config;
 
 /* Fills c from defaults, DASHPOT_* variables and argv (flags win). Returns 0 to run, 1 when --help or
@@ -40,9 +43,9 @@ int config_load(config *c, int argc, char **argv);
 
 /* ---- metrics (metrics.c) ---- */
 
-enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
+enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_CONVERGENCE, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
        ROUTE_STATIC, ROUTE_PAGE, ROUTE_NONE, NROUTES };
-enum { NSTATUS = 10, NBUCKETS = 12 };
+enum { NSTATUS = 12, NBUCKETS = 12 };
 
 typedef struct metrics {
     atomic_ullong requests[NROUTES][NSTATUS];    /* by route and status (metrics.c: status_slot) */
@@ -51,7 +54,9 @@ typedef struct metrics {
     atomic_ullong samples_streamed, bytes_streamed;
     atomic_ullong runs_started, runs_completed, runs_failed, runs_cancelled;
     atomic_llong runs_in_flight, connections_open;
+    atomic_llong studies_in_flight;              /* /v1/convergence studies computing now */
     atomic_ullong connections_rejected;
+    atomic_ullong connections_timed_out;         /* closed by the request deadline (deadline.c) */
 } metrics;
 
 void metrics_request(metrics *m, int route, int status, double seconds);
@@ -70,6 +75,8 @@ typedef struct server {
     struct web *web;             /* the page's files, read at start-up (page.c) */
     atomic_int draining;         /* SIGTERM seen: /readyz says 503 */
     atomic_int abort_streams;    /* grace period over: streams end with an error line */
+    pthread_mutex_t conns_lock;  /* guards `conns`, the open connections (deadline.c) */
+    struct conn *conns;
 } server;
 
 typedef struct stream stream;
@@ -89,6 +96,8 @@ typedef struct request {
     stream *stream;              /* the streamed response's state, if any */
 } request;
 
+/* A zeroed server with its lock initialized (NULL when out of memory); server_free releases it. */
+server *server_new(void);
 int server_start(server *s);
 /* Stops accepting, lets runs finish within the grace period, then ends the rest with an error line. */
 void server_shutdown(server *s);
@@ -123,6 +132,7 @@ enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_stability(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_wellposedness(struct MHD_Connection *c, request *r);
+enum MHD_Result handle_convergence(struct MHD_Connection *c, request *r);
 /* GET /bench/static: the --bench-static file through the same chunked content-reader path as a stream. */
 enum MHD_Result handle_bench_static(struct MHD_Connection *c, request *r);
 /* Called by the stream's free callback: the run is gone; counts it as cancelled if it had not finished. */
@@ -132,6 +142,28 @@ void page_load(server *s);
 void page_free(server *s);
 int page_route(const server *s, const char *url);
 enum MHD_Result handle_page(struct MHD_Connection *c, request *r);
+
+/* ---- access control (auth.c) ---- */
+
+/* The bearer token into c->token: the --token-file's first line, else DASHPOT_TOKEN, else none. 0, or -1
+ * with a message on stderr (unreadable file, empty token, characters outside RFC 6750's b64token). */
+int auth_load(config *c);
+/* 1 when the request may go on: no token is set, the path is outside /v1/, or the request carries
+ * "Authorization: Bearer <token>" (compared in time independent of where it differs). */
+int auth_ok(const server *s, struct MHD_Connection *c, const char *url);
+
+/* ---- request deadlines (deadline.c) ---- */
+
+/* A request must arrive whole (head and body) within cfg.timeout seconds of its connection becoming ready
+ * for it (opened, or the previous response sent); MHD's own timeout only bounds idleness, which a client
+ * sending a byte at a time never reaches. The NOTIFY_CONNECTION callback registers connections; the main
+ * thread calls deadline_sweep a few times a second and shuts down the sockets of late ones. */
+void deadline_open(server *s, struct MHD_Connection *c, void **socket_context);
+void deadline_close(server *s, void **socket_context);
+/* The request has arrived (1) or its response is done and the next one's clock starts (0). */
+void deadline_mark(struct MHD_Connection *c, int arrived);
+/* Shuts down connections past their deadline; returns how many. */
+unsigned deadline_sweep(server *s);
 
 /* ---- content negotiation (negotiate.c) ---- */
 

@@ -1,9 +1,11 @@
 /* src/http/main.c - dashpotd: configuration, signals, start, graceful stop.
  *
  * SIGTERM and SIGINT are blocked in every thread (MHD's threads inherit the mask) and taken synchronously
- * by sigwait in the main thread: no handler, no flag shared with an interrupt. On either, the daemon stops
- * accepting, gives runs in flight --shutdown-grace seconds, ends the rest with an error line, exits 0.
+ * by sigtimedwait in the main thread: no handler, no flag shared with an interrupt. Between signals the
+ * main thread enforces the request deadline (deadline.c) four times a second. On either signal the daemon
+ * stops accepting, gives runs in flight --shutdown-grace seconds, ends the rest with an error line, exits 0.
  */
+#include <arpa/inet.h>
 #include <gsl/gsl_errno.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -23,13 +25,39 @@ static void take_signals(sigset_t *set)
     signal(SIGPIPE, SIG_IGN);
 }
 
+/* 1 for 127.0.0.0/8 and ::1, the addresses only this machine reaches. */
+static int loopback(const char *bind)
+{
+    unsigned char a[16];
+    if (inet_pton(AF_INET, bind, a) == 1)
+        return a[0] == 127;
+    static const unsigned char one[16] = { [15] = 1 };
+    return inet_pton(AF_INET6, bind, a) == 1 && memcmp(a, one, 16) == 0;
+}
+
+/* Waits for SIGTERM or SIGINT, sweeping late requests meanwhile; returns the signal. */
+static int wait_signal(server *s, const sigset_t *set)
+{
+    const struct timespec quarter = { 0, 250 * 1000 * 1000 };
+    for (;;) {
+        int sig = sigtimedwait(set, NULL, &quarter);
+        if (sig > 0)
+            return sig;
+        unsigned n = deadline_sweep(s);
+        if (n)
+            log_line("closed %u connection(s) whose request did not arrive within %u s", n, s->cfg.timeout);
+    }
+}
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
-    server *s = calloc(1, sizeof *s);
+    server *s = server_new();
     if (s == NULL)
         return 1;
     int rc = config_load(&s->cfg, argc, argv);
+    if (rc == 0 && auth_load(&s->cfg) != 0)
+        rc = -1;
     if (rc != 0) {
         server_free(s);
         return rc > 0 ? 0 : 2;
@@ -44,8 +72,11 @@ int main(int argc, char **argv)
              "max-wall %gs, body-limit %zu)", DP_VERSION, strchr(s->cfg.bind, ':') ? "[" : "", s->cfg.bind,
              strchr(s->cfg.bind, ':') ? "]" : "", server_port(s), s->cfg.threads, s->cfg.max_connections,
              s->cfg.max_steps, s->cfg.max_wall, s->cfg.body_limit);
-    int sig = 0;
-    sigwait(&set, &sig);
+    log_line("/v1/ routes: %s", s->cfg.token[0] ? "bearer token required" : "open (no token set)");
+    if (!loopback(s->cfg.bind) && !s->cfg.token[0])
+        log_line("warning: listening on %s without a token: anyone who reaches this port can run simulations "
+                 "(set DASHPOT_TOKEN or --token-file, or bind 127.0.0.1 behind a proxy)", s->cfg.bind);
+    int sig = wait_signal(s, &set);
     log_line("received %s: draining (grace %gs)", sig == SIGTERM ? "SIGTERM" : "SIGINT", s->cfg.shutdown_grace);
     server_shutdown(s);
     log_line("stopped");

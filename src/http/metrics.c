@@ -10,7 +10,7 @@
 
 #include "http.h"
 
-static const int status_codes[NSTATUS] = { 200, 400, 404, 405, 406, 413, 422, 500, 503, 0 };
+static const int status_codes[NSTATUS] = { 200, 304, 400, 401, 404, 405, 406, 413, 422, 500, 503, 0 };
 static const double bucket_le[NBUCKETS - 1] = { 0.0005, 0.001, 0.005, 0.01, 0.05, 0.1, 0.5, 1, 5, 10, 60 };
 static const char *const bucket_text[NBUCKETS] = {
     "0.0005", "0.001", "0.005", "0.01", "0.05", "0.1", "0.5", "1", "5", "10", "60", "+Inf"
@@ -18,7 +18,8 @@ static const char *const bucket_text[NBUCKETS] = {
 
 const char *route_name(int route)
 {
-    static const char *const names[NROUTES] = { "/v1/simulate", "/v1/stability", "/v1/wellposedness", "/healthz",
+    static const char *const names[NROUTES] = { "/v1/simulate", "/v1/stability", "/v1/wellposedness",
+                                                "/v1/convergence", "/healthz",
                                                 "/readyz", "/metrics", "/openapi.yaml", "/bench/static", "/",
                                                 "unmatched" };
     return route >= 0 && route < NROUTES ? names[route] : "unmatched";
@@ -126,10 +127,15 @@ int metrics_render(const metrics *m, dp_buf *b)
                "Runs stopped because the client went away (or the connection timed out).",
                (long long)LOAD(m->runs_cancelled));
     render_one(b, &s, "dashpot_runs_in_flight", "gauge", "Runs streaming now.", LOAD(m->runs_in_flight));
+    render_one(b, &s, "dashpot_studies_in_flight", "gauge", "Convergence studies computing now.",
+               LOAD(m->studies_in_flight));
     render_one(b, &s, "dashpot_connections_open", "gauge", "Open client connections.",
                LOAD(m->connections_open));
     render_one(b, &s, "dashpot_connections_rejected_total", "counter",
                "Requests answered 503 because --max-connections were open.",
                (long long)LOAD(m->connections_rejected));
+    render_one(b, &s, "dashpot_connections_timed_out_total", "counter",
+               "Connections closed because their request did not arrive whole within --timeout seconds.",
+               (long long)LOAD(m->connections_timed_out));
     return s;
 }

@@ -17,6 +17,7 @@ static const char *status_title(int status)
 {
     switch (status) {
     case 400: return "Bad Request";
+    case 401: return "Unauthorized";
     case 404: return "Not Found";
     case 405: return "Method Not Allowed";
     case 406: return "Not Acceptable";
@@ -37,6 +38,8 @@ static enum MHD_Result queue(struct MHD_Connection *c, request *r, int status, s
         MHD_add_response_header(resp, MHD_HTTP_HEADER_ALLOW, allow);
     if (status == 503)
         MHD_add_response_header(resp, MHD_HTTP_HEADER_RETRY_AFTER, "1");
+    if (status == 401)
+        MHD_add_response_header(resp, MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer realm=\"dashpot\"");
     r->status = status;
     r->bytes = len;
     enum MHD_Result ok = MHD_queue_response(c, (unsigned)status, resp);

@@ -24,6 +24,7 @@ static const struct route {
     { "/v1/simulate", "POST", "POST", ROUTE_SIMULATE, 1, handle_simulate },
     { "/v1/stability", "POST", "POST", ROUTE_STABILITY, 1, handle_stability },
     { "/v1/wellposedness", "POST", "POST", ROUTE_WELLPOSEDNESS, 1, handle_wellposedness },
+    { "/v1/convergence", "POST", "POST", ROUTE_CONVERGENCE, 1, handle_convergence },
     { "/healthz", "GET", "GET, HEAD", ROUTE_HEALTHZ, 0, handle_healthz },
     { "/readyz", "GET", "GET, HEAD", ROUTE_READYZ, 0, handle_readyz },
     { "/metrics", "GET", "GET, HEAD", ROUTE_METRICS, 0, handle_metrics },

@@ -1,8 +1,9 @@
 /* src/http/server.c - libmicrohttpd set-up and the request lifecycle (style.md item 12).
  *
  * MHD calls the access handler at least twice per request: the first call allocates the request state and
- * resolves the route; it answers only an overload (503) or a declared Content-Length over the limit (413):
- * refusing before the upload saves reading it, and MHD then skips "100 Continue" and closes. Later calls
+ * resolves the route; it answers only an overload (503), a missing bearer token (401) or a declared
+ * Content-Length over the limit (413): refusing before the upload saves reading it, and MHD then skips
+ * "100 Continue" and closes. Later calls
  * accumulate the body under the cap (only for routes that take one); the call with *upload_data_size == 0
  * dispatches. The NOTIFY_COMPLETED callback logs, counts and releases the request.
  */
@@ -73,6 +74,9 @@ static int first_call(struct MHD_Connection *c, request *r, const char *method, 
         return respond_problem(c, r, 503, "/problems/overloaded", "too many open connections; retry shortly",
                                NULL, NULL);
     }
+    if (!auth_ok(s, c, url))
+        return respond_problem(c, r, 401, "/problems/unauthorized",
+                               "this route needs the header Authorization: Bearer <token>", NULL, NULL);
     if (r->allow == NULL && route_needs_body(r->route) && declared_too_large(c, s->cfg.body_limit)) {
         char detail[96];
         snprintf(detail, sizeof detail, "the request body is larger than %zu bytes", s->cfg.body_limit);
@@ -103,6 +107,8 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
             return MHD_NO;
         *con_cls = r;
         int answered = first_call(c, r, method, url);
+        if (answered >= 0)
+            deadline_mark(c, 1);
         return answered < 0 ? MHD_YES : (enum MHD_Result)answered;
     }
     if (*upload_data_size) {
@@ -111,18 +117,21 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         *upload_data_size = 0;
         return MHD_YES;
     }
-    return r->status ? MHD_YES : route_dispatch(c, r);
+    if (r->status)
+        return MHD_YES;
+    deadline_mark(c, 1);
+    return route_dispatch(c, r);
 }
 
 static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls, enum MHD_RequestTerminationCode toe)
 {
-    (void)c;
     (void)toe;
     server *s = cls;
     request *r = *con_cls;
     if (r == NULL)
         return;
     *con_cls = NULL;
+    deadline_mark(c, 0);
     double dt = now_seconds() - r->t_start;
     metrics_request(&s->m, r->route, r->status, dt);
     log_request(r, dt);
@@ -132,10 +141,13 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls, en
 static void on_connection(void *cls, struct MHD_Connection *c, void **socket_context,
                           enum MHD_ConnectionNotificationCode code)
 {
-    (void)c;
-    (void)socket_context;
     server *s = cls;
-    atomic_fetch_add(&s->m.connections_open, code == MHD_CONNECTION_NOTIFY_STARTED ? 1 : -1);
+    int started = code == MHD_CONNECTION_NOTIFY_STARTED;
+    atomic_fetch_add(&s->m.connections_open, started ? 1 : -1);
+    if (started)
+        deadline_open(s, c, socket_context);
+    else
+        deadline_close(s, socket_context);
 }
 
 static void on_mhd_error(void *cls, const char *fmt, va_list ap)
@@ -245,14 +257,17 @@ unsigned server_port(const server *s)
     return info ? info->port : s->cfg.port;
 }
 
-/* Waits until no run is in flight or `seconds` pass; returns the runs still in flight. */
+/* Waits until no run or study is in flight or `seconds` pass; returns how many still are. Connections
+ * keep their request deadline meanwhile. */
 static long long wait_runs(server *s, double seconds)
 {
     double until = now_seconds() + seconds;
     long long n;
-    while ((n = atomic_load(&s->m.runs_in_flight)) > 0 && now_seconds() < until) {
+    while ((n = atomic_load(&s->m.runs_in_flight) + atomic_load(&s->m.studies_in_flight)) > 0 &&
+           now_seconds() < until) {
         struct timespec ts = { 0, 20 * 1000 * 1000 };
         nanosleep(&ts, NULL);
+        deadline_sweep(s);
     }
     return n;
 }
@@ -278,6 +293,16 @@ void server_shutdown(server *s)
     s->daemon = NULL;
 }
 
+server *server_new(void)
+{
+    server *s = calloc(1, sizeof *s);
+    if (s && pthread_mutex_init(&s->conns_lock, NULL) != 0) {
+        free(s);
+        return NULL;
+    }
+    return s;
+}
+
 void server_free(server *s)
 {
     if (s == NULL)
@@ -286,5 +311,6 @@ void server_free(server *s)
         MHD_stop_daemon(s->daemon);
     free(s->openapi);
     page_free(s);
+    pthread_mutex_destroy(&s->conns_lock);
     free(s);
 }

@@ -1,0 +1,94 @@
+/* src/http/deadline.c - every request must arrive whole within --timeout seconds (slowloris defence).
+ *
+ * libmicrohttpd's connection timeout measures idleness: a client that sends its head one byte every few
+ * seconds is never idle for long and would hold its connection (and a slot of --max-connections) forever.
+ * So each connection is registered here when MHD opens it, stamped when it becomes ready for a request
+ * (opened, or its previous response finished: keep-alive), and marked when the request has arrived (the
+ * body too). The main thread calls deadline_sweep a few times a second; a connection still waiting for
+ * its request past the deadline gets shutdown(2) on its socket, which MHD sees as the client hanging up
+ * and cleans up as usual, from its own thread.
+ *
+ * The list is guarded by one mutex taken on connection open and close and by the sweep; per request
+ * only atomics are touched. MHD calls the CLOSED notification before it closes the socket, and the
+ * entry leaves the list under the mutex there, so the sweep never shuts down a descriptor number that
+ * has been reused.
+ */
+#include <stdlib.h>
+#include <sys/socket.h>
+
+#include "http.h"
+
+typedef struct conn {
+    struct conn *prev, *next;
+    int fd;
+    atomic_int arrived;       /* the current request has arrived (or was answered early) */
+    atomic_int shut;          /* the sweep has shut it down already */
+    _Atomic double ready_at;  /* monotonic seconds when it became ready for its current request */
+} conn;
+
+void deadline_open(server *s, struct MHD_Connection *c, void **socket_context)
+{
+    const union MHD_ConnectionInfo *info = MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
+    conn *k = calloc(1, sizeof *k);
+    *socket_context = k;
+    if (k == NULL || info == NULL) {
+        free(k);
+        *socket_context = NULL; /* not watched: MHD's idle timeout still applies */
+        return;
+    }
+    k->fd = info->connect_fd;
+    atomic_init(&k->ready_at, now_seconds());
+    pthread_mutex_lock(&s->conns_lock);
+    k->next = s->conns;
+    if (s->conns)
+        s->conns->prev = k;
+    s->conns = k;
+    pthread_mutex_unlock(&s->conns_lock);
+}
+
+void deadline_close(server *s, void **socket_context)
+{
+    conn *k = *socket_context;
+    if (k == NULL)
+        return;
+    pthread_mutex_lock(&s->conns_lock);
+    if (k->prev)
+        k->prev->next = k->next;
+    else
+        s->conns = k->next;
+    if (k->next)
+        k->next->prev = k->prev;
+    pthread_mutex_unlock(&s->conns_lock);
+    free(k);
+    *socket_context = NULL;
+}
+
+void deadline_mark(struct MHD_Connection *c, int arrived)
+{
+    const union MHD_ConnectionInfo *info = MHD_get_connection_info(c, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
+    conn *k = info ? info->socket_context : NULL;
+    if (k == NULL)
+        return;
+    if (!arrived)
+        atomic_store_explicit(&k->ready_at, now_seconds(), memory_order_relaxed);
+    atomic_store_explicit(&k->arrived, arrived, memory_order_release);
+}
+
+unsigned deadline_sweep(server *s)
+{
+    double late = now_seconds() - (double)s->cfg.timeout;
+    unsigned n = 0;
+    pthread_mutex_lock(&s->conns_lock);
+    for (conn *k = s->conns; k; k = k->next) {
+        if (atomic_load_explicit(&k->arrived, memory_order_acquire) || atomic_load(&k->shut) ||
+            atomic_load_explicit(&k->ready_at, memory_order_relaxed) > late)
+            continue;
+        shutdown(k->fd, SHUT_RDWR);
+        atomic_store(&k->shut, 1);
+        n++;
+    }
+    pthread_mutex_unlock(&s->conns_lock);
+    if (n)
+        atomic_fetch_add_explicit(&s->m.connections_timed_out, n, memory_order_relaxed);
+    return n;
+}
