@@ -165,6 +165,14 @@ req POST "$U/v1/stability" -H 'Accept: text/csv' --data-binary "$MAP"
 check "stability map CSV: header and 3 x 2 rows" is "$STATUS $(header Content-Type) $(wc -l <"$BODY")" "200 text/csv; charset=utf-8 7"
 req POST "$U/v1/stability" -H 'Accept: image/svg+xml' --data-binary "$MAP"
 check "stability map SVG" is "$STATUS $(header Content-Type) $(head -c 4 "$BODY")" "200 image/svg+xml <svg"
+big_map() { echo "{\"mass\": 1, \"law\": {\"lambda\": [1, 0.5], \"mu\": [1, 1]}, \"map\": {\"x\": {\"param\": \"mu[1]\", \"from\": 0, \"to\": 2, \"steps\": $1}, \"y\": {\"param\": \"lambda[1]\", \"from\": 0.25, \"to\": 1.75, \"steps\": $2}}}"; }
+req POST "$U/v1/stability" -H 'Accept: text/csv' --data-binary "$(big_map 2000 2000)"
+check "a 2000 x 2000 stability map is 422 /problems/over-limit at /map (--max-map-points 40000)" pyjson "$BODY" \
+    "d['status'] == 422 and d['type'] == '/problems/over-limit' and d['errors'][0]['pointer'] == '/map'"
+req POST "$U/v1/stability" -H 'Accept: text/csv' --data-binary "$(big_map 201 200 | sed 's/"map"/"\\u006dap"/')"
+check "...also when \"map\" is spelled with a \\u escape" pyjson "$BODY" "d['status'] == 422 and d['errors'][0]['pointer'] == '/map'"
+req POST "$U/v1/stability" -H 'Accept: text/csv' --data-binary "$(big_map 200 200)"
+check "a 200 x 200 map (the limit) is 200 with 40000 rows" is "$STATUS $(wc -l <"$BODY")" "200 40001"
 req POST "$U/v1/stability" -H 'Accept: application/x-ndjson' --data-binary "$STAB"
 check "stability with Accept: application/x-ndjson is 406" problem 406
 req POST "$U/v1/stability" --data-binary '{"mass": 0, "law": {"lambda": [1], "mu": [1]}}'

@@ -34,6 +34,8 @@ static const option options[] = {
     OPT("max-connections", "DASHPOT_MAX_CONNECTIONS", K_UINT, max_connections, 1, 100000,
         "connections served at once; more get 503"),
     OPT("max-steps", "DASHPOT_MAX_STEPS", K_DOUBLE, max_steps, 1, 1e9, "time steps one request may ask for"),
+    OPT("max-map-points", "DASHPOT_MAX_MAP_POINTS", K_DOUBLE, max_map_points, 1, 4004001,
+        "grid points one stability map may ask for"),
     OPT("max-wall", "DASHPOT_MAX_WALL", K_DOUBLE, max_wall, 0.001, 86400, "seconds one request may run"),
     OPT("timeout", "DASHPOT_TIMEOUT", K_UINT, timeout, 1, 86400,
         "seconds a connection may stay idle or take to send a request"),
@@ -59,6 +61,7 @@ static void defaults(config *c)
     c->threads = ncpu > 0 && ncpu < 64 ? (unsigned)ncpu : 4;
     c->max_connections = 256;
     c->max_steps = 1e8;
+    c->max_map_points = 40000;
     c->max_wall = 120;
     c->timeout = 30;
     c->body_limit = 1u << 20;

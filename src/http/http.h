@@ -26,6 +26,7 @@ typedef struct config {
     unsigned threads;            /* MHD thread pool */
     unsigned max_connections;    /* open connections served; beyond: 503 */
     double max_steps;            /* per request, passed to dp_spec_parse and dp_run_alloc */
+    double max_map_points;       /* grid points of one /v1/stability map */
     double max_wall;             /* seconds one request may take */
     unsigned timeout;            /* seconds a connection may stay idle, and a request may take to arrive */
     size_t body_limit;           /* bytes of a request body; beyond: 413 */
