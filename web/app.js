@@ -1,0 +1,373 @@
+// web/app.js - the dashpot page: presets, the JSON editor, POST v1/simulate read as an NDJSON stream
+// (fetch + ReadableStream reader) and plotted as it arrives, the well-posedness report of the meta line,
+// problem+json errors shown at the member they point at, and the stability tab (POST v1/stability: the
+// map as SVG, its counts as JSON). Every URL is relative, so the page works behind a path prefix.
+//
+// For tests and curious people, #panel-simulate carries data-state (idle, running, done, error, stopped),
+// data-samples (sample lines received), data-points (samples held for plotting), data-summary-samples and
+// data-events, data-bands (stick intervals shaded) and data-run (runs started so far); each canvas carries
+// data-points (the points its last drawing went through). #panel-stability has data-state and data-run.
+
+import { Table, Plot } from './plot.js';
+import { Editor, pretty } from './editor.js';
+import { PRESETS } from './presets.js';
+
+const $ = (id) => document.getElementById(id);
+const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
+const num = (v, d = 4) => (typeof v === 'number' ? (Number.isInteger(v) ? v.toLocaleString('en') : +v.toPrecision(d) + '') : '\u2014');
+const MAX_POINTS = 2e6; // samples kept for plotting; a longer run is summarised, not drawn whole
+
+const ui = {
+  tab: 'simulate',
+  text: { simulate: '', stability: '' },
+  preset: { simulate: '', stability: '' },
+  controller: null,
+  mapUrl: null,
+  runs: 0, // runs started, either tab (data-run)
+};
+const editor = new Editor($('editor'), () => run());
+
+// ---- presets and tabs ----
+
+function fillPresets() {
+  const sel = $('preset');
+  let group = null;
+  for (const p of PRESETS) {
+    if (!group || group.label !== p.group) {
+      group = document.createElement('optgroup');
+      group.label = p.group;
+      sel.append(group);
+    }
+    group.append(new Option(p.label, p.id));
+  }
+  sel.addEventListener('change', () => loadPreset(sel.value));
+}
+
+function loadPreset(id) {
+  stop();
+  const p = PRESETS.find((q) => q.id === id) || PRESETS[0];
+  ui.preset[p.kind] = p.id;
+  ui.text[p.kind] = pretty(p.spec) + '\n';
+  showTab(p.kind, true);
+  history.replaceState(null, '', '#' + p.id);
+}
+
+function showTab(tab, fromPreset = false) {
+  if (!fromPreset) ui.text[ui.tab] = editor.text;
+  if (ui.tab !== tab) stop();
+  ui.tab = tab;
+  for (const t of ['simulate', 'stability']) {
+    $('tab-' + t).setAttribute('aria-selected', String(t === tab));
+    $('panel-' + t).hidden = t !== tab;
+  }
+  if (!ui.preset[tab]) { // the first visit of a tab starts with its first preset
+    const p = PRESETS.find((q) => q.kind === tab);
+    ui.preset[tab] = p.id;
+    ui.text[tab] = pretty(p.spec) + '\n';
+  }
+  const p = PRESETS.find((q) => q.id === ui.preset[tab]);
+  $('preset').value = p.id;
+  $('preset-note').textContent = p.note;
+  $('spec-label').textContent = tab === 'simulate' ? 'Request to v1/simulate (JSON)' : 'Request to v1/stability (JSON)';
+  editor.text = ui.text[tab];
+  showProblem(null);
+  if (tab === 'simulate') drawAll();
+}
+
+// ---- problems: errors[].pointer marked in the editor, every message listed under it ----
+
+function showProblem(problem, prefix = '') {
+  const box = $('problem');
+  box.hidden = !problem;
+  if (!problem) { editor.clearMarks(); return; }
+  $('problem-title').textContent = prefix + (problem.status ? problem.status + ' ' : '') + (problem.title || 'Error') +
+    (problem.detail ? ' \u2014 ' + problem.detail : '');
+  const list = $('problem-list');
+  list.replaceChildren();
+  const marks = problem.errors ? editor.mark(problem.errors) : [];
+  for (const mk of marks) {
+    const li = document.createElement('li');
+    li.innerHTML = `<button type="button" class="link">line ${mk.line}</button> <code>${esc(mk.pointer || '(document)')}</code> ${esc(mk.detail)}`;
+    li.querySelector('button').addEventListener('click', () => editor.select(mk));
+    list.append(li);
+  }
+  if (problem.errors_dropped) list.insertAdjacentHTML('beforeend', `<li>\u2026 and ${problem.errors_dropped} more</li>`);
+}
+
+async function problemOf(res) {
+  try { return await res.json(); } catch { return { status: res.status, title: res.statusText }; }
+}
+
+// ---- simulation ----
+
+let sim = newRun();
+
+function newRun() {
+  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), events: [], stick: [], stickStart: null, meta: null,
+    summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now() };
+}
+
+const stickBands = () => (sim.stickStart === null ? sim.stick : [...sim.stick, [sim.stickStart, sim.lastT]]);
+const timeAxis = { col: 't', label: 't', monotone: true, range: () => [0, sim.tEnd] };
+const plots = [
+  new Plot($('plot-xv'), { x: timeAxis, y: { label: 'x, v' }, bands: stickBands,
+    series: [{ col: 'x', color: '--c-x' }, { col: 'v', color: '--c-v' }],
+    markers: () => sim.events.map((e) => ({ x: e.t, y: e.x, kind: e.kind })) }),
+  new Plot($('plot-forces'), { x: timeAxis, y: { label: 'force' }, bands: stickBands,
+    series: [{ col: 'Fs', color: '--c-Fs' }, { col: 'Fd', color: '--c-Fd' }, { col: 'Fc', color: '--c-Fc', dash: [6, 4] }] }),
+  new Plot($('plot-phase'), { x: { col: 'x', label: 'x' }, y: { label: 'v' }, series: [{ col: 'v', color: '--c-phase' }],
+    markers: () => sim.events.map((e) => ({ x: e.x, y: e.v, kind: e.kind })) }),
+  new Plot($('plot-law'), { x: { col: 'v', label: 'v' }, y: { label: 'Fd' }, series: [{ col: 'Fd', color: '--c-Fd' }] }),
+];
+
+function drawAll() {
+  for (const p of plots) { p.setTable(sim.table); p.draw(); }
+}
+
+let frame = 0;
+function scheduleDraw() {
+  if (!frame) frame = requestAnimationFrame(() => { frame = 0; drawAll(); showProgress(); });
+}
+
+function setSimState(state) {
+  const d = $('panel-simulate').dataset;
+  d.state = state;
+  d.samples = sim.samples;
+  d.points = sim.table.n;
+  d.events = sim.events.length;
+  d.summarySamples = sim.summary ? sim.summary.samples : '';
+  d.bands = stickBands().length;
+  d.run = ui.runs;
+}
+
+function onRecord(o) {
+  switch (o.type) {
+    case 'sample':
+      sim.samples++;
+      sim.lastT = o.t;
+      if (sim.table.n < MAX_POINTS) sim.table.push(o);
+      if (o.phase === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
+      if (o.phase === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
+      break;
+    case 'event': // located transitions: the shading starts and ends at the event, not at the next sample
+      sim.events.push(o);
+      if (o.kind === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
+      if (o.kind === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
+      break;
+    case 'meta':
+      sim.meta = o;
+      sim.tEnd = o.t_end;
+      renderWellposedness(o.wellposedness, o);
+      break;
+    case 'summary': sim.summary = o; break;
+    case 'error': sim.error = o; break;
+  }
+}
+
+async function runSimulation() {
+  const ctl = new AbortController();
+  ui.controller = ctl;
+  ui.runs++;
+  showProblem(null);
+  setSimState('running');
+  setRunning(true);
+  $('status').textContent = 'sending\u2026';
+  const started = performance.now();
+  let state = 'error';
+  try {
+    const res = await fetch('v1/simulate', { method: 'POST', body: editor.text, signal: ctl.signal,
+      headers: { 'Content-Type': 'application/json', Accept: 'application/x-ndjson' } });
+    if (!res.ok) { // no run: the last one stays on screen, the problem goes next to the editor
+      showProblem(await problemOf(res));
+      return;
+    }
+    sim = newRun();
+    sim.started = started;
+    renderStats();
+    drawAll();
+    $('wp-body').innerHTML = '<span class="muted">waiting for the meta line\u2026</span>';
+    const reader = res.body.getReader(), dec = new TextDecoder();
+    let buf = '';
+    for (;;) {
+      const { value, done } = await reader.read();
+      if (done) break;
+      buf += dec.decode(value, { stream: true });
+      let at = 0, nl;
+      while ((nl = buf.indexOf('\n', at)) >= 0) {
+        if (nl > at) onRecord(JSON.parse(buf.slice(at, nl)));
+        at = nl + 1;
+      }
+      buf = buf.slice(at);
+      scheduleDraw();
+    }
+    buf += dec.decode();
+    if (buf.trim()) onRecord(JSON.parse(buf));
+    if (sim.error) showProblem(sim.error, 'The run stopped: ');
+    else if (!sim.summary) showProblem({ title: 'The stream ended without its summary line' });
+    state = sim.summary && !sim.error ? 'done' : 'error';
+  } catch (e) {
+    if (e.name === 'AbortError') state = 'stopped';
+    else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
+  } finally {
+    if (ui.controller === ctl) {
+      ui.controller = null;
+      setRunning(false);
+    }
+    drawAll();
+    renderStats(state);
+    setSimState(state);
+  }
+}
+
+function showProgress() {
+  if (!ui.controller || ui.tab !== 'simulate') return;
+  $('progress').value = sim.tEnd > 0 ? Math.min(1, sim.lastT / sim.tEnd) : 0;
+  $('status').textContent = `streaming\u2026 t = ${num(sim.lastT, 3)} of ${num(sim.tEnd)}`;
+  renderStats();
+}
+
+function renderStats(state) {
+  const m = sim.meta, s = sim.summary;
+  const chip = (k, v) => `<span class="chip"><b>${esc(k)}</b> ${esc(v)}</span>`;
+  let h = '';
+  if (m) {
+    h += chip('solver', m.solver + (m.variant ? ' (' + m.variant + ')' : '')) + chip('\u03b8', num(m.theta)) +
+      chip('dt', num(m.dt)) + chip('T', num(m.t_end));
+    if (m.branch) h += chip('branch', m.branch);
+    const wp = m.wellposedness;
+    if (wp) for (const k of ['existence', 'uniqueness'])
+      h += `<span class="chip ${wp[k].guaranteed ? 'ok' : 'no'}" title="${esc(wp[k].theorem || wp[k].reason)}"><b>${k}</b> ${wp[k].guaranteed ? '\u2713' : '\u2717 not'} guaranteed</span>`;
+  }
+  h += chip('samples', num(sim.samples)) + chip('events', num(sim.events.length));
+  if (s) {
+    h += chip('stick time', num(s.stick_time)) + chip('final x', num(s.final.x, 6));
+    if (sim.samples > sim.table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
+  }
+  $('stats').innerHTML = h;
+  if (state === 'done') {
+    const secs = (performance.now() - sim.started) / 1000;
+    const ev = sim.events.length;
+    $('status').textContent = `${num(sim.samples)} samples \u00b7 ${ev} event${ev === 1 ? '' : 's'} \u00b7 ${secs.toFixed(2)} s`;
+  } else if (state === 'stopped') $('status').textContent = 'stopped';
+  else if (state === 'error') $('status').textContent = 'failed';
+}
+
+function renderWellposedness(wp, meta) {
+  const body = $('wp-body');
+  if (!wp) { body.textContent = 'The meta line has no well-posedness report.'; return; }
+  const verdict = (name, r) => `<div class="verdict ${r.guaranteed ? 'ok' : 'no'}">
+      <span class="badge">${r.guaranteed ? '\u2713' : '\u2717'} ${name} ${r.guaranteed ? 'guaranteed' : 'not guaranteed'}</span>
+      <span>${esc(r.guaranteed ? r.theorem : r.reason)}</span></div>`;
+  let h = `<p class="muted">Framework ${esc(wp.framework)}: which theorems of the sources apply to this model.</p>` +
+    verdict('Existence', wp.existence) + verdict('Uniqueness', wp.uniqueness);
+  if (wp.counterexample) {
+    h += `<p class="counter"><b>Counterexample.</b> ${esc(wp.counterexample)}.`;
+    if (wp.branches) h += ' Branches: ' + wp.branches.map((b) => `<span class="chip${b === meta.branch ? ' on' : ''}">${esc(b)}</span>`).join(' ') +
+      ` \u2014 this run follows <b>${esc(meta.branch)}</b> (solver.branch).`;
+    h += '</p>';
+  }
+  h += '<ul class="checks">' + wp.checks.map((c) => `<li class="${c.holds ? 'ok' : 'no'}"><span class="tick">${c.holds ? '\u2713' : '\u2717'}</span>
+      <span>${esc(c.hypothesis)}</span> <span class="muted">${esc(c.detail)}</span></li>`).join('') + '</ul>';
+  body.innerHTML = h;
+}
+
+// ---- stability ----
+
+async function runStability() {
+  const ctl = new AbortController();
+  ui.controller = ctl;
+  const panel = $('panel-stability');
+  const text = editor.text;
+  panel.dataset.run = ++ui.runs;
+  let hasMap = false;
+  try { hasMap = !!JSON.parse(text).map; } catch { /* the daemon says where */ }
+  showProblem(null);
+  panel.dataset.state = 'running';
+  setRunning(true);
+  $('status').textContent = hasMap ? 'computing the map\u2026' : 'analysing\u2026';
+  let state = 'error';
+  const post = (accept) => fetch('v1/stability', { method: 'POST', body: text, signal: ctl.signal,
+    headers: { 'Content-Type': 'application/json', Accept: accept } });
+  try {
+    const t0 = performance.now();
+    const [jr, sr] = await Promise.all([post('application/json'), hasMap ? post('image/svg+xml') : null]);
+    if (!jr.ok) { showProblem(await problemOf(jr)); return; }
+    const doc = await jr.json();
+    const img = $('stab-img');
+    if (ui.mapUrl) URL.revokeObjectURL(ui.mapUrl);
+    ui.mapUrl = null;
+    if (sr && sr.ok) {
+      ui.mapUrl = URL.createObjectURL(await sr.blob());
+      img.src = ui.mapUrl;
+      await img.decode();
+    }
+    img.hidden = !ui.mapUrl;
+    $('stab-empty').hidden = true;
+    renderStability(doc);
+    $('status').textContent = `done in ${((performance.now() - t0) / 1000).toFixed(2)} s`;
+    state = 'done';
+  } catch (e) {
+    if (e.name === 'AbortError') state = 'stopped';
+    else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
+  } finally {
+    if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
+    panel.dataset.state = state;
+    if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+  }
+}
+
+const VERDICT_CLASS = { 'asymptotically stable': 'ok', unstable: 'no', 'marginally stable': 'mid', 'near boundary': 'mid' };
+
+function renderStability(d) {
+  const chip = (k, v, cls = '') => `<span class="chip ${cls}"><b>${esc(k)}</b> ${esc(v)}</span>`;
+  let info = '', more = '';
+  if (d.map) {
+    const m = d.map, c = m.counts, n = Object.values(c).reduce((a, b) => a + b, 0);
+    info += chip(m.x.param, `${num(m.x.from)} \u2026 ${num(m.x.to)} (${m.x.steps})`) +
+      chip(m.y.param, `${num(m.y.from)} \u2026 ${num(m.y.to)} (${m.y.steps})`);
+    for (const [k, label] of Object.entries(m.legend)) if (c[k]) info += chip(label, `${num(c[k])} (${(100 * c[k] / n).toFixed(1)}%)`, VERDICT_CLASS[label] || '');
+    const cf = m.closed_form;
+    if (cf) more = `<p>Thesis model ${esc(cf.name)}: stable iff ${esc(cf.condition)} <code>${esc(cf.expression)}</code> \u2014 the black line on the map.</p>`;
+    $('stab-img').alt = `stability map over ${m.x.param} and ${m.y.param}`;
+  } else {
+    info += chip('verdict', d.verdict, VERDICT_CLASS[d.verdict] || '') + chip('spectral abscissa', num(d.spectral_abscissa, 6));
+    more = `<p><b>p(z)</b> coefficients (highest power first): <code>${esc(d.polynomial.coefficients.map((x) => num(x, 6)).join(', '))}</code></p>
+      <table class="roots"><thead><tr><th>root</th><th>Re z</th><th>Im z</th><th>error bound</th></tr></thead><tbody>` +
+      d.roots.map((r, i) => `<tr><td>${i + 1}</td><td>${num(r.re, 8)}</td><td>${num(r.im, 8)}</td><td>${num(r.error, 2)}</td></tr>`).join('') +
+      `</tbody></table><p>Hurwitz minors: <code>${esc((d.hurwitz_minors || []).map((x) => num(x, 6)).join(', '))}</code></p>`;
+    if (d.model) more += `<p>Thesis model ${esc(d.model.name)}, condition ${esc(d.model.condition)} <code>${esc(d.model.expression)}</code> = ${num(d.model.value, 6)}: ${esc(d.model.verdict ?? 'does not apply')}</p>`;
+  }
+  $('stab-info').innerHTML = info;
+  $('stab-analysis').innerHTML = more;
+}
+
+// ---- run / stop ----
+
+function setRunning(on) {
+  const b = $('run');
+  b.textContent = on ? 'Stop' : 'Run';
+  b.classList.toggle('stop', on);
+  $('progress').hidden = !on || ui.tab !== 'simulate';
+  if (!on) $('progress').value = 0;
+}
+
+function stop() {
+  if (ui.controller) ui.controller.abort();
+}
+
+function run() {
+  if (ui.controller) { stop(); return; }
+  ui.text[ui.tab] = editor.text;
+  if (ui.tab === 'simulate') runSimulation(); else runStability();
+}
+
+$('run').addEventListener('click', run);
+$('format').addEventListener('click', () => {
+  try { editor.text = pretty(JSON.parse(editor.text)) + '\n'; } catch {
+    showProblem({ title: 'Not valid JSON', detail: 'fix it, or Run to see where the daemon stops reading' });
+  }
+});
+for (const t of ['simulate', 'stability']) $('tab-' + t).addEventListener('click', () => { if (ui.tab !== t) showTab(t); });
+fillPresets();
+loadPreset(location.hash.slice(1) || 'thesis-5-gamma');
+if (ui.tab === 'simulate') runSimulation(); else runStability();

@@ -1,0 +1,101 @@
+// web/presets.js - the runs the page offers: the thesis' figures, the paper's two counterexamples (each
+// branch), a forced oscillator, a belt-driven stick-slip and stability maps. kind: which tab runs it.
+
+const linear = { law: 'linear', k: 1 };
+const thesis = (x0, relaxed) => ({
+  model: {
+    mass: 1, spring: linear,
+    damper: { law: 'coulomb', phi0: 1, ...(relaxed ? { relaxation: { kind: 'rational', a: 0.5, b: 1 } } : {}) },
+  },
+  initial: { x: x0, v: 0 },
+  solver: { kind: 'stick-slip', variant: 'thesis', dt: 0.001, t_end: 10, Z: 100, eps: 1e-4 },
+});
+const counter1 = (branch) => ({
+  model: { mass: 1, spring: linear, damper: { law: 'generalized-coulomb', phi0: 0.5, phi1: 1 },
+    forcing: { kind: 'constant', value: 1 } },
+  initial: { x: 0, v: 0 },
+  solver: { kind: 'stick-slip', dt: 0.001, t_end: 10, branch },
+});
+const counter2 = (branch) => ({
+  model: { mass: 1, spring: linear, damper: { law: 'coulomb', phi0: 1, relaxation: { kind: 'power', N: 2 } },
+    forcing: { kind: 'constant', value: 1 } },
+  initial: { x: 0, v: 0 },
+  solver: { kind: 'stick-slip', dt: 0.001, t_end: 10, branch },
+});
+
+export const PRESETS = [];
+for (const relaxed of [false, true])
+  for (const x0 of [1, 2, 3, 4, 5])
+    PRESETS.push({
+      id: `thesis-${x0}${relaxed ? '-gamma' : ''}`,
+      group: relaxed ? 'Thesis Figs. 4.2\u20134.5, with \u03b3 = 0.5 v/(1+|v|)' : 'Thesis Figs. 4.2\u20134.5, \u03b3 = 0',
+      label: `x0 = ${x0}${relaxed ? ', with \u03b3' : ''}`,
+      kind: 'simulate',
+      note: 'm = k = \u03c6\u2080 = 1, dt = 10\u207b\u00b3, T = 10, algorithm 4.1 of the thesis (variant "thesis").' +
+        (relaxed ? ' The relaxation \u03b3 = 0.5 v/(1+|v|) pumps energy back in while it slips.' :
+          ' The turning points shrink by 2\u03c6\u2080/k per half swing until |x| \u2264 \u03c6\u2080/k; then it sticks.'),
+      spec: thesis(x0, relaxed),
+    });
+for (const branch of ['rest', 'motion']) {
+  PRESETS.push({
+    id: `counter-gc-${branch}`, group: 'The paper\u2019s counterexamples (non-uniqueness)',
+    label: `Gen. Coulomb \u03c6\u2080 0.5, \u03c6\u2081 1, F \u2261 1: ${branch}`, kind: 'simulate',
+    note: 'Static threshold above the dynamic one: with F = \u03c6\u2081 from rest both x = 0 and x = (\u03c6\u2081 \u2212 \u03c6\u2080)(1 \u2212 cos t) ' +
+      `solve. "branch": "${branch}" picks ${branch === 'rest' ? 'the one that stays at rest' : 'the one that moves'}.`,
+    spec: counter1(branch),
+  });
+}
+for (const branch of ['rest', 'motion']) {
+  PRESETS.push({
+    id: `counter-power-${branch}`, group: 'The paper\u2019s counterexamples (non-uniqueness)',
+    label: `Coulomb + \u03b3 power N = 2, F \u2261 1: ${branch}`, kind: 'simulate',
+    note: '\u03b3 = N|v|^(1\u22121/N) sgn v is not Lipschitz at 0: with F = \u03c6\u2080 from rest both x = 0 and a solution ' +
+      `leaving rest like t^(N+1)/(N+1) solve. "branch": "${branch}".`,
+    spec: counter2(branch),
+  });
+}
+PRESETS.push({
+  id: 'forced', group: 'Oscillators', label: 'Forced: Coulomb \u03c6\u2080 0.5, F = cos(t/2)', kind: 'simulate',
+  note: 'A harmonic load on a Coulomb damper: it holds while |F \u2212 kx| \u2264 \u03c6\u2080, breaks away, glides, sticks again.',
+  spec: {
+    model: { mass: 1, spring: linear, damper: { law: 'coulomb', phi0: 0.5 },
+      forcing: { kind: 'harmonic', amplitude: 1, omega: 0.5 } },
+    initial: { x: 1, v: 0 },
+    solver: { kind: 'stick-slip', dt: 0.001, t_end: 40, theta: 0.5 },
+    output: { every: 10 },
+  },
+});
+PRESETS.push({
+  id: 'belt', group: 'Oscillators', label: 'Belt stick-slip: \u03c6\u2080 0.8, \u03c6\u2081 1, belt 0.4', kind: 'simulate',
+  note: 'A mass on a spring, dragged by a belt at 0.4: it rides the belt (stick) until the spring overcomes the ' +
+    'static threshold \u03c6\u2081, slips back with \u03c6\u2080 < \u03c6\u2081, catches the belt again \u2014 a limit cycle.',
+  spec: {
+    model: { mass: 1, spring: linear,
+      damper: { law: 'generalized-coulomb', phi0: 0.8, phi1: 1, belt_velocity: 0.4 } },
+    initial: { x: 0, v: 0.4 },
+    solver: { kind: 'stick-slip', dt: 0.001, t_end: 30, theta: 0.5 },
+    output: { every: 10 },
+  },
+});
+PRESETS.push({
+  id: 'stability-1.2', group: 'Stability maps', label: 'Model 1.2: \u03bc\u2082 \u00d7 \u03bb', kind: 'stability',
+  note: 'F_V + \u03bb F_V\u2032 = \u03bc\u2081 x + \u03bc\u2082 x\u2032 (thesis model 1.2), swept over \u03bc\u2082 = mu[1] and \u03bb = lambda[1]; the black line is ' +
+    'the thesis condition (1.10) \u03bc\u2082 \u2212 \u03bb\u03bc\u2081 = 0.',
+  spec: {
+    mass: 1, law: { lambda: [1, 0.5], mu: [1, 1] },
+    map: { x: { param: 'mu[1]', from: 0, to: 3, steps: 240 }, y: { param: 'lambda[1]', from: 0.05, to: 2, steps: 160 } },
+  },
+});
+PRESETS.push({
+  id: 'stability-1.3', group: 'Stability maps', label: 'Model 1.3: \u03bb\u2081 \u00d7 \u03bb\u2082', kind: 'stability',
+  note: 'F_V + \u03bb\u2081 F_V\u2032 + \u03bb\u2082 F_V\u2033 = \u03bc\u2081 x + \u03bc\u2082 x\u2032 (thesis model 1.3), swept over \u03bb\u2081 and \u03bb\u2082.',
+  spec: {
+    mass: 1, law: { lambda: [1, 1, 0.5], mu: [1, 2] },
+    map: { x: { param: 'lambda[1]', from: 0, to: 3, steps: 240 }, y: { param: 'lambda[2]', from: 0.01, to: 2, steps: 160 } },
+  },
+});
+PRESETS.push({
+  id: 'stability-one', group: 'Stability maps', label: 'One law (no map): model 1.2', kind: 'stability',
+  note: 'No map: the verdict, the roots with their error bounds and the Hurwitz minors of one law.',
+  spec: { mass: 1, law: { lambda: [1, 0.5], mu: [1, 1] } },
+});
