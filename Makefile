@@ -116,9 +116,10 @@ clean:
 # make install [PREFIX=/usr/local] [DESTDIR=/staging]: dashpotd and dashpot into $(bindir), libdashpot.a into
 # $(libdir), the public headers into $(includedir)/dashpot, dashpot.pc (from dashpot.pc.in; it names the final
 # PREFIX, its directories relative to ${prefix}; a staged copy is used with PKG_CONFIG_SYSROOT_DIR=$(DESTDIR))
-# into $(pkgconfigdir), and api/openapi.yaml into $(datadir)/dashpot, where DASHPOT_OPENAPI must point the
-# daemon: dashpotd has no compiled-in path under PREFIX (docs/operations.md). `make uninstall` with the same
-# variables removes what `make install` put there.
+# into $(pkgconfigdir), api/openapi.yaml into $(datadir)/dashpot and the browser page's files (web/) into
+# $(datadir)/dashpot/web, where DASHPOT_OPENAPI and DASHPOT_WEB_DIR must point the daemon: it has no
+# compiled-in path under PREFIX (docs/operations.md). `make uninstall` with the same variables removes what
+# `make install` put there.
 PREFIX       ?= /usr/local
 DESTDIR      ?=
 bindir       ?= $(PREFIX)/bin
@@ -129,11 +130,12 @@ pkgconfigdir ?= $(libdir)/pkgconfig
 INSTALL      ?= install
 INSTALL_HEADERS := $(wildcard include/dashpot/*.h)
 INSTALL_OPENAPI := $(wildcard api/openapi.yaml)
+INSTALL_WEB     := $(shell find web -maxdepth 1 -type f ! -name '.*' 2>/dev/null)
 DP_VERSION_STRING = $(shell sed -n 's/^#define DP_VERSION "\(.*\)"$$/\1/p' include/dashpot/json.h)
 
 install: all
 	$(INSTALL) -d $(DESTDIR)$(bindir) $(DESTDIR)$(libdir) $(DESTDIR)$(includedir)/dashpot \
-	    $(DESTDIR)$(pkgconfigdir) $(DESTDIR)$(datadir)/dashpot
+	    $(DESTDIR)$(pkgconfigdir) $(DESTDIR)$(datadir)/dashpot/web
 	$(INSTALL) -m 755 $(PROGS) $(DESTDIR)$(bindir)/
 	$(INSTALL) -m 644 $(LIB) $(DESTDIR)$(libdir)/
 	$(INSTALL) -m 644 $(INSTALL_HEADERS) $(DESTDIR)$(includedir)/dashpot/
@@ -142,11 +144,13 @@ install: all
 	    -e 's|@includedir@|$(patsubst $(PREFIX)/%,$${prefix}/%,$(includedir))|g' dashpot.pc.in > $(BUILD)/dashpot.pc
 	$(INSTALL) -m 644 $(BUILD)/dashpot.pc $(DESTDIR)$(pkgconfigdir)/dashpot.pc
 	$(if $(INSTALL_OPENAPI),$(INSTALL) -m 644 $(INSTALL_OPENAPI) $(DESTDIR)$(datadir)/dashpot/)
+	$(if $(INSTALL_WEB),$(INSTALL) -m 644 $(INSTALL_WEB) $(DESTDIR)$(datadir)/dashpot/web/)
 
 uninstall:
 	rm -f $(addprefix $(DESTDIR)$(bindir)/,$(notdir $(PROGS))) $(DESTDIR)$(libdir)/$(notdir $(LIB)) \
 	    $(addprefix $(DESTDIR)$(includedir)/dashpot/,$(notdir $(INSTALL_HEADERS))) \
-	    $(DESTDIR)$(pkgconfigdir)/dashpot.pc $(DESTDIR)$(datadir)/dashpot/openapi.yaml
-	-rmdir $(DESTDIR)$(includedir)/dashpot $(DESTDIR)$(datadir)/dashpot 2>/dev/null
+	    $(DESTDIR)$(pkgconfigdir)/dashpot.pc $(DESTDIR)$(datadir)/dashpot/openapi.yaml \
+	    $(addprefix $(DESTDIR)$(datadir)/dashpot/web/,$(notdir $(INSTALL_WEB)))
+	-rmdir $(DESTDIR)$(includedir)/dashpot $(DESTDIR)$(datadir)/dashpot/web $(DESTDIR)$(datadir)/dashpot 2>/dev/null
 
 .PHONY: install uninstall
