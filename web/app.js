@@ -1,7 +1,8 @@
 // web/app.js - the dashpot page: presets, the JSON editor, POST v1/simulate read as an NDJSON stream
 // (fetch + ReadableStream reader) and plotted as it arrives, the well-posedness report of the meta line,
 // problem+json errors shown at the member they point at, and the stability tab (POST v1/stability: the
-// map as SVG, its counts as JSON). Every URL is relative, so the page works behind a path prefix.
+// map as SVG, its counts as JSON). Every URL is relative, so the page works behind a path prefix. A 401
+// (the daemon has a --token-file) asks for the bearer token, kept in sessionStorage for the tab.
 //
 // For tests and curious people, #panel-simulate carries data-state (idle, running, done, error, stopped),
 // data-samples (sample lines received), data-points (samples held for plotting), data-summary-samples and
@@ -24,7 +25,10 @@ const ui = {
   controller: null,
   mapUrl: null,
   runs: 0, // runs started, either tab (data-run)
+  token: sessionStorage.getItem('dashpot-token') || '', // when the daemon wants one (--token-file)
 };
+const headers = (accept) => ({ 'Content-Type': 'application/json', Accept: accept,
+  ...(ui.token ? { Authorization: 'Bearer ' + ui.token } : {}) });
 const editor = new Editor($('editor'), () => run());
 
 // ---- presets and tabs ----
@@ -79,6 +83,7 @@ function showTab(tab, fromPreset = false) {
 function showProblem(problem, prefix = '') {
   const box = $('problem');
   box.hidden = !problem;
+  $('token-form').hidden = !problem || problem.status !== 401;
   if (!problem) { editor.clearMarks(); return; }
   $('problem-title').textContent = prefix + (problem.status ? problem.status + ' ' : '') + (problem.title || 'Error') +
     (problem.detail ? ' \u2014 ' + problem.detail : '');
@@ -176,7 +181,7 @@ async function runSimulation() {
   let state = 'error';
   try {
     const res = await fetch('v1/simulate', { method: 'POST', body: editor.text, signal: ctl.signal,
-      headers: { 'Content-Type': 'application/json', Accept: 'application/x-ndjson' } });
+      headers: headers('application/x-ndjson') });
     if (!res.ok) { // no run: the last one stays on screen, the problem goes next to the editor
       showProblem(await problemOf(res));
       return;
@@ -287,7 +292,7 @@ async function runStability() {
   $('status').textContent = hasMap ? 'computing the map\u2026' : 'analysing\u2026';
   let state = 'error';
   const post = (accept) => fetch('v1/stability', { method: 'POST', body: text, signal: ctl.signal,
-    headers: { 'Content-Type': 'application/json', Accept: accept } });
+    headers: headers(accept) });
   try {
     const t0 = performance.now();
     const [jr, sr] = await Promise.all([post('application/json'), hasMap ? post('image/svg+xml') : null]);
@@ -362,6 +367,12 @@ function run() {
 }
 
 $('run').addEventListener('click', run);
+$('token-form').addEventListener('submit', (e) => {
+  e.preventDefault();
+  ui.token = $('token').value.trim();
+  sessionStorage.setItem('dashpot-token', ui.token);
+  run();
+});
 $('format').addEventListener('click', () => {
   try { editor.text = pretty(JSON.parse(editor.text)) + '\n'; } catch {
     showProblem({ title: 'Not valid JSON', detail: 'fix it, or Run to see where the daemon stops reading' });

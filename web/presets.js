@@ -91,7 +91,7 @@ PRESETS.push({
   note: 'F_V + \u03bb\u2081 F_V\u2032 + \u03bb\u2082 F_V\u2033 = \u03bc\u2081 x + \u03bc\u2082 x\u2032 (thesis model 1.3), swept over \u03bb\u2081 and \u03bb\u2082.',
   spec: {
     mass: 1, law: { lambda: [1, 1, 0.5], mu: [1, 2] },
-    map: { x: { param: 'lambda[1]', from: 0, to: 3, steps: 240 }, y: { param: 'lambda[2]', from: 0.01, to: 2, steps: 160 } },
+    map: { x: { param: 'lambda[1]', from: 0, to: 3, steps: 240 }, y: { param: 'lambda[2]', from: 0.01, to: 0.8, steps: 160 } },
   },
 });
 PRESETS.push({
