@@ -4,7 +4,8 @@
 # "..", encoded dots, symlinks, dot files, subdirectories, --web-dir / DASHPOT_WEB_DIR, the directory found
 # from another working directory), then in a real browser: tests/browser/test_page.mjs drives Debian's
 # Chromium with playwright-core (runs presets, counts plotted points against the samples streamed, checks
-# the console, decodes screenshots, the problem+json display, the stability map, a path prefix).
+# the console, decodes screenshots, the problem+json display, the stability map, a path prefix, the
+# bearer token of a daemon that wants one).
 #
 # What it needs is installed when missing, never skipped: Debian's `chromium` with apt-get (as root; as a
 # normal user the test prints the command and fails) and playwright-core (pinned) from npm into
@@ -144,12 +145,15 @@ install_playwright() {
 check "Debian's chromium is installed ($CHROMIUM)" install_chromium || finish
 check "playwright-core $PLAYWRIGHT_VERSION is installed (npm, $PLAYWRIGHT_DIR)" install_playwright || finish
 mkdir -p "$SHOTS"
-PLAYWRIGHT_DIR=$PLAYWRIGHT_DIR CHROMIUM=$CHROMIUM timeout 330 node "$ROOT/tests/browser/test_page.mjs" "$U/" "$SHOTS" \
+TOKEN=page-test-$RANDOM$RANDOM
+DASHPOT_TOKEN=$TOKEN start_daemon tok || finish
+TOKEN_URL=$URL_tok/ TOKEN=$TOKEN PLAYWRIGHT_DIR=$PLAYWRIGHT_DIR CHROMIUM=$CHROMIUM timeout 330 node "$ROOT/tests/browser/test_page.mjs" "$U/" "$SHOTS" \
     "$SCRATCH/counts" 2>&1 | sed 's/^\(not ok\|ok\) - /\1 - browser: /'
 read -r p f <"$SCRATCH/counts" 2>/dev/null || { p=0; f=1; echo "not ok - the browser test did not report"; }
 PASSED=$((PASSED + p))
 FAILED=$((FAILED + f))
 echo "    screenshots: $SHOTS"
+stop_daemon tok
 stop_daemon web
 check "SIGTERM: exit 0" is "$RC_web" 0
 finish

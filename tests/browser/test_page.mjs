@@ -2,7 +2,8 @@
 // (never a downloaded browser). Run by tests/test_browser.sh:
 //
 //   node tests/browser/test_page.mjs DAEMON_URL SCREENSHOT_DIR COUNTS_FILE
-//   env PLAYWRIGHT_DIR (a directory whose node_modules holds playwright-core), CHROMIUM (the binary)
+//   env PLAYWRIGHT_DIR (a directory whose node_modules holds playwright-core), CHROMIUM (the binary),
+//       TOKEN_URL and TOKEN (optional: a daemon that wants that bearer token)
 //
 // It loads the page, runs presets and waits for each stream to end; the points each plot drew must equal
 // the samples streamed (the page's data attributes against the summary line and an independent count of
@@ -280,10 +281,28 @@ try {
   extra = unexpected(from);
   check(extra.length === 0, 'under the prefix: no console error, page error or failed request', extra.join('\n    '));
   proxy.close();
+  // ---- a daemon with a bearer token: the page asks for it on the 401 and then runs ----
+  if (process.env.TOKEN_URL) {
+    from = problems.length;
+    const page3 = await browser.newPage();
+    watch(page3, 'token');
+    await page3.goto(process.env.TOKEN_URL + '#belt');
+    d = await waitRun(page3, 'panel-simulate', 0);
+    check(d.state === 'error' && await page3.isVisible('#token-form') && (await page3.textContent('#problem-title')).startsWith('401'),
+      'with --token-file: the 401 is shown and the page asks for the token', JSON.stringify(d));
+    await page3.fill('#token', process.env.TOKEN);
+    await page3.click('#token-form button');
+    d = await waitRun(page3, 'panel-simulate', +d.run);
+    check(d.state === 'done' && +d.points === +d.summarySamples && d.canvases.every((n) => n === +d.summarySamples) &&
+      !(await page3.isVisible('#token-form')), 'with the token the run streams to its end', JSON.stringify(d));
+    extra = unexpected(from, /status of 401/);
+    check(extra.length === 0, 'the token page: no other console error', extra.join('\n    '));
+    await page3.close();
+  }
 } catch (e) {
   check(false, 'the browser test ran to its end', e.stack || String(e));
 }
-const all = unexpected(0, /status of (422|400)/);
+const all = unexpected(0, /status of (422|400|401)/);
 check(all.length === 0, 'no unexpected console error anywhere', all.join('\n    '));
 await browser.close();
 done(failed ? 1 : 0);
