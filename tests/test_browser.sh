@@ -7,9 +7,9 @@
 # the console, decodes screenshots, the problem+json display, the stability map, a path prefix, the
 # bearer token of a daemon that wants one).
 #
-# What it needs is installed when missing, never skipped: Debian's `chromium` with apt-get (as root; as a
-# normal user the test prints the command and fails) and playwright-core (pinned) from npm into
-# DASHPOT_CACHE (default ~/.cache/dashpot) with browser downloads off. Screenshots go to
+# What it needs is installed when missing, never skipped: Debian's `chromium` (and `nodejs npm` if there is
+# no npm) with apt-get (as root; as a normal user the test prints the command and fails) and playwright-core
+# (pinned) from npm into DASHPOT_CACHE (default ~/.cache/dashpot) with browser downloads off. Screenshots go to
 # DASHPOT_SCREENSHOTS (default $BUILD/screenshots). Env BUILD (default build). Prints "N passed, M failed".
 source "$(dirname "$0")/lib/daemon.bash"
 
@@ -134,6 +134,12 @@ install_chromium() {
 }
 install_playwright() {
     [ -f "$PLAYWRIGHT_DIR/node_modules/playwright-core/package.json" ] && return 0
+    if ! command -v npm >/dev/null && [ "$(id -u)" = 0 ]; then
+        echo "    installing Debian's nodejs and npm with apt-get"
+        { timeout 900 apt-get install -y --no-install-recommends nodejs npm ||
+            { timeout 300 apt-get update && timeout 900 apt-get install -y --no-install-recommends nodejs npm; }; } \
+            >"$SCRATCH/apt-node.log" 2>&1 || tail -20 "$SCRATCH/apt-node.log" | sed 's/^/    /'
+    fi
     command -v npm >/dev/null || { echo "    npm not found: install Node.js (>= 18) and npm"; return 1; }
     mkdir -p "$PLAYWRIGHT_DIR"
     echo "    installing playwright-core@$PLAYWRIGHT_VERSION into $PLAYWRIGHT_DIR (no browser download)"
