@@ -137,9 +137,13 @@ check "start-up line shows the manifests' settings (threads $threads, max-steps 
     grep -q "threads $threads, max-connections 256, max-steps 1e+08, max-wall 120s, body-limit 1048576" "$log"
 
 code() { hcurl -o "$SCRATCH/body" -w '%{http_code} %{content_type}' "$@"; }
-check "GET /healthz 200" test "$(code "$url/healthz")" = "200 application/json"
-check "/healthz says ok" grep -qx '{"status":"ok"}' "$SCRATCH/body"
-check "GET /readyz 200" test "$(code "$url/readyz")" = "200 application/json"
+# The Deployment's probes, by the paths it names.
+while read -r probe path; do
+    check "$probe: GET $path is 200" test "$(code "$url$path" | cut -d' ' -f1)" = 200
+done < <(manifest probes)
+check "the manifests probe /readyz and /healthz" \
+    test "$(manifest probes | cut -d' ' -f2 | sort | tr '\n' ' ')" = "/healthz /readyz "
+check "GET /healthz says ok" bash -c "[ \"\$(curl -s --max-time 10 '$url/healthz')\" = '{\"status\":\"ok\"}' ]"
 check "the page's files come from the installed web directory (DASHPOT_WEB_DIR)" \
     grep -q "serving [0-9]* web files* from $p/share/dashpot/web\$" "$log"
 if [ -f web/index.html ]; then
@@ -219,6 +223,8 @@ wait_pid "$pid" 20
 check "SIGTERM: the daemon exits 0 within 20 s" test "$WAIT_RC" -eq 0
 check "and logs its shutdown" grep -q 'stopped' "$log"
 make_ uninstall DESTDIR="$dest" PREFIX="$prefix" > "$SCRATCH/uninstall.log" 2>&1
-check "make uninstall" test $? -eq 0
+rc=$?
+check "make uninstall" test $rc -eq 0
+[ $rc -eq 0 ] || show "$SCRATCH/uninstall.log"
 check "make uninstall leaves no file under the DESTDIR" test -z "$(find "$dest" -type f)"
 finish

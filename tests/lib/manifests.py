@@ -5,6 +5,7 @@ give dashpotd, the Dockerfile's stages and instructions, and the DASHPOT_* setti
 Run as a script it prints one thing a shell test needs:
     manifests.py env                NUL-separated NAME=VALUE pairs: the dashpotd container's environment
     manifests.py user               "UID GID" the Deployment runs dashpotd as
+    manifests.py probes             "PROBE PATH" per HTTP probe of the dashpotd container
     manifests.py healthcheck        the Dockerfile HEALTHCHECK command, as NUL-separated argv
     manifests.py job-script         the sweep Job's shell script
 """
@@ -145,6 +146,10 @@ def main():
         sys.stdout.write("".join(f"{k}={v}\0" for k, v in env.items()))
     elif what == "user":
         print(*run_as(one(docs, "Deployment")))
+    elif what == "probes":
+        for name, probe in container(one(docs, "Deployment")).items():
+            if name.endswith("Probe") and "httpGet" in probe:
+                print(name, probe["httpGet"]["path"])
     elif what == "healthcheck":
         (hc,) = instructions(dockerfile()[-1], "HEALTHCHECK")
         sys.stdout.write("".join(a + "\0" for a in exec_form(hc)))
