@@ -81,22 +81,28 @@ thesis-figures: $(BUILD)/dashpot
 	bash scripts/thesis-figures.sh $(BUILD)/dashpot data/thesis
 
 # libFuzzer targets (tests/fuzz/fuzz_*.c) over an instrumented build of the library in build-fuzz/; each runs
-# FUZZ_SECONDS from the seed corpus tests/fuzz/corpus (copied, so new finds do not dirty the tree) and fails
-# on any crash, leak, timeout or sanitizer report.
+# FUZZ_SECONDS from its seed corpus, tests/fuzz/corpus-NAME for fuzz_NAME if there is one, else
+# tests/fuzz/corpus (copied, so new finds do not dirty the tree; tests/fuzz/seeds.py writes the seeds), and
+# fails on any crash, leak, timeout or sanitizer report. fuzz_http links the daemon (src/http but main.c).
 FUZZ_SECONDS ?= 60
 FUZZ_FLAGS := -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all
 FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ_HTTP_OBJ := $(filter-out build-fuzz/src/http/main.o,$(HTTP_SRC:%.c=build-fuzz/%.o))
 fuzz:
 	@bash scripts/install-deps.sh --fuzz
-	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang OPT=-O1 SANFLAGS="$(FUZZ_FLAGS)" build-fuzz/libdashpot.a
+	@$(MAKE) -s --no-print-directory BUILD=build-fuzz CC=clang OPT=-O1 SANFLAGS="$(FUZZ_FLAGS)" build-fuzz/libdashpot.a \
+	  $(FUZZ_HTTP_OBJ)
 	@fail=0; for f in $(FUZZ_SRC); do \
-	  t=build-fuzz/$$(basename $$f .c); \
-	  clang $(CPPFLAGS) $(WARN) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $$f \
-	    build-fuzz/libdashpot.a $(LDLIBS_JSON) $(LDLIBS_CORE) -o $$t || exit 1; \
-	  rm -rf $$t.corpus && mkdir -p $$t.corpus && cp tests/fuzz/corpus/* $$t.corpus/; \
-	  echo "== $$t for $(FUZZ_SECONDS) s"; \
-	  $$t -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 -max_len=65536 \
-	      -print_final_stats=1 $$t.corpus 2>&1 | grep -E 'Done|stat::number_of_executed_units|ERROR|SUMMARY|==[0-9]+==' ; \
+	  n=$$(basename $$f .c); t=build-fuzz/$$n; seeds=tests/fuzz/corpus-$${n#fuzz_}; \
+	  [ -d $$seeds ] || seeds=tests/fuzz/corpus; \
+	  case $$n in fuzz_http*) http="$(FUZZ_HTTP_OBJ) $(LDLIBS_HTTP)";; *) http=;; esac; \
+	  clang $(CPPFLAGS) -Isrc/http $(WARN) -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all $$f \
+	    $$http build-fuzz/libdashpot.a $(LDLIBS_JSON) $(LDLIBS_CORE) -o $$t || exit 1; \
+	  rm -rf $$t.corpus && mkdir -p $$t.corpus && cp $$seeds/* $$t.corpus/; \
+	  echo "== $$t for $(FUZZ_SECONDS) s from $$seeds"; \
+	  $$t -max_total_time=$(FUZZ_SECONDS) -timeout=10 -rss_limit_mb=2048 -max_len=65536 -artifact_prefix=$$t- \
+	      -print_final_stats=1 $$t.corpus 2>&1 | \
+	      grep -E 'Done|stat::number_of_executed_units|ERROR|SUMMARY|==[0-9]+==|^fuzz_|Test unit written' ; \
 	  [ $${PIPESTATUS[0]} -eq 0 ] || fail=1; \
 	done; exit $$fail
 

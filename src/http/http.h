@@ -36,6 +36,9 @@ typedef struct config {
     char web_dir[4096];          /* the browser page's files (web/), served at / (page.c) */
     char token_file[4096];       /* a file holding the bearer token that /v1/ requires; "" = DASHPOT_TOKEN */
     char token[1024];            /* the token itself (auth_load); "" = /v1/ is open */
+    int embedded;                /* not a flag: no listening socket, no threads; the caller adds connections
+                                    and drives MHD_run (tests/fuzz/fuzz_http.c) */
+    int quiet;                   /* not a flag: no log lines */
 } config;
 
 /* Fills c from defaults, DASHPOT_* variables and argv (flags win). Returns 0 to run, 1 when --help or

@@ -134,7 +134,8 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls, en
     deadline_mark(c, 0);
     double dt = now_seconds() - r->t_start;
     metrics_request(&s->m, r->route, r->status, dt);
-    log_request(r, dt);
+    if (!s->cfg.quiet)
+        log_request(r, dt);
     request_release(r);
 }
 
@@ -152,7 +153,9 @@ static void on_connection(void *cls, struct MHD_Connection *c, void **socket_con
 
 static void on_mhd_error(void *cls, const char *fmt, va_list ap)
 {
-    (void)cls;
+    const server *s = cls;
+    if (s->cfg.quiet)
+        return;
     char msg[512];
     vsnprintf(msg, sizeof msg, fmt, ap);
     msg[strcspn(msg, "\n")] = '\0';
@@ -224,26 +227,30 @@ static int make_address(const config *cfg, struct sockaddr_storage *sa, int *ipv
 int server_start(server *s)
 {
     struct sockaddr_storage sa;
-    int ipv6;
-    if (make_address(&s->cfg, &sa, &ipv6) != 0) {
+    int ipv6 = 0, embedded = s->cfg.embedded;
+    if (!embedded && make_address(&s->cfg, &sa, &ipv6) != 0) {
         log_line("error: --bind %s is not an IPv4 or IPv6 address", s->cfg.bind);
         return -1;
     }
     load_openapi(s);
     page_load(s);
-    unsigned flags = MHD_USE_EPOLL_INTERNAL_THREAD | MHD_USE_ITC | MHD_USE_TURBO | MHD_USE_ERROR_LOG |
-                     (ipv6 ? MHD_USE_IPv6 : 0);
-    s->daemon = MHD_start_daemon(
-        flags, (uint16_t)s->cfg.port, NULL, NULL, on_request, s,
-        MHD_OPTION_EXTERNAL_LOGGER, on_mhd_error, s, /* first, so that it sees every message */
-        MHD_OPTION_SOCK_ADDR, (struct sockaddr *)&sa,
-        MHD_OPTION_THREAD_POOL_SIZE, (unsigned)(s->cfg.threads > 1 ? s->cfg.threads : 0),
-        MHD_OPTION_CONNECTION_LIMIT, s->cfg.max_connections + OVERLOAD_HEADROOM,
-        MHD_OPTION_CONNECTION_TIMEOUT, s->cfg.timeout,
-        MHD_OPTION_CONNECTION_MEMORY_LIMIT, (size_t)CONNECTION_MEMORY,
-        MHD_OPTION_NOTIFY_COMPLETED, on_completed, s,
-        MHD_OPTION_NOTIFY_CONNECTION, on_connection, s,
-        MHD_OPTION_END);
+    unsigned flags = embedded ? MHD_USE_NO_LISTEN_SOCKET | MHD_USE_ERROR_LOG
+                              : MHD_USE_EPOLL_INTERNAL_THREAD | MHD_USE_ITC | MHD_USE_TURBO | MHD_USE_ERROR_LOG |
+                                    (ipv6 ? MHD_USE_IPv6 : 0);
+    /* Function pointers travel as intptr_t in MHD_OptionItem.value (MHD's documented convention). */
+    struct MHD_OptionItem opts[] = {
+        { MHD_OPTION_EXTERNAL_LOGGER, (intptr_t)on_mhd_error, s }, /* first, so that it sees every message */
+        { MHD_OPTION_CONNECTION_LIMIT, (intptr_t)(s->cfg.max_connections + OVERLOAD_HEADROOM), NULL },
+        { MHD_OPTION_CONNECTION_TIMEOUT, (intptr_t)s->cfg.timeout, NULL },
+        { MHD_OPTION_CONNECTION_MEMORY_LIMIT, (intptr_t)CONNECTION_MEMORY, NULL },
+        { MHD_OPTION_NOTIFY_COMPLETED, (intptr_t)on_completed, s },
+        { MHD_OPTION_NOTIFY_CONNECTION, (intptr_t)on_connection, s },
+        { embedded ? MHD_OPTION_END : MHD_OPTION_SOCK_ADDR, 0, &sa },
+        { MHD_OPTION_THREAD_POOL_SIZE, (intptr_t)(s->cfg.threads > 1 ? s->cfg.threads : 0), NULL },
+        { MHD_OPTION_END, 0, NULL },
+    };
+    s->daemon = MHD_start_daemon(flags, (uint16_t)s->cfg.port, NULL, NULL, on_request, s, MHD_OPTION_ARRAY, opts,
+                                 MHD_OPTION_END);
     if (s->daemon == NULL) {
         log_line("error: cannot listen on %s port %u", s->cfg.bind, s->cfg.port);
         return -1;
