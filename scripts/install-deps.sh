@@ -6,6 +6,7 @@ set -euo pipefail
 pkgs=(build-essential pkg-config python3 python3-yaml libgsl-dev libcjson-dev libmicrohttpd-dev libcmocka-dev curl)
 [ "${1:-}" = "--bench" ] && pkgs+=(wrk python3-numpy python3-scipy valgrind)
 [ "${1:-}" = "--fuzz" ] && pkgs+=(clang libclang-rt-14-dev)
+[ "${1:-}" = "--robustness" ] && pkgs+=(wrk valgrind)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -201,7 +201,8 @@ check "convergence with Accept: text/csv is 406" problem 406
 req GET "$U/v1/convergence"
 check "GET /v1/convergence is 405 with Allow: POST" is "$STATUS $(header Allow)" "405 POST"
 
-# ---- a 10^7-sample stream: t_end = 10, dt = 1e-6, every step a sample ----
+# ---- a 10^7-sample stream: t_end = 10, dt = 1e-6, every step a sample (not under valgrind: ~30 min) ----
+if [ "${DASHPOT_VALGRIND:-0}" != 1 ]; then
 t0=$(date +%s.%N)
 CURL_TIME=600 hcurl -H 'Accept: application/x-ndjson' --data-binary "$(long_spec 10)" "$U/v1/simulate" |
     tee >(wc -l >"$SCRATCH/lines") | tail -n 1 >"$SCRATCH/last"
@@ -211,6 +212,9 @@ echo "    10^7 samples in $(echo "$t1 - $t0" | bc) s"
 check "10^7-sample NDJSON: meta + 10000001 samples + summary lines" is "$(tr -d ' ' <"$SCRATCH/lines")" 10000003
 check "10^7-sample NDJSON ends with its summary" pyjson "$SCRATCH/last" \
     "d['type'] == 'summary' and d['samples'] == 10000001 and d['steps'] == 10000000 and d['final']['t'] == 10"
+else
+    echo "    (DASHPOT_VALGRIND=1: the 10^7-sample stream is skipped)"
+fi
 
 # ---- a client that hangs up: the run stops and is counted as cancelled ----
 before=$(metric "$U" dashpot_runs_cancelled_total)
@@ -307,7 +311,8 @@ req POST "$URL_small/v1/convergence" --data-binary '{"model": {"mass": 1, "sprin
  "n": [100000, 1000000], "stepper": "rkf45", "t_end": 100, "dt": 0.5}}'
 t1=$(date +%s.%N)
 check "a convergence study over --max-wall is 503 /problems/timeout" problem 503 /problems/timeout
-check "...answered within 1.5 s of a 0.5 s limit" python3 -c "import sys; sys.exit(0 if $t1 - $t0 < 1.5 else 1)"
+check "...answered within 1.5 s of a 0.5 s limit (4 s under valgrind)" \
+    python3 -c "import sys; sys.exit(0 if $t1 - $t0 < (4 if '${DASHPOT_VALGRIND:-0}' == '1' else 1.5) else 1)"
 check "...and no study is left computing" is "$(metric "$URL_small" dashpot_studies_in_flight)" 0
 stop_daemon small
 check "SIGTERM: exit 0" is "$RC_small" 0

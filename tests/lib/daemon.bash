@@ -6,6 +6,10 @@
 #   check DESC CMD...              runs CMD; counts and prints "ok - DESC" or "not ok - DESC"
 #   finish                         prints "N passed, M failed" and exits 1 if any failed
 # Every wait is bounded; the EXIT trap kills whatever daemon is left and removes the scratch directory.
+#
+# DASHPOT_VALGRIND=1 runs every daemon under valgrind memcheck (leak check on exit; definite and indirect
+# leaks and any memory error make it exit 99, so stop_daemon's RC_NAME is not 0 and the test says so, with
+# valgrind's report). Waits for start-up are longer then.
 
 set -uo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
@@ -26,21 +30,32 @@ cleanup() {
 }
 trap cleanup EXIT
 
+VALGRIND=()
+if [ "${DASHPOT_VALGRIND:-0}" = 1 ]; then
+    command -v valgrind >/dev/null || { echo "not ok - DASHPOT_VALGRIND=1 but valgrind is not installed"; exit 1; }
+    VALGRIND=(valgrind --quiet --leak-check=full --errors-for-leak-kinds=definite,indirect --error-exitcode=99)
+fi
+
 start_daemon() {
-    local name=$1 log=$SCRATCH/$1.log i port=
+    local name=$1 log=$SCRATCH/$1.log i port= tries=100
     shift
     [ -x "$DAEMON" ] || { echo "not ok - $DAEMON not built"; FAILED=$((FAILED + 1)); return 1; }
-    (cd "$ROOT" && exec "$DAEMON" --port 0 "$@") 2>"$log" &
+    if [ ${#VALGRIND[@]} -gt 0 ]; then
+        tries=600
+        (cd "$ROOT" && exec "${VALGRIND[@]}" --log-file="$SCRATCH/$name.valgrind" "$DAEMON" --port 0 "$@") 2>"$log" &
+    else
+        (cd "$ROOT" && exec "$DAEMON" --port 0 "$@") 2>"$log" &
+    fi
     local pid=$!
     DAEMON_PIDS+=("$pid")
-    for i in $(seq 100); do
+    for i in $(seq $tries); do
         port=$(grep -o 'listening on http://[^ ]*' "$log" 2>/dev/null | grep -o '[0-9]*$')
         [ -n "$port" ] && break
         kill -0 "$pid" 2>/dev/null || break
         sleep 0.1
     done
     if [ -z "$port" ]; then
-        echo "not ok - start $name: no listening line in 10 s"; sed 's/^/    /' "$log"
+        echo "not ok - start $name: no listening line in $((tries / 10)) s"; sed 's/^/    /' "$log"
         FAILED=$((FAILED + 1))
         return 1
     fi
@@ -66,6 +81,10 @@ stop_daemon() {
     kill -TERM "${!pidvar}" 2>/dev/null
     wait_pid "${!pidvar}" "${2:-20}"
     printf -v "RC_$name" %s "$WAIT_RC"
+    if [ ${#VALGRIND[@]} -gt 0 ]; then
+        [ -s "$SCRATCH/$name.valgrind" ] && { echo "    valgrind ($name, exit $WAIT_RC):"; sed 's/^/    /' "$SCRATCH/$name.valgrind"; }
+        check "valgrind memcheck, daemon '$name': no leak, no memory error (exit $WAIT_RC)" [ "$WAIT_RC" = 0 ]
+    fi
 }
 
 check() {
