@@ -57,8 +57,9 @@ dp_verdict dp_poly_hurwitz_verdict(const double *minor, const double *tol, int n
 
 typedef struct dp_poly_ws dp_poly_ws;
 
-/* A workspace for dp_poly_roots/dp_poly_analyse of any degree up to DP_STAB_MAX_DEGREE; NULL if out of
- * memory. Free with dp_poly_ws_free (accepts NULL). One per thread. */
+/* A workspace for dp_poly_roots/dp_poly_analyse of any degree up to DP_STAB_MAX_DEGREE (GSL's, allocated per
+ * degree on first use: those functions may also return DP_ENOMEM); NULL if out of memory. Free with
+ * dp_poly_ws_free (accepts NULL). One per thread. */
 dp_poly_ws *dp_poly_ws_alloc(void);
 void dp_poly_ws_free(dp_poly_ws *w);
 
@@ -174,7 +175,8 @@ typedef struct dp_stability {
 
 typedef struct dp_stability_ws dp_stability_ws;
 
-/* A workspace for analyses and maps (GSL workspaces for every size); NULL if out of memory. */
+/* A workspace for analyses and maps (GSL workspaces for each size, allocated when a size is first used, so
+ * an analysis may also fail with DP_ENOMEM); NULL if out of memory. */
 dp_stability_ws *dp_stability_ws_alloc(void);
 void dp_stability_ws_free(dp_stability_ws *w);
 /* Its polynomial part, for callers that analyse bare polynomials. */

@@ -21,6 +21,8 @@
 
 #define NMAX DP_STAB_MAX_DEGREE
 
+/* GSL workspaces by degree, allocated when a degree is first solved: a request analyses one law, and
+ * allocating all nine up front was half the cost of a small POST /v1/stability. */
 struct dp_poly_ws {
     gsl_poly_complex_workspace *qr[NMAX + 1];    /* by degree (n + 1 coefficients), 2 .. NMAX */
 };
@@ -45,17 +47,7 @@ char dp_verdict_letter(dp_verdict v)
 
 dp_poly_ws *dp_poly_ws_alloc(void)
 {
-    dp_poly_ws *w = calloc(1, sizeof *w);
-    if (w == NULL)
-        return NULL;
-    for (int n = 2; n <= NMAX; n++) {
-        w->qr[n] = gsl_poly_complex_workspace_alloc((size_t)n + 1);
-        if (w->qr[n] == NULL) {
-            dp_poly_ws_free(w);
-            return NULL;
-        }
-    }
-    return w;
+    return calloc(1, sizeof(dp_poly_ws));
 }
 
 void dp_poly_ws_free(dp_poly_ws *w)
@@ -197,6 +189,8 @@ int dp_poly_roots(dp_poly_ws *w, const double *a, int n, double *re, double *im,
         double asc[NMAX + 1], z[2 * NMAX];
         for (int i = 0; i <= d; i++)
             asc[i] = a[d - i];
+        if (w->qr[d] == NULL && (w->qr[d] = gsl_poly_complex_workspace_alloc((size_t)d + 1)) == NULL)
+            return DP_ENOMEM;
         if (gsl_poly_complex_solve(asc, (size_t)d + 1, w->qr[d], z) != GSL_SUCCESS)
             return DP_ESOLVE;
         for (int i = 0; i < d; i++) {

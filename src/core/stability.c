@@ -20,6 +20,8 @@
 #define NMAX DP_STAB_MAX_DEGREE
 #define DIMMAX (DP_STAB_MAX_DEGREE + 1)    /* the pencil has at least 3 variables */
 
+/* GSL workspaces by dimension, allocated when a dimension is first used (dims): one analysis needs one
+ * dimension, and allocating all eleven up front (~130 mallocs) was most of a small POST /v1/stability. */
 struct dp_stability_ws {
     dp_poly_ws *poly;
     gsl_eigen_nonsymm_workspace *ns[DIMMAX + 1];
@@ -34,24 +36,34 @@ dp_stability_ws *dp_stability_ws_alloc(void)
     dp_stability_ws *w = calloc(1, sizeof *w);
     if (w == NULL)
         return NULL;
-    w->poly = dp_poly_ws_alloc();
-    int ok = w->poly != NULL;
-    for (size_t d = 1; ok && d <= DIMMAX; d++) {
-        w->ns[d] = gsl_eigen_nonsymm_alloc(d);
-        w->gen[d] = gsl_eigen_gen_alloc(d);
-        w->m1[d] = gsl_matrix_alloc(d, d);
-        w->m2[d] = gsl_matrix_alloc(d, d);
-        w->eval[d] = gsl_vector_complex_alloc(d);
-        w->beta[d] = gsl_vector_alloc(d);
-        ok = w->ns[d] && w->gen[d] && w->m1[d] && w->m2[d] && w->eval[d] && w->beta[d];
-        if (ok)      /* balancing makes the eigenvalues of a badly scaled companion-like matrix accurate */
-            gsl_eigen_nonsymm_params(0, 1, w->ns[d]);
-    }
-    if (!ok) {
-        dp_stability_ws_free(w);
+    if ((w->poly = dp_poly_ws_alloc()) == NULL) {
+        free(w);
         return NULL;
     }
     return w;
+}
+
+/* The workspaces of dimension d (1 .. DIMMAX), allocated on first use; DP_OK or DP_ENOMEM (what was
+ * allocated stays, for the next call or dp_stability_ws_free). */
+static int dims(dp_stability_ws *w, int d)
+{
+    size_t n = (size_t)d;
+    if (w->beta[d] != NULL)
+        return DP_OK;
+    if (!w->ns[d] && (w->ns[d] = gsl_eigen_nonsymm_alloc(n)) != NULL)
+        gsl_eigen_nonsymm_params(0, 1, w->ns[d]); /* balancing makes the eigenvalues of a badly scaled
+                                                     companion-like matrix accurate */
+    if (!w->gen[d])
+        w->gen[d] = gsl_eigen_gen_alloc(n);
+    if (!w->m1[d])
+        w->m1[d] = gsl_matrix_alloc(n, n);
+    if (!w->m2[d])
+        w->m2[d] = gsl_matrix_alloc(n, n);
+    if (!w->eval[d])
+        w->eval[d] = gsl_vector_complex_alloc(n);
+    if (w->ns[d] && w->gen[d] && w->m1[d] && w->m2[d] && w->eval[d])
+        w->beta[d] = gsl_vector_alloc(n); /* last: its presence says all six are there */
+    return w->beta[d] ? DP_OK : DP_ENOMEM;
 }
 
 void dp_stability_ws_free(dp_stability_ws *w)
@@ -293,6 +305,8 @@ static int state_matrix(dp_stability_ws *w, const dp_law *law, const double *p, 
 {
     dp_state_matrix *sm = &out->state;
     fill_state(law, p, n, sm);
+    if (dims(w, n) != DP_OK)
+        return DP_ENOMEM;
     gsl_matrix *a = w->m1[n];
     for (int i = 0; i < n * n; i++)
         a->data[(i / n) * a->tda + i % n] = sm->s[i];
@@ -338,6 +352,8 @@ static int pencil(dp_stability_ws *w, const dp_law *law, const double *p, int n,
 {
     fill_pencil(law, p, n, pc);
     int d = pc->dim;
+    if (dims(w, d) != DP_OK)
+        return DP_ENOMEM;
     gsl_matrix *a = w->m1[d], *e = w->m2[d];
     for (int i = 0; i < d * d; i++) {
         a->data[(i / d) * a->tda + i % d] = pc->a[i];
