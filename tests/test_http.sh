@@ -36,6 +36,8 @@ SPEC='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law
 # t_end / dt steps at output every 1: LONG is 10^8 steps (the default --max-steps), BIG is 10^7.
 long_spec() { echo "{\"model\": {\"mass\": 1, \"spring\": {\"law\": \"linear\", \"k\": 1}, \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.3}, \"forcing\": {\"kind\": \"harmonic\", \"amplitude\": 0.5, \"omega\": 1.3}}, \"initial\": {\"x\": 1, \"v\": 0}, \"solver\": {\"dt\": 1e-6, \"t_end\": $1}}"; }
 
+TINY_SPEC='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.3}}, "solver": {"dt": 1, "t_end": 2}}'
+
 start_daemon main || finish
 U=$URL_main
 
@@ -109,6 +111,13 @@ if [ -x "$BUILD/dashpot" ]; then
     printf '%s' "$SPEC" >"$SCRATCH/spec.json"
     "$BUILD/dashpot" simulate "$SCRATCH/spec.json" --format json --quiet >"$SCRATCH/cli.json"
     check "daemon JSON is byte-identical to the CLI's" cmp -s "$SCRATCH/doc.json" "$SCRATCH/cli.json"
+fi
+req POST "$U/v1/simulate" -H 'Accept: application/x-ndjson' --data-binary "$TINY_SPEC"
+check "a run within one block (3 samples) is sent whole: Content-Length, not chunked" \
+    is "$(header Content-Length) $(header Transfer-Encoding)" "$(wc -c <"$BODY") "
+if [ -x "$BUILD/dashpot" ]; then
+    printf '%s' "$TINY_SPEC" | "$BUILD/dashpot" simulate - --format ndjson --quiet >"$SCRATCH/tiny.ndjson"
+    check "...with the CLI's bytes" cmp -s "$BODY" "$SCRATCH/tiny.ndjson"
 fi
 req POST "$U/v1/simulate" -H 'Accept: */*' --data-binary "$SPEC"
 check "Accept: */* gets the default JSON" cmp -s "$BODY" "$SCRATCH/doc.json"
