@@ -14,7 +14,7 @@ CLIENTS=${FAULT_CLIENTS:-1000}
 
 # faults SUBCOMMAND ARGS...: runs faults.py, adds its counts to ours.
 faults() {
-    python3 "$FAULTS" "$@" | tee "$SCRATCH/faults.out" | grep -v '^COUNTS '
+    timeout 300 python3 "$FAULTS" "$@" | tee "$SCRATCH/faults.out" | grep -v '^COUNTS '
     local p f
     read -r _ p f < <(grep '^COUNTS ' "$SCRATCH/faults.out")
     [ -n "${p:-}" ] || { echo "not ok - faults.py $1 did not finish"; FAILED=$((FAILED + 1)); return; }

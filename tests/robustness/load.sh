@@ -20,14 +20,14 @@ PID=$PID_load
 rss() { awk '/^VmRSS:/ { print $2 }' "/proc/$PID/status"; }
 
 # Warm-up: the allocator's arenas and the connection pools reach their working size.
-wrk -t 2 -c "$CONNS" -d 3s --timeout 10s -s "$LUA" "$U" >"$SCRATCH/warm.out" 2>&1
+timeout 60 wrk -t 2 -c "$CONNS" -d 3s --timeout 10s -s "$LUA" "$U" >"$SCRATCH/warm.out" 2>&1
 warm_requests=$(awk '$1 == "requests" { print $2 }' "$SCRATCH/warm.out")
 echo "    warm-up: ${warm_requests:-?} requests, RSS $(rss) kB"
 
 # VmRSS every 0.25 s while wrk runs.
 (while kill -0 "$PID" 2>/dev/null; do rss; sleep 0.25; done) >"$SCRATCH/rss" &
 SAMPLER=$!
-wrk -t 2 -c "$CONNS" -d "${DURATION}s" --timeout 10s -s "$LUA" "$U" >"$SCRATCH/wrk.out" 2>&1
+timeout $((DURATION + 60)) wrk -t 2 -c "$CONNS" -d "${DURATION}s" --timeout 10s -s "$LUA" "$U" >"$SCRATCH/wrk.out" 2>&1
 kill "$SAMPLER" 2>/dev/null
 wait "$SAMPLER" 2>/dev/null
 sed -n '/Requests\/sec/p; /^status /p; /^requests /p; /^errors /p; /^latency /p' "$SCRATCH/wrk.out" | sed 's/^/    /'
