@@ -242,9 +242,11 @@ static int integrate_to(dp_run *r, double t1, unsigned long long *budget)
     while (g->t < t1) {
         if (*budget == 0)
             return DP_MORE;
-        if ((double)d->e->count >= DP_SPEC_MAX_STEPS)
-            return dp_run_fail(r, DP_ELIMIT, "more than %.0f integrator steps by t = %.17g: choose an implicit "
-                               "stepper or a smaller n", DP_SPEC_MAX_STEPS, g->t);
+        /* The front end's step limit bounds the integrator's own steps too: a stiff enough model (k ~ 1e97
+         * from the fuzzer) would otherwise integrate for hours. */
+        if ((double)d->e->count >= r->max_steps)
+            return dp_run_fail(r, DP_ELIMIT, "more than %.0f integrator steps by t = %.17g (the step limit): "
+                               "choose an implicit stepper, a smaller n or a less stiff model", r->max_steps, g->t);
         (*budget)--;
         /* Split what is left to t1 into equal steps no longer than the proposal: a short remainder step
          * before each sample time would make msbdf see a step-size drop and lower its order (its

@@ -67,6 +67,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
         return NULL;
     }
     r->h = spec->solver.dt;
+    r->max_steps = max_steps > 0 && max_steps < DP_SPEC_MAX_STEPS ? max_steps : DP_SPEC_MAX_STEPS;
     r->nsteps = (unsigned long long)dp_spec_steps(spec);
     r->countdown = 1; /* the initial state is always a sample */
     switch (spec->solver.kind) {

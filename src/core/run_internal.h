@@ -34,6 +34,7 @@ struct dp_run {
     dp_spec spec;               /* deep copy: the run owns it */
     double h;                   /* nominal step */
     unsigned long long nsteps;  /* steps to t_end */
+    double max_steps;           /* the front end's step limit; also bounds an adaptive integrator's steps */
     unsigned long long n;       /* steps done */
     long countdown;             /* steps until the next decimated sample */
     dp_sample cur;              /* state at t = cur.t */
