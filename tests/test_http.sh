@@ -72,6 +72,10 @@ check "invalid spec is 422 /problems/invalid-spec" problem 422 /problems/invalid
 check "422 lists every error by pointer" pyjson "$BODY" "[e['pointer'] for e in d['errors']] == ['/model/mass', '/solver/dt']"
 req POST "$U/v1/simulate" --data-binary "$(long_spec 1e6)"
 check "10^12 steps is 422 /problems/over-limit (--max-steps)" problem 422 /problems/over-limit
+req POST "$U/v1/simulate" --data-binary '{"model": {"mass": 1, "spring": {"law": "linear", "k": 5.6e53},
+ "damper": {"law": "coulomb", "phi0": 0.4}}, "initial": {"x": -2}, "solver": {"kind": "analytic", "dt": 0.01, "t_end": 20}}'
+check "analytic with 4.8e27 turning points (a worker spun for ever) is 422 over-limit at /model/spring/k" pyjson "$BODY" \
+    "d['status'] == 422 and d['type'] == '/problems/over-limit' and d['errors'][0]['pointer'] == '/model/spring/k'"
 head -c 2000000 /dev/zero | tr '\0' ' ' >"$SCRATCH/big"
 req POST "$U/v1/simulate" --data-binary @"$SCRATCH/big"
 check "a 2 MB body is 413 (Content-Length over --body-limit)" problem 413
@@ -239,7 +243,7 @@ s1=$(metric "$U" dashpot_samples_streamed_total)
 sleep 0.5
 check "...and the solver stopped (samples streamed unchanged)" is "$(metric "$U" dashpot_samples_streamed_total)" "$s1"
 check "/metrics counts requests by route and status" \
-    grep -q 'dashpot_http_requests_total{route="/v1/simulate",status="422"} 2' <(hcurl "$U/metrics")
+    grep -q 'dashpot_http_requests_total{route="/v1/simulate",status="422"} 3' <(hcurl "$U/metrics")
 check "/metrics has the duration histogram (a 405 counts under its route)" \
     grep -q 'dashpot_http_request_duration_seconds_bucket{route="/healthz",le="+Inf"} 3' <(hcurl "$U/metrics") # GET, HEAD, DELETE
 check "one log line per request (method, path, status, bytes, duration)" \

@@ -681,6 +681,14 @@ static const row rows[] = {
     { "analytic with a graph damper", "{'model':{'mass':1," SPRING_OK ",'damper':{'law':'graph','points':"
       "[[0,0],[1,1]]}},'solver':{'kind':'analytic'}}", NULL, DP_EINVAL, "/model/damper/law",
       "the analytic solver needs a coulomb", 0 },
+    /* k = 5.6e53: half-period 4.2e-27, 4.8e27 turning points by t = 20, and below the rounding of t the clock
+     * stopped: the run never ended (tests/fuzz/fuzz_spec.c). Far from rest with phi0 tiny, also by rest. */
+    { "analytic with more turning points than steps", "{'model':{'mass':1,'spring':{'law':'linear','k':5.6e53},"
+      "'damper':{'law':'coulomb','phi0':0.4}},'initial':{'x':-2},'solver':{'kind':'analytic','dt':0.01,"
+      "'t_end':20}}", NULL, DP_ELIMIT, "/model/spring/k", "turning points by t_end", 0 },
+    { "analytic turning points over a front end's limit", "{'model':{'mass':1,'spring':{'law':'linear','k':1e6},"
+      "'damper':{'law':'coulomb','phi0':1e-9}},'initial':{'x':1},'solver':{'kind':'analytic','dt':1,"
+      "'t_end':1000}}", NULL, DP_ELIMIT, "/model/spring/k", "over the limit of 1000 per run", 1000 },
 };
 
 /* The row at *state: parse, then the status, an error at the exact pointer with the message part. */

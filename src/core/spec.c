@@ -65,6 +65,24 @@ static void check_analytic(const dp_spec *s, dp_errors *e)
         dp_errors_add(e, "/model/forcing", "the analytic solver needs a constant forcing");
 }
 
+/* An upper bound on the turning points the analytic solver passes up to t_end: one per half-period
+ * pi sqrt(m/k), and with Coulomb friction no more than it takes to come to rest, each half-cycle bringing
+ * the amplitude about the arc's centre down by 2 phi0 / k. The solver passes them one by one, so a bound
+ * over the step limit is a run that never ends in practice; from k ~ 1e40 on, the half-period is even
+ * below the rounding of t and the clock stops for good (found by tests/fuzz/fuzz_spec.c). */
+static double analytic_arcs(const dp_spec *s)
+{
+    const dp_model *m = &s->model;
+    double k = m->spring.k, om = sqrt(k / m->mass), F0 = 0;
+    double phi0 = m->damper.law == DP_DAMPER_COULOMB ? m->damper.phi0 : 0;
+    dp_forcing_is_constant(&m->forcing, &F0);
+    double by_time = s->solver.t_end * om / M_PI + 2;
+    if (!(phi0 > 0))
+        return by_time;
+    double amplitude = hypot(s->x0 - F0 / k, s->v0 / om) + phi0 / k;
+    return fmin(by_time, amplitude * k / (2 * phi0) + 2);
+}
+
 static void check_thesis(const dp_spec *s, dp_errors *e)
 {
     const dp_model *m = &s->model;
@@ -147,6 +165,13 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
     if (!(n <= max_steps)) {
         dp_errors_add(e, "/solver/dt", "t_end/dt = %.6g steps exceeds the limit of %.6g steps per run",
                       n, max_steps);
+        return DP_ELIMIT;
+    }
+    double arcs = s->solver.kind == DP_SOLVER_ANALYTIC ? analytic_arcs(s) : 0;
+    if (!(arcs <= max_steps)) {
+        dp_errors_add(e, "/model/spring/k", "the closed form passes up to %.3g turning points by t_end, over the "
+                      "limit of %.6g per run (the half-period pi sqrt(m/k) is %.3g)", arcs, max_steps,
+                      M_PI * sqrt(s->model.mass / s->model.spring.k));
         return DP_ELIMIT;
     }
     return DP_OK;
