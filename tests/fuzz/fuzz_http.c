@@ -11,7 +11,7 @@
  * routing, negotiation, the token check, body accumulation, the limits, streaming and problem documents.
  * MHD itself is not instrumented, so coverage guidance comes from dashpot's code only.
  *
- * The daemon runs with small limits so that inputs stay fast (2000 steps, 1 s of wall time, 16 KiB of
+ * The daemon runs with small limits so that inputs stay fast (2000 steps, 0.25 s of wall time, 16 KiB of
  * body, 400 map points) and a bearer token (the seeds carry it; inputs without it exercise the 401).
  * Failures: any crash, leak or sanitizer report; an answer of 500 (dashpot never answers 500); a
  * connection not closed within 5 s (a hang); and a run, study or connection left open after it closed.
@@ -34,7 +34,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 #define TOKEN "fuzz-token"
-/* Wall-clock seconds an input may take before it counts as a hang (the runs stop at 1 s). */
+/* Wall-clock seconds an input may take before it counts as a hang (the runs stop at 0.25 s). */
 #define HANG_SECONDS 5.0
 
 static server *srv;
@@ -45,7 +45,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
     (void)argv;
     gsl_set_error_handler_off();
     signal(SIGPIPE, SIG_IGN);
-    char *args[] = { "fuzz_http", "--threads", "1", "--max-steps", "2000", "--max-wall", "1", "--timeout", "2",
+    char *args[] = { "fuzz_http", "--threads", "1", "--max-steps", "2000", "--max-wall", "0.25", "--timeout", "2",
                      "--body-limit", "16384", "--max-map-points", "400", "--max-connections", "4" };
     srv = server_new();
     if (srv == NULL || config_load(&srv->cfg, (int)(sizeof args / sizeof args[0]), args) != 0)
