@@ -389,7 +389,9 @@ static void initial_state(dp_run *r)
     c->t = 0, c->x = r->spec.x0, c->v = r->spec.v0;
     if (L->S) {
         dp_graph_force(L->S, c->x, &slo, &shi);
-        slo = isfinite(slo) ? slo : shi;
+        /* On a vertical piece (a taut rope, a rigid stop) the force is any value of [slo, shi], possibly
+         * unbounded both ways: take the one closest to zero, which is finite. */
+        slo = fmin(fmax(0.0, slo), shi);
     }
     double Fs = L->S ? slo : L->k * c->x;
     dp_graph_force(L->A, c->v - L->vb, &lo, &hi);
