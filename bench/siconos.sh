@@ -20,21 +20,8 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
 # ---- the peer, from Debian --------------------------------------------------------------------------------
-missing=()
-for p in libsiconos-kernel-dev g++; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  if [ "$(id -u)" -ne 0 ]; then
-    echo "siconos.sh: FAIL: the peer needs Debian packages: ${missing[*]}" >&2
-    echo "install them with: sudo apt-get update && sudo apt-get install -y ${missing[*]}" >&2
-    exit 1
-  fi
-  echo "siconos.sh: installing ${missing[*]}" >&2
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+# scripts/install-deps.sh installs what is missing as root, or prints the apt-get line and fails otherwise.
+bash scripts/install-deps.sh --siconos || { echo "siconos.sh: FAIL: the peer is not installed" >&2; exit 1; }
 
 # ---- build ------------------------------------------------------------------------------------------------
 # The library as the Makefile builds it (a no-op after `make`), then the three programs: C with the

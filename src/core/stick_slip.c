@@ -367,7 +367,7 @@ int dp_stick_slip_advance(dp_run *r)
         if (!isfinite(s.x) || !isfinite(s.v) || !isfinite(fc) || !isfinite(fs))
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", s.t);
         r->cur.t = s.t, r->cur.x = s.x, r->cur.v = s.v, r->cur.phase = s.phase;
-        if (dp_run_sample_due(r) || r->n >= r->nsteps) /* forces are only read in samples and the summary */
+        if (dp_run_sample_due(r)) /* forces are only read in samples and the summary (the last step) */
             set_forces(r, fc, fs);
         if (!(L->closed && L->locate))
             phase_event(r, before);
