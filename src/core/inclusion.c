@@ -17,8 +17,7 @@ static double gamma_at(const dp_inclusion *p, double w)
     return p->gamma ? dp_relaxation_eval(p->gamma, p->g_theta * w + p->g_shift) : 0;
 }
 
-/* [lo, hi] = Phi(w) with the damper interval [alo, ahi] given. */
-static void phi_with(const dp_inclusion *p, double w, double alo, double ahi, double *lo, double *hi)
+void dp_inclusion_phi_with(const dp_inclusion *p, double w, double alo, double ahi, double *lo, double *hi)
 {
     double slo = 0, shi = 0;
     if (p->S)
@@ -34,13 +33,13 @@ static void phi(const dp_inclusion *p, double w, double *lo, double *hi)
 {
     double alo, ahi;
     dp_graph_force(p->A, w - p->a_shift, &alo, &ahi);
-    phi_with(p, w, alo, ahi, lo, hi);
+    dp_inclusion_phi_with(p, w, alo, ahi, lo, hi);
 }
 
 int dp_inclusion_holds_with(const dp_inclusion *p, double w, double flo, double fhi)
 {
     double lo, hi;
-    phi_with(p, w, flo, fhi, &lo, &hi);
+    dp_inclusion_phi_with(p, w, flo, fhi, &lo, &hi);
     return lo <= 0 && 0 <= hi;
 }
 

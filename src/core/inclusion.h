@@ -30,6 +30,9 @@ int dp_inclusion_solve(const dp_inclusion *p, double *w, double *a, double *s, u
 int dp_inclusion_solve_side(const dp_inclusion *p, double dir, double *w, double *a, double *s,
                             unsigned long long *evals);
 
+/* [*lo, *hi] = Phi(w) with A's interval at w replaced by [flo, fhi]. */
+void dp_inclusion_phi_with(const dp_inclusion *p, double w, double flo, double fhi, double *lo, double *hi);
+
 /* Whether w solves the inclusion when A's interval at w is replaced by [flo, fhi] (a static threshold). */
 int dp_inclusion_holds_with(const dp_inclusion *p, double w, double flo, double fhi);
 

@@ -19,7 +19,7 @@ typedef struct dp_ss_law {
     double vb, theta;
     int can_stick;       /* the damper graph has a vertical piece at zero relative velocity */
     int closed;          /* linear spring, threshold damper, no relaxation: the soft-threshold closed form */
-    int locate;          /* split steps at phase changes (closed form only) */
+    int locate;          /* split steps at phase changes (events "locate" and a damper that can stick) */
     int motion;          /* branch "motion": leave rest whenever a motion solves the step */
     const dp_graph *A, *S;
     const dp_relaxation *gamma;

@@ -7,9 +7,11 @@
  * (Moreau's catching-up scheme: exact sticking, no creep). Otherwise it goes to dp_inclusion_solve, which
  * handles any maximal monotone damper graph, monotone spring graph and relaxation.
  *
- * With events "locate" the closed form splits a step at the instant the relative velocity reaches zero
- * (found to rounding on the step's own trajectory) and at the instant the stick force leaves its interval,
- * so the nonsmooth instants cost no order: theta = 1/2 stays second order.
+ * With events "locate" a step is split at the instant the relative velocity reaches zero (found to rounding
+ * on the step's own trajectory) and at the instant the stick force leaves its interval, so the nonsmooth
+ * instants cost no order: theta = 1/2 stays second order. The closed form does it with its own formulas;
+ * the general inclusion with the same two conditions evaluated on dp_inclusion (any damper graph that can
+ * stick, relaxation, graph springs).
  */
 #include <math.h>
 #include <string.h>
@@ -194,18 +196,25 @@ static double located_step(dp_run *r, step_state *s, double h, double *force)
 
 /* ---- the general inclusion ------------------------------------------------------------------------- */
 
-/* One step through dp_inclusion_solve; returns DP_OK or DP_ESOLVE. */
-static int inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs)
+/* The inclusion of a step of length h from s (mathematics.md §4, "Exact form of the step"). */
+static dp_inclusion step_inclusion(const dp_ss_law *L, const step_state *s, double h)
 {
-    const dp_ss_law *L = &r->law;
     double th = L->theta;
-    dp_inclusion p = {
+    return (dp_inclusion){
         .W = L->m + h * th * L->c + h * h * th * th * L->k,
         .b = L->m * s->v - h * (1 - th) * L->c * s->v + h * L->c * L->vb
            - h * L->k * (s->x + h * th * (1 - th) * s->v) + h * dp_forcing_eval(L->F, s->t + th * h),
         .h = h, .A = L->A, .a_shift = L->vb, .S = L->S, .s_x = s->x, .s_h = h,
         .gamma = L->gamma, .g_theta = th, .g_shift = (1 - th) * s->v - L->vb,
     };
+}
+
+/* One step through dp_inclusion_solve; returns DP_OK or DP_ESOLVE. */
+static int inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs)
+{
+    const dp_ss_law *L = &r->law;
+    double th = L->theta;
+    dp_inclusion p = step_inclusion(L, s, h);
     double w, a, sp;
     if (dp_inclusion_solve(&p, &w, &a, &sp, &r->sum.iterations) != DP_OK)
         return DP_ESOLVE;
@@ -245,6 +254,156 @@ static int step_failed(dp_run *r, const step_state *s)
         return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g (|x| = %.3g, |v| = %.3g)",
                            s->t, fabs(s->x), fabs(s->v));
     return dp_run_fail(r, DP_ESOLVE, "the implicit step at t = %.17g has no solution", s->t);
+}
+
+/* ---- events of the general inclusion ---------------------------------------------------------------- */
+
+/* The same two instants as located_step and breakaway, for any maximal monotone damper graph, spring graph
+ * and relaxation: where the relative velocity reaches zero, and where the force that holds the mass at the
+ * belt's speed leaves the stick interval. */
+
+typedef struct arrival_ctx { const dp_ss_law *L; step_state s; double dir, a; } arrival_ctx;
+
+/* dir Phi(v_b) of a step of length eta with the damper force held at its slip-side limit a (A(0) is
+ * [A(0-), A(0+)] for a maximal monotone graph): negative while that step would still end slipping in
+ * direction dir, >= 0 once it reaches the belt's speed. At eta = 0 it is -m |v - v_b|. */
+static double arrival(void *p, double eta)
+{
+    const arrival_ctx *e = p;
+    dp_inclusion q = step_inclusion(e->L, &e->s, eta);
+    double lo, hi;
+    dp_inclusion_phi_with(&q, e->L->vb, e->a, e->a, &lo, &hi);
+    return e->dir > 0 ? hi : -lo;
+}
+
+/* The interval the damper force may take at rest: the static one of a generalized Coulomb law, else A(0). */
+static void stick_interval(const dp_ss_law *L, double *lo, double *hi)
+{
+    if (L->tau_s > L->tau) {
+        *lo = -L->tau_s, *hi = L->tau_s;
+        return;
+    }
+    dp_graph_force(L->A, 0, lo, hi);
+}
+
+typedef struct hold_ctx { const dp_ss_law *L; step_state s; double slo, shi; } hold_ctx;
+
+/* [*lo, *hi]: the damper forces r that hold the mass at the belt's speed at s.t + eta, from
+ * m x'' = 0 = F - F_s - r + gamma(0) (a vertical spring piece widens it). */
+static void hold_force(const hold_ctx *e, double eta, double *lo, double *hi)
+{
+    const dp_ss_law *L = e->L;
+    double x = e->s.x + eta * L->vb, flo, fhi;
+    if (L->S)
+        dp_graph_force(L->S, x, &flo, &fhi);
+    else
+        flo = fhi = L->k * x;
+    double load_g = dp_forcing_eval(L->F, e->s.t + eta) + dp_relaxation_eval(L->gamma, 0);
+    *lo = load_g - fhi, *hi = load_g - flo;
+}
+
+/* Distance of the holding forces from the stick interval: > 0 when the mass must break away. */
+static double hold_gap(void *p, double eta)
+{
+    const hold_ctx *e = p;
+    double lo, hi;
+    hold_force(e, eta, &lo, &hi);
+    double gap = fmax(lo - e->shi, e->slo - hi);
+    return fmin(fmax(gap, -1e300), 1e300); /* finite for the root search: a rigid stop makes it -inf */
+}
+
+/* Held over the whole step: the damper takes the holding force of least magnitude. */
+static double hold_step(const hold_ctx *e, step_state *s, double h, double *fc, double *fs)
+{
+    double lo, hi;
+    hold_force(e, h, &lo, &hi);
+    lo = fmax(lo, e->slo), hi = fmin(hi, e->shi);
+    s->x += h * e->L->vb;
+    s->t += h;
+    s->v = e->L->vb;
+    s->phase = DP_PHASE_STICK;
+    *fc = fmin(fmax(0.0, lo), hi);
+    *fs = e->L->S ? dp_forcing_eval(e->L->F, s->t) + dp_relaxation_eval(e->L->gamma, 0) - *fc : 0;
+    return h;
+}
+
+/* Breakaway from stick inside a step (general form of breakaway). Returns the time held or -1. */
+static double breakaway_general(dp_run *r, hold_ctx *e, step_state *s, double h, double *fc, double *fs)
+{
+    double g0 = hold_gap(e, 0), g1 = hold_gap(e, h), eta = 0;
+    if (g0 < 0)
+        eta = dp_root_bracket(hold_gap, e, 0, h, g0, g1, 4 * 2.220446049250313e-16 * (s->t + h),
+                              &r->sum.iterations);
+    double lo, hi;
+    hold_force(e, eta, &lo, &hi);
+    *fc = lo > e->shi ? e->shi : e->slo; /* the bound it leaves by, if the step ends here */
+    *fs = 0;
+    s->x += eta * r->law.vb;
+    s->t += eta;
+    dp_run_emit_event(r, DP_EVENT_SLIP, s->t, s->x, s->v);
+    if (h - eta > 0 && inclusion_step(r, s, h - eta, fc, fs) != DP_OK)
+        return -1;
+    s->phase = DP_PHASE_SLIP; /* even if the first stretch of slip rounds to the belt's speed */
+    return eta;
+}
+
+/* One located step of the general inclusion from s over h; emits the events it finds; returns the time
+ * spent sticking, or -1 if a step has no solution. */
+static double located_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs)
+{
+    const dp_ss_law *L = &r->law;
+    hold_ctx hc = { .L = L, .s = *s };
+    stick_interval(L, &hc.slo, &hc.shi);
+    double dir = sgn(s->v - L->vb);
+    if (dir == 0 && s->phase == DP_PHASE_STICK)
+        return hold_gap(&hc, h) <= 0 ? hold_step(&hc, s, h, fc, fs) : breakaway_general(r, &hc, s, h, fc, fs);
+    step_state probe = *s;
+    if (inclusion_step(r, &probe, h, fc, fs) != DP_OK)
+        return -1;
+    if (dir == 0 || sgn(probe.v - L->vb) == dir) {
+        if (s->phase == DP_PHASE_SLIP && probe.phase == DP_PHASE_STICK)
+            dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
+        *s = probe;
+        return s->phase == DP_PHASE_STICK ? h : 0;
+    }
+    /* The relative velocity reaches zero inside the step: stop there, then go on from rest. */
+    double alo, ahi;
+    dp_graph_force(L->A, 0, &alo, &ahi);
+    arrival_ctx ac = { .L = L, .s = *s, .dir = dir, .a = dir > 0 ? ahi : alo };
+    double g0 = arrival(&ac, 0), g1 = arrival(&ac, h);
+    if (!(g0 < 0 && g1 >= 0)) { /* no sign change to bracket (rounding at the end of the step) */
+        *s = probe;
+        return s->phase == DP_PHASE_STICK ? h : 0;
+    }
+    double eta = dp_root_bracket(arrival, &ac, 0, h, g0, g1, 4 * 2.220446049250313e-16 * (s->t + h),
+                                 &r->sum.iterations);
+    s->x += eta * ((1 - L->theta) * s->v + L->theta * L->vb);
+    s->v = L->vb;
+    s->t += eta;
+    s->phase = DP_PHASE_SLIP;
+    double rest = h - eta;
+    hc.s = *s;
+    probe = *s;
+    if (rest > 0 && inclusion_step(r, &probe, rest, fc, fs) != DP_OK)
+        return -1;
+    int sticks = rest > 0 ? probe.phase == DP_PHASE_STICK : hold_gap(&hc, 0) <= 0;
+    if (sticks) {
+        dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
+        if (rest == 0)
+            return hold_step(&hc, s, 0, fc, fs);
+        *s = probe;
+        return rest;
+    }
+    if (rest == 0) { /* arrived at the end of the step, about to reverse: the slip-side forces */
+        double flo = 0, fhi = 0;
+        if (L->S)
+            dp_graph_force(L->S, s->x, &flo, &fhi);
+        *fc = ac.a, *fs = flo;
+        return 0;
+    }
+    *s = probe;
+    s->phase = DP_PHASE_SLIP;
+    return 0;
 }
 
 /* ---- the run ---------------------------------------------------------------------------------------- */
@@ -354,6 +513,11 @@ int dp_stick_slip_advance(dp_run *r)
         dp_phase before = s.phase;
         if (L->closed && L->locate) {
             r->sum.stick_time += located_step(r, &s, h, &fc);
+        } else if (L->locate) {
+            double held = located_inclusion_step(r, &s, h, &fc, &fs);
+            if (held < 0)
+                return step_failed(r, &s);
+            r->sum.stick_time += held;
         } else {
             if (L->closed)
                 fc = moreau(L, &s, h);
@@ -369,7 +533,7 @@ int dp_stick_slip_advance(dp_run *r)
         r->cur.t = s.t, r->cur.x = s.x, r->cur.v = s.v, r->cur.phase = s.phase;
         if (dp_run_sample_due(r)) /* forces are only read in samples and the summary (the last step) */
             set_forces(r, fc, fs);
-        if (!(L->closed && L->locate))
+        if (!L->locate)
             phase_event(r, before);
         r->sum.steps = r->n;
         if (r->n >= r->nsteps)
@@ -397,10 +561,12 @@ static void initial_state(dp_run *r)
     dp_graph_force(L->A, c->v - L->vb, &lo, &hi);
     double need = dp_forcing_eval(L->F, 0) - Fs, fc = fmin(fmax(need, lo), hi);
     c->phase = DP_PHASE_NONE;
-    if (L->can_stick && c->v == L->vb) {
-        int holds = fabs(need) <= L->tau_s;
+    if (L->can_stick && c->v == L->vb) { /* held if the stick interval has the force; else it slips off */
+        double rlo, rhi;
+        stick_interval(L, &rlo, &rhi);
+        int holds = rlo <= need && need <= rhi;
         c->phase = holds ? DP_PHASE_STICK : DP_PHASE_SLIP;
-        fc = holds ? need : L->tau * sgn(need);
+        fc = holds ? need : need > 0 ? hi : lo;
     } else if (L->can_stick) {
         c->phase = DP_PHASE_SLIP;
     }
@@ -437,7 +603,8 @@ int dp_stick_slip_init(dp_run *r)
     L->F_const = m->forcing.kind == DP_FORCING_NONE || m->forcing.kind == DP_FORCING_CONSTANT;
     L->F0 = dp_forcing_eval(&m->forcing, 0);
     dp_ss_coef_init(L, L->h, &L->nominal);
-    L->locate = r->spec.solver.events == DP_EVENTS_LOCATE && L->tau > 0;
+    /* Events are located where the damper can stick; the motion branch leaves rest on its own terms. */
+    L->locate = r->spec.solver.events == DP_EVENTS_LOCATE && (L->closed ? L->tau > 0 : L->can_stick && !L->motion);
     initial_state(r);
     return DP_OK;
 }
