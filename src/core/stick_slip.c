@@ -5,33 +5,16 @@
  * Bingham, linear, generalized Coulomb) and no relaxation it is the soft threshold
  *     u = v_free - v_b,  v+ = v_b + sgn(u) max(|u| - h tau / W, 0),  W = m + h theta c + h^2 theta^2 k,
  * (Moreau's catching-up scheme: exact sticking, no creep). Otherwise it goes to dp_inclusion_solve, which
- * handles any maximal monotone damper graph, monotone spring graph and relaxation.
- *
- * With events "locate" a step is split at the instant the relative velocity reaches zero (found to rounding
- * on the step's own trajectory) and at the instant the stick force leaves its interval, so the nonsmooth
- * instants cost no order: theta = 1/2 stays second order. The closed form does it with its own formulas;
- * the general inclusion with the same two conditions evaluated on dp_inclusion (any damper graph that can
- * stick, relaxation, graph springs).
+ * handles any maximal monotone damper graph, monotone spring graph and relaxation. With events "locate"
+ * the steps that hold a phase change are split there (event_location.c); long stretches of slip or stick
+ * in the closed form run in the hot loops glide and hold.
  */
 #include <math.h>
 #include <string.h>
 
-#include "inclusion.h"
-#include "root.h"
-#include "run_internal.h"
-
-static double sgn(double x)
-{
-    return (x > 0) - (x < 0);
-}
+#include "stick_slip_step.h"
 
 /* ---- the closed form ------------------------------------------------------------------------------ */
-
-/* F(t), without the call for the usual constant load. */
-static inline double load(const dp_ss_law *L, double t)
-{
-    return L->F_const ? L->F0 : dp_forcing_eval(L->F, t);
-}
 
 /* The affine map (v, x, F) -> u of a step of length h, folded once per step length:
  * u = [m v - h(1-theta) c v + h c v_b - h k (x + h theta (1-theta) v) + h F] / W - v_b. */
@@ -48,21 +31,9 @@ void dp_ss_coef_init(const dp_ss_law *L, double h, dp_ss_coef *c)
     c->thr_s = h * L->tau_s * iW;
 }
 
-/* Relative free velocity u of a step of length h from (t, x, v), with the step's coefficients in *c. */
-static inline double free_velocity(const dp_ss_law *L, double t, double h, double x, double v, dp_ss_coef *c)
-{
-    if (h != L->h)
-        dp_ss_coef_init(L, h, c);
-    else
-        *c = L->nominal;
-    return c->cv * v + c->cx * x + c->cf * load(L, t + L->theta * h) + c->c0;
-}
-
-typedef struct step_state { double t, x, v; dp_phase phase; } step_state;
-
 /* Advances s by a step of length h whose free velocity u and coefficients c are known, with the Moreau
  * rule; returns the friction's mean force over the step. */
-static inline double moreau_from(const dp_ss_law *L, step_state *s, double h, double u, const dp_ss_coef *c)
+double dp_ss_moreau_from(const dp_ss_law *L, step_state *s, double h, double u, const dp_ss_coef *c)
 {
     double dir = sgn(s->v - L->vb), w, r;
     if (dir != 0 && u * dir > c->thr) {
@@ -83,121 +54,17 @@ static inline double moreau_from(const dp_ss_law *L, step_state *s, double h, do
     return r;
 }
 
-static double moreau(const dp_ss_law *L, step_state *s, double h)
+double dp_ss_moreau(const dp_ss_law *L, step_state *s, double h)
 {
     dp_ss_coef c;
     double u = free_velocity(L, s->t, h, s->x, s->v, &c);
-    return moreau_from(L, s, h, u, &c);
-}
-
-typedef struct event_ctx { const dp_ss_law *L; step_state s; double dir; } event_ctx;
-
-/* Relative velocity at the end of a step of length eta with the friction held at tau * dir. */
-static double slip_velocity(void *p, double eta)
-{
-    event_ctx *e = p;
-    if (eta == 0)
-        return e->s.v - e->L->vb;
-    dp_ss_coef c;
-    double u = free_velocity(e->L, e->s.t, eta, e->s.x, e->s.v, &c);
-    return u - c.thr * e->dir;
-}
-
-/* Distance of the force needed to hold the mass at the belt's speed from the static interval. */
-static double hold_margin(void *p, double eta)
-{
-    event_ctx *e = p;
-    double x = e->s.x + eta * e->L->vb;
-    return fabs(dp_forcing_eval(e->L->F, e->s.t + eta) - e->L->k * x) - e->L->tau_s;
-}
-
-/* Breakaway from stick inside a step: hold until the needed force leaves [-tau_s, tau_s] (found to
- * rounding), then slide for the rest of the step in that force's direction. Returns the time held. */
-static double breakaway(dp_run *r, step_state *s, double h, double *force)
-{
-    const dp_ss_law *L = &r->law;
-    event_ctx e = { .L = L, .s = *s, .dir = 0 };
-    double tol = 4 * 2.220446049250313e-16 * (s->t + h);
-    double m0 = hold_margin(&e, 0), m1 = hold_margin(&e, h), eta = 0;
-    if (m0 < 0 && m1 > 0)
-        eta = dp_root_bracket(hold_margin, &e, 0, h, m0, m1, tol, &r->sum.iterations);
-    s->x += eta * L->vb;
-    s->t += eta;
-    dp_run_emit_event(r, DP_EVENT_SLIP, s->t, s->x, s->v);
-    double rest = h - eta, dir = sgn(dp_forcing_eval(L->F, s->t) - L->k * s->x);
-    if (rest > 0) {
-        dp_ss_coef c;
-        double u = free_velocity(L, s->t, rest, s->x, s->v, &c);
-        double w = u - c.thr * dir;
-        w = w * dir > 0 ? w : 0; /* starts from zero acceleration: never backwards */
-        double v1 = L->vb + w;
-        s->x += rest * ((1 - L->theta) * s->v + L->theta * v1);
-        s->v = v1;
-        s->t += rest;
-        *force = L->tau * dir;
-    }
-    s->phase = DP_PHASE_SLIP;
-    return eta;
-}
-
-/* One located step from s over h; emits the events it finds; returns the time spent sticking. */
-static double located_step(dp_run *r, step_state *s, double h, double *force)
-{
-    const dp_ss_law *L = &r->law;
-    event_ctx e = { .L = L, .s = *s, .dir = sgn(s->v - L->vb) };
-    if (e.dir != 0) {
-        dp_ss_coef c;
-        double u = free_velocity(L, s->t, h, s->x, s->v, &c);
-        if (u * e.dir > c.thr) {
-            *force = moreau_from(L, s, h, u, &c);
-            return 0;
-        }
-        /* The relative velocity reaches zero inside the step: stop there, then go on from rest. */
-        double tol = 4 * 2.220446049250313e-16 * (s->t + h);
-        double g1 = u - c.thr * e.dir;
-        double eta = dp_root_bracket(slip_velocity, &e, 0, h, s->v - L->vb, g1, tol, &r->sum.iterations);
-        s->x += eta * ((1 - L->theta) * s->v + L->theta * L->vb);
-        s->v = L->vb;
-        s->t += eta;
-        double rest = h - eta;
-        step_state probe = *s;
-        if (rest > 0)
-            *force = moreau(L, &probe, rest);
-        int sticks = rest > 0 ? probe.phase == DP_PHASE_STICK : hold_margin(&e, eta) <= 0;
-        if (sticks && L->can_stick) {
-            dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
-            if (rest > 0)
-                *s = probe;
-            s->phase = DP_PHASE_STICK;
-            return rest;
-        }
-        if (rest > 0)
-            *s = probe;
-        s->phase = DP_PHASE_SLIP;
-        return 0;
-    }
-    if (s->phase == DP_PHASE_STICK) {
-        /* Held at the belt's speed the mass has no acceleration, so the force that holds it is known in
-         * closed form; Moreau's test would see it leave the interval up to a step late. */
-        if (hold_margin(&e, h) > 0)
-            return breakaway(r, s, h, force);
-        s->x += h * L->vb;
-        s->t += h;
-        *force = dp_forcing_eval(L->F, s->t) - L->k * s->x;
-        return h;
-    }
-    step_state probe = *s;
-    *force = moreau(L, &probe, h);
-    if (s->phase == DP_PHASE_SLIP && probe.phase == DP_PHASE_STICK)
-        dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
-    *s = probe;
-    return probe.phase == DP_PHASE_STICK ? h : 0;
+    return dp_ss_moreau_from(L, s, h, u, &c);
 }
 
 /* ---- the general inclusion ------------------------------------------------------------------------- */
 
 /* The inclusion of a step of length h from s (mathematics.md §4, "Exact form of the step"). */
-static dp_inclusion step_inclusion(const dp_ss_law *L, const step_state *s, double h)
+dp_inclusion dp_ss_step_inclusion(const dp_ss_law *L, const step_state *s, double h)
 {
     double th = L->theta;
     return (dp_inclusion){
@@ -210,11 +77,11 @@ static dp_inclusion step_inclusion(const dp_ss_law *L, const step_state *s, doub
 }
 
 /* One step through dp_inclusion_solve; returns DP_OK or DP_ESOLVE. */
-static int inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs)
+int dp_ss_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs)
 {
     const dp_ss_law *L = &r->law;
     double th = L->theta;
-    dp_inclusion p = step_inclusion(L, s, h);
+    dp_inclusion p = dp_ss_step_inclusion(L, s, h);
     double w, a, sp;
     if (dp_inclusion_solve(&p, &w, &a, &sp, &r->sum.iterations) != DP_OK)
         return DP_ESOLVE;
@@ -254,156 +121,6 @@ static int step_failed(dp_run *r, const step_state *s)
         return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g (|x| = %.3g, |v| = %.3g)",
                            s->t, fabs(s->x), fabs(s->v));
     return dp_run_fail(r, DP_ESOLVE, "the implicit step at t = %.17g has no solution", s->t);
-}
-
-/* ---- events of the general inclusion ---------------------------------------------------------------- */
-
-/* The same two instants as located_step and breakaway, for any maximal monotone damper graph, spring graph
- * and relaxation: where the relative velocity reaches zero, and where the force that holds the mass at the
- * belt's speed leaves the stick interval. */
-
-typedef struct arrival_ctx { const dp_ss_law *L; step_state s; double dir, a; } arrival_ctx;
-
-/* dir Phi(v_b) of a step of length eta with the damper force held at its slip-side limit a (A(0) is
- * [A(0-), A(0+)] for a maximal monotone graph): negative while that step would still end slipping in
- * direction dir, >= 0 once it reaches the belt's speed. At eta = 0 it is -m |v - v_b|. */
-static double arrival(void *p, double eta)
-{
-    const arrival_ctx *e = p;
-    dp_inclusion q = step_inclusion(e->L, &e->s, eta);
-    double lo, hi;
-    dp_inclusion_phi_with(&q, e->L->vb, e->a, e->a, &lo, &hi);
-    return e->dir > 0 ? hi : -lo;
-}
-
-/* The interval the damper force may take at rest: the static one of a generalized Coulomb law, else A(0). */
-static void stick_interval(const dp_ss_law *L, double *lo, double *hi)
-{
-    if (L->tau_s > L->tau) {
-        *lo = -L->tau_s, *hi = L->tau_s;
-        return;
-    }
-    dp_graph_force(L->A, 0, lo, hi);
-}
-
-typedef struct hold_ctx { const dp_ss_law *L; step_state s; double slo, shi; } hold_ctx;
-
-/* [*lo, *hi]: the damper forces r that hold the mass at the belt's speed at s.t + eta, from
- * m x'' = 0 = F - F_s - r + gamma(0) (a vertical spring piece widens it). */
-static void hold_force(const hold_ctx *e, double eta, double *lo, double *hi)
-{
-    const dp_ss_law *L = e->L;
-    double x = e->s.x + eta * L->vb, flo, fhi;
-    if (L->S)
-        dp_graph_force(L->S, x, &flo, &fhi);
-    else
-        flo = fhi = L->k * x;
-    double load_g = dp_forcing_eval(L->F, e->s.t + eta) + dp_relaxation_eval(L->gamma, 0);
-    *lo = load_g - fhi, *hi = load_g - flo;
-}
-
-/* Distance of the holding forces from the stick interval: > 0 when the mass must break away. */
-static double hold_gap(void *p, double eta)
-{
-    const hold_ctx *e = p;
-    double lo, hi;
-    hold_force(e, eta, &lo, &hi);
-    double gap = fmax(lo - e->shi, e->slo - hi);
-    return fmin(fmax(gap, -1e300), 1e300); /* finite for the root search: a rigid stop makes it -inf */
-}
-
-/* Held over the whole step: the damper takes the holding force of least magnitude. */
-static double hold_step(const hold_ctx *e, step_state *s, double h, double *fc, double *fs)
-{
-    double lo, hi;
-    hold_force(e, h, &lo, &hi);
-    lo = fmax(lo, e->slo), hi = fmin(hi, e->shi);
-    s->x += h * e->L->vb;
-    s->t += h;
-    s->v = e->L->vb;
-    s->phase = DP_PHASE_STICK;
-    *fc = fmin(fmax(0.0, lo), hi);
-    *fs = e->L->S ? dp_forcing_eval(e->L->F, s->t) + dp_relaxation_eval(e->L->gamma, 0) - *fc : 0;
-    return h;
-}
-
-/* Breakaway from stick inside a step (general form of breakaway). Returns the time held or -1. */
-static double breakaway_general(dp_run *r, hold_ctx *e, step_state *s, double h, double *fc, double *fs)
-{
-    double g0 = hold_gap(e, 0), g1 = hold_gap(e, h), eta = 0;
-    if (g0 < 0)
-        eta = dp_root_bracket(hold_gap, e, 0, h, g0, g1, 4 * 2.220446049250313e-16 * (s->t + h),
-                              &r->sum.iterations);
-    double lo, hi;
-    hold_force(e, eta, &lo, &hi);
-    *fc = lo > e->shi ? e->shi : e->slo; /* the bound it leaves by, if the step ends here */
-    *fs = 0;
-    s->x += eta * r->law.vb;
-    s->t += eta;
-    dp_run_emit_event(r, DP_EVENT_SLIP, s->t, s->x, s->v);
-    if (h - eta > 0 && inclusion_step(r, s, h - eta, fc, fs) != DP_OK)
-        return -1;
-    s->phase = DP_PHASE_SLIP; /* even if the first stretch of slip rounds to the belt's speed */
-    return eta;
-}
-
-/* One located step of the general inclusion from s over h; emits the events it finds; returns the time
- * spent sticking, or -1 if a step has no solution. */
-static double located_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs)
-{
-    const dp_ss_law *L = &r->law;
-    hold_ctx hc = { .L = L, .s = *s };
-    stick_interval(L, &hc.slo, &hc.shi);
-    double dir = sgn(s->v - L->vb);
-    if (dir == 0 && s->phase == DP_PHASE_STICK)
-        return hold_gap(&hc, h) <= 0 ? hold_step(&hc, s, h, fc, fs) : breakaway_general(r, &hc, s, h, fc, fs);
-    step_state probe = *s;
-    if (inclusion_step(r, &probe, h, fc, fs) != DP_OK)
-        return -1;
-    if (dir == 0 || sgn(probe.v - L->vb) == dir) {
-        if (s->phase == DP_PHASE_SLIP && probe.phase == DP_PHASE_STICK)
-            dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
-        *s = probe;
-        return s->phase == DP_PHASE_STICK ? h : 0;
-    }
-    /* The relative velocity reaches zero inside the step: stop there, then go on from rest. */
-    double alo, ahi;
-    dp_graph_force(L->A, 0, &alo, &ahi);
-    arrival_ctx ac = { .L = L, .s = *s, .dir = dir, .a = dir > 0 ? ahi : alo };
-    double g0 = arrival(&ac, 0), g1 = arrival(&ac, h);
-    if (!(g0 < 0 && g1 >= 0)) { /* no sign change to bracket (rounding at the end of the step) */
-        *s = probe;
-        return s->phase == DP_PHASE_STICK ? h : 0;
-    }
-    double eta = dp_root_bracket(arrival, &ac, 0, h, g0, g1, 4 * 2.220446049250313e-16 * (s->t + h),
-                                 &r->sum.iterations);
-    s->x += eta * ((1 - L->theta) * s->v + L->theta * L->vb);
-    s->v = L->vb;
-    s->t += eta;
-    s->phase = DP_PHASE_SLIP;
-    double rest = h - eta;
-    hc.s = *s;
-    probe = *s;
-    if (rest > 0 && inclusion_step(r, &probe, rest, fc, fs) != DP_OK)
-        return -1;
-    int sticks = rest > 0 ? probe.phase == DP_PHASE_STICK : hold_gap(&hc, 0) <= 0;
-    if (sticks) {
-        dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
-        if (rest == 0)
-            return hold_step(&hc, s, 0, fc, fs);
-        *s = probe;
-        return rest;
-    }
-    if (rest == 0) { /* arrived at the end of the step, about to reverse: the slip-side forces */
-        double flo = 0, fhi = 0;
-        if (L->S)
-            dp_graph_force(L->S, s->x, &flo, &fhi);
-        *fc = ac.a, *fs = flo;
-        return 0;
-    }
-    *s = probe;
-    s->phase = DP_PHASE_SLIP;
-    return 0;
 }
 
 /* ---- the run ---------------------------------------------------------------------------------------- */
@@ -512,16 +229,16 @@ int dp_stick_slip_advance(dp_run *r)
         step_state s = { r->cur.t, r->cur.x, r->cur.v, r->cur.phase };
         dp_phase before = s.phase;
         if (L->closed && L->locate) {
-            r->sum.stick_time += located_step(r, &s, h, &fc);
+            r->sum.stick_time += dp_ss_located_step(r, &s, h, &fc);
         } else if (L->locate) {
-            double held = located_inclusion_step(r, &s, h, &fc, &fs);
+            double held = dp_ss_located_inclusion_step(r, &s, h, &fc, &fs);
             if (held < 0)
                 return step_failed(r, &s);
             r->sum.stick_time += held;
         } else {
             if (L->closed)
-                fc = moreau(L, &s, h);
-            else if (inclusion_step(r, &s, h, &fc, &fs) != DP_OK)
+                fc = dp_ss_moreau(L, &s, h);
+            else if (dp_ss_inclusion_step(r, &s, h, &fc, &fs) != DP_OK)
                 return step_failed(r, &s);
             if (s.phase == DP_PHASE_STICK)
                 r->sum.stick_time += h;
@@ -563,7 +280,7 @@ static void initial_state(dp_run *r)
     c->phase = DP_PHASE_NONE;
     if (L->can_stick && c->v == L->vb) { /* held if the stick interval has the force; else it slips off */
         double rlo, rhi;
-        stick_interval(L, &rlo, &rhi);
+        dp_ss_stick_interval(L, &rlo, &rhi);
         int holds = rlo <= need && need <= rhi;
         c->phase = holds ? DP_PHASE_STICK : DP_PHASE_SLIP;
         fc = holds ? need : need > 0 ? hi : lo;

@@ -1,0 +1,271 @@
+/* src/core/event_location.c - splitting a stick-slip step at the instants where its phase changes.
+ *
+ * A step that reaches the belt's speed or breaks away from it is split at that instant, found to rounding,
+ * so the nonsmooth instants cost the theta-method no order (theta = 1/2 stays second order). Two conditions,
+ * on the step's own trajectory: where the step with the damper held at its slip-side limit ends at the
+ * belt's speed, and where the force that holds the mass at rest leaves the stick interval. The closed form
+ * has them as formulas; the general inclusion evaluates them on dp_inclusion (any damper graph that can
+ * stick, relaxation, graph springs).
+ */
+#include <math.h>
+
+#include "root.h"
+#include "stick_slip_step.h"
+
+/* ---- the closed form ------------------------------------------------------------------------------ */
+
+typedef struct event_ctx { const dp_ss_law *L; step_state s; double dir; } event_ctx;
+
+/* Relative velocity at the end of a step of length eta with the friction held at tau * dir. */
+static double slip_velocity(void *p, double eta)
+{
+    event_ctx *e = p;
+    if (eta == 0)
+        return e->s.v - e->L->vb;
+    dp_ss_coef c;
+    double u = free_velocity(e->L, e->s.t, eta, e->s.x, e->s.v, &c);
+    return u - c.thr * e->dir;
+}
+
+/* Distance of the force needed to hold the mass at the belt's speed from the static interval. */
+static double hold_margin(void *p, double eta)
+{
+    event_ctx *e = p;
+    double x = e->s.x + eta * e->L->vb;
+    return fabs(dp_forcing_eval(e->L->F, e->s.t + eta) - e->L->k * x) - e->L->tau_s;
+}
+
+/* Breakaway from stick inside a step: hold until the needed force leaves [-tau_s, tau_s] (found to
+ * rounding), then slide for the rest of the step in that force's direction. Returns the time held. */
+static double breakaway(dp_run *r, step_state *s, double h, double *force)
+{
+    const dp_ss_law *L = &r->law;
+    event_ctx e = { .L = L, .s = *s, .dir = 0 };
+    double tol = 4 * 2.220446049250313e-16 * (s->t + h);
+    double m0 = hold_margin(&e, 0), m1 = hold_margin(&e, h), eta = 0;
+    if (m0 < 0 && m1 > 0)
+        eta = dp_root_bracket(hold_margin, &e, 0, h, m0, m1, tol, &r->sum.iterations);
+    s->x += eta * L->vb;
+    s->t += eta;
+    dp_run_emit_event(r, DP_EVENT_SLIP, s->t, s->x, s->v);
+    double rest = h - eta, dir = sgn(dp_forcing_eval(L->F, s->t) - L->k * s->x);
+    if (rest > 0) {
+        dp_ss_coef c;
+        double u = free_velocity(L, s->t, rest, s->x, s->v, &c);
+        double w = u - c.thr * dir;
+        w = w * dir > 0 ? w : 0; /* starts from zero acceleration: never backwards */
+        double v1 = L->vb + w;
+        s->x += rest * ((1 - L->theta) * s->v + L->theta * v1);
+        s->v = v1;
+        s->t += rest;
+        *force = L->tau * dir;
+    }
+    s->phase = DP_PHASE_SLIP;
+    return eta;
+}
+
+/* One located step from s over h; emits the events it finds; returns the time spent sticking. */
+double dp_ss_located_step(dp_run *r, step_state *s, double h, double *force)
+{
+    const dp_ss_law *L = &r->law;
+    event_ctx e = { .L = L, .s = *s, .dir = sgn(s->v - L->vb) };
+    if (e.dir != 0) {
+        dp_ss_coef c;
+        double u = free_velocity(L, s->t, h, s->x, s->v, &c);
+        if (u * e.dir > c.thr) {
+            *force = dp_ss_moreau_from(L, s, h, u, &c);
+            return 0;
+        }
+        /* The relative velocity reaches zero inside the step: stop there, then go on from rest. */
+        double tol = 4 * 2.220446049250313e-16 * (s->t + h);
+        double g1 = u - c.thr * e.dir;
+        double eta = dp_root_bracket(slip_velocity, &e, 0, h, s->v - L->vb, g1, tol, &r->sum.iterations);
+        s->x += eta * ((1 - L->theta) * s->v + L->theta * L->vb);
+        s->v = L->vb;
+        s->t += eta;
+        double rest = h - eta;
+        step_state probe = *s;
+        if (rest > 0)
+            *force = dp_ss_moreau(L, &probe, rest);
+        int sticks = rest > 0 ? probe.phase == DP_PHASE_STICK : hold_margin(&e, eta) <= 0;
+        if (sticks && L->can_stick) {
+            dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
+            if (rest > 0)
+                *s = probe;
+            s->phase = DP_PHASE_STICK;
+            return rest;
+        }
+        if (rest > 0)
+            *s = probe;
+        s->phase = DP_PHASE_SLIP;
+        return 0;
+    }
+    if (s->phase == DP_PHASE_STICK) {
+        /* Held at the belt's speed the mass has no acceleration, so the force that holds it is known in
+         * closed form; Moreau's test would see it leave the interval up to a step late. */
+        if (hold_margin(&e, h) > 0)
+            return breakaway(r, s, h, force);
+        s->x += h * L->vb;
+        s->t += h;
+        *force = dp_forcing_eval(L->F, s->t) - L->k * s->x;
+        return h;
+    }
+    step_state probe = *s;
+    *force = dp_ss_moreau(L, &probe, h);
+    if (s->phase == DP_PHASE_SLIP && probe.phase == DP_PHASE_STICK)
+        dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
+    *s = probe;
+    return probe.phase == DP_PHASE_STICK ? h : 0;
+}
+
+
+/* ---- the general inclusion ------------------------------------------------------------------------- */
+
+/* The same two instants as located_step and breakaway, for any maximal monotone damper graph, spring graph
+ * and relaxation: where the relative velocity reaches zero, and where the force that holds the mass at the
+ * belt's speed leaves the stick interval. */
+
+typedef struct arrival_ctx { const dp_ss_law *L; step_state s; double dir, a; } arrival_ctx;
+
+/* dir Phi(v_b) of a step of length eta with the damper force held at its slip-side limit a (A(0) is
+ * [A(0-), A(0+)] for a maximal monotone graph): negative while that step would still end slipping in
+ * direction dir, >= 0 once it reaches the belt's speed. At eta = 0 it is -m |v - v_b|. */
+static double arrival(void *p, double eta)
+{
+    const arrival_ctx *e = p;
+    dp_inclusion q = dp_ss_step_inclusion(e->L, &e->s, eta);
+    double lo, hi;
+    dp_inclusion_phi_with(&q, e->L->vb, e->a, e->a, &lo, &hi);
+    return e->dir > 0 ? hi : -lo;
+}
+
+/* The interval the damper force may take at rest: the static one of a generalized Coulomb law, else A(0). */
+void dp_ss_stick_interval(const dp_ss_law *L, double *lo, double *hi)
+{
+    if (L->tau_s > L->tau) {
+        *lo = -L->tau_s, *hi = L->tau_s;
+        return;
+    }
+    dp_graph_force(L->A, 0, lo, hi);
+}
+
+typedef struct hold_ctx { const dp_ss_law *L; step_state s; double slo, shi; } hold_ctx;
+
+/* [*lo, *hi]: the damper forces r that hold the mass at the belt's speed at s.t + eta, from
+ * m x'' = 0 = F - F_s - r + gamma(0) (a vertical spring piece widens it). */
+static void hold_force(const hold_ctx *e, double eta, double *lo, double *hi)
+{
+    const dp_ss_law *L = e->L;
+    double x = e->s.x + eta * L->vb, flo, fhi;
+    if (L->S)
+        dp_graph_force(L->S, x, &flo, &fhi);
+    else
+        flo = fhi = L->k * x;
+    double load_g = dp_forcing_eval(L->F, e->s.t + eta) + dp_relaxation_eval(L->gamma, 0);
+    *lo = load_g - fhi, *hi = load_g - flo;
+}
+
+/* Distance of the holding forces from the stick interval: > 0 when the mass must break away. */
+static double hold_gap(void *p, double eta)
+{
+    const hold_ctx *e = p;
+    double lo, hi;
+    hold_force(e, eta, &lo, &hi);
+    double gap = fmax(lo - e->shi, e->slo - hi);
+    return fmin(fmax(gap, -1e300), 1e300); /* finite for the root search: a rigid stop makes it -inf */
+}
+
+/* Held over the whole step: the damper takes the holding force of least magnitude. */
+static double hold_step(const hold_ctx *e, step_state *s, double h, double *fc, double *fs)
+{
+    double lo, hi;
+    hold_force(e, h, &lo, &hi);
+    lo = fmax(lo, e->slo), hi = fmin(hi, e->shi);
+    s->x += h * e->L->vb;
+    s->t += h;
+    s->v = e->L->vb;
+    s->phase = DP_PHASE_STICK;
+    *fc = fmin(fmax(0.0, lo), hi);
+    *fs = e->L->S ? dp_forcing_eval(e->L->F, s->t) + dp_relaxation_eval(e->L->gamma, 0) - *fc : 0;
+    return h;
+}
+
+/* Breakaway from stick inside a step (general form of breakaway). Returns the time held or -1. */
+static double breakaway_general(dp_run *r, hold_ctx *e, step_state *s, double h, double *fc, double *fs)
+{
+    double g0 = hold_gap(e, 0), g1 = hold_gap(e, h), eta = 0;
+    if (g0 < 0)
+        eta = dp_root_bracket(hold_gap, e, 0, h, g0, g1, 4 * 2.220446049250313e-16 * (s->t + h),
+                              &r->sum.iterations);
+    double lo, hi;
+    hold_force(e, eta, &lo, &hi);
+    *fc = lo > e->shi ? e->shi : e->slo; /* the bound it leaves by, if the step ends here */
+    *fs = 0;
+    s->x += eta * r->law.vb;
+    s->t += eta;
+    dp_run_emit_event(r, DP_EVENT_SLIP, s->t, s->x, s->v);
+    if (h - eta > 0 && dp_ss_inclusion_step(r, s, h - eta, fc, fs) != DP_OK)
+        return -1;
+    s->phase = DP_PHASE_SLIP; /* even if the first stretch of slip rounds to the belt's speed */
+    return eta;
+}
+
+/* One located step of the general inclusion from s over h; emits the events it finds; returns the time
+ * spent sticking, or -1 if a step has no solution. */
+double dp_ss_located_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs)
+{
+    const dp_ss_law *L = &r->law;
+    hold_ctx hc = { .L = L, .s = *s };
+    dp_ss_stick_interval(L, &hc.slo, &hc.shi);
+    double dir = sgn(s->v - L->vb);
+    if (dir == 0 && s->phase == DP_PHASE_STICK)
+        return hold_gap(&hc, h) <= 0 ? hold_step(&hc, s, h, fc, fs) : breakaway_general(r, &hc, s, h, fc, fs);
+    step_state probe = *s;
+    if (dp_ss_inclusion_step(r, &probe, h, fc, fs) != DP_OK)
+        return -1;
+    if (dir == 0 || sgn(probe.v - L->vb) == dir) {
+        if (s->phase == DP_PHASE_SLIP && probe.phase == DP_PHASE_STICK)
+            dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
+        *s = probe;
+        return s->phase == DP_PHASE_STICK ? h : 0;
+    }
+    /* The relative velocity reaches zero inside the step: stop there, then go on from rest. */
+    double alo, ahi;
+    dp_graph_force(L->A, 0, &alo, &ahi);
+    arrival_ctx ac = { .L = L, .s = *s, .dir = dir, .a = dir > 0 ? ahi : alo };
+    double g0 = arrival(&ac, 0), g1 = arrival(&ac, h);
+    if (!(g0 < 0 && g1 >= 0)) { /* no sign change to bracket (rounding at the end of the step) */
+        *s = probe;
+        return s->phase == DP_PHASE_STICK ? h : 0;
+    }
+    double eta = dp_root_bracket(arrival, &ac, 0, h, g0, g1, 4 * 2.220446049250313e-16 * (s->t + h),
+                                 &r->sum.iterations);
+    s->x += eta * ((1 - L->theta) * s->v + L->theta * L->vb);
+    s->v = L->vb;
+    s->t += eta;
+    s->phase = DP_PHASE_SLIP;
+    double rest = h - eta;
+    hc.s = *s;
+    probe = *s;
+    if (rest > 0 && dp_ss_inclusion_step(r, &probe, rest, fc, fs) != DP_OK)
+        return -1;
+    int sticks = rest > 0 ? probe.phase == DP_PHASE_STICK : hold_gap(&hc, 0) <= 0;
+    if (sticks) {
+        dp_run_emit_event(r, DP_EVENT_STICK, s->t, s->x, s->v);
+        if (rest == 0)
+            return hold_step(&hc, s, 0, fc, fs);
+        *s = probe;
+        return rest;
+    }
+    if (rest == 0) { /* arrived at the end of the step, about to reverse: the slip-side forces */
+        double flo = 0, fhi = 0;
+        if (L->S)
+            dp_graph_force(L->S, s->x, &flo, &fhi);
+        *fc = ac.a, *fs = flo;
+        return 0;
+    }
+    *s = probe;
+    s->phase = DP_PHASE_SLIP;
+    return 0;
+}
+

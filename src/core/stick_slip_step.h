@@ -1,0 +1,50 @@
+/* src/core/stick_slip_step.h - internal: one step of the stick-slip theta-method, shared by the stepper
+ * (stick_slip.c) and event location (event_location.c). */
+#ifndef DASHPOT_CORE_STICK_SLIP_STEP_H
+#define DASHPOT_CORE_STICK_SLIP_STEP_H
+
+#include "inclusion.h"
+#include "run_internal.h"
+
+static inline double sgn(double x)
+{
+    return (x > 0) - (x < 0);
+}
+
+/* F(t), without the call for the usual constant load. */
+static inline double load(const dp_ss_law *L, double t)
+{
+    return L->F_const ? L->F0 : dp_forcing_eval(L->F, t);
+}
+
+/* Relative free velocity u of a step of length h from (t, x, v), with the step's coefficients in *c. */
+static inline double free_velocity(const dp_ss_law *L, double t, double h, double x, double v, dp_ss_coef *c)
+{
+    if (h != L->h)
+        dp_ss_coef_init(L, h, c);
+    else
+        *c = L->nominal;
+    return c->cv * v + c->cx * x + c->cf * load(L, t + L->theta * h) + c->c0;
+}
+
+typedef struct step_state { double t, x, v; dp_phase phase; } step_state;
+
+/* The closed form (soft threshold): advances s by a step of length h with the Moreau rule, from its free
+ * velocity u and coefficients c (dp_ss_moreau computes them); returns the friction's mean force. */
+double dp_ss_moreau_from(const dp_ss_law *L, step_state *s, double h, double u, const dp_ss_coef *c);
+double dp_ss_moreau(const dp_ss_law *L, step_state *s, double h);
+
+/* The general step: its inclusion (dp_inclusion), and one step through dp_inclusion_solve with the damper
+ * and spring graph forces in *fc, *fs; DP_OK or DP_ESOLVE. */
+dp_inclusion dp_ss_step_inclusion(const dp_ss_law *L, const step_state *s, double h);
+int dp_ss_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs);
+
+/* Event location (event_location.c): one step split at the phase changes inside it, events emitted; return
+ * the time spent sticking (-1: the general step has no solution). */
+double dp_ss_located_step(dp_run *r, step_state *s, double h, double *force);
+double dp_ss_located_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs);
+
+/* The damper forces possible at rest: the static interval of a generalized Coulomb law, else A(0). */
+void dp_ss_stick_interval(const dp_ss_law *L, double *lo, double *hi);
+
+#endif
