@@ -392,6 +392,33 @@ static void test_graph_damper_starts_like_coulomb(void **state)
     traj_free(&user);
 }
 
+/* A mass carried by a belt (Coulomb, v_b = 0.4) against a rope of length 0.5: it sticks at the same located
+ * instant as on a linear spring of the same stiffness (closed form vs general inclusion), rides the belt to
+ * x = L exactly, and breaks away there, at t_stick + (L - x_stick) / v_b, when the taut rope stops it. */
+static void test_rope_breaks_stick_at_its_length(void **state)
+{
+    (void)state;
+    const char *fmt = "{\"model\":{\"mass\":1,\"spring\":{%s},\"damper\":{\"law\":\"coulomb\",\"phi0\":1,"
+                      "\"belt_velocity\":0.4}},\"initial\":{\"x\":0},\"solver\":{\"dt\":1e-2,\"t_end\":3}}";
+    char a[600], b[600];
+    traj rope, lin;
+    run_ok(SPEC(a, fmt, "\"law\":\"rope\",\"k\":1,\"length\":0.5"), &rope);
+    run_ok(SPEC(b, fmt, "\"law\":\"linear\",\"k\":1"), &lin);
+    assert_int_equal(rope.ne, 2);
+    assert_int_equal(lin.ne, 2);
+    assert_true(rope.e[0].kind == DP_EVENT_STICK && lin.e[0].kind == DP_EVENT_STICK);
+    assert_true(fabs(rope.e[0].t - lin.e[0].t) < 1e-12 && fabs(rope.e[0].x - lin.e[0].x) < 1e-12);
+    double t_taut = rope.e[0].t + (0.5 - rope.e[0].x) / 0.4;
+    printf("rope: stick at %.15f, slip at %.15f (expected %.15f)\n", rope.e[0].t, rope.e[1].t, t_taut);
+    assert_true(rope.e[1].kind == DP_EVENT_SLIP && fabs(rope.e[1].t - t_taut) < 1e-12);
+    assert_true(fabs(rope.e[1].x - 0.5) < 1e-12);
+    for (size_t i = 0; i < rope.n; i++)
+        assert_true(rope.s[i].x <= 0.5);
+    assert_true(rope.sum.final.x == 0.5 && rope.sum.final.v == 0); /* held by the rope, the belt slides */
+    traj_free(&rope);
+    traj_free(&lin);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -405,6 +432,7 @@ int main(void)
         cmocka_unit_test(test_decimation_is_exact),
         cmocka_unit_test(test_located_events_general_inclusion),
         cmocka_unit_test(test_graph_damper_starts_like_coulomb),
+        cmocka_unit_test(test_rope_breaks_stick_at_its_length),
     };
     return cmocka_run_group_tests_name("stick_slip", tests, NULL, NULL);
 }
