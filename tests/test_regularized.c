@@ -22,6 +22,7 @@
 #include "dashpot/encode.h"
 #include "dashpot/regularized.h"
 #include "trajectory.h"
+#include "../src/core/dense.h"
 
 #define COULOMB "{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":1}"
 #define DECADES "[10,100,1000,10000]"
@@ -368,6 +369,45 @@ static void test_steppers_agree(void **state)
     }
 }
 
+/* ---- samples between the integrator's steps (src/core/dense.c) --------------------------------------- */
+
+/* The quintic Hermite interpolant reproduces a quintic from its ends' values and two derivatives, and misses
+ * t^6 by its error term h^6/720 s^3 (s - 1)^3 exactly; Neville's polynomial reproduces its degree. */
+static void test_dense_interpolants_exact(void **state)
+{
+    (void)state;
+    const double c[6] = { 0.3, -1.2, 0.7, 2.1, -0.4, 0.15 }, ta = 1.5, tb = 2.25, h = tb - ta;
+    double y[2][3]; /* the quintic sum c_k t^k and t^6: value, first and second derivative at both ends */
+    double z[2][3];
+    for (int e = 0; e < 2; e++) {
+        double t = e ? tb : ta;
+        y[e][0] = y[e][1] = y[e][2] = 0;
+        for (int k = 5; k >= 0; k--) {
+            y[e][2] = y[e][2] * t + y[e][1] * 2, y[e][1] = y[e][1] * t + y[e][0], y[e][0] = y[e][0] * t + c[k];
+        }
+        z[e][0] = pow(t, 6), z[e][1] = 6 * pow(t, 5), z[e][2] = 30 * pow(t, 4);
+    }
+    for (double s = 0; s <= 1; s += 0.125) {
+        double t = ta + s * h, p = 0, out;
+        for (int k = 5; k >= 0; k--)
+            p = p * t + c[k];
+        dp_hermite_end a = { ta, &y[0][0], &y[0][1], &y[0][2] }, b = { tb, &y[1][0], &y[1][1], &y[1][2] };
+        dp_hermite5(&a, &b, 1, t, &out);
+        assert_true(fabs(out - p) <= 1e-14 * (1 + fabs(p)));
+        dp_hermite_end a6 = { ta, &z[0][0], &z[0][1], &z[0][2] }, b6 = { tb, &z[1][0], &z[1][1], &z[1][2] };
+        dp_hermite5(&a6, &b6, 1, t, &out);
+        double want = pow(h, 6) * pow(s, 3) * pow(s - 1, 3); /* t^6 - p(t), y^(6) = 720 */
+        assert_true(fabs(pow(t, 6) - out - want) <= 1e-12);
+        /* Degree 4 through 5 points, two components, unevenly spaced as an integrator's steps are. */
+        const double ts[5] = { 0, 0.1, 0.35, 0.8, 1.5 };
+        double ys[5][2], q[2];
+        for (int k = 0; k < 5; k++)
+            ys[k][0] = 1 - 2 * ts[k] + pow(ts[k], 4), ys[k][1] = 3 * pow(ts[k], 3);
+        dp_poly_interp(ts, ys[0], 5, 2, s, q);
+        assert_true(fabs(q[0] - (1 - 2 * s + pow(s, 4))) < 1e-14 && fabs(q[1] - 3 * pow(s, 3)) < 1e-14);
+    }
+}
+
 /* Negative damping gamma = 100 v: the solution grows like e^(100 t) and leaves the doubles near t = 7;
  * the run fails with DP_ENONFINITE and no sample holds a non-finite number. */
 static void test_divergence_is_an_error(void **state)
@@ -498,6 +538,7 @@ int main(void)
         cmocka_unit_test(test_pi_rope),
         cmocka_unit_test(test_samples_on_grid_and_decimation),
         cmocka_unit_test(test_steppers_agree),
+        cmocka_unit_test(test_dense_interpolants_exact),
         cmocka_unit_test(test_divergence_is_an_error),
         cmocka_unit_test(test_impossible_tolerance_is_an_error),
         cmocka_unit_test(test_rules),
