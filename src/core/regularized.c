@@ -19,8 +19,8 @@
  * Landing on every sample cost msbdf a clipped step before each one and the order drop after it. On the bench
  * problem (bench/regularized.sh: Coulomb, t in [0, 30], 301 samples, tol 1e-10, n = 10..1e5) it took
  * 921-1074 steps, 0.32-0.38 ms: 10.1-10.5x faster than SciPy's LSODA at n >= 1e4 (10.0-10.9x with the
- * core busy). Stepping freely: 566-798 steps, 0.22-0.31 ms, 13.6-16.3x at n >= 1e4 (14.0-16.3x with the
- * core busy; 25x at n = 10), ~80% of it inside GSL's steps (docs/regularized.md, "Cost").
+ * core busy). Stepping freely: 566-798 steps, 0.22-0.31 ms, 13.6-16.3x at n >= 1e4 (13.8-16.4x with the
+ * core or both cores busy; 25x at n = 10), ~80% of it inside GSL's steps (docs/regularized.md, "Cost").
  * A regularized solution never sticks exactly, so every sample has phase NONE and F_c = g_n(u).
  * The workspace is allocated once per run; the step path allocates nothing. Every GSL return is checked:
  * a right-hand side that leaves the finite numbers is DP_ENONFINITE, any other failure DP_ESOLVE.
