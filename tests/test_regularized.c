@@ -8,6 +8,7 @@
  * Over [2 pi, T] the creep is 0.5 (1 - exp(-k (T - 2 pi)/n)) ~ 0.5 (T - 2 pi)/n: the O(1/n) error, and
  * the creep speed right after stopping, 0.5 k/n, is the error in v.
  */
+#include <complex.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -17,11 +18,13 @@
 
 #include <cjson/cJSON.h>
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
 #include <gsl/gsl_rng.h>
 
 #include "dashpot/encode.h"
 #include "dashpot/regularized.h"
 #include "trajectory.h"
+#include "../src/core/dense.h"
 
 #define COULOMB "{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":1}"
 #define DECADES "[10,100,1000,10000]"
@@ -322,6 +325,9 @@ static void test_pi_rope(void **state)
 
 /* ---- the run: grid, decimation, steppers, failures ------------------------------------------------------ */
 
+/* Samples on t_j = j dt and t_end whatever the steps. msbdf's steps do not depend on the output grid, so
+ * output.every = 4 gives bitwise the samples of every = 1 at the times it keeps (it used to land on them: the
+ * two runs took different steps and agreed to 1e-8). */
 static void test_samples_on_grid_and_decimation(void **state)
 {
     (void)state;
@@ -335,12 +341,9 @@ static void test_samples_on_grid_and_decimation(void **state)
         assert_true(a.s[i].t == (double)i * 0.1);
     assert_true(a.s[11].t == 1.05);
     assert_int_equal(b.n, 4); /* 0, 0.4, 0.8, 1.05 */
-    for (size_t i = 0; i < b.n; i++) {
-        const dp_sample *s = &a.s[i < 3 ? 4 * i : 11];
-        assert_true(b.s[i].t == s->t);
-        printf("t=%g every 4 vs 1: |dx| %.2e |dv| %.2e\n", s->t, fabs(b.s[i].x - s->x), fabs(b.s[i].v - s->v));
-        assert_true(fabs(b.s[i].x - s->x) < 1e-8 && fabs(b.s[i].v - s->v) < 1e-8);
-    }
+    for (size_t i = 0; i < b.n; i++)
+        assert_memory_equal(&b.s[i], &a.s[i < 3 ? 4 * i : 11], sizeof b.s[i]);
+    assert_true(a.sum.steps == b.sum.steps && a.sum.fevals == b.sum.fevals);
     assert_true(a.sum.fevals > a.sum.steps && a.sum.iterations > 0 && a.sum.steps > 10);
     traj_free(&a);
     traj_free(&b);
@@ -365,6 +368,283 @@ static void test_steppers_agree(void **state)
             x0 = x;
         assert_true(fabs(x - x0) < 1e-7);
         traj_free(&t);
+    }
+}
+
+/* ---- samples between the integrator's steps (src/core/dense.c) --------------------------------------- */
+
+/* The quintic Hermite interpolant reproduces a quintic from its ends' values and two derivatives, and misses
+ * t^6 by its error term h^6/720 s^3 (s - 1)^3 exactly; Neville's polynomial reproduces its degree. */
+static void test_dense_interpolants_exact(void **state)
+{
+    (void)state;
+    const double c[6] = { 0.3, -1.2, 0.7, 2.1, -0.4, 0.15 }, ta = 1.5, tb = 2.25, h = tb - ta;
+    double y[2][3]; /* the quintic sum c_k t^k and t^6: value, first and second derivative at both ends */
+    double z[2][3];
+    for (int e = 0; e < 2; e++) {
+        double t = e ? tb : ta;
+        y[e][0] = y[e][1] = y[e][2] = 0;
+        for (int k = 5; k >= 0; k--) {
+            y[e][2] = y[e][2] * t + y[e][1] * 2, y[e][1] = y[e][1] * t + y[e][0], y[e][0] = y[e][0] * t + c[k];
+        }
+        z[e][0] = pow(t, 6), z[e][1] = 6 * pow(t, 5), z[e][2] = 30 * pow(t, 4);
+    }
+    for (double s = 0; s <= 1; s += 0.125) {
+        double t = ta + s * h, p = 0, out;
+        for (int k = 5; k >= 0; k--)
+            p = p * t + c[k];
+        dp_hermite_end a = { ta, &y[0][0], &y[0][1], &y[0][2] }, b = { tb, &y[1][0], &y[1][1], &y[1][2] };
+        dp_hermite5(&a, &b, 1, t, &out);
+        assert_true(fabs(out - p) <= 1e-14 * (1 + fabs(p)));
+        dp_hermite_end a6 = { ta, &z[0][0], &z[0][1], &z[0][2] }, b6 = { tb, &z[1][0], &z[1][1], &z[1][2] };
+        dp_hermite5(&a6, &b6, 1, t, &out);
+        double want = pow(h, 6) * pow(s, 3) * pow(s - 1, 3); /* t^6 - p(t), y^(6) = 720 */
+        assert_true(fabs(pow(t, 6) - out - want) <= 1e-12);
+        /* Degree 4 through 5 points, two components, unevenly spaced as an integrator's steps are. */
+        const double ts[5] = { 0, 0.1, 0.35, 0.8, 1.5 };
+        double ys[5][2], q[2];
+        for (int k = 0; k < 5; k++)
+            ys[k][0] = 1 - 2 * ts[k] + pow(ts[k], 4), ys[k][1] = 3 * pow(ts[k], 3);
+        dp_poly_interp(ts, ys[0], 5, 2, s, q);
+        assert_true(fabs(q[0] - (1 - 2 * s + pow(s, 4))) < 1e-14 && fabs(q[1] - 3 * pow(s, 3)) < 1e-14);
+    }
+}
+
+/* x(t), v(t) of m x'' + c x' + k x = A cos(w t), x(0) = x0, v(0) = 0 (the regularized ODE of a linear spring
+ * and a linear damper, whatever n). Roots q/m and k/q with q = -(c + sqrt(c^2 - 4 m k))/2 (no cancellation). */
+static void linear_exact(double m, double c, double k, double A, double w, double x0, double t, double *x,
+                         double *v)
+{
+    double complex q = -(c + csqrt(c * c - 4 * m * k)) / 2, l1 = q / m, l2 = k / q;
+    double d = (k - m * w * w) * (k - m * w * w) + c * c * w * w;
+    double X = A * (k - m * w * w) / d, Y = A * c * w / d; /* particular X cos + Y sin */
+    double complex b = (-Y * w - l1 * (x0 - X)) / (l2 - l1), a = x0 - X - b;
+    *x = creal(a * cexp(l1 * t) + b * cexp(l2 * t)) + X * cos(w * t) + Y * sin(w * t);
+    *v = creal(a * l1 * cexp(l1 * t) + b * l2 * cexp(l2 * t)) - X * w * sin(w * t) + Y * w * cos(w * t);
+}
+
+#define FORCED_LINEAR "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":" \
+    "\"linear\",\"c\":%g},\"forcing\":{\"kind\":\"harmonic\",\"amplitude\":2,\"omega\":1.3}},\"initial\":{\"x\":1}," \
+    "\"solver\":{\"kind\":\"regularized\",\"n\":100,\"t_end\":%.17g,\"dt\":%g,\"rtol\":%g,\"atol\":%g," \
+    "\"stepper\":\"%s\"}}"
+
+/* The largest |error| / (1 + |exact|) of a run's x and v against the closed form. */
+static double linear_error(const traj *t, double c)
+{
+    double worst = 0;
+    for (size_t j = 0; j < t->n; j++) {
+        double x, v;
+        linear_exact(1, c, 1, 2, 1.3, 1, t->s[j].t, &x, &v);
+        worst = fmax(worst, fmax(fabs(t->s[j].x - x) / (1 + fabs(x)), fabs(t->s[j].v - v) / (1 + fabs(v))));
+    }
+    return worst;
+}
+
+/* The largest |difference| / (1 + |y|) between a's samples at T and runs that end at T, for T = 0.37 j: a
+ * free stepper's run to T takes a's steps up to the one that holds T and then lands on T (unless a step
+ * attempt that reached past T was rejected: then the two part a little earlier), so this is the
+ * interpolant's error plus one local error, with no global error in it. */
+static double landing_difference(const traj *a, double c, double tol, const char *st)
+{
+    double worst = 0;
+    for (int j = 1; j <= 13; j++) {
+        double T = 0.37 * j;
+        size_t i = (size_t)llround(T / 0.001);
+        char spec[600];
+        traj b;
+        run_ok(SPEC(spec, FORCED_LINEAR, c, T, 0.001, tol, tol, st), &b);
+        const dp_sample *p = &a->s[i], *q = &b.s[b.n - 1];
+        assert_true(fabs(p->t - T) < 1e-12 && q->t == T);
+        worst = fmax(worst, fmax(fabs(p->x - q->x) / (1 + fabs(q->x)), fabs(p->v - q->v) / (1 + fabs(q->v))));
+        traj_free(&b);
+    }
+    return worst;
+}
+
+/* (a) Linear spring and damper driven by 2 cos 1.3t (closed form): samples far denser (dt = 0.001) and far
+ * sparser (dt = 1.25) than the steps, a light damper (c = 0.5: Hermite) and a stiff one (c = 1000, h |J| up
+ * to ~1e3: msbdf's own polynomial), msbdf and the explicit rkf45. Against runs that land on the sample time,
+ * every sample is within 3 tol (measured <= 1.3): the interpolant adds about one local error. Against the
+ * closed form, within 200 tol: that is the integrators' global error, the same at the landings (msbdf on the
+ * light damper: 160 tol by t = 5; rkf45: 1 tol). */
+static void test_interpolated_samples_linear(void **state)
+{
+    (void)state;
+    const char *steppers[] = { "msbdf", "rkf45" };
+    const double cs[] = { 0.5, 1000 }, tols[] = { 1e-6, 1e-9 };
+    for (int i = 0; i < 8; i++) {
+        const char *st = steppers[i & 1];
+        double c = cs[(i >> 1) & 1], tol = tols[(i >> 2) & 1];
+        char spec[600];
+        traj dense, sparse;
+        run_ok(SPEC(spec, FORCED_LINEAR, c, 5.0, 0.001, tol, tol, st), &dense);
+        run_ok(SPEC(spec, FORCED_LINEAR, c, 5.0, 1.25, tol, tol, st), &sparse);
+        double ed = linear_error(&dense, c), es = linear_error(&sparse, c), el = landing_difference(&dense, c, tol, st);
+        printf("%-5s c = %-4g tol = %g: %4llu steps; error dt = 0.001 %6.2f tol, dt = 1.25 %6.2f tol; "
+               "against landing %.2f tol\n", st, c, tol, dense.sum.steps, ed / tol, es / tol, el / tol);
+        assert_int_equal(dense.n, 5001);
+        assert_int_equal(sparse.n, 5);
+        assert_true(ed <= 200 * tol && es <= 200 * tol);
+        assert_true(el <= 3 * tol);
+        traj_free(&dense);
+        traj_free(&sparse);
+    }
+}
+
+/* (b) The Coulomb free decay (a kink at every turning point and at the stop, a stiff creep after it) sampled
+ * every 0.01 at rtol = atol = 1e-8, against the same run at 1e-12 and against runs that land on the sample
+ * times. msbdf's global error here is ~300 tol, landing or not (rkf45's ~70); the interpolant adds ~1 tol,
+ * up to ~10 tol next to the stop where the landing run's last steps differ. After the stop v ~ -x/n is slaved
+ * to x by the stiff mode: Hermite from f(y) misses it by 17 tol at n = 100 and 84 tol at n = 1e4 (measured);
+ * msbdf's own polynomial is within its global error, x's divided by n (2.8 and 0.02 tol). */
+static void test_interpolated_samples_coulomb(void **state)
+{
+    (void)state;
+    const double tol = 1e-8, ns[] = { 100, 1e4, 1000 };
+    const char *steppers[] = { "msbdf", "msbdf", "rkf45" };
+    for (int i = 0; i < 3; i++) {
+        char spec[600];
+        traj a, ref;
+        run_ok(SPEC(spec, "{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":\"regularized\","
+                    "\"n\":%g,\"t_end\":10,\"dt\":0.01,\"rtol\":%g,\"atol\":%g,\"stepper\":\"%s\"}}", ns[i], tol, tol,
+                    steppers[i]), &a);
+        run_ok(SPEC(spec, "{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":\"regularized\","
+                    "\"n\":%g,\"t_end\":10,\"dt\":0.01,\"rtol\":1e-12,\"atol\":1e-12,\"stepper\":\"%s\"}}", ns[i],
+                    steppers[i]), &ref);
+        assert_int_equal(a.n, 1001);
+        assert_int_equal(ref.n, 1001);
+        double dy = 0, creep = 0, land = 0;
+        for (size_t j = 0; j < a.n; j++) {
+            dy = fmax(dy, fmax(fabs(a.s[j].x - ref.s[j].x), fabs(a.s[j].v - ref.s[j].v)));
+            if (a.s[j].t >= 7) /* the stop is at 2 pi */
+                creep = fmax(creep, fabs(a.s[j].v - ref.s[j].v));
+        }
+        for (int j = 1; j <= 27; j++) {
+            double T = 0.37 * j;
+            traj b;
+            run_ok(SPEC(spec, "{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":"
+                        "\"regularized\",\"n\":%g,\"t_end\":%.17g,\"dt\":0.01,\"rtol\":%g,\"atol\":%g,"
+                        "\"stepper\":\"%s\"}}", ns[i], T, tol, tol, steppers[i]), &b);
+            const dp_sample *p = &a.s[llround(T / 0.01)], *q = &b.s[b.n - 1];
+            land = fmax(land, fmax(fabs(p->x - q->x), fabs(p->v - q->v)) / (1 + fabs(q->x)));
+            traj_free(&b);
+        }
+        printf("%-5s n = %-5g %4llu steps: against 1e-12 %.0f tol, after the stop |dv| %.2f tol; against "
+               "landing %.2f tol\n", steppers[i], ns[i], a.sum.steps, dy / tol, creep / tol, land / tol);
+        assert_true(dy <= 500 * tol);
+        assert_true(creep <= 10 * tol);
+        assert_true(land <= 20 * tol);
+        traj_free(&a);
+        traj_free(&ref);
+    }
+}
+
+/* Runs spec pulling at most cap records per dp_run_next call (traj_run pulls 257). */
+static void run_blocks(const char *json, size_t cap, traj *t)
+{
+    memset(t, 0, sizeof *t);
+    dp_spec spec;
+    dp_errors e;
+    int s;
+    dp_spec_init(&spec);
+    dp_errors_init(&e);
+    assert_int_equal(dp_spec_parse(json, strlen(json), 0, &spec, &e), DP_OK);
+    dp_run *r = dp_run_alloc(&spec, 0, &e, &s);
+    dp_spec_clear(&spec);
+    assert_non_null(r);
+    dp_record *buf = malloc(cap * sizeof *buf);
+    size_t n;
+    do {
+        s = dp_run_next(r, buf, cap, &n);
+        for (size_t i = 0; i < n; i++)
+            traj_push(t, &buf[i]);
+    } while (s == DP_MORE);
+    t->status = s;
+    t->sum = *dp_run_summary(r);
+    free(buf);
+    dp_run_free(r);
+}
+
+/* (c) Pulling a run one record at a time gives bitwise the samples and summary of pulling it 4096 at a time:
+ * msbdf with 100 samples inside most steps (a block ends between two samples of one step), and rkf45 at
+ * n = 1e5, whose 1.5e5 explicit steps (most in the stiff creep after the stop) outlast the 1e5-step budget
+ * of a call (a block ends between two steps, with no sample due). */
+static void test_blocks_bitwise(void **state)
+{
+    (void)state;
+    const char *specs[] = {
+        "{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":\"regularized\",\"n\":1000,"
+        "\"t_end\":10,\"dt\":0.001}}",
+        "{\"model\":" COULOMB "},\"initial\":{\"x\":4.5},\"solver\":{\"kind\":\"regularized\",\"n\":1e5,"
+        "\"t_end\":11,\"dt\":0.01,\"stepper\":\"rkf45\"}}",
+    };
+    for (int i = 0; i < 2; i++) {
+        traj one, many;
+        run_blocks(specs[i], 1, &one);
+        run_blocks(specs[i], 4096, &many);
+        printf("blocks of 1 and of 4096: %zu and %zu samples, %llu and %llu steps\n", one.n, many.n, one.sum.steps,
+               many.sum.steps);
+        assert_int_equal(one.status, DP_DONE);
+        assert_int_equal(many.status, DP_DONE);
+        assert_int_equal(one.n, many.n);
+        assert_memory_equal(one.s, many.s, one.n * sizeof *one.s);
+        assert_memory_equal(&one.sum, &many.sum, sizeof one.sum);
+        assert_true(i == 0 || one.sum.steps > 100000);
+        traj_free(&one);
+        traj_free(&many);
+    }
+}
+
+static int linear_rhs(double t, const double y[], double f[], void *p)
+{
+    const double *c = p; /* m, k, c, A, w */
+    f[0] = y[1];
+    f[1] = (c[3] * cos(c[4] * t + 0) - c[1] * y[0] - c[2] * y[1]) / c[0];
+    return GSL_SUCCESS;
+}
+
+static int linear_jac(double t, const double y[], double *dfdy, double dfdt[], void *p)
+{
+    const double *c = p;
+    (void)y;
+    dfdy[0] = 0, dfdy[1] = 1, dfdy[2] = -c[1] / c[0], dfdy[3] = -c[2] / c[0];
+    dfdt[0] = 0, dfdt[1] = -c[3] * c[4] * sin(c[4] * t + 0) / c[0];
+    return GSL_SUCCESS;
+}
+
+/* (d) The sample at t_end is the integrator's own landing there, not an interpolation: for msbdf and rkf45
+ * it is bitwise what a plain GSL evolve loop to t_end gives (same system, first step, tolerances), whatever
+ * the output grid, and the steps are the same with samples every 0.01 or only at t_end. */
+static void test_t_end_sample_is_landing(void **state)
+{
+    (void)state;
+    const char *steppers[] = { "msbdf", "rkf45" };
+    const gsl_odeiv2_step_type *types[2];
+    types[0] = gsl_odeiv2_step_msbdf, types[1] = gsl_odeiv2_step_rkf45;
+    double law[5] = { 1, 1, 3, 2, 1.3 }, t_end = 7.3;
+    for (int i = 0; i < 2; i++) {
+        char spec[600];
+        traj grid, ends;
+        run_ok(SPEC(spec, FORCED_LINEAR, law[2], t_end, 0.01, 1e-9, 1e-9, steppers[i]), &grid);
+        run_ok(SPEC(spec, FORCED_LINEAR, law[2], t_end, t_end, 1e-9, 1e-9, steppers[i]), &ends);
+        gsl_odeiv2_system sys = { linear_rhs, linear_jac, 2, law };
+        double h = 1e-3 / (100 + 1), t = 0, y[2] = { 1, 0 }; /* the first step dashpot takes: 1e-3 m/(n+1) */
+        gsl_odeiv2_driver *d = gsl_odeiv2_driver_alloc_y_new(&sys, types[i], h, 1e-9, 1e-9);
+        while (t < t_end)
+            assert_int_equal(gsl_odeiv2_evolve_apply(d->e, d->c, d->s, &sys, &t, t_end, &h, y), GSL_SUCCESS);
+        const dp_sample *a = &grid.s[grid.n - 1], *b = &ends.s[ends.n - 1];
+        printf("%-5s x(t_end) %.17g: dt = 0.01 %s, dt = t_end %s, GSL loop %llu steps, dashpot %llu\n",
+               steppers[i], y[0], a->x == y[0] ? "same" : "DIFFERS", b->x == y[0] ? "same" : "DIFFERS",
+               (unsigned long long)d->e->count, grid.sum.steps);
+        assert_int_equal(grid.n, 731);
+        assert_int_equal(ends.n, 2);
+        assert_true(a->t == t_end && b->t == t_end);
+        assert_true(a->x == y[0] && a->v == y[1] && b->x == y[0] && b->v == y[1]);
+        assert_memory_equal(a, b, sizeof *a);
+        assert_true(grid.sum.steps == d->e->count && ends.sum.steps == d->e->count);
+        gsl_odeiv2_driver_free(d);
+        traj_free(&grid);
+        traj_free(&ends);
     }
 }
 
@@ -498,6 +778,11 @@ int main(void)
         cmocka_unit_test(test_pi_rope),
         cmocka_unit_test(test_samples_on_grid_and_decimation),
         cmocka_unit_test(test_steppers_agree),
+        cmocka_unit_test(test_dense_interpolants_exact),
+        cmocka_unit_test(test_interpolated_samples_linear),
+        cmocka_unit_test(test_interpolated_samples_coulomb),
+        cmocka_unit_test(test_blocks_bitwise),
+        cmocka_unit_test(test_t_end_sample_is_landing),
         cmocka_unit_test(test_divergence_is_an_error),
         cmocka_unit_test(test_impossible_tolerance_is_an_error),
         cmocka_unit_test(test_rules),
