@@ -42,6 +42,16 @@ static const dp_graph *damper_graph(const dp_damper *d, local_graph *l)
 static void add_check(dp_wp_report *r, const char *name, int holds, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
+/* Copies s into out[0..cap) as snprintf(out, cap, "%s", s) would, cut short the same way, without printf:
+ * the report is written for every run's meta line. */
+static void text(char *out, size_t cap, const char *s)
+{
+    size_t n = strlen(s);
+    n = n < cap ? n : cap - 1;
+    memcpy(out, s, n);
+    out[n] = '\0';
+}
+
 static void add_check(dp_wp_report *r, const char *name, int holds, const char *fmt, ...)
 {
     if (r->nchecks == DP_WP_MAX_CHECKS)
@@ -51,7 +61,12 @@ static void add_check(dp_wp_report *r, const char *name, int holds, const char *
     c->holds = holds;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(c->detail, sizeof c->detail, fmt, ap);
+    if (strcmp(fmt, "%s") == 0)              /* most details: a text made elsewhere, or a fixed one */
+        text(c->detail, sizeof c->detail, va_arg(ap, const char *));
+    else if (strchr(fmt, '%') == NULL)
+        text(c->detail, sizeof c->detail, fmt);
+    else
+        vsnprintf(c->detail, sizeof c->detail, fmt, ap);
     va_end(ap);
 }
 
@@ -93,8 +108,8 @@ static int no_gap(const dp_graph *g, char *why, size_t cap)
             return 0;
         }
     }
-    snprintf(why, cap, "a connected curve unbounded at both ends (rotated by 45 degrees it is the graph of "
-             "a 1-Lipschitz function, seed 001 Lemma 1)");
+    text(why, cap, "a connected curve unbounded at both ends (rotated by 45 degrees it is the graph of "
+         "a 1-Lipschitz function, seed 001 Lemma 1)");
     return 1;
 }
 
@@ -114,7 +129,7 @@ static int coercive(const dp_graph *g, char *why, size_t cap)
                  r ? ">" : "<", r ? g->y[n - 1] : g->y[0]);
         return 0;
     }
-    snprintf(why, cap, "F grows at most linearly with v and has the sign of v far out");
+    text(why, cap, "F grows at most linearly with v and has the sign of v far out");
     return 1;
 }
 
@@ -222,7 +237,7 @@ static void framework_pi(const dp_model *m, dp_wp_report *r)
         if (ok)
             ok = monotone(g, part[i].y, why, sizeof why) && no_gap(g, why, sizeof why);
         else
-            snprintf(why, sizeof why, "generalized Coulomb (phi1 > phi0) is not monotone");
+            text(why, sizeof why, "generalized Coulomb (phi1 > phi0) is not monotone");
         add_check(r, part[i].mono, ok, "%s", why);
         if (!ok)
             continue;
@@ -251,7 +266,7 @@ static int failures(const dp_wp_report *r, const char *skip, char *why, size_t c
         n++;
     }
     if (n == 0)
-        snprintf(why, cap, "all hypotheses hold");
+        text(why, cap, "all hypotheses hold");
     return n;
 }
 
