@@ -125,11 +125,12 @@ int dp_law_check(const dp_law *law, const char *ptr, dp_errors *errs)
 {
     char p[DP_POINTER_MAX];
     int s = DP_OK;
-    snprintf(p, sizeof p, "%s/mass", ptr);
     if (!isfinite(law->mass) || law->mass <= 0.0) {
+        snprintf(p, sizeof p, "%s/mass", ptr);
         dp_errors_add(errs, p, "expected a finite number > 0");
         s = DP_EINVAL;
     } else if (law->mass < DP_STAB_COEF_MIN || law->mass > DP_STAB_COEF_MAX) {
+        snprintf(p, sizeof p, "%s/mass", ptr);
         dp_errors_add(errs, p, "expected a mass in [%g, %g]", DP_STAB_COEF_MIN, DP_STAB_COEF_MAX);
         s = DP_ELIMIT;
     }
