@@ -16,6 +16,7 @@
 #include <stddef.h>
 
 #include "dashpot/encode.h"
+#include "dashpot/stability.h"
 #include "dashpot/status.h"
 
 /* ---- configuration (config.c) ---- */
@@ -70,6 +71,9 @@ const char *route_name(int route);
 
 /* ---- the server (server.c) ---- */
 
+/* Idle stability workspaces the server keeps (stability.c); more requests at once allocate their own. */
+#define WS_POOL 16
+
 typedef struct server {
     config cfg;
     struct MHD_Daemon *daemon;
@@ -81,6 +85,7 @@ typedef struct server {
     atomic_int abort_streams;    /* grace period over: streams end with an error line */
     pthread_mutex_t conns_lock;  /* guards `conns`, the open connections (deadline.c) */
     struct conn *conns;
+    _Atomic(dp_stability_ws *) ws_pool[WS_POOL]; /* NULL or an idle workspace, taken by exchange */
 } server;
 
 typedef struct stream stream;
@@ -135,6 +140,8 @@ enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r);
 
 enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_stability(struct MHD_Connection *c, request *r);
+/* Frees the idle stability workspaces (server_free). */
+void stability_pool_free(server *s);
 enum MHD_Result handle_wellposedness(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_convergence(struct MHD_Connection *c, request *r);
 /* GET /bench/static: the --bench-static file through the same chunked content-reader path as a stream. */

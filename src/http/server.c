@@ -318,6 +318,7 @@ void server_free(server *s)
         MHD_stop_daemon(s->daemon);
     free(s->openapi);
     page_free(s);
+    stability_pool_free(s);
     pthread_mutex_destroy(&s->conns_lock);
     free(s);
 }
