@@ -70,6 +70,29 @@ static void add_check(dp_wp_report *r, const char *name, int holds, const char *
     va_end(ap);
 }
 
+/* prefix + x as %.17g writes it, as a check's detail. Integers below 10^15 (what k and most constants
+ * are) are written by hand, the same digits; the rest by snprintf. */
+static void add_number(dp_wp_report *r, const char *name, int holds, const char *prefix, double x)
+{
+    char t[DP_WP_TEXT];
+    size_t n = strlen(prefix);
+    memcpy(t, prefix, n);
+    if (x == floor(x) && fabs(x) < 1e15) {
+        char d[24], *p = d + sizeof d;
+        unsigned long long u = (unsigned long long)fabs(x);
+        *--p = '\0';
+        do
+            *--p = (char)('0' + u % 10);
+        while ((u /= 10) != 0);
+        if (signbit(x))
+            *--p = '-'; /* -0 too, as printf writes it */
+        memcpy(t + n, p, (size_t)(d + sizeof d - p));
+    } else {
+        snprintf(t + n, sizeof t - n, "%.17g", x);
+    }
+    add_check(r, name, holds, "%s", t);
+}
+
 /* ---- properties of one graph (NaN rows of a raw graph mark gaps) ------------------------------------- */
 
 /* 1 if monotone; else writes a witness: two points with (y1 - y2)(F1 - F2) < 0. */
@@ -186,7 +209,7 @@ static void relaxation_checks(dp_wp_report *r, const dp_relaxation *g)
               : "continuous, at most linear growth");
     double L = dp_relaxation_lipschitz(g);
     if (isfinite(L))
-        add_check(r, "gamma Lipschitz", 1, "Lipschitz constant %.17g", L);
+        add_number(r, "gamma Lipschitz", 1, "Lipschitz constant ", L);
     else /* power law: gamma(u)/u = N u^(-1/N) is unbounded near 0 */
         add_check(r, "gamma Lipschitz", 0, "gamma(u)/u = %.6g at u = 1e-6 and %.6g at u = 1e-12: unbounded as "
                   "u -> 0", dp_relaxation_eval(g, 1e-6) / 1e-6, dp_relaxation_eval(g, 1e-12) / 1e-12);
@@ -198,7 +221,7 @@ static void framework_pc(const dp_model *m, dp_wp_report *r)
     local_graph l;
     const dp_damper *d = &m->damper;
     r->framework = "PC";
-    add_check(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = %.17g", m->spring.k);
+    add_number(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = ", m->spring.k);
     if (d->law == DP_DAMPER_GENERALIZED_COULOMB && d->phi1 > d->phi0) {
         add_check(r, "A monotone (seed 001 (6))", 0, "points (v, F) = (0, %.17g) and (1, %.17g) have (v1 - v2)"
                   "(F1 - F2) < 0: the static threshold phi1 exceeds the dynamic phi0", d->phi1, d->phi0);
