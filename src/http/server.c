@@ -34,6 +34,14 @@ double now_seconds(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* snprintf(dst, cap, "%s", src) without printf: src cut to cap - 1 bytes. */
+static void copy_cut(char *dst, size_t cap, const char *src)
+{
+    size_t n = strnlen(src, cap - 1);
+    memcpy(dst, src, n);
+    dst[n] = '\0';
+}
+
 static request *request_new(server *s, const char *method, const char *url)
 {
     request *r = calloc(1, sizeof *r);
@@ -42,8 +50,8 @@ static request *request_new(server *s, const char *method, const char *url)
     r->srv = s;
     atomic_init(&r->refs, 1);
     r->t_start = now_seconds();
-    snprintf(r->method, sizeof r->method, "%s", method);
-    snprintf(r->path, sizeof r->path, "%s", url);
+    copy_cut(r->method, sizeof r->method, method);
+    copy_cut(r->path, sizeof r->path, url);
     return r;
 }
 
