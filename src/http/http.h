@@ -46,6 +46,20 @@ typedef struct config {
  * --version was printed, -1 on a bad value (message printed to stderr). */
 int config_load(config *c, int argc, char **argv);
 
+/* The defaults of --openapi and --web-dir (source-tree paths), and their names where `make install` puts
+ * them: $(datadir)/dashpot/openapi.yaml and $(datadir)/dashpot/web. */
+#define DEFAULT_OPENAPI "api/openapi.yaml"
+#define DEFAULT_WEB_DIR "web"
+#define INSTALLED_OPENAPI "openapi.yaml"
+#define INSTALLED_WEB_DIR "web"
+
+/* Where a file (want_dir 0) or directory (1) the daemon serves is: `given` itself when it exists (absolute,
+ * or relative to the working directory); for a relative one, else beside the binary, else in the binary's
+ * parent directory (build/dashpotd finds api/openapi.yaml), and, when `installed` is not NULL,
+ * <binary's directory>/../share/dashpot/<installed> (make install's layout under any prefix: nothing is
+ * compiled in). The path found goes into out; returns 0, or -1 when there is none (out = given). */
+int data_path(const char *given, const char *installed, int want_dir, char *out, size_t cap);
+
 /* ---- metrics (metrics.c) ---- */
 
 enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_CONVERGENCE, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,

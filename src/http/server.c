@@ -194,24 +194,18 @@ static char *read_file(const char *path, size_t *len)
     return b.data;
 }
 
-/* --openapi as given (relative to the working directory), else relative to the binary and its parent
- * directory, so that `build/dashpotd` finds api/openapi.yaml from anywhere. */
+/* --openapi where data_path finds it: as given, beside the binary or in its parent (build/dashpotd finds
+ * api/openapi.yaml from anywhere), or for the default, ../share/dashpot/openapi.yaml (an installed one). */
 static void load_openapi(server *s)
 {
-    char exe[4096], path[8300];
-    s->openapi = read_file(s->cfg.openapi, &s->openapi_len);
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (s->openapi == NULL && s->cfg.openapi[0] != '/' && n > 0) {
-        exe[n] = '\0';
-        *strrchr(exe, '/') = '\0';
-        snprintf(path, sizeof path, "%s/%s", exe, s->cfg.openapi);
+    char path[8300];
+    int is_default = strcmp(s->cfg.openapi, DEFAULT_OPENAPI) == 0;
+    if (data_path(s->cfg.openapi, is_default ? INSTALLED_OPENAPI : NULL, 0, path, sizeof path) == 0)
         s->openapi = read_file(path, &s->openapi_len);
-        snprintf(path, sizeof path, "%s/../%s", exe, s->cfg.openapi);
-        if (s->openapi == NULL)
-            s->openapi = read_file(path, &s->openapi_len);
-    }
     if (s->openapi == NULL)
         log_line("warning: %s not found; /openapi.yaml will answer 404", s->cfg.openapi);
+    else
+        log_line("serving the OpenAPI document from %s", path);
 }
 
 static int make_address(const config *cfg, struct sockaddr_storage *sa, int *ipv6)
