@@ -134,9 +134,9 @@ clean:
 # $(libdir), the public headers into $(includedir)/dashpot, dashpot.pc (from dashpot.pc.in; it names the final
 # PREFIX, its directories relative to ${prefix}; a staged copy is used with PKG_CONFIG_SYSROOT_DIR=$(DESTDIR))
 # into $(pkgconfigdir), api/openapi.yaml into $(datadir)/dashpot and the browser page's files (web/) into
-# $(datadir)/dashpot/web, where DASHPOT_OPENAPI and DASHPOT_WEB_DIR must point the daemon: it has no
-# compiled-in path under PREFIX (docs/operations.md). `make uninstall` with the same variables removes what
-# `make install` put there.
+# $(datadir)/dashpot/web. The daemon finds those two by itself as <its bin directory>/../share/dashpot
+# (no compiled-in PREFIX; with a datadir outside $(PREFIX)/share, point DASHPOT_OPENAPI and DASHPOT_WEB_DIR
+# at them: docs/operations.md). `make uninstall` with the same variables removes what `make install` put there.
 PREFIX       ?= /usr/local
 DESTDIR      ?=
 bindir       ?= $(PREFIX)/bin

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # tests/test_install.sh - `make install` into a scratch DESTDIR, then what an installed dashpot must do: the
 # files are in place; a C program builds and runs against them through `pkg-config --cflags --libs dashpot`;
-# the installed dashpotd runs as the Deployment's non-root user with only the environment the manifests give
+# the installed dashpotd, started from another directory with no flag and no environment, finds its OpenAPI
+# document and web page under PREFIX/share/dashpot by itself; it runs as the Deployment's non-root user with only the environment the manifests give
 # it (deploy/kubernetes), answers the smoke tests, passes the Dockerfile's HEALTHCHECK command, serves the
 # sweep Job's script, and exits 0 on SIGTERM; `make uninstall` leaves no file behind. Every wait is bounded;
 # the scratch tree and the daemon go away on any exit (tests/lib/daemon.bash).
@@ -92,6 +93,39 @@ check "a C program compiles and links with pkg-config --cflags --libs dashpot" t
 [ $rc -eq 0 ] || show "$SCRATCH/cc.log"
 check "it runs against libdashpot: rests at x = 0.5, sticking" \
     test "$(timeout 30 "$SCRATCH/tiny" 2>&1)" = "$version 0.500000000 stick"
+
+# ---- the installed daemon with no flag and no environment, from another directory ------------------------
+# The defaults (api/openapi.yaml, web) are source-tree paths; an installed binary finds the files beside its
+# own directory, in ../share/dashpot, wherever the prefix is (here under the DESTDIR it was staged in).
+mkdir -p "$SCRATCH/elsewhere"
+bare=$SCRATCH/bare.log
+env -i -C "$SCRATCH/elsewhere" "$p/bin/dashpotd" --port 0 2> "$bare" &
+bpid=$!
+DAEMON_PIDS+=("$bpid")
+bport=
+for _ in $(seq 200); do
+    bport=$(grep -o 'listening on http://127.0.0.1:[0-9]*' "$bare" 2>/dev/null | grep -o '[0-9]*$')
+    [ -n "$bport" ] && break
+    kill -0 "$bpid" 2>/dev/null || break
+    sleep 0.1
+done
+check "the installed dashpotd starts with no flag and no environment, from another directory" test -n "$bport"
+[ -n "$bport" ] || show "$bare"
+check "its start-up log names the installed OpenAPI document" \
+    grep -q "serving the OpenAPI document from $p/bin/../share/dashpot/openapi.yaml\$" "$bare"
+check "its start-up log names the installed web directory" \
+    grep -q "serving [0-9]* web files* from $p/bin/../share/dashpot/web\$" "$bare"
+check "GET /openapi.yaml is 200, the installed api/openapi.yaml" \
+    bash -c "[ \"\$(curl -s --max-time 10 -o '$SCRATCH/bare-openapi' -w '%{http_code}' \
+              'http://127.0.0.1:$bport/openapi.yaml')\" = 200 ] && cmp -s '$SCRATCH/bare-openapi' api/openapi.yaml"
+if [ -f web/index.html ]; then
+    check "GET / is 200, the installed web/index.html" \
+        bash -c "[ \"\$(curl -s --max-time 10 -o '$SCRATCH/bare-index' -w '%{http_code}' 'http://127.0.0.1:$bport/')\" = 200 ] &&
+                 cmp -s '$SCRATCH/bare-index' web/index.html"
+fi
+kill -TERM "$bpid"
+wait_pid "$bpid" 20
+check "SIGTERM: it exits 0" test "$WAIT_RC" -eq 0
 
 # ---- the installed daemon, as Kubernetes would start it ---------------------------------------------------------
 # The environment is exactly the Deployment's (ConfigMap through envFrom, env, DASHPOT_THREADS from the CPU

@@ -10,6 +10,7 @@
 
 #include <stddef.h>
 #include "dashpot/encode.h"
+#include "dashpot/stability.h"
 #include "dashpot/status.h"
 
 typedef enum dp_stability_want {
@@ -30,5 +31,11 @@ typedef enum dp_stability_want {
  *   DP_ESOLVE   an eigen solver did not converge (not seen in practice; dp_status_http maps it to 422).
  * On any failure `out` is left as it was (its length restored) and errs says why. */
 int dp_stability_respond(const char *body, size_t len, int want, dp_buf *out, dp_errors *errs);
+
+/* The same with the caller's workspace (dp_stability_ws_alloc; used by one thread at a time, reusable for
+ * any number of requests): a server that keeps a few skips allocating GSL's workspaces per request. The
+ * answers are the same bytes either way. */
+int dp_stability_respond_ws(dp_stability_ws *w, const char *body, size_t len, int want, dp_buf *out,
+                            dp_errors *errs);
 
 #endif

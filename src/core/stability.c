@@ -20,8 +20,9 @@
 #define NMAX DP_STAB_MAX_DEGREE
 #define DIMMAX (DP_STAB_MAX_DEGREE + 1)    /* the pencil has at least 3 variables */
 
-/* GSL workspaces by dimension, allocated when a dimension is first used (dims): one analysis needs one
- * dimension, and allocating all eleven up front (~130 mallocs) was most of a small POST /v1/stability. */
+/* GSL workspaces by dimension, allocated when a dimension is first used, and only those of the solver used
+ * (state_ws, pencil_ws): one analysis needs one dimension and one solver, and allocating all eleven of both
+ * up front (~130 mallocs) was most of a small POST /v1/stability. */
 struct dp_stability_ws {
     dp_poly_ws *poly;
     gsl_eigen_nonsymm_workspace *ns[DIMMAX + 1];
@@ -43,16 +44,26 @@ dp_stability_ws *dp_stability_ws_alloc(void)
     return w;
 }
 
-/* The workspaces of dimension d (1 .. DIMMAX), allocated on first use; DP_OK or DP_ENOMEM (what was
- * allocated stays, for the next call or dp_stability_ws_free). */
-static int dims(dp_stability_ws *w, int d)
+/* The state matrix's workspaces of dimension d (1 .. DIMMAX), allocated on first use: nonsymmetric
+ * eigensolver, matrix, eigenvalues. DP_OK or DP_ENOMEM (what was allocated stays, for the next call or
+ * dp_stability_ws_free). */
+static int state_ws(dp_stability_ws *w, int d)
 {
     size_t n = (size_t)d;
-    if (w->beta[d] != NULL)
-        return DP_OK;
     if (!w->ns[d] && (w->ns[d] = gsl_eigen_nonsymm_alloc(n)) != NULL)
         gsl_eigen_nonsymm_params(0, 1, w->ns[d]); /* balancing makes the eigenvalues of a badly scaled
                                                      companion-like matrix accurate */
+    if (!w->m1[d])
+        w->m1[d] = gsl_matrix_alloc(n, n);
+    if (!w->eval[d])
+        w->eval[d] = gsl_vector_complex_alloc(n);
+    return w->ns[d] && w->m1[d] && w->eval[d] ? DP_OK : DP_ENOMEM;
+}
+
+/* The pencil's workspaces of dimension d, likewise: QZ, two matrices, alpha and beta. */
+static int pencil_ws(dp_stability_ws *w, int d)
+{
+    size_t n = (size_t)d;
     if (!w->gen[d])
         w->gen[d] = gsl_eigen_gen_alloc(n);
     if (!w->m1[d])
@@ -61,9 +72,9 @@ static int dims(dp_stability_ws *w, int d)
         w->m2[d] = gsl_matrix_alloc(n, n);
     if (!w->eval[d])
         w->eval[d] = gsl_vector_complex_alloc(n);
-    if (w->ns[d] && w->gen[d] && w->m1[d] && w->m2[d] && w->eval[d])
-        w->beta[d] = gsl_vector_alloc(n); /* last: its presence says all six are there */
-    return w->beta[d] ? DP_OK : DP_ENOMEM;
+    if (!w->beta[d])
+        w->beta[d] = gsl_vector_alloc(n);
+    return w->gen[d] && w->m1[d] && w->m2[d] && w->eval[d] && w->beta[d] ? DP_OK : DP_ENOMEM;
 }
 
 void dp_stability_ws_free(dp_stability_ws *w)
@@ -125,11 +136,12 @@ int dp_law_check(const dp_law *law, const char *ptr, dp_errors *errs)
 {
     char p[DP_POINTER_MAX];
     int s = DP_OK;
-    snprintf(p, sizeof p, "%s/mass", ptr);
     if (!isfinite(law->mass) || law->mass <= 0.0) {
+        snprintf(p, sizeof p, "%s/mass", ptr);
         dp_errors_add(errs, p, "expected a finite number > 0");
         s = DP_EINVAL;
     } else if (law->mass < DP_STAB_COEF_MIN || law->mass > DP_STAB_COEF_MAX) {
+        snprintf(p, sizeof p, "%s/mass", ptr);
         dp_errors_add(errs, p, "expected a mass in [%g, %g]", DP_STAB_COEF_MIN, DP_STAB_COEF_MAX);
         s = DP_ELIMIT;
     }
@@ -305,7 +317,7 @@ static int state_matrix(dp_stability_ws *w, const dp_law *law, const double *p, 
 {
     dp_state_matrix *sm = &out->state;
     fill_state(law, p, n, sm);
-    if (dims(w, n) != DP_OK)
+    if (state_ws(w, n) != DP_OK)
         return DP_ENOMEM;
     gsl_matrix *a = w->m1[n];
     for (int i = 0; i < n * n; i++)
@@ -352,7 +364,7 @@ static int pencil(dp_stability_ws *w, const dp_law *law, const double *p, int n,
 {
     fill_pencil(law, p, n, pc);
     int d = pc->dim;
-    if (dims(w, d) != DP_OK)
+    if (pencil_ws(w, d) != DP_OK)
         return DP_ENOMEM;
     gsl_matrix *a = w->m1[d], *e = w->m2[d];
     for (int i = 0; i < d * d; i++) {

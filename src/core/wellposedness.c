@@ -42,6 +42,16 @@ static const dp_graph *damper_graph(const dp_damper *d, local_graph *l)
 static void add_check(dp_wp_report *r, const char *name, int holds, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
+/* Copies s into out[0..cap) as snprintf(out, cap, "%s", s) would, cut short the same way, without printf:
+ * the report is written for every run's meta line. */
+static void text(char *out, size_t cap, const char *s)
+{
+    size_t n = strlen(s);
+    n = n < cap ? n : cap - 1;
+    memcpy(out, s, n);
+    out[n] = '\0';
+}
+
 static void add_check(dp_wp_report *r, const char *name, int holds, const char *fmt, ...)
 {
     if (r->nchecks == DP_WP_MAX_CHECKS)
@@ -51,8 +61,36 @@ static void add_check(dp_wp_report *r, const char *name, int holds, const char *
     c->holds = holds;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(c->detail, sizeof c->detail, fmt, ap);
+    if (strcmp(fmt, "%s") == 0)              /* most details: a text made elsewhere, or a fixed one */
+        text(c->detail, sizeof c->detail, va_arg(ap, const char *));
+    else if (strchr(fmt, '%') == NULL)
+        text(c->detail, sizeof c->detail, fmt);
+    else
+        vsnprintf(c->detail, sizeof c->detail, fmt, ap);
     va_end(ap);
+}
+
+/* prefix + x as %.17g writes it, as a check's detail. Integers below 10^15 (what k and most constants
+ * are) are written by hand, the same digits; the rest by snprintf. */
+static void add_number(dp_wp_report *r, const char *name, int holds, const char *prefix, double x)
+{
+    char t[DP_WP_TEXT];
+    size_t n = strlen(prefix);
+    memcpy(t, prefix, n);
+    if (x == floor(x) && fabs(x) < 1e15) {
+        char d[24], *p = d + sizeof d;
+        unsigned long long u = (unsigned long long)fabs(x);
+        *--p = '\0';
+        do
+            *--p = (char)('0' + u % 10);
+        while ((u /= 10) != 0);
+        if (signbit(x))
+            *--p = '-'; /* -0 too, as printf writes it */
+        memcpy(t + n, p, (size_t)(d + sizeof d - p));
+    } else {
+        snprintf(t + n, sizeof t - n, "%.17g", x);
+    }
+    add_check(r, name, holds, "%s", t);
 }
 
 /* ---- properties of one graph (NaN rows of a raw graph mark gaps) ------------------------------------- */
@@ -93,8 +131,8 @@ static int no_gap(const dp_graph *g, char *why, size_t cap)
             return 0;
         }
     }
-    snprintf(why, cap, "a connected curve unbounded at both ends (rotated by 45 degrees it is the graph of "
-             "a 1-Lipschitz function, seed 001 Lemma 1)");
+    text(why, cap, "a connected curve unbounded at both ends (rotated by 45 degrees it is the graph of "
+         "a 1-Lipschitz function, seed 001 Lemma 1)");
     return 1;
 }
 
@@ -114,7 +152,7 @@ static int coercive(const dp_graph *g, char *why, size_t cap)
                  r ? ">" : "<", r ? g->y[n - 1] : g->y[0]);
         return 0;
     }
-    snprintf(why, cap, "F grows at most linearly with v and has the sign of v far out");
+    text(why, cap, "F grows at most linearly with v and has the sign of v far out");
     return 1;
 }
 
@@ -171,7 +209,7 @@ static void relaxation_checks(dp_wp_report *r, const dp_relaxation *g)
               : "continuous, at most linear growth");
     double L = dp_relaxation_lipschitz(g);
     if (isfinite(L))
-        add_check(r, "gamma Lipschitz", 1, "Lipschitz constant %.17g", L);
+        add_number(r, "gamma Lipschitz", 1, "Lipschitz constant ", L);
     else /* power law: gamma(u)/u = N u^(-1/N) is unbounded near 0 */
         add_check(r, "gamma Lipschitz", 0, "gamma(u)/u = %.6g at u = 1e-6 and %.6g at u = 1e-12: unbounded as "
                   "u -> 0", dp_relaxation_eval(g, 1e-6) / 1e-6, dp_relaxation_eval(g, 1e-12) / 1e-12);
@@ -183,7 +221,7 @@ static void framework_pc(const dp_model *m, dp_wp_report *r)
     local_graph l;
     const dp_damper *d = &m->damper;
     r->framework = "PC";
-    add_check(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = %.17g", m->spring.k);
+    add_number(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = ", m->spring.k);
     if (d->law == DP_DAMPER_GENERALIZED_COULOMB && d->phi1 > d->phi0) {
         add_check(r, "A monotone (seed 001 (6))", 0, "points (v, F) = (0, %.17g) and (1, %.17g) have (v1 - v2)"
                   "(F1 - F2) < 0: the static threshold phi1 exceeds the dynamic phi0", d->phi1, d->phi0);
@@ -222,7 +260,7 @@ static void framework_pi(const dp_model *m, dp_wp_report *r)
         if (ok)
             ok = monotone(g, part[i].y, why, sizeof why) && no_gap(g, why, sizeof why);
         else
-            snprintf(why, sizeof why, "generalized Coulomb (phi1 > phi0) is not monotone");
+            text(why, sizeof why, "generalized Coulomb (phi1 > phi0) is not monotone");
         add_check(r, part[i].mono, ok, "%s", why);
         if (!ok)
             continue;
@@ -251,7 +289,7 @@ static int failures(const dp_wp_report *r, const char *skip, char *why, size_t c
         n++;
     }
     if (n == 0)
-        snprintf(why, cap, "all hypotheses hold");
+        text(why, cap, "all hypotheses hold");
     return n;
 }
 

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "dashpot/json.h"
@@ -66,8 +67,8 @@ static void defaults(config *c)
     c->timeout = 30;
     c->body_limit = 1u << 20;
     c->shutdown_grace = 10;
-    snprintf(c->openapi, sizeof c->openapi, "api/openapi.yaml");
-    snprintf(c->web_dir, sizeof c->web_dir, "web");
+    snprintf(c->openapi, sizeof c->openapi, DEFAULT_OPENAPI);
+    snprintf(c->web_dir, sizeof c->web_dir, DEFAULT_WEB_DIR);
 }
 
 /* The value of an option's field as text (for --help). */
@@ -97,6 +98,10 @@ static void help(void)
     }
     printf("  --%-15s %-25s %-17s %s\n  --%-15s %-25s %-17s %s\n", "help", "", "", "this text", "version", "", "",
            "the version");
+    printf("\nA relative --openapi or --web-dir that does not exist from the working directory is looked for beside\n"
+           "the binary, then in its parent directory; the defaults also in <binary's directory>/../share/dashpot/\n"
+           "(%s, %s/), where make install puts them. The start-up log names the files served.\n",
+           INSTALLED_OPENAPI, INSTALLED_WEB_DIR);
     printf("\nDASHPOT_TOKEN: the bearer token itself, when no --token-file is given (no flag: it would show in ps).\n"
            "With a token, /v1/ answers 401 without \"Authorization: Bearer TOKEN\"; the other routes stay open.\n");
     printf("\nSIGTERM or SIGINT: stop accepting, let runs finish (--shutdown-grace), then exit 0.\n");
@@ -148,6 +153,35 @@ static int from_env(config *c)
             return -1;
     }
     return 0;
+}
+
+static int exists(const char *path, int want_dir)
+{
+    struct stat st;
+    return stat(path, &st) == 0 && (want_dir ? S_ISDIR(st.st_mode) : S_ISREG(st.st_mode));
+}
+
+int data_path(const char *given, const char *installed, int want_dir, char *out, size_t cap)
+{
+    char exe[4096];
+    snprintf(out, cap, "%s", given);
+    if (exists(given, want_dir))
+        return 0;
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (given[0] == '/' || n <= 0)
+        return -1;
+    exe[n] = '\0';
+    *strrchr(exe, '/') = '\0'; /* the kernel gives an absolute path */
+    const char *const forms[] = { "%s/%s", "%s/../%s", "%s/../share/dashpot/%s" };
+    for (int i = 0; i < 3; i++) {
+        const char *name = i < 2 ? given : installed;
+        if (name == NULL || snprintf(out, cap, forms[i], exe, name) >= (int)cap)
+            continue;
+        if (exists(out, want_dir))
+            return 0;
+    }
+    snprintf(out, cap, "%s", given);
+    return -1;
 }
 
 int config_load(config *c, int argc, char **argv)

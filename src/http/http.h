@@ -16,6 +16,7 @@
 #include <stddef.h>
 
 #include "dashpot/encode.h"
+#include "dashpot/stability.h"
 #include "dashpot/status.h"
 
 /* ---- configuration (config.c) ---- */
@@ -45,6 +46,20 @@ typedef struct config {
  * --version was printed, -1 on a bad value (message printed to stderr). */
 int config_load(config *c, int argc, char **argv);
 
+/* The defaults of --openapi and --web-dir (source-tree paths), and their names where `make install` puts
+ * them: $(datadir)/dashpot/openapi.yaml and $(datadir)/dashpot/web. */
+#define DEFAULT_OPENAPI "api/openapi.yaml"
+#define DEFAULT_WEB_DIR "web"
+#define INSTALLED_OPENAPI "openapi.yaml"
+#define INSTALLED_WEB_DIR "web"
+
+/* Where a file (want_dir 0) or directory (1) the daemon serves is: `given` itself when it exists (absolute,
+ * or relative to the working directory); for a relative one, else beside the binary, else in the binary's
+ * parent directory (build/dashpotd finds api/openapi.yaml), and, when `installed` is not NULL,
+ * <binary's directory>/../share/dashpot/<installed> (make install's layout under any prefix: nothing is
+ * compiled in). The path found goes into out; returns 0, or -1 when there is none (out = given). */
+int data_path(const char *given, const char *installed, int want_dir, char *out, size_t cap);
+
 /* ---- metrics (metrics.c) ---- */
 
 enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_CONVERGENCE, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
@@ -70,6 +85,9 @@ const char *route_name(int route);
 
 /* ---- the server (server.c) ---- */
 
+/* Idle stability workspaces the server keeps (stability.c); more requests at once allocate their own. */
+#define WS_POOL 16
+
 typedef struct server {
     config cfg;
     struct MHD_Daemon *daemon;
@@ -81,6 +99,7 @@ typedef struct server {
     atomic_int abort_streams;    /* grace period over: streams end with an error line */
     pthread_mutex_t conns_lock;  /* guards `conns`, the open connections (deadline.c) */
     struct conn *conns;
+    _Atomic(dp_stability_ws *) ws_pool[WS_POOL]; /* NULL or an idle workspace, taken by exchange */
 } server;
 
 typedef struct stream stream;
@@ -135,6 +154,8 @@ enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r);
 
 enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_stability(struct MHD_Connection *c, request *r);
+/* Frees the idle stability workspaces (server_free). */
+void stability_pool_free(server *s);
 enum MHD_Result handle_wellposedness(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_convergence(struct MHD_Connection *c, request *r);
 /* GET /bench/static: the --bench-static file through the same chunked content-reader path as a stream. */

@@ -1,7 +1,8 @@
 /* src/http/page.c - the browser page: GET / and the files beside it (web/index.html, app.js, style.css, ...).
  *
  * At start-up every regular file directly inside --web-dir (default "web": relative to the working
- * directory, else to the binary's directory or its parent, as --openapi) whose name is plain
+ * directory, else to the binary's directory or its parent, else for the default an installed
+ * ../share/dashpot/web beside the binary's directory; data_path in config.c) whose name is plain
  * ([A-Za-z0-9_-][A-Za-z0-9._-]*, at most 63 bytes) and whose extension has a known content type is read into
  * memory, with a strong ETag (64-bit FNV-1a of its bytes). Requests are answered from that table only, by
  * exact name: "/" is index.html, "/NAME" is NAME. Nothing a URL says ever reaches the file system, so "..",
@@ -148,18 +149,10 @@ void page_load(server *s)
     if (w == NULL)
         return;
     const char *dir = s->cfg.web_dir;
-    char exe[4096], path[8300];
-    int ok = load_dir(w, dir) == 0;
-    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (!ok && dir[0] != '/' && n > 0) {
-        exe[n] = '\0';
-        *strrchr(exe, '/') = '\0';
-        snprintf(path, sizeof path, "%s/%s", exe, dir);
-        ok = load_dir(w, path) == 0;
-        snprintf(path, sizeof path, "%s/../%s", exe, dir);
-        if (!ok)
-            ok = load_dir(w, path) == 0;
-    }
+    char path[sizeof w->dir];
+    int is_default = strcmp(dir, DEFAULT_WEB_DIR) == 0;
+    int ok = data_path(dir, is_default ? INSTALLED_WEB_DIR : NULL, 1, path, sizeof path) == 0 &&
+             load_dir(w, path) == 0;
     if (!ok)
         log_line("warning: web directory %s not found; / will answer 404", dir);
     else

@@ -27,6 +27,10 @@
 #define BLOCK 512
 /* Bytes MHD asks the reader for at most per call (bounded by the connection's memory too). */
 #define READ_BLOCK (64u << 10)
+/* The meta object (~1.3 KB with its well-posedness report) and a small run's whole answer: reserved at
+ * once rather than grown from 256 bytes by doubling, copying each time. */
+#define META_BYTES 2048
+#define SMALL_ANSWER_BYTES 4096
 
 struct stream {
     request *r;
@@ -171,7 +175,8 @@ static stream *stream_new(request *r, dp_run *run, dp_format f, const char *meta
     atomic_fetch_add(&st->s->m.runs_started, 1);
     atomic_fetch_add(&st->s->m.runs_in_flight, 1);
     dp_encoder_init(&st->enc, f);
-    if (dp_encoder_begin(&st->enc, &st->out, meta) != DP_OK) {
+    if (dp_buf_reserve(&st->out, SMALL_ANSWER_BYTES) != DP_OK ||
+        dp_encoder_begin(&st->enc, &st->out, meta) != DP_OK) {
         st->delivered = st->failed = 1; /* not a client's cancellation */
         stream_free(st);
         return NULL;
@@ -210,6 +215,8 @@ enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r)
                                "text/event-stream or text/csv", NULL, NULL);
     dp_buf meta = { 0 };
     enum MHD_Result answer = MHD_NO;
+    if (dp_buf_reserve(&meta, META_BYTES) != DP_OK)
+        return respond_status(c, r, DP_ENOMEM, NULL, NULL);
     dp_run *run = prepare(c, r, &meta, &answer);
     stream *st = run ? stream_new(r, run, offer_format[f], meta.data) : NULL;
     dp_buf_free(&meta);

@@ -78,18 +78,31 @@ static size_t escape(char *p, unsigned char c, unsigned char prev)
     return 1;
 }
 
+/* Bytes that escape() may change, one bit each: the controls, '"' and '/' (the latter only after '<') in
+ * the first word, '\\' and DEL in the second. */
+static const uint64_t SPECIAL[4] = { 0xffffffffull | 1ull << '"' | 1ull << '/', 1ull << ('\\' - 64) | 1ull << 63, 0, 0 };
+
+static int special(unsigned char c)
+{
+    return (int)(SPECIAL[c >> 6] >> (c & 63)) & 1;
+}
+
 int dp_json_quote(dp_buf *b, const char *s)
 {
     size_t n = s ? strlen(s) : 0;
     if (n > SIZE_MAX / 8 || dp_buf_reserve(b, 6 * n + 2) != DP_OK) /* worst case: every byte as \u00XX */
         return DP_ENOMEM;
     char *p = b->data + b->len;
-    unsigned char prev = 0;
     *p++ = '"';
-    for (size_t i = 0; i < n; i++) {
-        unsigned char c = (unsigned char)s[i];
-        p += escape(p, c, prev);
-        prev = c;
+    /* Runs of plain bytes are copied whole; the rest go through escape() one by one. */
+    for (size_t i = 0, j; i < n; i = j + 1) {
+        for (j = i; j < n && !special((unsigned char)s[j]); j++)
+            ;
+        memcpy(p, s + i, j - i);
+        p += j - i;
+        if (j == n)
+            break;
+        p += escape(p, (unsigned char)s[j], j ? (unsigned char)s[j - 1] : 0);
     }
     *p++ = '"';
     b->len = (size_t)(p - b->data);

@@ -21,28 +21,45 @@ static const char *solver_name(const dp_solver_spec *s)
     }
 }
 
+static int lit(dp_buf *out, const char *s)
+{
+    return dp_buf_append(out, s, strlen(s));
+}
+
 /* Appends "key":number with the shortest round-trip text, like every other number dashpot writes. */
 static int num(dp_buf *out, const char *key, double x)
 {
-    char t[64];
-    size_t n = (size_t)snprintf(t, sizeof t, ",\"%s\":", key);
-    n += dp_format_double(t + n, x);
-    return dp_buf_append(out, t, n);
+    char t[40];
+    return lit(out, ",\"") | lit(out, key) | lit(out, "\":") | dp_buf_append(out, t, dp_format_double(t, x));
 }
 
+/* A long in decimal, as %ld writes it. */
+static int whole(dp_buf *out, long v)
+{
+    char t[24], *p = t + sizeof t;
+    unsigned long u = v < 0 ? 0ul - (unsigned long)v : (unsigned long)v;
+    do
+        *--p = (char)('0' + u % 10);
+    while ((u /= 10) != 0);
+    if (v < 0)
+        *--p = '-';
+    return dp_buf_append(out, p, (size_t)(t + sizeof t - p));
+}
+
+/* Written piece by piece rather than with snprintf: this object opens every run, small ones included. */
 int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
 {
     const dp_solver_spec *sv = &s->solver;
-    char head[512], tail[256];
-    int n = snprintf(head, sizeof head, "{\"type\":\"meta\",\"version\":\"%s\",\"solver\":\"%s\",\"variant\":\"%s\","
-                     "\"events_mode\":\"%s\",\"branch\":\"%s\"", DP_VERSION, solver_name(sv), variant_name(sv),
-                     sv->events == DP_EVENTS_LOCATE ? "locate" : "none", sv->branch == DP_BRANCH_MOTION ? "motion" : "rest");
-    int m = snprintf(tail, sizeof tail, ",\"every\":%ld,\"spring\":\"%s\",\"damper\":\"%s\",\"wellposedness\":",
-                     s->output.every, dp_spring_law_name(s->model.spring.law), dp_damper_law_name(s->model.damper.law));
-    int st = dp_buf_append(out, head, n > 0 && (size_t)n < sizeof head ? (size_t)n : 0);
+    int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"") | lit(out, solver_name(sv));
+    st |= lit(out, "\",\"variant\":\"") | lit(out, variant_name(sv));
+    st |= lit(out, sv->events == DP_EVENTS_LOCATE ? "\",\"events_mode\":\"locate" : "\",\"events_mode\":\"none");
+    st |= lit(out, sv->branch == DP_BRANCH_MOTION ? "\",\"branch\":\"motion\"" : "\",\"branch\":\"rest\"");
     st |= num(out, "theta", sv->theta) | num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
     st |= num(out, "steps", dp_spec_steps(s));
-    st |= dp_buf_append(out, tail, m > 0 && (size_t)m < sizeof tail ? (size_t)m : 0);
+    st |= lit(out, ",\"every\":") | whole(out, s->output.every);
+    st |= lit(out, ",\"spring\":\"") | lit(out, dp_spring_law_name(s->model.spring.law));
+    st |= lit(out, "\",\"damper\":\"") | lit(out, dp_damper_law_name(s->model.damper.law));
+    st |= lit(out, "\",\"wellposedness\":");
     dp_wp_report wp;
     dp_wellposedness(&s->model, &wp);
     st |= dp_wellposedness_json(&wp, out);

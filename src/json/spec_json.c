@@ -5,6 +5,10 @@
  * never stops at the first error fills the spec. Only a document without field errors reaches the core's
  * dp_model_prepare and dp_spec_check, whose cross-field rules need the whole spec.
  *
+ * The walk carries where it is as a chain of (parent, key or index) on the stack (`at`); the pointer text
+ * and the "expected ..." wording are written only when an error is reported. Building them for every member
+ * up front (snprintf per member) was most of what parsing a valid spec cost.
+ *
  * Message format: the pointer names the place; the message says what was expected and, where it helps, what
  * was found: "must be a finite number > 0, got -1", "unknown law \"colomb\"; expected one of: none, ...",
  * "unknown key \"foo\"; expected one of: mass, spring, damper, forcing", "missing required key \"mass\"
@@ -64,20 +68,15 @@ typedef struct variant {
     const char *extra[6];         /* ends at NULL */
 } variant;
 
+/* Where a value sits: its parent (NULL: the document itself) and its member name, or its index in an
+ * array when key is NULL. Lives on the walk's stack; rendered as a JSON Pointer only for an error. */
+typedef struct at {
+    const struct at *up;
+    const char *key;
+    size_t index;
+} at;
+
 /* ---- errors, pointers, displayed values ------------------------------------------------------------- */
-
-static void fail(ctx *c, const char *ptr, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-
-static void fail(ctx *c, const char *ptr, const char *fmt, ...)
-{
-    char msg[DP_MESSAGE_MAX];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    dp_errors_add(c->errs, ptr, "%s", msg);
-    c->nerr++;
-}
 
 /* Drops a UTF-8 sequence cut short at the end of s[0..n), so a truncated string stays valid UTF-8. */
 static size_t utf8_trim(const char *s, size_t n)
@@ -115,6 +114,35 @@ static void ptr_index(char out[DP_POINTER_MAX], const char *parent, size_t i)
     /* Only digits can be cut here (the parent is already valid); the check just uses the result. */
     if (snprintf(out, DP_POINTER_MAX, "%s/%zu", parent, i) >= DP_POINTER_MAX)
         out[DP_POINTER_MAX - 1] = '\0';
+}
+
+/* The JSON Pointer of `a`, built level by level exactly as each level's text would be on its own. */
+static void ptr_text(const at *a, char out[DP_POINTER_MAX])
+{
+    char up[DP_POINTER_MAX];
+    if (a == NULL) {
+        out[0] = '\0';
+        return;
+    }
+    ptr_text(a->up, up);
+    if (a->key != NULL)
+        ptr_key(out, up, a->key);
+    else
+        ptr_index(out, up, a->index);
+}
+
+static void fail(ctx *c, const at *where, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+static void fail(ctx *c, const at *where, const char *fmt, ...)
+{
+    char msg[DP_MESSAGE_MAX], ptr[DP_POINTER_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    ptr_text(where, ptr);
+    dp_errors_add(c->errs, ptr, "%s", msg);
+    c->nerr++;
 }
 
 /* A user string fit for a message: at most 48 bytes (then "..."), control characters as '?'. */
@@ -164,18 +192,17 @@ static const char *joined(const char *const *names, char *buf, size_t cap)
 
 /* ---- typed members ---------------------------------------------------------------------------------- */
 
-/* Member `key` of object o (its pointer into p), or NULL; when absent and `what` is set, that is an error. */
-static const cJSON *member(ctx *c, const cJSON *o, const char *ptr, const char *key, const char *what,
-                           char p[DP_POINTER_MAX])
+/* Member `key` of object o (its place into p), or NULL; when absent and `what` is set, that is an error. */
+static const cJSON *member(ctx *c, const cJSON *o, const at *ptr, const char *key, const char *what, at *p)
 {
-    ptr_key(p, ptr, key);
+    *p = (at){ ptr, key, 0 };
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
     if (v == NULL && what != NULL)
         fail(c, p, "missing required key \"%s\" (%s)", key, what);
     return v;
 }
 
-static int want_object(ctx *c, const cJSON *v, const char *ptr)
+static int want_object(ctx *c, const cJSON *v, const at *ptr)
 {
     if (cJSON_IsObject(v))
         return 1;
@@ -189,7 +216,7 @@ static int in_range(double x, const range *r)
 }
 
 /* v as a finite number in r (an integer when `integral`) into *out; 0 and an error otherwise. */
-static int check_num(ctx *c, const cJSON *v, const char *ptr, const range *r, int integral, double *out)
+static int check_num(ctx *c, const cJSON *v, const at *ptr, const range *r, int integral, double *out)
 {
     const char *what = integral ? "an integer" : "a finite number";
     char nb[32];
@@ -211,47 +238,55 @@ static int check_num(ctx *c, const cJSON *v, const char *ptr, const range *r, in
 }
 
 /* Numeric member; *out untouched when it is absent (the default stays) or invalid. Returns 1 when set. */
-static int get_num(ctx *c, const cJSON *o, const char *ptr, const char *key, const range *r, int required,
+static int get_num(ctx *c, const cJSON *o, const at *ptr, const char *key, const range *r, int required,
                    int integral, double *out)
 {
-    char p[DP_POINTER_MAX], what[64];
-    snprintf(what, sizeof what, "%s%s", integral ? "an integer" : "a finite number", r->text);
-    const cJSON *v = member(c, o, ptr, key, required ? what : NULL, p);
-    return v != NULL && check_num(c, v, p, r, integral, out);
+    at p;
+    const cJSON *v = member(c, o, ptr, key, NULL, &p);
+    if (v == NULL && required) {
+        char what[64];
+        snprintf(what, sizeof what, "%s%s", integral ? "an integer" : "a finite number", r->text);
+        fail(c, &p, "missing required key \"%s\" (%s)", key, what);
+    }
+    return v != NULL && check_num(c, v, &p, r, integral, out);
 }
 
-static void get_bool(ctx *c, const cJSON *o, const char *ptr, const char *key, int *out)
+static void get_bool(ctx *c, const cJSON *o, const at *ptr, const char *key, int *out)
 {
-    char p[DP_POINTER_MAX];
-    const cJSON *v = member(c, o, ptr, key, NULL, p);
+    at p;
+    const cJSON *v = member(c, o, ptr, key, NULL, &p);
     if (v == NULL)
         return;
     if (cJSON_IsBool(v))
         *out = cJSON_IsTrue(v);
     else
-        fail(c, p, "must be true or false, got %s", type_name(v));
+        fail(c, &p, "must be true or false, got %s", type_name(v));
 }
 
 /* Index of the string member `key` in `names`; `def` when absent (-1 and an error when def < 0), -1 and an
  * error when it is not one of them. */
-static int get_enum(ctx *c, const cJSON *o, const char *ptr, const char *key, const char *const *names,
+static int get_enum(ctx *c, const cJSON *o, const at *ptr, const char *key, const char *const *names,
                     int def)
 {
-    char p[DP_POINTER_MAX], list[256], sb[64];
-    joined(names, list, sizeof list);
-    char what[300];
-    snprintf(what, sizeof what, "one of: %s", list);
-    const cJSON *v = member(c, o, ptr, key, def < 0 ? what : NULL, p);
+    char list[256], sb[64];
+    at p;
+    const cJSON *v = member(c, o, ptr, key, NULL, &p);
+    if (v == NULL && def < 0) {
+        char what[300];
+        snprintf(what, sizeof what, "one of: %s", joined(names, list, sizeof list));
+        fail(c, &p, "missing required key \"%s\" (%s)", key, what);
+    }
     if (v == NULL)
         return def;
     if (!cJSON_IsString(v)) {
-        fail(c, p, "must be a string, one of: %s; got %s", list, type_name(v));
+        fail(c, &p, "must be a string, one of: %s; got %s", joined(names, list, sizeof list), type_name(v));
         return -1;
     }
     for (int i = 0; names[i]; i++)
         if (strcmp(v->valuestring, names[i]) == 0)
             return i;
-    fail(c, p, "unknown %s \"%s\"; expected one of: %s", key, shown(v->valuestring, sb), list);
+    fail(c, &p, "unknown %s \"%s\"; expected one of: %s", key, shown(v->valuestring, sb),
+         joined(names, list, sizeof list));
     return -1;
 }
 
@@ -263,20 +298,26 @@ static int key_index(const char *const *keys, const char *k)
     return -1;
 }
 
-/* Reports every member of o that is not in `keys` and every repeated one. `why` qualifies the list
- * (" for law \"coulomb\"") or is "". O(members x keys): no quadratic blow-up on a hostile document. */
-static void check_keys(ctx *c, const cJSON *o, const char *ptr, const char *const *keys, const char *why)
+/* Reports every member of o that is not in `keys` and every repeated one. With a tag, the list is qualified
+ * (" for law \"coulomb\"": tag "law", its value "coulomb"). O(members x keys): no quadratic blow-up on a
+ * hostile document. */
+static void check_keys(ctx *c, const cJSON *o, const at *ptr, const char *const *keys, const char *tag,
+                       const char *value)
 {
-    char p[DP_POINTER_MAX], list[256], sb[64];
+    char list[256], sb[64], why[96];
     unsigned char seen[MAX_KEYS] = { 0 };
     for (const cJSON *m = o->child; m; m = m->next) {
         int i = key_index(keys, m->string);
-        ptr_key(p, ptr, m->string);
-        if (i < 0)
-            fail(c, p, "unknown key \"%s\"%s; expected one of: %s", shown(m->string, sb), why,
+        at p = { ptr, m->string, 0 };
+        if (i < 0) {
+            why[0] = '\0';
+            if (tag != NULL)
+                snprintf(why, sizeof why, " for %s \"%s\"", tag, value);
+            fail(c, &p, "unknown key \"%s\"%s; expected one of: %s", shown(m->string, sb), why,
                  joined(keys, list, sizeof list));
-        else if (seen[i]++)
-            fail(c, p, "duplicate key \"%s\"", m->string);
+        } else if (seen[i]++) {
+            fail(c, &p, "duplicate key \"%s\"", m->string);
+        }
     }
 }
 
@@ -286,7 +327,7 @@ static void check_keys(ctx *c, const cJSON *o, const char *ptr, const char *cons
  * Checks its keys (tag, the variant's params and extras, `common`), stores the params into `base` and
  * returns the variant, or NULL when o is no object or the tag is bad (its other members are then not
  * checked: which keys are valid depends on the tag). */
-static const variant *parse_tagged(ctx *c, const cJSON *o, const char *ptr, const char *tag, int def,
+static const variant *parse_tagged(ctx *c, const cJSON *o, const at *ptr, const char *tag, int def,
                                    const variant *vs, size_t nv, const char *const *common, void *base)
 {
     const char *names[8], *keys[MAX_KEYS];
@@ -308,9 +349,7 @@ static const variant *parse_tagged(ctx *c, const cJSON *o, const char *ptr, cons
     for (const char *const *e = common; e && *e; e++)
         keys[nk++] = *e;
     keys[nk] = NULL;
-    char why[96];
-    snprintf(why, sizeof why, " for %s \"%s\"", tag, v->name);
-    check_keys(c, o, ptr, keys, why);
+    check_keys(c, o, ptr, keys, tag, v->name);
     for (const param *pa = v->params; pa->key; pa++)
         get_num(c, o, ptr, pa->key, pa->r, pa->required, 0, (double *)((char *)base + pa->off));
     return v;
@@ -319,9 +358,8 @@ static const variant *parse_tagged(ctx *c, const cJSON *o, const char *ptr, cons
 /* ---- point lists ------------------------------------------------------------------------------------ */
 
 /* One element of a point list: an array of exactly two finite numbers. */
-static int parse_pair(ctx *c, const cJSON *el, const char *p, const char *yname, double *y, double *f)
+static int parse_pair(ctx *c, const cJSON *el, const at *p, const char *yname, double *y, double *f)
 {
-    char q[DP_POINTER_MAX];
     int n = cJSON_GetArraySize(el);
     if (c->lenient && cJSON_IsNull(el)) { /* a gap: the curve is broken here */
         *y = *f = NAN;
@@ -334,21 +372,20 @@ static int parse_pair(ctx *c, const cJSON *el, const char *p, const char *yname,
             fail(c, p, "must be a pair [%s, F] of numbers, got %s", yname, type_name(el));
         return 0;
     }
-    ptr_index(q, p, 0);
-    int ok = check_num(c, el->child, q, &ANY, 0, y);
-    ptr_index(q, p, 1);
-    return check_num(c, el->child->next, q, &ANY, 0, f) && ok;
+    at q0 = { p, NULL, 0 }, q1 = { p, NULL, 1 };
+    int ok = check_num(c, el->child, &q0, &ANY, 0, y);
+    return check_num(c, el->child->next, &q1, &ANY, 0, f) && ok;
 }
 
 /* Order rules between consecutive points: a graph is non-decreasing in both coordinates without repeated
  * points (so its first and last segments, which become the end rays, are never degenerate); a table has
  * strictly increasing t. */
-static void check_order(ctx *c, const char *ptr, const char *yname, int table, size_t n, const double *y,
+static void check_order(ctx *c, const at *ptr, const char *yname, int table, size_t n, const double *y,
                         const double *f)
 {
-    char p[DP_POINTER_MAX], a[32], b[32];
+    char a[32], b[32];
     for (size_t i = 1; i < n; i++) {
-        ptr_index(p, ptr, i);
+        const at pi = { ptr, NULL, i }, *p = &pi;
         if (table && y[i] <= y[i - 1])
             fail(c, p, "t must be strictly increasing: %s after %s", num_text(y[i], a), num_text(y[i - 1], b));
         if (table)
@@ -364,18 +401,19 @@ static void check_order(ctx *c, const char *ptr, const char *yname, int table, s
 
 /* o["points"] into new arrays *y, *f of *n entries (caller frees them, also on failure). Returns 1 when
  * the list is valid. A table needs >= 1 point, a graph >= 2. */
-static int parse_points(ctx *c, const cJSON *o, const char *ptr, const char *yname, int table, size_t *n,
+static int parse_points(ctx *c, const cJSON *o, const at *ptr, const char *yname, int table, size_t *n,
                         double **y, double **f)
 {
-    char p[DP_POINTER_MAX], q[DP_POINTER_MAX], what[96];
+    char what[96];
     size_t lo = table ? 1 : 2;
-    snprintf(what, sizeof what, "an array of %zu..%d [%s, F] pairs", lo, DP_GRAPH_MAX_POINTS, yname);
-    const cJSON *a = member(c, o, ptr, "points", what, p);
-    if (a == NULL)
-        return 0;
+    at pp, *p = &pp;
+    const cJSON *a = member(c, o, ptr, "points", NULL, p);
     size_t count = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
-    if (!cJSON_IsArray(a) || count < lo || count > DP_GRAPH_MAX_POINTS) {
-        if (cJSON_IsArray(a))
+    if (a == NULL || !cJSON_IsArray(a) || count < lo || count > DP_GRAPH_MAX_POINTS) {
+        snprintf(what, sizeof what, "an array of %zu..%d [%s, F] pairs", lo, DP_GRAPH_MAX_POINTS, yname);
+        if (a == NULL)
+            fail(c, p, "missing required key \"points\" (%s)", what);
+        else if (cJSON_IsArray(a))
             fail(c, p, "must be %s, got %zu", what, count);
         else
             fail(c, p, "must be %s, got %s", what, type_name(a));
@@ -389,8 +427,8 @@ static int parse_points(ctx *c, const cJSON *o, const char *ptr, const char *yna
     }
     size_t before = c->nerr, i = 0;
     for (const cJSON *el = a->child; el; el = el->next, i++) {
-        ptr_index(q, p, i);
-        parse_pair(c, el, q, yname, &(*y)[i], &(*f)[i]);
+        at q = { p, NULL, i };
+        parse_pair(c, el, &q, yname, &(*y)[i], &(*f)[i]);
     }
     if (c->nerr == before && !c->lenient)
         check_order(c, p, yname, table, count, *y, *f);
@@ -401,18 +439,17 @@ static int parse_points(ctx *c, const cJSON *o, const char *ptr, const char *yna
 }
 
 /* o["points"] as a user graph into g (dp_graph_init_points copies the arrays). */
-static void parse_graph(ctx *c, const cJSON *o, const char *ptr, const char *yname, dp_graph *g)
+static void parse_graph(ctx *c, const cJSON *o, const at *ptr, const char *yname, dp_graph *g)
 {
     double *y = NULL, *f = NULL;
     size_t n = 0;
     if (parse_points(c, o, ptr, yname, 0, &n, &y, &f)) {
         int s = c->lenient ? dp_graph_init_raw(g, n, y, f) : dp_graph_init_points(g, n, y, f);
-        char p[DP_POINTER_MAX];
-        ptr_key(p, ptr, "points");
+        const at p = { ptr, "points", 0 };
         if (s == DP_ENOMEM)
             c->nomem = 1;
         else if (s != DP_OK)
-            fail(c, p, "does not make a monotone graph (non-decreasing %s and F, end segments not degenerate)",
+            fail(c, &p, "does not make a monotone graph (non-decreasing %s and F, end segments not degenerate)",
                  yname);
     }
     free(y);
@@ -423,7 +460,7 @@ static void parse_graph(ctx *c, const cJSON *o, const char *ptr, const char *yna
 
 #define NUM(st, field, r, req) { #field, offsetof(st, field), &(r), (req) }
 
-static void parse_spring(ctx *c, const cJSON *o, const char *ptr, dp_spring *s)
+static void parse_spring(ctx *c, const cJSON *o, const at *ptr, dp_spring *s)
 {
     static const variant laws[] = {
         { "linear", DP_SPRING_LINEAR, { NUM(dp_spring, k, NONNEG, 1) }, { NULL } },
@@ -438,7 +475,7 @@ static void parse_spring(ctx *c, const cJSON *o, const char *ptr, dp_spring *s)
         parse_graph(c, o, ptr, "x", &s->graph);
 }
 
-static void parse_relaxation(ctx *c, const cJSON *o, const char *ptr, dp_relaxation *r)
+static void parse_relaxation(ctx *c, const cJSON *o, const at *ptr, dp_relaxation *r)
 {
     static const variant kinds[] = {
         { "rational", DP_RELAX_RATIONAL,
@@ -451,7 +488,7 @@ static void parse_relaxation(ctx *c, const cJSON *o, const char *ptr, dp_relaxat
         r->kind = (dp_relaxation_kind)v->id;
 }
 
-static void parse_damper(ctx *c, const cJSON *o, const char *ptr, dp_damper *d)
+static void parse_damper(ctx *c, const cJSON *o, const at *ptr, dp_damper *d)
 {
     static const variant laws[] = {
         { "none", DP_DAMPER_NONE, { { NULL } }, { NULL } },
@@ -469,26 +506,27 @@ static void parse_damper(ctx *c, const cJSON *o, const char *ptr, dp_damper *d)
     if (v == NULL)
         return;
     d->law = (dp_damper_law)v->id;
-    char p[DP_POINTER_MAX], a[32], b[32];
+    char a[32], b[32];
+    at p = { ptr, "phi1", 0 };
     if (d->law == DP_DAMPER_GENERALIZED_COULOMB && c->nerr == before && d->phi1 < d->phi0) {
-        ptr_key(p, ptr, "phi1");
-        fail(c, p, "must be >= phi0 (%s), got %s", num_text(d->phi0, a), num_text(d->phi1, b));
+        fail(c, &p, "must be >= phi0 (%s), got %s", num_text(d->phi0, a), num_text(d->phi1, b));
     }
     if (d->law == DP_DAMPER_GRAPH)
         parse_graph(c, o, ptr, "v", &d->graph);
     get_num(c, o, ptr, "belt_velocity", &ANY, 0, 0, &d->belt_velocity);
-    const cJSON *r = member(c, o, ptr, "relaxation", NULL, p);
+    const cJSON *r = member(c, o, ptr, "relaxation", NULL, &p);
     if (r != NULL)
-        parse_relaxation(c, r, p, &d->relaxation);
+        parse_relaxation(c, r, &p, &d->relaxation);
 }
 
-static void parse_forcing(ctx *c, const cJSON *o, const char *ptr, dp_forcing *f, int depth);
+static void parse_forcing(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, int depth);
 
 /* o["terms"]: 1..DP_FORCING_MAX_TERMS forcings one level deeper, into a calloc'd f->terms. */
-static void parse_terms(ctx *c, const cJSON *o, const char *ptr, dp_forcing *f, int depth)
+static void parse_terms(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, int depth)
 {
-    char p[DP_POINTER_MAX], q[DP_POINTER_MAX], what[64];
+    char what[64];
     snprintf(what, sizeof what, "an array of 1..%d forcings", DP_FORCING_MAX_TERMS);
+    at pp, *p = &pp;
     const cJSON *a = member(c, o, ptr, "terms", what, p);
     if (a == NULL)
         return;
@@ -512,13 +550,13 @@ static void parse_terms(ctx *c, const cJSON *o, const char *ptr, dp_forcing *f, 
     f->nterms = (size_t)n;
     size_t i = 0;
     for (const cJSON *el = a->child; el; el = el->next, i++) {
-        ptr_index(q, p, i);
-        parse_forcing(c, el, q, &f->terms[i], depth + 1);
+        at q = { p, NULL, i };
+        parse_forcing(c, el, &q, &f->terms[i], depth + 1);
     }
 }
 
 /* A forcing at nesting `depth` (the model's own is 1). */
-static void parse_forcing(ctx *c, const cJSON *o, const char *ptr, dp_forcing *f, int depth)
+static void parse_forcing(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, int depth)
 {
     static const variant kinds[] = {
         { "constant", DP_FORCING_CONSTANT, { NUM(dp_forcing, value, ANY, 1) }, { NULL } },
@@ -544,40 +582,41 @@ static void parse_forcing(ctx *c, const cJSON *o, const char *ptr, dp_forcing *f
     f->n = ok ? n : 0;
 }
 
-static void parse_model(ctx *c, const cJSON *o, const char *ptr, dp_model *m)
+static void parse_model(ctx *c, const cJSON *o, const at *ptr, dp_model *m)
 {
     static const char *const keys[] = { "mass", "spring", "damper", "forcing", NULL };
-    char p[DP_POINTER_MAX];
+    at p;
     if (!want_object(c, o, ptr))
         return;
-    check_keys(c, o, ptr, keys, "");
+    check_keys(c, o, ptr, keys, NULL, NULL);
     get_num(c, o, ptr, "mass", &POSITIVE, 1, 0, &m->mass);
-    const cJSON *v = member(c, o, ptr, "spring", "an object with a \"law\"", p);
+    const cJSON *v = member(c, o, ptr, "spring", "an object with a \"law\"", &p);
     if (v != NULL)
-        parse_spring(c, v, p, &m->spring);
-    if ((v = member(c, o, ptr, "damper", "an object with a \"law\"", p)) != NULL)
-        parse_damper(c, v, p, &m->damper);
-    if ((v = member(c, o, ptr, "forcing", NULL, p)) != NULL)
-        parse_forcing(c, v, p, &m->forcing, 1);
+        parse_spring(c, v, &p, &m->spring);
+    if ((v = member(c, o, ptr, "damper", "an object with a \"law\"", &p)) != NULL)
+        parse_damper(c, v, &p, &m->damper);
+    if ((v = member(c, o, ptr, "forcing", NULL, &p)) != NULL)
+        parse_forcing(c, v, &p, &m->forcing, 1);
 }
 
-static void parse_initial(ctx *c, const cJSON *o, const char *ptr, dp_spec *s)
+static void parse_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
     static const char *const keys[] = { "x", "v", NULL };
     if (!want_object(c, o, ptr))
         return;
-    check_keys(c, o, ptr, keys, "");
+    check_keys(c, o, ptr, keys, NULL, NULL);
     get_num(c, o, ptr, "x", &ANY, 0, 0, &s->x0);
     get_num(c, o, ptr, "v", &ANY, 0, 0, &s->v0);
 }
 
 /* The regularized solver's "n" (scheme PC) or "k" (scheme PI): a number > 0 or, for a convergence study, a
  * strictly increasing array of 1..DP_SPEC_MAX_NLIST of them. The other scheme's key is an error. */
-static void parse_nlist(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec *s)
+static void parse_nlist(ctx *c, const cJSON *o, const at *ptr, dp_solver_spec *s)
 {
     int pi = s->scheme == DP_SCHEME_PI;
     const char *key = pi ? "k" : "n", *other = pi ? "n" : "k";
-    char p[DP_POINTER_MAX], q[DP_POINTER_MAX], what[96], a[32], b[32];
+    char what[96], a[32], b[32];
+    at pp, *p = &pp;
     if (member(c, o, ptr, other, NULL, p) != NULL)
         fail(c, p, "\"%s\" belongs to scheme %s; scheme %s takes \"%s\"", other, pi ? "PC" : "PI",
              pi ? "PI" : "PC", key);
@@ -601,16 +640,16 @@ static void parse_nlist(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec 
     }
     size_t before = c->nerr, i = 0;
     for (const cJSON *el = v->child; el; el = el->next, i++) {
-        ptr_index(q, p, i);
-        if (check_num(c, el, q, &POSITIVE, 0, &s->n_list[i]) && i > 0 && !(s->n_list[i] > s->n_list[i - 1]))
-            fail(c, q, "must be strictly increasing: %s after %s", num_text(s->n_list[i], a),
+        const at q = { p, NULL, i };
+        if (check_num(c, el, &q, &POSITIVE, 0, &s->n_list[i]) && i > 0 && !(s->n_list[i] > s->n_list[i - 1]))
+            fail(c, &q, "must be strictly increasing: %s after %s", num_text(s->n_list[i], a),
                  num_text(s->n_list[i - 1], b));
     }
     if (c->nerr == before)
         s->n_count = (size_t)n;
 }
 
-static void parse_solver(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec *s)
+static void parse_solver(ctx *c, const cJSON *o, const at *ptr, dp_solver_spec *s)
 {
     static const variant kinds[] = {
         { "stick-slip", DP_SOLVER_STICK_SLIP,
@@ -655,12 +694,12 @@ static void parse_solver(ctx *c, const cJSON *o, const char *ptr, dp_solver_spec
         s->Z = (int)z;
 }
 
-static void parse_output(ctx *c, const cJSON *o, const char *ptr, dp_output_spec *out)
+static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_output_spec *out)
 {
     static const char *const keys[] = { "every", "samples", "events", NULL };
     if (!want_object(c, o, ptr))
         return;
-    check_keys(c, o, ptr, keys, "");
+    check_keys(c, o, ptr, keys, NULL, NULL);
     double every;
     if (get_num(c, o, ptr, "every", &EVERY, 0, 1, &every))
         out->every = (long)every;
@@ -671,19 +710,19 @@ static void parse_output(ctx *c, const cJSON *o, const char *ptr, dp_output_spec
 static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
 {
     static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
-    char p[DP_POINTER_MAX];
-    if (!want_object(c, o, ""))
+    at p;
+    if (!want_object(c, o, NULL))
         return;
-    check_keys(c, o, "", keys, "");
-    const cJSON *v = member(c, o, "", "model", "an object with mass, spring and damper", p);
+    check_keys(c, o, NULL, keys, NULL, NULL);
+    const cJSON *v = member(c, o, NULL, "model", "an object with mass, spring and damper", &p);
     if (v != NULL)
-        parse_model(c, v, p, &s->model);
-    if ((v = member(c, o, "", "initial", NULL, p)) != NULL)
-        parse_initial(c, v, p, s);
-    if ((v = member(c, o, "", "solver", NULL, p)) != NULL)
-        parse_solver(c, v, p, &s->solver);
-    if ((v = member(c, o, "", "output", NULL, p)) != NULL)
-        parse_output(c, v, p, &s->output);
+        parse_model(c, v, &p, &s->model);
+    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL)
+        parse_initial(c, v, &p, s);
+    if ((v = member(c, o, NULL, "solver", NULL, &p)) != NULL)
+        parse_solver(c, v, &p, &s->solver);
+    if ((v = member(c, o, NULL, "output", NULL, &p)) != NULL)
+        parse_output(c, v, &p, &s->output);
 }
 
 /* ---- syntax ----------------------------------------------------------------------------------------- */
@@ -717,9 +756,9 @@ static size_t too_deep(const char *s, size_t len)
  * bytes other than JSON whitespace (a NUL among them) make the document malformed. */
 static cJSON *parse_json(const char *text, size_t len, dp_errors *errs, int *nomem)
 {
-    size_t at = too_deep(text, len);
-    if (at < len) {
-        dp_errors_add(errs, "", "malformed JSON near byte %zu: nested deeper than %d levels", at,
+    size_t deep = too_deep(text, len);
+    if (deep < len) {
+        dp_errors_add(errs, "", "malformed JSON near byte %zu: nested deeper than %d levels", deep,
                       DP_JSON_MAX_DEPTH);
         return NULL;
     }
@@ -764,7 +803,8 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
     if (s == DP_ENOMEM)
         return s;
     if (s != DP_OK) {
-        fail(&c, "/model", "the model's graphs could not be built (%s)", dp_strerror(s));
+        const at model = { NULL, "model", 0 };
+        fail(&c, &model, "the model's graphs could not be built (%s)", dp_strerror(s));
         return DP_EINVAL;
     }
     /* DP_SPEC_MAX_STEPS is a hard ceiling; front ends may only lower it. */
@@ -778,15 +818,15 @@ int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_err
     /* A whole simulation spec is welcome too: only its model is analysed. */
     static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
     ctx c = { errs, 0, 0, 1 };
-    char p[DP_POINTER_MAX];
+    at p;
     cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
-    if (want_object(&c, root, "")) {
-        check_keys(&c, root, "", keys, "");
-        const cJSON *v = member(&c, root, "", "model", "an object with mass, spring and damper", p);
+    if (want_object(&c, root, NULL)) {
+        check_keys(&c, root, NULL, keys, NULL, NULL);
+        const cJSON *v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
         if (v != NULL)
-            parse_model(&c, v, p, model);
+            parse_model(&c, v, &p, model);
     }
     cJSON_Delete(root);
     if (c.nomem)

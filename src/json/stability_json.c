@@ -60,24 +60,31 @@ static void check_keys(pctx *c, const cJSON *o, const char *ptr, const char *con
     }
 }
 
-/* The member `key` of o, or NULL with a "required" error. */
-static const cJSON *need(pctx *c, const cJSON *o, const char *ptr, const char *key, char *p)
+/* p = ptr + "/" + key: pointers are written only for errors, a valid request needs none. */
+static const char *join(char p[DP_POINTER_MAX], const char *ptr, const char *key)
 {
     snprintf(p, DP_POINTER_MAX, "%s/%s", ptr, key);
+    return p;
+}
+
+/* The member `key` of o, or NULL with a "required" error. */
+static const cJSON *need(pctx *c, const cJSON *o, const char *ptr, const char *key)
+{
+    char p[DP_POINTER_MAX];
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
     if (v == NULL)
-        bad(c, DP_EINVAL, p, "required");
+        bad(c, DP_EINVAL, join(p, ptr, key), "required");
     return v;
 }
 
 static int get_number(pctx *c, const cJSON *o, const char *ptr, const char *key, double *out)
 {
     char p[DP_POINTER_MAX];
-    const cJSON *v = need(c, o, ptr, key, p);
+    const cJSON *v = need(c, o, ptr, key);
     if (v == NULL)
         return 0;
     if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) {
-        bad(c, DP_EINVAL, p, "expected a finite number");
+        bad(c, DP_EINVAL, join(p, ptr, key), "expected a finite number");
         return 0;
     }
     *out = v->valuedouble;
@@ -87,16 +94,17 @@ static int get_number(pctx *c, const cJSON *o, const char *ptr, const char *key,
 static void get_coefs(pctx *c, const cJSON *law, const char *key, double *dst, int *n)
 {
     char p[DP_POINTER_MAX], q[DP_POINTER_MAX];
-    const cJSON *a = need(c, law, "/law", key, p);
+    const cJSON *a = need(c, law, "/law", key);
     *n = 0;
     if (a == NULL)
         return;
     if (!cJSON_IsArray(a)) {
-        bad(c, DP_EINVAL, p, "expected an array of numbers, lowest derivative first");
+        bad(c, DP_EINVAL, join(p, "/law", key), "expected an array of numbers, lowest derivative first");
         return;
     }
     int count = cJSON_GetArraySize(a);
     if (count == 0 || count > DP_STAB_MAX_ORDER + 1) {
+        join(p, "/law", key);
         bad(c, count ? DP_ELIMIT : DP_EINVAL, p, count ? "at most %d coefficients (derivative order <= %d)"
                                                        : "expected at least one coefficient",
             DP_STAB_MAX_ORDER + 1, DP_STAB_MAX_ORDER);
@@ -122,9 +130,9 @@ static void parse_axis(pctx *c, const cJSON *o, const char *ptr, const dp_law *l
         return;
     check_keys(c, o, ptr, keys, "param, from, to, steps");
     int before = c->status;
-    const cJSON *v = need(c, o, ptr, "param", p);
+    const cJSON *v = need(c, o, ptr, "param");
     if (v != NULL && (!cJSON_IsString(v) || dp_param_parse(v->valuestring, &ax->kind, &ax->index) != 0))
-        bad(c, DP_EINVAL, p, "expected \"mass\", \"lambda[i]\" or \"mu[j]\" with i, j in 0..%d",
+        bad(c, DP_EINVAL, join(p, ptr, "param"), "expected \"mass\", \"lambda[i]\" or \"mu[j]\" with i, j in 0..%d",
             DP_STAB_MAX_ORDER);
     get_number(c, o, ptr, "from", &ax->from);
     get_number(c, o, ptr, "to", &ax->to);
@@ -141,12 +149,11 @@ static void parse_axis(pctx *c, const cJSON *o, const char *ptr, const dp_law *l
 static void parse_map(pctx *c, const cJSON *o, request *r)
 {
     static const char *const keys[] = { "x", "y", NULL };
-    char p[DP_POINTER_MAX];
     if (!want_object(c, o, "/map"))
         return;
     r->has_map = 1;
     check_keys(c, o, "/map", keys, "x, y");
-    const cJSON *x = need(c, o, "/map", "x", p), *y = need(c, o, "/map", "y", p);
+    const cJSON *x = need(c, o, "/map", "x"), *y = need(c, o, "/map", "y");
     if (x != NULL)
         parse_axis(c, x, "/map/x", &r->law, &r->x);
     if (y != NULL)
@@ -158,13 +165,12 @@ static void parse_map(pctx *c, const cJSON *o, request *r)
 static void parse_request(pctx *c, const cJSON *root, request *r)
 {
     static const char *const keys[] = { "mass", "law", "map", NULL }, *const law_keys[] = { "lambda", "mu", NULL };
-    char p[DP_POINTER_MAX];
     memset(r, 0, sizeof *r);
     if (!want_object(c, root, ""))
         return;
     check_keys(c, root, "", keys, "mass, law, map");
     int have_mass = get_number(c, root, "", "mass", &r->law.mass);
-    const cJSON *law = need(c, root, "", "law", p);
+    const cJSON *law = need(c, root, "", "law");
     if (law == NULL || !want_object(c, law, "/law"))
         return;
     check_keys(c, law, "/law", law_keys, "lambda, mu");
@@ -227,10 +233,13 @@ static void variables(stab_out *o, int dim)
     for (int i = 0; i < dim; i++) {
         if (i)
             stab_put(o, ",");
-        if (i < 5)
+        if (i < 5) {
             stab_str(o, first[i]);
-        else
-            stab_printf(o, "\"F_V^(%d)\"", i - 2);
+            continue;
+        }
+        stab_put(o, "\"F_V^(");
+        stab_int(o, i - 2);
+        stab_put(o, ")\"");
     }
     stab_put(o, "]");
 }
@@ -248,7 +257,9 @@ static void law_echo(stab_out *o, const dp_law *law)
 
 static void named(stab_out *o, const char *key, double v, int comma)
 {
-    stab_printf(o, "%s\"%s\":", comma ? "," : "", key);
+    stab_put(o, comma ? ",\"" : "\"");
+    stab_put(o, key);
+    stab_put(o, "\":");
     stab_num(o, v);
 }
 
@@ -258,7 +269,11 @@ static void closed_form(stab_out *o, const dp_closed_form *cf, double m)
         stab_put(o, "null");
         return;
     }
-    stab_printf(o, "{\"name\":\"%s\",\"condition\":\"%s\",\"expression\":", cf->name, cf->condition);
+    stab_put(o, "{\"name\":\"");
+    stab_put(o, cf->name);
+    stab_put(o, "\",\"condition\":\"");
+    stab_put(o, cf->condition);
+    stab_put(o, "\",\"expression\":");
     stab_str(o, cf->expression);
     stab_put(o, ",\"parameters\":{");
     named(o, "m", m, 0);
@@ -275,7 +290,7 @@ static void closed_form(stab_out *o, const dp_closed_form *cf, double m)
     stab_put(o, "}");
     named(o, "value", cf->value, 1);
     named(o, "tolerance", cf->tolerance, 1);
-    stab_printf(o, ",\"applies\":%s,\"verdict\":", cf->applies ? "true" : "false");
+    stab_put(o, cf->applies ? ",\"applies\":true,\"verdict\":" : ",\"applies\":false,\"verdict\":");
     if (cf->applies)
         stab_str(o, dp_verdict_name(cf->verdict));
     else
@@ -291,8 +306,11 @@ static void margin(stab_out *o, const dp_poly_report *r)
     else
         stab_put(o, "null");
     named(o, "tolerance", r->abscissa_err, 1);
-    stab_printf(o, ",\"near_boundary\":%s,\"by_hurwitz\":\"%s\",\"by_roots\":\"%s\",\"hurwitz_tolerances\":",
-                r->near_boundary ? "true" : "false", dp_verdict_name(r->by_hurwitz), dp_verdict_name(r->by_roots));
+    stab_put(o, r->near_boundary ? ",\"near_boundary\":true,\"by_hurwitz\":\"" : ",\"near_boundary\":false,\"by_hurwitz\":\"");
+    stab_put(o, dp_verdict_name(r->by_hurwitz));
+    stab_put(o, "\",\"by_roots\":\"");
+    stab_put(o, dp_verdict_name(r->by_roots));
+    stab_put(o, "\",\"hurwitz_tolerances\":");
     numbers(o, r->minor_tol, r->degree > 0 ? r->degree : 0);
     stab_put(o, "}");
 }
@@ -311,8 +329,9 @@ static void state_or_pencil(stab_out *o, const dp_stability *st)
         matrix(o, pc->a, pc->dim);
         stab_put(o, ",\"finite_eigenvalues\":");
         complexes(o, pc->fin_re, pc->fin_im, NULL, pc->nfinite);
-        stab_printf(o, ",\"infinite_eigenvalues\":%d,\"singular\":%s,\"deviation\":", pc->ninfinite,
-                    pc->singular ? "true" : "false");
+        stab_put(o, ",\"infinite_eigenvalues\":");
+        stab_int(o, pc->ninfinite);
+        stab_put(o, pc->singular ? ",\"singular\":true,\"deviation\":" : ",\"singular\":false,\"deviation\":");
         if (pc->deviation >= 0)
             stab_num(o, pc->deviation);
         else
@@ -343,11 +362,14 @@ static void analysis_json(stab_out *o, const dp_law *law, const dp_stability *st
     law_echo(o, law);
     stab_put(o, ",\"polynomial\":{\"coefficients\":");
     numbers(o, st->coef, st->nominal_degree + 1);
-    stab_printf(o, ",\"nominal_degree\":%d,\"degree\":", st->nominal_degree);
+    stab_put(o, ",\"nominal_degree\":");
+    stab_int(o, st->nominal_degree);
+    stab_put(o, ",\"degree\":");
     if (r->degree >= 0)
-        stab_printf(o, "%d}", r->degree);
+        stab_int(o, r->degree);
     else
-        stab_put(o, "null}");
+        stab_put(o, "null");
+    stab_put(o, "}");
     stab_put(o, ",\"roots\":");
     complexes(o, r->root_re, r->root_im, r->root_err, d);
     stab_put(o, ",\"spectral_abscissa\":");
@@ -443,7 +465,9 @@ static void map_csv(stab_out *o, const dp_map *map)
             stab_put(o, ",");
             if (map->has_abscissa[k])
                 stab_num(o, map->abscissa[k]);
-            stab_printf(o, ",%s\n", dp_verdict_name(map->verdict[k]));
+            stab_put(o, ",");
+            stab_put(o, dp_verdict_name(map->verdict[k]));
+            stab_put(o, "\n");
         }
     }
 }
@@ -473,11 +497,12 @@ static cJSON *parse_text(const char *body, size_t len, dp_errors *errs, int *nom
     return root;
 }
 
-static int run(const request *r, int want, stab_out *o)
+/* Bytes an analysis answer takes for a law of low order (1.3 KB for the thesis models): reserved at once
+ * rather than grown through 256, 512, 1024. */
+#define ANALYSIS_BYTES 2000
+
+static int run(dp_stability_ws *w, const request *r, int want, stab_out *o)
 {
-    dp_stability_ws *w = dp_stability_ws_alloc();
-    if (w == NULL)
-        return DP_ENOMEM;
     int s;
     if (r->has_map) {
         dp_map map;
@@ -494,15 +519,29 @@ static int run(const request *r, int want, stab_out *o)
     } else {
         dp_stability *st = malloc(sizeof *st);
         s = st == NULL ? DP_ENOMEM : dp_stability_analyse(w, &r->law, st);
+        if (s == DP_OK && dp_buf_reserve(o->b, ANALYSIS_BYTES) != DP_OK)
+            s = DP_ENOMEM;
         if (s == DP_OK)
             analysis_json(o, &r->law, st);
         free(st);
     }
-    dp_stability_ws_free(w);
     return s == DP_OK && o->failed ? DP_ENOMEM : s;
 }
 
 int dp_stability_respond(const char *body, size_t len, int want, dp_buf *out, dp_errors *errs)
+{
+    dp_stability_ws *w = dp_stability_ws_alloc();
+    if (w == NULL) {
+        dp_errors_add(errs, "", "%s", dp_strerror(DP_ENOMEM));
+        return DP_ENOMEM;
+    }
+    int s = dp_stability_respond_ws(w, body, len, want, out, errs);
+    dp_stability_ws_free(w);
+    return s;
+}
+
+int dp_stability_respond_ws(dp_stability_ws *w, const char *body, size_t len, int want, dp_buf *out,
+                            dp_errors *errs)
 {
     pctx c = { errs, DP_OK };
     int nomem = 0;
@@ -520,7 +559,7 @@ int dp_stability_respond(const char *body, size_t len, int want, dp_buf *out, dp
         return c.status;
     size_t before = out->len;
     stab_out o = { out, 0 };
-    int s = run(&r, want, &o);
+    int s = run(w, &r, want, &o);
     if (s != DP_OK) {
         out->len = before;
         if (out->data != NULL && before < out->cap)

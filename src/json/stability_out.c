@@ -13,9 +13,16 @@ void stab_putn(stab_out *o, const char *s, size_t n)
         o->failed = 1;
 }
 
-void stab_put(stab_out *o, const char *s)
+void stab_int(stab_out *o, int v)
 {
-    stab_putn(o, s, strlen(s));
+    char t[16], *p = t + sizeof t;
+    unsigned u = v < 0 ? 0u - (unsigned)v : (unsigned)v;
+    do
+        *--p = (char)('0' + u % 10);
+    while ((u /= 10) != 0);
+    if (v < 0)
+        *--p = '-';
+    stab_putn(o, p, (size_t)(t + sizeof t - p));
 }
 
 void stab_printf(stab_out *o, const char *fmt, ...)

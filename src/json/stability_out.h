@@ -8,6 +8,7 @@
 #define DASHPOT_JSON_STABILITY_OUT_H
 
 #include <stddef.h>
+#include <string.h>
 #include "dashpot/encode.h"
 #include "dashpot/stability.h"
 
@@ -16,8 +17,14 @@ typedef struct stab_out {
     int failed;
 } stab_out;
 
-void stab_put(stab_out *o, const char *s);
 void stab_putn(stab_out *o, const char *s, size_t n);
+/* Inline, so that the length of a literal is known when compiling: encoders write hundreds of pieces. */
+static inline void stab_put(stab_out *o, const char *s)
+{
+    stab_putn(o, s, strlen(s));
+}
+/* An int in decimal, as %d writes it. */
+void stab_int(stab_out *o, int v);
 void stab_printf(stab_out *o, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 /* A number, or `null` if it is not finite. */
 void stab_num(stab_out *o, double x);
