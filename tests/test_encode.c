@@ -190,7 +190,9 @@ static void test_double_structured(void **state)
 /* ---- dp_format_double against the previous implementation ----------------------------------------------
  * The reference is dtoa.c as of 46020fd, before the one-product fast path and the new digit and layout code:
  * Schubfach with all three products for every double, its digits staged in a buffer and laid out by
- * memcpy. Only names changed. It writes up to 48 bytes past out. */
+ * memcpy. Names changed, and one fix: it loaded each pair of digit characters as a uint16_t, which swaps
+ * them on a big-endian host (it wrote 1.32547608 for 1.2345678 on s390x); the pair is built from its two
+ * bytes here, so that the reference is right everywhere. It writes up to 48 bytes past out. */
 
 __extension__ typedef unsigned __int128 u128;
 
@@ -249,9 +251,8 @@ static uint64_t ref_eight_digits(uint32_t n)
     const uint64_t mask = (1ULL << 57) - 1;
     uint64_t y = n * 144115188076ULL, v = 0;
     for (int i = 0; i < 4; i++) {
-        uint16_t pair;
-        memcpy(&pair, ref_pairs + 2 * (y >> 57), 2);
-        v |= (uint64_t)pair << (16 * i);
+        const char *pair = ref_pairs + 2 * (y >> 57);
+        v |= (uint64_t)(unsigned char)pair[0] << (16 * i) | (uint64_t)(unsigned char)pair[1] << (16 * i + 8);
         y = (y & mask) * 100;
     }
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
