@@ -258,8 +258,8 @@ HOT char *put_decimal(char *p, uint64_t lo, uint64_t hi, uint64_t head)
 /* ---- the entry points ------------------------------------------------------------------------------------ */
 
 /* What the fast path leaves: 0, non-finite values, subnormals, powers of two (an asymmetric interval),
- * integers (X mod 2^59 is 0: see shortest_fast) and the values it cannot decide. Out of line, so that the
- * common path stays short. */
+ * integers below 2^53 (a whole X, which shortest_fast declines) and the values it cannot decide. Out of line,
+ * so that the common path stays short. */
 static __attribute__((noinline)) dp_decimal decimal_rare(uint64_t bits)
 {
     int biased = (int)(bits >> 52) & 0x7ff, k = 0;
