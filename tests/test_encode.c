@@ -1,6 +1,9 @@
 /* tests/test_encode.c - the encoders (src/json/encode.c, buf.c, dtoa.c): dp_format_double round trips
- * bit for bit through strtod and is the shortest such text; every format's exact text for a small fixed run;
- * every JSON output parses with cJSON; dp_json_quote escapes as RFC 8259 requires; the event cap.
+ * bit for bit through strtod and is the shortest such text; it writes byte for byte what the previous
+ * implementation wrote (kept below as the reference) on 10^7 random bit patterns and on values made to sit
+ * on its decision boundaries; every format's exact text for a small fixed run, and for runs of numbers that
+ * repeat (the encoder's reuse of recent numbers); every JSON output parses with cJSON; dp_json_quote escapes
+ * as RFC 8259 requires; the event cap.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -15,6 +18,7 @@
 #include <cmocka.h>
 
 #include "dashpot/encode.h"
+#include "../src/json/pow10_g.h"
 
 /* ---- dp_format_double ------------------------------------------------------------------------------- */
 
@@ -181,6 +185,302 @@ static void test_double_structured(void **state)
         check_double((double)(i - 100000) * 1e-3, i % 16 == 0);
         check_double((double)(next_u64() % 1000000) / pow(10, (double)(next_u64() % 40)), i % 16 == 0);
     }
+}
+
+/* ---- dp_format_double against the previous implementation ----------------------------------------------
+ * The reference is dtoa.c as of 46020fd, before the one-product fast path and the new digit and layout code:
+ * Schubfach with all three products for every double, its digits staged in a buffer and laid out by
+ * memcpy. Names changed, and one fix: it loaded each pair of digit characters as a uint16_t, which swaps
+ * them on a big-endian host (it wrote 1.32547608 for 1.2345678 on s390x); the pair is built from its two
+ * bytes here, so that the reference is right everywhere. It writes up to 48 bytes past out. */
+
+__extension__ typedef unsigned __int128 u128;
+
+#define REF_C_MIN (1ULL << 52)
+#define REF_Q_MIN (-1074)
+#define REF_MASK63 ((1ULL << 63) - 1)
+
+static int ref_flog10pow2(int e) { return (int)(((int64_t)e * 661971961083LL) >> 41); }
+static int ref_flog10_three_quarters_pow2(int e) { return (int)(((int64_t)e * 661971961083LL - 274743187321LL) >> 41); }
+static int ref_flog2pow10(int e) { return (int)(((int64_t)e * 913124641741LL) >> 38); }
+
+static uint64_t ref_rop(uint64_t g1, uint64_t g0, uint64_t cp)
+{
+    uint64_t x1 = (uint64_t)(((u128)g0 * cp) >> 64);
+    u128 y = (u128)g1 * cp;
+    uint64_t z = ((uint64_t)y >> 1) + x1;
+    uint64_t vbp = (uint64_t)(y >> 64) + (z >> 63);
+    return vbp | (((z & REF_MASK63) + REF_MASK63) >> 63);
+}
+
+static uint64_t ref_shortest(uint64_t c, int q, int *K)
+{
+    uint64_t out = c & 1, cb = c << 2, cbr = cb + 2, cbl;
+    int k;
+    if (c != REF_C_MIN || q == REF_Q_MIN) {
+        cbl = cb - 2;
+        k = ref_flog10pow2(q);
+    } else {
+        cbl = cb - 1;
+        k = ref_flog10_three_quarters_pow2(q);
+    }
+    int h = q + ref_flog2pow10(-k) + 2;
+    const uint64_t *g = pow10_g[-k - POW10_G_MIN];
+    uint64_t vb = ref_rop(g[0], g[1], cb << h), vbl = ref_rop(g[0], g[1], cbl << h), vbr = ref_rop(g[0], g[1], cbr << h);
+    uint64_t s = vb >> 2;
+    *K = k;
+    uint64_t t = s + 1;
+    int64_t cmp = (int64_t)(vb - ((s + t) << 1));
+    uint64_t nearest = s + (uint64_t)((cmp > 0) | ((cmp == 0) & (int)(s & 1)));
+    int uin = vbl + out <= s << 2, win = (t << 2) + out <= vbr;
+    uint64_t m = -(uint64_t)(uin ^ win);
+    uint64_t on10k = (m & (s + (uint64_t)!uin)) | (~m & nearest);
+    uint64_t sp10 = s / 10 * 10, tp10 = sp10 + 10;
+    int upin = vbl + out <= sp10 << 2, wpin = (tp10 << 2) + out <= vbr;
+    uint64_t m10 = -(uint64_t)((s >= 10) & (upin ^ wpin));
+    return (m10 & (sp10 + 10 * (uint64_t)!upin)) | (~m10 & on10k);
+}
+
+static const char ref_pairs[201] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+static uint64_t ref_eight_digits(uint32_t n)
+{
+    const uint64_t mask = (1ULL << 57) - 1;
+    uint64_t y = n * 144115188076ULL, v = 0;
+    for (int i = 0; i < 4; i++) {
+        const char *pair = ref_pairs + 2 * (y >> 57);
+        v |= (uint64_t)(unsigned char)pair[0] << (16 * i) | (uint64_t)(unsigned char)pair[1] << (16 * i + 8);
+        y = (y & mask) * 100;
+    }
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    v = __builtin_bswap64(v);
+#endif
+    return v;
+}
+
+static int ref_trailing_zero_chars(uint64_t v)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+    v = __builtin_bswap64(v);
+#endif
+    return __builtin_clzll(v ^ 0x3030303030303030ULL) >> 3;
+}
+
+static const uint64_t ref_pow10_u64[19] = {
+    1ULL, 10ULL, 100ULL, 1000ULL, 10000ULL, 100000ULL, 1000000ULL, 10000000ULL, 100000000ULL,
+    1000000000ULL, 10000000000ULL, 100000000000ULL, 1000000000000ULL, 10000000000000ULL,
+    100000000000000ULL, 1000000000000000ULL, 10000000000000000ULL, 100000000000000000ULL,
+    1000000000000000000ULL
+};
+
+static int ref_count_digits(uint64_t f)
+{
+    int t = ((64 - __builtin_clzll(f)) * 1233) >> 12;
+    return t + (f >= ref_pow10_u64[t]);
+}
+
+static const char *ref_digits(uint64_t f, char *buf, int *len, int *K)
+{
+    uint64_t q = f / 100000000;
+    uint32_t lo = (uint32_t)(f - q * 100000000), mid = (uint32_t)(q % 100000000), hi = (uint32_t)(q / 100000000);
+    uint64_t vmid = ref_eight_digits(mid), vlo = ref_eight_digits(lo);
+    memcpy(buf, ref_pairs + 2 * hi, 2);
+    memcpy(buf + 2, &vmid, 8);
+    memcpy(buf + 10, &vlo, 8);
+    int n = ref_count_digits(f), tz;
+    if (lo != 0)
+        tz = ref_trailing_zero_chars(vlo);
+    else if (mid != 0)
+        tz = 8 + ref_trailing_zero_chars(vmid);
+    else
+        tz = 16 + (hi % 10 == 0);
+    *K += tz;
+    *len = n - tz;
+    return buf + 18 - n;
+}
+
+static char *ref_write_exponent(char *p, int x)
+{
+    *p++ = 'e';
+    *p++ = x < 0 ? '-' : '+';
+    if (x < 0)
+        x = -x;
+    if (x >= 100) {
+        *p++ = (char)('0' + x / 100);
+        x %= 100;
+        *p++ = (char)('0' + x / 10);
+    } else if (x >= 10) {
+        *p++ = (char)('0' + x / 10);
+    }
+    *p++ = (char)('0' + x % 10);
+    return p;
+}
+
+static char *ref_layout(char *p, const char *d, int len, int K)
+{
+    int kk = len + K;
+    if (K >= 0 && kk <= 21) {
+        memcpy(p, d, 17);
+        memset(p + len, '0', (size_t)K);
+        return p + kk;
+    }
+    if (kk > 0 && kk <= 21) {
+        memcpy(p, d, 16);
+        p[kk] = '.';
+        memcpy(p + kk + 1, d + kk, 16);
+        return p + len + 1;
+    }
+    if (kk > -6 && kk <= 0) {
+        memcpy(p, "0.00000", 8);
+        memcpy(p + 2 - kk, d, 17);
+        return p + 2 - kk + len;
+    }
+    p[0] = d[0];
+    p[1] = '.';
+    memcpy(p + 2, d + 1, 16);
+    return ref_write_exponent(p + (len > 1 ? len + 1 : 1), kk - 1);
+}
+
+static size_t ref_format(char *out, double x)
+{
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int biased = (int)(bits >> 52) & 0x7ff;
+    uint64_t frac = bits & (REF_C_MIN - 1);
+    if (biased == 0x7ff) {
+        memcpy(out, "null", 5);
+        return 4;
+    }
+    char *p = out, buf[64];
+    if (bits >> 63)
+        *p++ = '-';
+    int K = 0, len;
+    uint64_t c = biased ? frac | REF_C_MIN : frac;
+    int q = biased ? biased - 1075 : REF_Q_MIN;
+    if (c == 0) {
+        *p++ = '0';
+    } else if (q <= 0 && q > -53 && (c & ((1ULL << -q) - 1)) == 0) {
+        const char *d = ref_digits(c >> -q, buf, &len, &K);
+        p = ref_layout(p, d, len, K);
+    } else {
+        int k;
+        uint64_t f = ref_shortest(c, q, &k);
+        K = k;
+        const char *d = ref_digits(f, buf, &len, &K);
+        p = ref_layout(p, d, len, K);
+    }
+    *p = '\0';
+    return (size_t)(p - out);
+}
+
+
+/* x as both write it: the same bytes, and (finite x) a text that reads back as x. */
+static void check_same(double x)
+{
+    char got[64], want[64];
+    memset(got, 'X', sizeof got);
+    size_t n = dp_format_double(got, x), m = ref_format(want, x);
+    if (n != m || strcmp(got, want) != 0 || strlen(got) != n)
+        fail_msg("%a: \"%s\" (length %zu), the reference writes \"%s\"", x, got, n, want);
+    if (isfinite(x)) {
+        double y = strtod(got, NULL);
+        if (memcmp(&x, &y, sizeof x) != 0)
+            fail_msg("%a: \"%s\" reads back as %a", x, got, y);
+    }
+}
+
+/* x and its neighbours up to 2 ulps away on either side. */
+static void check_same_around(double x)
+{
+    double lo = x, hi = x;
+    check_same(x);
+    for (int i = 0; i < 2; i++) {
+        check_same(lo = nextafter(lo, -INFINITY));
+        check_same(hi = nextafter(hi, INFINITY));
+    }
+}
+
+/* 10^7 random bit patterns: every exponent, subnormals, NaNs and infinities ("null"). */
+static void test_double_vs_reference_bits(void **state)
+{
+    (void)state;
+    for (long i = 0; i < 10000000; i++)
+        check_same(from_bits(next_u64()));
+}
+
+/* Numbers made to sit on the decision boundaries of the fast path (dtoa.c, shortest_fast): decimals of
+ * 1 to 17 random digits at every exponent (the shorter candidates at the edges of the rounding interval)
+ * and their neighbours; small integers times powers of two (exact ties between candidates); integers;
+ * powers of two and of ten and their neighbours; and what runs produce: k dt, and damped oscillations. */
+static void test_double_vs_reference_boundaries(void **state)
+{
+    (void)state;
+    char t[48];
+    for (long i = 0; i < 1000000; i++) {
+        int digits = 1 + (int)(next_u64() % 17), e = (int)(next_u64() % 650) - 340;
+        snprintf(t, sizeof t, "%llue%d", (unsigned long long)(next_u64() % 100000000000000000ULL) %
+                 (unsigned long long)pow(10, digits), e);
+        check_same_around(strtod(t, NULL));
+        check_same(ldexp((double)(next_u64() % 4096), (int)(next_u64() % 2100) - 1080));
+        check_same((double)(int64_t)(next_u64() >> (next_u64() % 64)));
+    }
+    for (int e = -1074; e <= 1023; e++)
+        check_same_around(ldexp(1.0, e));
+    for (int e = -330; e <= 310; e++) {
+        snprintf(t, sizeof t, "1e%d", e);
+        check_same_around(strtod(t, NULL));
+    }
+    for (long i = 0; i < 1000000; i++) {
+        check_same((double)i * 1e-6);
+        check_same((double)i * 1e-3);
+        check_same(exp(-1e-6 * (double)i) * cos(1e-3 * (double)i));
+        check_same(-0.3 + 1e-9 * (double)i);
+    }
+}
+
+/* ---- the encoders' reuse of recent numbers ----------------------------------------------------------- */
+
+/* Samples whose members repeat in every pattern the encoder looks for (the same member of the previous
+ * sample, one or two members before in the same sample) and in ones it does not, with values from a pool
+ * of 8 (zeros of both signs, a short decimal and its neighbour, long ones): each NDJSON line and CSV row
+ * must be the text of its own numbers, as dp_format_double writes them one by one. */
+static void test_sample_reuse(void **state)
+{
+    (void)state;
+    static const double pool[8] = { 0.0, -0.0, -0.3, -0.29999999999999993, 1.0 / 3, -2.5e-7, 123456.789,
+                                    9.87654321e21 };
+    dp_encoder nd, csv;
+    dp_encoder_init(&nd, DP_FORMAT_NDJSON);
+    dp_encoder_init(&csv, DP_FORMAT_CSV);
+    for (int i = 0; i < 20000; i++) {
+        double v[6];
+        for (int j = 0; j < 6; j++)
+            v[j] = pool[next_u64() % 8];
+        dp_record r = { .type = DP_RECORD_SAMPLE,
+                        .u.sample = { v[0], v[1], v[2], v[3], v[4], v[5], (dp_phase)(i % 3) } };
+        char n[6][32], want[512];
+        for (int j = 0; j < 6; j++)
+            dp_format_double(n[j], v[j]);
+        const char *ph = i % 3 == 1 ? ",\"phase\":\"stick\"" : i % 3 == 2 ? ",\"phase\":\"slip\"" : "";
+        dp_buf b = { 0 };
+        assert_int_equal(dp_encoder_record(&nd, &b, &r), DP_OK);
+        snprintf(want, sizeof want, "{\"type\":\"sample\",\"t\":%s,\"x\":%s,\"v\":%s,\"Fs\":%s,\"Fd\":%s,\"Fc\":%s%s}\n",
+                 n[0], n[1], n[2], n[3], n[4], n[5], ph);
+        if (strcmp(b.data, want) != 0)
+            fail_msg("sample %d:\n%s%s", i, b.data, want);
+        b.len = 0;
+        assert_int_equal(dp_encoder_record(&csv, &b, &r), DP_OK);
+        snprintf(want, sizeof want, "%s,%s,%s,%s,%s,%s,%s\n", n[0], n[1], n[2], n[3], n[4], n[5],
+                 i % 3 == 1 ? "stick" : i % 3 == 2 ? "slip" : "");
+        if (strcmp(b.data, want) != 0)
+            fail_msg("row %d:\n%s%s", i, b.data, want);
+        dp_buf_free(&b);
+    }
+    dp_encoder_clear(&nd);
+    dp_encoder_clear(&csv);
 }
 
 /* ---- dp_json_quote ---------------------------------------------------------------------------------- */
@@ -451,6 +751,9 @@ int main(void)
         cmocka_unit_test(test_double_random_bits),
         cmocka_unit_test(test_double_structured),
         cmocka_unit_test(test_double_tiny),
+        cmocka_unit_test(test_double_vs_reference_bits),
+        cmocka_unit_test(test_double_vs_reference_boundaries),
+        cmocka_unit_test(test_sample_reuse),
         cmocka_unit_test(test_json_quote),
         cmocka_unit_test(test_ndjson_text),
         cmocka_unit_test(test_sse_text),

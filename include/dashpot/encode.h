@@ -32,11 +32,15 @@ const char *dp_format_content_type(dp_format f);
 
 #define DP_ENCODER_MAX_EVENTS 100000
 
-/* The text of a number recently written (private to the encoder). */
+/* A number's shortest decimal digits, as src/json/dtoa.h lays them out (private to the encoder). */
+typedef struct dp_decimal {
+    unsigned long long lo, hi, head;
+} dp_decimal;
+
+/* A number recently written (private to the encoder): its bit pattern and its decimal. */
 typedef struct dp_number_text {
-    unsigned long long bits;  /* the double's bit pattern */
-    unsigned len;             /* 0: empty */
-    char text[28];
+    unsigned long long bits;
+    dp_decimal decimal;
 } dp_number_text;
 
 typedef struct dp_encoder {
@@ -45,8 +49,9 @@ typedef struct dp_encoder {
     dp_event *events;        /* JSON: events are held until the samples array closes */
     size_t nevents, events_cap;
     unsigned long long events_dropped;
-    dp_number_text recent[6]; /* the six numbers of the last sample: repeated values are copied, not
-                                 formatted again (a force constant while slipping, F_s = x when k = 1) */
+    dp_number_text recent[6]; /* the six numbers of the last sample: a repeated value is laid out from its
+                                 digits, not converted again (a force constant while slipping, F_s = x when
+                                 k = 1) */
 } dp_encoder;
 
 void dp_encoder_init(dp_encoder *e, dp_format f);

@@ -10,6 +10,8 @@
  * Samples are the hot path (millions a second): they are written with pointer arithmetic into one
  * reservation, numbers by dp_format_double, never through printf.
  */
+#include <stdint.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,7 +20,7 @@
 #include "dtoa.h"
 
 /* Bytes one sample may take in any format: 6 numbers of at most 25 characters, the keys, the phase and the
- * SSE framing come to ~260; the last number may scribble DP_DTOA_WIDE bytes: 384 covers both. */
+ * SSE framing come to ~260; the last number may scribble DP_DECIMAL_MAX bytes: 384 covers both. */
 #define SAMPLE_MAX 384
 
 static inline char *put_lit(char *p, const char *lit, size_t n)
@@ -37,50 +39,73 @@ static const char *phase_name(dp_phase ph)
 
 static char *put_num(char *p, double x)
 {
-    return p + dp_format_double_wide(p, x); /* may scribble DP_DTOA_WIDE bytes: within SAMPLE_MAX */
+    dp_decimal d;
+    return dp_decimal_write(p, x, &d); /* may scribble DP_DECIMAL_MAX bytes: within SAMPLE_MAX */
 }
 
-/* Writes x, or copies its text when a recent number had the same bits: the same member of the previous
- * sample (a force constant while slipping or sticking) or one of the two members before it in this sample
- * (F_s = x when k = 1, F_c = F_d without relaxation). Entries before `slot` hold this sample's numbers, the
- * others the previous sample's. The text is the same either way; a copy is ~10x cheaper than formatting. */
-static char *put_num_cached(dp_number_text *recent, int slot, char *p, double x)
+/* What precedes each of a sample's six numbers, padded to 8 bytes so that it is copied in one store. */
+typedef struct sample_keys {
+    char text[6][8];
+    unsigned char len[6];
+} sample_keys;
+
+static const sample_keys json_keys = { { "\"t\":", ",\"x\":", ",\"v\":", ",\"Fs\":", ",\"Fd\":", ",\"Fc\":" },
+                                       { 4, 5, 5, 6, 6, 6 } };
+static const sample_keys csv_keys = { { "", ",", ",", ",", ",", "," }, { 0, 1, 1, 1, 1, 1 } };
+
+static uint64_t bits_of(double x)
 {
-    unsigned long long bits;
-    memcpy(&bits, &x, sizeof bits);
-    int j = recent[slot].bits == bits ? slot : slot >= 1 && recent[slot - 1].bits == bits ? slot - 1
-          : slot >= 2 && recent[slot - 2].bits == bits ? slot - 2 : -1;
-    if (j >= 0 && recent[j].len) {
-        memcpy(p, recent[j].text, sizeof recent[j].text); /* fixed length: p has room (SAMPLE_MAX) */
-        if (j != slot)
-            recent[slot] = recent[j];
-        return p + recent[slot].len;
-    }
-    size_t n = dp_format_double_wide(p, x);
-    recent[slot].bits = bits;
-    recent[slot].len = (unsigned)n;
-    memcpy(recent[slot].text, p, sizeof recent[slot].text);
-    return p + n;
+    uint64_t b;
+    memcpy(&b, &x, sizeof b);
+    return b;
 }
 
-/* "t":..,"x":..,"v":..,"Fs":..,"Fd":..,"Fc":..[,"phase":".."]; recent may be NULL (no reuse). */
+/* Sets a recent-numbers cache to "nothing written yet": NaN bits, which no sample has. */
+static void forget_numbers(dp_number_text recent[6])
+{
+    for (int i = 0; i < 6; i++) {
+        recent[i].bits = bits_of(NAN);
+        dp_decimal_of(&recent[i].decimal, NAN);
+    }
+}
+
+/* Number i of a sample after its key. A number with the same bits as a recent one is laid out again from
+ * that one's digits instead of converted (~5x cheaper): the same member of the previous sample (a force
+ * constant while slipping or sticking) or one of the two members before it in this sample (F_s = x when
+ * k = 1, F_c = F_d without relaxation). recent[i] holds the previous sample's number i until it is replaced
+ * by this one's. Inlined with constant i: the tests of i vanish. */
+static inline __attribute__((always_inline)) char *put_number(dp_number_text *recent, int i, char *p, double x,
+                                                              const sample_keys *k)
+{
+    memcpy(p, k->text[i], 8);
+    p += k->len[i];
+    uint64_t bits = bits_of(x);
+    dp_number_text *r = &recent[i];
+    if (bits == r->bits)
+        return dp_decimal_put(p, &r->decimal);
+    const dp_number_text *same = i >= 1 && r[-1].bits == bits ? r - 1 : i >= 2 && r[-2].bits == bits ? r - 2 : NULL;
+    r->bits = bits;
+    if (same == NULL)
+        return dp_decimal_write(p, x, &r->decimal);
+    r->decimal = same->decimal;
+    return dp_decimal_put(p, &r->decimal);
+}
+
+/* The six numbers of a sample, each after its key. */
+static char *put_numbers(dp_number_text *recent, char *p, const dp_sample *s, const sample_keys *k)
+{
+    p = put_number(recent, 0, p, s->t, k);
+    p = put_number(recent, 1, p, s->x, k);
+    p = put_number(recent, 2, p, s->v, k);
+    p = put_number(recent, 3, p, s->Fs, k);
+    p = put_number(recent, 4, p, s->Fd, k);
+    return put_number(recent, 5, p, s->Fc, k);
+}
+
+/* "t":..,"x":..,"v":..,"Fs":..,"Fd":..,"Fc":..[,"phase":".."] */
 static char *put_sample_members(dp_number_text *recent, char *p, const dp_sample *s)
 {
-    if (recent == NULL) {
-        p = put_num(PUT(p, "\"t\":"), s->t);
-        p = put_num(PUT(p, ",\"x\":"), s->x);
-        p = put_num(PUT(p, ",\"v\":"), s->v);
-        p = put_num(PUT(p, ",\"Fs\":"), s->Fs);
-        p = put_num(PUT(p, ",\"Fd\":"), s->Fd);
-        p = put_num(PUT(p, ",\"Fc\":"), s->Fc);
-    } else {
-        p = put_num_cached(recent, 0, PUT(p, "\"t\":"), s->t);
-        p = put_num_cached(recent, 1, PUT(p, ",\"x\":"), s->x);
-        p = put_num_cached(recent, 2, PUT(p, ",\"v\":"), s->v);
-        p = put_num_cached(recent, 3, PUT(p, ",\"Fs\":"), s->Fs);
-        p = put_num_cached(recent, 4, PUT(p, ",\"Fd\":"), s->Fd);
-        p = put_num_cached(recent, 5, PUT(p, ",\"Fc\":"), s->Fc);
-    }
+    p = put_numbers(recent, p, s, &json_keys);
     if (s->phase == DP_PHASE_STICK)
         p = PUT(p, ",\"phase\":\"stick\"");
     else if (s->phase == DP_PHASE_SLIP)
@@ -98,12 +123,7 @@ static char *put_event_members(char *p, const dp_event *ev)
 
 static char *put_csv_row(dp_number_text *recent, char *p, const dp_sample *s)
 {
-    p = put_num_cached(recent, 0, p, s->t);
-    p = put_num_cached(recent, 1, PUT(p, ","), s->x);
-    p = put_num_cached(recent, 2, PUT(p, ","), s->v);
-    p = put_num_cached(recent, 3, PUT(p, ","), s->Fs);
-    p = put_num_cached(recent, 4, PUT(p, ","), s->Fd);
-    p = put_num_cached(recent, 5, PUT(p, ","), s->Fc);
+    p = put_numbers(recent, p, s, &csv_keys);
     *p++ = ',';
     const char *ph = phase_name(s->phase);
     if (ph) {
@@ -133,9 +153,15 @@ static char *put_close(const dp_encoder *e, char *p)
     return e->format == DP_FORMAT_SSE ? PUT(p, "}\n\n") : PUT(p, "}\n");
 }
 
+/* b has room for `extra` more bytes, the test inlined (every record makes it). */
+static inline int room(dp_buf *b, size_t extra)
+{
+    return b->cap - b->len > extra ? DP_OK : dp_buf_reserve(b, extra);
+}
+
 static int encode_sample(dp_encoder *e, dp_buf *b, const dp_sample *s)
 {
-    if (dp_buf_reserve(b, SAMPLE_MAX) != DP_OK)
+    if (room(b, SAMPLE_MAX) != DP_OK)
         return DP_ENOMEM;
     char *p = b->data + b->len;
     switch (e->format) {
@@ -146,8 +172,12 @@ static int encode_sample(dp_encoder *e, dp_buf *b, const dp_sample *s)
         p = e->nsamples_written ? PUT(p, ",\n{") : PUT(p, "\n{");
         p = PUT(put_sample_members(e->recent, p, s), "}");
         break;
+    case DP_FORMAT_SSE:
+        p = PUT(p, "event: sample\ndata: {\"type\":\"sample\",");
+        p = PUT(put_sample_members(e->recent, p, s), "}\n\n");
+        break;
     default:
-        p = put_close(e, put_sample_members(e->recent, put_object(e, p, "sample", 6), s));
+        p = PUT(put_sample_members(e->recent, PUT(p, "{\"type\":\"sample\","), s), "}\n");
     }
     e->nsamples_written = 1;
     b->len = (size_t)(p - b->data);
@@ -249,6 +279,7 @@ void dp_encoder_init(dp_encoder *e, dp_format f)
 {
     memset(e, 0, sizeof *e);
     e->format = f;
+    forget_numbers(e->recent);
 }
 
 void dp_encoder_clear(dp_encoder *e)
@@ -303,7 +334,9 @@ static int summary_members(dp_buf *b, const dp_summary *sm)
     int s = dp_buf_reserve(b, SAMPLE_MAX);
     if (s)
         return s;
-    char *p = put_sample_members(NULL, PUT(b->data + b->len, "\"final\":{"), &sm->final);
+    dp_number_text none[6];
+    forget_numbers(none);
+    char *p = put_sample_members(none, PUT(b->data + b->len, "\"final\":{"), &sm->final);
     b->len = (size_t)(PUT(p, "},\"steps\":") - b->data);
     s = put_ull(b, sm->steps);
     s = s ? s : put_str(b, ",\"samples\":");
