@@ -24,6 +24,17 @@ manifest() { python3 tests/lib/manifests.py "$@"; }
 # ---- the files --------------------------------------------------------------------------------------------
 # show FILE: its lines indented, after a failed check that it explains.
 show() { sed 's/^/    /' "$1"; }
+# The port a daemon logging to $1 listens on, once it says so (up to 20 s; empty if process $2 dies first).
+listening_port() {
+    local port=
+    for _ in $(seq 200); do
+        port=$(grep -o 'listening on http://127.0.0.1:[0-9]*' "$1" 2>/dev/null | grep -o '[0-9]*$')
+        [ -n "$port" ] && break
+        kill -0 "$2" 2>/dev/null || break
+        sleep 0.1
+    done
+    echo "$port"
+}
 make_ install DESTDIR="$dest" PREFIX="$prefix" > "$SCRATCH/install.log" 2>&1
 rc=$?
 check "make install DESTDIR=... PREFIX=$prefix" test $rc -eq 0
@@ -102,13 +113,7 @@ bare=$SCRATCH/bare.log
 env -i -C "$SCRATCH/elsewhere" "$p/bin/dashpotd" --port 0 2> "$bare" &
 bpid=$!
 DAEMON_PIDS+=("$bpid")
-bport=
-for _ in $(seq 200); do
-    bport=$(grep -o 'listening on http://127.0.0.1:[0-9]*' "$bare" 2>/dev/null | grep -o '[0-9]*$')
-    [ -n "$bport" ] && break
-    kill -0 "$bpid" 2>/dev/null || break
-    sleep 0.1
-done
+bport=$(listening_port "$bare" "$bpid")
 check "the installed dashpotd starts with no flag and no environment, from another directory" test -n "$bport"
 [ -n "$bport" ] || show "$bare"
 check "its start-up log names the installed OpenAPI document" \
@@ -150,13 +155,7 @@ setpriv --reuid="$uid" --regid="$gid" --clear-groups --inh-caps=-all --no-new-pr
     env -i -C / "${denv[@]}" "$p/bin/dashpotd" 2> "$log" &
 pid=$!
 DAEMON_PIDS+=("$pid")
-port=
-for _ in $(seq 200); do
-    port=$(grep -o 'listening on http://127.0.0.1:[0-9]*' "$log" 2>/dev/null | grep -o '[0-9]*$')
-    [ -n "$port" ] && break
-    kill -0 "$pid" 2>/dev/null || break
-    sleep 0.1
-done
+port=$(listening_port "$log" "$pid")
 check "the installed dashpotd starts with the manifests' environment (listening line within 20 s)" test -n "$port"
 [ -n "$port" ] || { show "$log"; finish; }
 url=http://127.0.0.1:$port
