@@ -327,8 +327,9 @@ check "a convergence study over --max-wall is 503 /problems/timeout" problem 503
 check "...answered within 1.5 s of a 0.5 s limit (4 s under valgrind)" \
     python3 -c "import sys; sys.exit(0 if $t1 - $t0 < (4 if '${DASHPOT_VALGRIND:-0}' == '1' else 1.5) else 1)"
 check "...and no study is left computing" is "$(metric "$URL_small" dashpot_studies_in_flight)" 0
-stop_daemon small
-check "SIGTERM: exit 0" is "$RC_small" 0
+stop_daemon small 20 HUP
+check "SIGHUP drains like SIGTERM: exit 0" is "$RC_small" 0
+check "...and says so in the log" grep -q 'received SIGHUP: draining' "$LOG_small"
 
 # ---- SIGTERM with a stream in flight ----
 start_daemon drain --shutdown-grace 1 || finish

@@ -104,7 +104,7 @@ static void help(void)
            INSTALLED_OPENAPI, INSTALLED_WEB_DIR);
     printf("\nDASHPOT_TOKEN: the bearer token itself, when no --token-file is given (no flag: it would show in ps).\n"
            "With a token, /v1/ answers 401 without \"Authorization: Bearer TOKEN\"; the other routes stay open.\n");
-    printf("\nSIGTERM or SIGINT: stop accepting, let runs finish (--shutdown-grace), then exit 0.\n");
+    printf("\nSIGTERM, SIGINT or SIGHUP: stop accepting, let runs finish (--shutdown-grace), then exit 0.\n");
 }
 
 /* Parses and range-checks one value into its field. */

@@ -76,9 +76,10 @@ wait_pid() {
     return 1
 }
 
+# Stops daemon $1 with signal $3 (default TERM), waiting up to $2 seconds; its exit status in RC_$1.
 stop_daemon() {
     local name=$1 pidvar=PID_$1
-    kill -TERM "${!pidvar}" 2>/dev/null
+    kill -"${3:-TERM}" "${!pidvar}" 2>/dev/null
     wait_pid "${!pidvar}" "${2:-20}"
     printf -v "RC_$name" %s "$WAIT_RC"
     if [ ${#VALGRIND[@]} -gt 0 ]; then
