@@ -83,6 +83,10 @@ req POST "$U/v1/simulate" -H 'Transfer-Encoding: chunked' --data-binary @"$SCRAT
 check "a 2 MB chunked body is 413 (read and dropped past the limit)" problem 413
 req GET "$U/a%22b%01c"
 check "a hostile path is escaped in the log" grep -qF '"/a\x22b\x01c" 404' "$LOG_main"
+req GET "$U/healthz%00junk"
+check "%00 does not cut a path short: /healthz%00junk is 404, not /healthz" problem 404 about:blank
+req GET "$U/%72eady%7a"
+check "...while other escapes still decode: /%72eady%7a is /readyz" is "$STATUS" 200
 # Raw bytes on the wire, no client escaping: ESC, a quote, a backslash, DEL and a byte >= 0x80 in the path,
 # a quote in the method. The log keeps one line per request, with every such byte as \xHH.
 python3 - "$PORT_main" <<'PY' >"$SCRATCH/raw"

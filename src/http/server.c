@@ -162,6 +162,32 @@ static void on_connection(void *cls, struct MHD_Connection *c, void **socket_con
         deadline_close(s, socket_context);
 }
 
+static int hex_digit(char ch)
+{
+    return ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10
+         : ch >= 'A' && ch <= 'F' ? ch - 'A' + 10 : -1;
+}
+
+/* Unescapes %HH in the path and query as MHD's own unescaper does, except %00: decoded, it would end the C
+ * string MHD hands to the handler, so "/healthz%00anything" would be served as "/healthz". Left as it is,
+ * it matches no route (404) and shows in the log as sent. */
+static size_t unescape_keep_nul(void *cls, struct MHD_Connection *c, char *str)
+{
+    (void)cls, (void)c;
+    char *w = str;
+    for (const char *r = str; *r;) {
+        int hi = r[0] == '%' ? hex_digit(r[1]) : -1, lo = hi >= 0 ? hex_digit(r[2]) : -1;
+        if (lo >= 0 && (hi | lo) != 0) {
+            *w++ = (char)(hi * 16 + lo);
+            r += 3;
+        } else {
+            *w++ = *r++;
+        }
+    }
+    *w = '\0';
+    return (size_t)(w - str);
+}
+
 static void on_mhd_error(void *cls, const char *fmt, va_list ap)
 {
     const server *s = cls;
@@ -250,6 +276,7 @@ int server_start(server *s)
         { MHD_OPTION_CONNECTION_MEMORY_LIMIT, (intptr_t)CONNECTION_MEMORY, NULL },
         { MHD_OPTION_NOTIFY_COMPLETED, (intptr_t)on_completed, s },
         { MHD_OPTION_NOTIFY_CONNECTION, (intptr_t)on_connection, s },
+        { MHD_OPTION_UNESCAPE_CALLBACK, (intptr_t)unescape_keep_nul, NULL },
         { embedded ? MHD_OPTION_END : MHD_OPTION_SOCK_ADDR, 0, &sa },
         { MHD_OPTION_THREAD_POOL_SIZE, (intptr_t)(s->cfg.threads > 1 ? s->cfg.threads : 0), NULL },
         { MHD_OPTION_END, 0, NULL },
