@@ -12,6 +12,12 @@
 #include "root.h"
 #include "stick_slip_step.h"
 
+/* How close to its root an event instant inside a step of length h from t is found: a few ulps of the time. */
+static double instant_tol(double t, double h)
+{
+    return 4 * 2.220446049250313e-16 * (t + h);
+}
+
 /* ---- the closed form ------------------------------------------------------------------------------ */
 
 typedef struct event_ctx { const dp_ss_law *L; step_state s; double dir; } event_ctx;
@@ -41,7 +47,7 @@ static double breakaway(dp_run *r, step_state *s, double h, double *force)
 {
     const dp_ss_law *L = &r->law;
     event_ctx e = { .L = L, .s = *s, .dir = 0 };
-    double tol = 4 * 2.220446049250313e-16 * (s->t + h);
+    double tol = instant_tol(s->t, h);
     double m0 = hold_margin(&e, 0), m1 = hold_margin(&e, h), eta = 0;
     if (m0 < 0 && m1 > 0)
         eta = dp_root_bracket(hold_margin, &e, 0, h, m0, m1, tol, &r->sum.iterations);
@@ -77,7 +83,7 @@ double dp_ss_located_step(dp_run *r, step_state *s, double h, double *force)
             return 0;
         }
         /* The relative velocity reaches zero inside the step: stop there, then go on from rest. */
-        double tol = 4 * 2.220446049250313e-16 * (s->t + h);
+        double tol = instant_tol(s->t, h);
         double g1 = u - c.thr * e.dir;
         double eta = dp_root_bracket(slip_velocity, &e, 0, h, s->v - L->vb, g1, tol, &r->sum.iterations);
         s->x += eta * ((1 - L->theta) * s->v + L->theta * L->vb);
@@ -152,8 +158,8 @@ void dp_ss_stick_interval(const dp_ss_law *L, double *lo, double *hi)
 typedef struct hold_ctx { const dp_ss_law *L; step_state s; double slo, shi; } hold_ctx;
 
 /* [*lo, *hi]: the damper forces r that hold the mass at the belt's speed at s.t + eta, from
- * m x'' = 0 = F - F_s - r + gamma(0) (a vertical spring piece widens it). */
-static void hold_force(const hold_ctx *e, double eta, double *lo, double *hi)
+ * m x'' = 0 = F - F_s - r + gamma(0) (a vertical spring piece widens it); returns F + gamma(0) = F_s + r. */
+static double hold_force(const hold_ctx *e, double eta, double *lo, double *hi)
 {
     const dp_ss_law *L = e->L;
     double x = e->s.x + eta * L->vb, flo, fhi;
@@ -163,6 +169,7 @@ static void hold_force(const hold_ctx *e, double eta, double *lo, double *hi)
         flo = fhi = L->k * x;
     double load_g = dp_forcing_eval(L->F, e->s.t + eta) + dp_relaxation_eval(L->gamma, 0);
     *lo = load_g - fhi, *hi = load_g - flo;
+    return load_g;
 }
 
 /* Distance of the holding forces from the stick interval: > 0 when the mass must break away. */
@@ -178,15 +185,14 @@ static double hold_gap(void *p, double eta)
 /* Held over the whole step: the damper takes the holding force of least magnitude. */
 static double hold_step(const hold_ctx *e, step_state *s, double h, double *fc, double *fs)
 {
-    double lo, hi;
-    hold_force(e, h, &lo, &hi);
+    double lo, hi, load_g = hold_force(e, h, &lo, &hi);
     lo = fmax(lo, e->slo), hi = fmin(hi, e->shi);
     s->x += h * e->L->vb;
     s->t += h;
     s->v = e->L->vb;
     s->phase = DP_PHASE_STICK;
     *fc = fmin(fmax(0.0, lo), hi);
-    *fs = e->L->S ? dp_forcing_eval(e->L->F, s->t) + dp_relaxation_eval(e->L->gamma, 0) - *fc : 0;
+    *fs = e->L->S ? load_g - *fc : 0;
     return h;
 }
 
@@ -195,8 +201,7 @@ static double breakaway_general(dp_run *r, hold_ctx *e, step_state *s, double h,
 {
     double g0 = hold_gap(e, 0), g1 = hold_gap(e, h), eta = 0;
     if (g0 < 0)
-        eta = dp_root_bracket(hold_gap, e, 0, h, g0, g1, 4 * 2.220446049250313e-16 * (s->t + h),
-                              &r->sum.iterations);
+        eta = dp_root_bracket(hold_gap, e, 0, h, g0, g1, instant_tol(s->t, h), &r->sum.iterations);
     double lo, hi;
     hold_force(e, eta, &lo, &hi);
     *fc = lo > e->shi ? e->shi : e->slo; /* the bound it leaves by, if the step ends here */
@@ -238,8 +243,7 @@ double dp_ss_located_inclusion_step(dp_run *r, step_state *s, double h, double *
         *s = probe;
         return s->phase == DP_PHASE_STICK ? h : 0;
     }
-    double eta = dp_root_bracket(arrival, &ac, 0, h, g0, g1, 4 * 2.220446049250313e-16 * (s->t + h),
-                                 &r->sum.iterations);
+    double eta = dp_root_bracket(arrival, &ac, 0, h, g0, g1, instant_tol(s->t, h), &r->sum.iterations);
     s->x += eta * ((1 - L->theta) * s->v + L->theta * L->vb);
     s->v = L->vb;
     s->t += eta;
