@@ -202,10 +202,9 @@ static double breakaway_general(dp_run *r, hold_ctx *e, step_state *s, double h,
     double g0 = hold_gap(e, 0), g1 = hold_gap(e, h), eta = 0;
     if (g0 < 0)
         eta = dp_root_bracket(hold_gap, e, 0, h, g0, g1, instant_tol(s->t, h), &r->sum.iterations);
-    double lo, hi;
-    hold_force(e, eta, &lo, &hi);
+    double lo, hi, load_g = hold_force(e, eta, &lo, &hi);
     *fc = lo > e->shi ? e->shi : e->slo; /* the bound it leaves by, if the step ends here */
-    *fs = 0;
+    *fs = r->law.S ? load_g - *fc : 0;   /* and the spring graph's share of the balance at rest */
     s->x += eta * r->law.vb;
     s->t += eta;
     dp_run_emit_event(r, DP_EVENT_SLIP, s->t, s->x, s->v);
