@@ -90,6 +90,11 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
             dp_errors_add(e, p, "the initial relative velocity %g is outside the damper graph's domain", z);
         }
     }
+    if (el->has_spring && el->spring.law != DP_SPRING_LINEAR && s->solver.theta != 1) {
+        snprintf(p, sizeof p, "/model/elements/%zu/spring", i);
+        dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler): use "
+                      "theta = 1", dp_spring_law_name(el->spring.law));
+    }
     if (el->has_damper && el->damper.relaxation.kind != DP_RELAX_NONE) {
         snprintf(p, sizeof p, "/model/elements/%zu/damper/relaxation", i);
         dp_errors_add(e, p, "relaxation on network elements is not supported yet (one mass only)");

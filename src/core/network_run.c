@@ -130,18 +130,36 @@ static int alloc_all(struct dp_net_run *nr)
            nr->all_nodes && nr->all_elements && nr->queue ? DP_OK : DP_ENOMEM;
 }
 
-/* The linear parts into band storage; the elements' nonlinear laws into the convex problem's list. */
+/* B += w b b^T in band storage for an element's incidence vector b. */
+static void band_add_incidence(double *B, size_t p, long a, long b, double w)
+{
+    if (w == 0)
+        return;
+    if (a >= 0)
+        B[(size_t)a * (p + 1)] += w;
+    if (b >= 0)
+        B[(size_t)b * (p + 1)] += w;
+    if (a >= 0 && b >= 0) {
+        size_t lo = (size_t)(a < b ? a : b), d = (size_t)labs(a - b);
+        B[lo * (p + 1) + d] -= w;
+    }
+}
+
+/* The linear parts straight into band storage (a dense n x n copy would not fit a chain of 10^4 blocks);
+ * the elements' nonlinear laws into the convex problem's list. */
 static int setup_laws(struct dp_net_run *nr)
 {
-    size_t n = nr->n, nn = n * n;
-    double *M = malloc(nn * sizeof *M), *K = malloc(nn * sizeof *K), *C = malloc(nn * sizeof *C);
-    if (!M || !K || !C) {
-        free(M), free(K), free(C);
-        return DP_ENOMEM;
-    }
-    dp_network_linear_parts(nr->net, M, K, C);
-    to_band(M, n, nr->p, nr->M), to_band(K, n, nr->p, nr->K), to_band(C, n, nr->p, nr->C);
-    free(M), free(K), free(C);
+    const dp_network *net = nr->net;
+    size_t n = nr->n, p = nr->p;
+    if (net->M)
+        to_band(net->M, n, p, nr->M);
+    else
+        for (size_t i = 0; i < n; i++)
+            nr->M[i * (p + 1)] = net->mass[i];
+    if (net->K)
+        to_band(net->K, n, p, nr->K);
+    if (net->C)
+        to_band(net->C, n, p, nr->C);
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
         int lin_spring = !e->has_spring || e->spring.law == DP_SPRING_LINEAR;
@@ -151,6 +169,8 @@ static int setup_laws(struct dp_net_run *nr)
         int set_damper = e->has_damper && e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR;
         nr->can_stick[i] = (unsigned char)dp_element_can_stick(e);
         nr->act_of[i] = -1;
+        band_add_incidence(nr->K, p, e->a, e->b, nr->k[i]);
+        band_add_incidence(nr->C, p, e->a, e->b, nr->c[i]);
         if (!set_damper && lin_spring)
             continue;
         nr->act_of[i] = (long)nr->nact;
