@@ -855,3 +855,43 @@ int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_err
         return DP_EINVAL;
     return dp_model_prepare(model);
 }
+
+int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_errors *errs)
+{
+    static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
+    ctx c = { errs, 0, 0, 1 };
+    at p;
+    cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
+    if (root == NULL)
+        return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
+    const cJSON *v = NULL;
+    if (want_object(&c, root, NULL)) {
+        check_keys(&c, root, NULL, keys, NULL, NULL);
+        v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
+    }
+    if (v == NULL || !is_network(v)) {
+        cJSON_Delete(root);
+        dp_model m = { 0 };
+        int s = c.nerr ? DP_EINVAL : dp_model_parse_lenient(text, len, &m, errs);
+        if (s == DP_OK)
+            dp_wellposedness(&m, rep);
+        dp_model_clear(&m);
+        return s;
+    }
+    /* A network: parsed as strictly as a run's (its laws are graphs the solver could take), then checked. */
+    dp_spec spec;
+    dp_spec_init(&spec);
+    c.lenient = 0;
+    parse_network(&c, v, &p, &spec);
+    cJSON_Delete(root);
+    int s = c.nomem ? DP_ENOMEM : c.nerr ? DP_EINVAL : dp_network_prepare(spec.net);
+    if (s == DP_OK) {
+        size_t before = errs->n + errs->dropped;
+        dp_network_check(&spec, errs);
+        s = errs->n + errs->dropped > before ? DP_EINVAL : DP_OK;
+    }
+    if (s == DP_OK)
+        dp_network_wellposedness(spec.net, rep);
+    dp_spec_clear(&spec);
+    return s;
+}
