@@ -85,7 +85,10 @@ static const char *const dampers[] = {
     "{\"law\":\"coulomb\",\"phi0\":0.5}", "{\"law\":\"bingham\",\"tau\":0.4,\"c\":0.3}",
     "{\"law\":\"linear\",\"c\":0.2}", "{\"law\":\"graph\",\"points\":[[-1,-1],[0,-0.5],[0,0.5],[1,1]]}",
     "{\"law\":\"none\"}", "{\"law\":\"coulomb\",\"phi0\":0.3,\"belt_velocity\":0.4}",
+    "{\"law\":\"coulomb\",\"phi0\":0.5,\"relaxation\":{\"kind\":\"rational\",\"a\":0.5,\"b\":1}}",
+    "{\"law\":\"bingham\",\"tau\":0.4,\"c\":0.3,\"belt_velocity\":0.2,\"relaxation\":{\"kind\":\"linear\",\"L\":0.3}}",
 };
+#define NDAMPERS (sizeof dampers / sizeof *dampers)
 static const char *const loads[] = { NULL, "\"kind\":\"harmonic\",\"amplitude\":0.7,\"omega\":1.3,\"phase\":0.2",
                                      "\"kind\":\"constant\",\"value\":0.2" };
 
@@ -96,7 +99,7 @@ static void test_one_node_is_the_one_mass_model(void **state)
     char one[1024], net[1024];
     size_t cases = 0;
     for (size_t s = 0; s < 3; s++)
-        for (size_t d = 0; d < 6; d++)
+        for (size_t d = 0; d < NDAMPERS; d++)
             for (size_t f = 0; f < 3; f++)
                 for (int th = 0; th < 2; th++) {
                     double theta = th ? 1 : 0.5;
@@ -136,7 +139,7 @@ static void test_one_node_is_the_one_mass_model(void **state)
                     free(b.d);
                     cases++;
                 }
-    assert_int_equal(cases, 3 * 6 * 2 + 2 * 6 * 3);
+    assert_int_equal(cases, (2 + 2) * NDAMPERS * 3);   /* linear spring: two thetas; the others: theta 1 */
 }
 
 /* Two masses, three unit springs (ground-0, 0-1, 1-ground): x(t) = (cos t +/- cos sqrt3 t)/2 from x = (1, 0)
@@ -267,6 +270,35 @@ static void test_records_do_not_depend_on_the_block(void **state)
     free(b.d);
 }
 
+/* Relaxation: a dt that makes W - h theta sum L b b^T indefinite is refused at /solver/dt; a smaller one runs. */
+static void test_relaxation_step_bound(void **state)
+{
+    (void)state;
+    char json[512];
+    for (int k = 0; k < 2; k++) {
+        snprintf(json, sizeof json, "{\"model\":{\"masses\":[0.1,0.1],\"elements\":[{\"between\":[0,1],\"damper\":"
+                 "{\"law\":\"coulomb\",\"phi0\":1,\"relaxation\":{\"kind\":\"rational\",\"a\":2,\"b\":1}}}]},"
+                 "\"solver\":{\"dt\":%s,\"t_end\":1}}", k ? "0.01" : "0.2");
+        dp_spec spec;
+        dp_errors errs;
+        dp_spec_init(&spec);
+        dp_errors_init(&errs);
+        int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
+        assert_int_equal(s, DP_OK);
+        dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
+        /* the Delassus bound: W = m = 0.1 per node, b b^T has eigenvalue 2 on (1,-1): 0.1 > h 2 * 2 needs h < 0.025 */
+        if (k == 0) {
+            assert_null(run);
+            assert_int_equal(s, DP_EINVAL);
+            assert_string_equal(errs.item[0].pointer, "/solver/dt");
+        } else {
+            assert_non_null(run);
+        }
+        dp_run_free(run);
+        dp_spec_clear(&spec);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -276,6 +308,7 @@ int main(void)
         cmocka_unit_test(test_coulomb_chain_energy_balance),
         cmocka_unit_test(test_sticking_block_does_not_creep),
         cmocka_unit_test(test_records_do_not_depend_on_the_block),
+        cmocka_unit_test(test_relaxation_step_bound),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -9,8 +9,11 @@
  * step: a phase change is reported at the end of the step that made it.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include <gsl/gsl_linalg.h>
 
 #include "network_step.h"
 #include "run_internal.h"
@@ -20,10 +23,12 @@
 
 struct dp_net_run {
     size_t n, nel, p, nact;
+    int relaxed;                /* some element has a relaxation gamma */
     double theta;
     const dp_network *net;
     double *M, *K, *C;          /* band storage n x (p+1) */
     dp_net_elem *act;           /* the elements of the convex problem */
+    const dp_relaxation **gamma; /* per active element, NULL without relaxation */
     long *act_of;               /* element -> its index in act, or -1 */
     double *k, *c;              /* per element: linear stiffness and viscosity */
     dp_net_ws *ws;
@@ -107,6 +112,7 @@ static int alloc_all(struct dp_net_run *nr)
     nr->C = calloc(band, sizeof(double));
     nr->act = calloc(ne, sizeof *nr->act);
     nr->act_of = calloc(ne, sizeof *nr->act_of);
+    nr->gamma = calloc(ne, sizeof *nr->gamma);
     nr->k = calloc(ne, sizeof(double));
     nr->c = calloc(ne, sizeof(double));
     nr->x = calloc(n, sizeof(double));
@@ -125,7 +131,7 @@ static int alloc_all(struct dp_net_run *nr)
     nr->all_elements = calloc(ne, sizeof(size_t));
     nr->qcap = ne + 2;
     nr->queue = calloc(nr->qcap, sizeof *nr->queue);
-    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
+    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->gamma && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
            nr->rhs && nr->tmp && nr->u && nr->force && nr->Fs && nr->Fd && nr->phase && nr->phase_prev && nr->can_stick &&
            nr->all_nodes && nr->all_elements && nr->queue ? DP_OK : DP_ENOMEM;
 }
@@ -166,13 +172,16 @@ static int setup_laws(struct dp_net_run *nr)
         nr->k[i] = e->has_spring && lin_spring ? e->spring.k : 0;
         nr->c[i] = e->has_damper && (e->damper.law == DP_DAMPER_LINEAR || e->damper.law == DP_DAMPER_BINGHAM)
                    ? e->damper.c : 0;
-        int set_damper = e->has_damper && e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR;
+        int set_damper = e->has_damper && ((e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR)
+                                           || e->damper.relaxation.kind != DP_RELAX_NONE);
         nr->can_stick[i] = (unsigned char)dp_element_can_stick(e);
         nr->act_of[i] = -1;
         band_add_incidence(nr->K, p, e->a, e->b, nr->k[i]);
         band_add_incidence(nr->C, p, e->a, e->b, nr->c[i]);
         if (!set_damper && lin_spring)
             continue;
+        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
+            nr->gamma[nr->nact] = &e->damper.relaxation, nr->relaxed = 1;
         nr->act_of[i] = (long)nr->nact;
         nr->act[nr->nact++] = (dp_net_elem){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
                                              .S = lin_spring ? NULL : &e->spring.graph,
@@ -205,7 +214,7 @@ void dp_network_run_free(struct dp_net_run *nr)
     if (nr == NULL)
         return;
     dp_net_ws_free(nr->ws);
-    void *p[] = { nr->M, nr->K, nr->C, nr->act, nr->act_of, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    void *p[] = { nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->row_phase, nr->final_row, nr->final_phase, nr->queue,
                   nr->pending_row, nr->pending_phase };
@@ -239,6 +248,8 @@ static void element_forces(struct dp_net_run *nr, int stepped)
                 fd += fmin(fmax(0.0, lo), hi);
             }
         }
+        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
+            fd -= dp_relaxation_eval(&e->damper.relaxation, z - vb);
         nr->Fs[i] = fs, nr->Fd[i] = fd;
         nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
     }
@@ -413,6 +424,47 @@ static int reserve_rows(dp_run *r)
     return DP_OK;
 }
 
+/* sup gamma' over the line: the slope that can eat into W's definiteness. */
+static double relaxation_rise(const dp_relaxation *g)
+{
+    if (g->kind == DP_RELAX_LINEAR)
+        return g->L > 0 ? g->L : 0;
+    return dp_relaxation_lipschitz(g);
+}
+
+/* With relaxation the step's problem is strongly monotone while W - h theta sum_e L_e b_e b_e^T is positive
+ * definite (the n-DOF form of thesis (4.10), m + h theta c + h^2 theta^2 k > h theta L_gamma for one mass);
+ * checked for the nominal and the last step by GSL's band Cholesky. */
+static int check_step_bound(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    if (!nr->relaxed)
+        return DP_OK;
+    size_t len = nr->n * (nr->p + 1);
+    double *B = malloc(len * sizeof *B), th = nr->theta;
+    if (B == NULL)
+        return DP_ENOMEM;
+    double hs[2] = { r->h, r->spec.solver.t_end - (double)(r->nsteps - 1) * r->h };
+    int ok = 1;
+    for (int k = 0; k < 2 && ok; k++) {
+        double h = hs[k];
+        for (size_t i = 0; i < len; i++)
+            B[i] = nr->M[i] + h * th * nr->C[i] + h * h * th * th * nr->K[i];
+        for (size_t a = 0; a < nr->nact; a++)
+            if (nr->gamma[a])
+                band_add_incidence(B, nr->p, nr->act[a].a, nr->act[a].b, -h * th * relaxation_rise(nr->gamma[a]));
+        gsl_matrix_view v = gsl_matrix_view_array(B, nr->n, nr->p + 1);
+        ok = gsl_linalg_cholesky_band_decomp(&v.matrix) == 0;
+    }
+    free(B);
+    if (ok)
+        return DP_OK;
+    snprintf(r->error_pointer, sizeof r->error_pointer, "/solver/dt");
+    return dp_run_fail(r, DP_EINVAL, "with relaxation a step has one solution only while W - h theta sum_e L_e b_e "
+                       "b_e^T is positive definite (thesis (4.10) for n masses); at dt = %g it is not: take a "
+                       "smaller dt", r->h);
+}
+
 int dp_network_run_init(dp_run *r)
 {
     struct dp_net_run *nr = calloc(1, sizeof *nr);
@@ -428,6 +480,10 @@ int dp_network_run_init(dp_run *r)
     if (s == DP_OK && (nr->ws = dp_net_ws_alloc(nr->n, nr->p, nr->nact, nr->act)) == NULL)
         s = DP_ENOMEM;
     if (s != DP_OK)
+        return s;
+    if (nr->relaxed)
+        dp_net_ws_relaxation(nr->ws, nr->gamma, nr->theta);
+    if ((s = check_step_bound(r)) != DP_OK)
         return s;
     memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
     memcpy(nr->v, r->spec.v0v, nr->n * sizeof *nr->v);

@@ -12,6 +12,7 @@
 
 #include <stddef.h>
 #include "dashpot/graph.h"
+#include "dashpot/model.h"
 
 /* An element whose law enters the step's convex problem: a set-valued or piecewise-linear damper A and/or
  * a spring graph S that is not linear (linear springs and viscous parts live in W). */
@@ -35,6 +36,11 @@ typedef struct dp_net_ws dp_net_ws;
 /* A workspace for n nodes, bandwidth p, and ne elements (the array is kept by reference). */
 dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el);
 void dp_net_ws_free(dp_net_ws *w);
+
+/* Relaxation: Sigma_e gains -gamma_e(theta z + (1-theta) z_start - v_b), gamma[i] NULL where there is none
+ * (the array is kept by reference). The step is then solved by Newton-Josephy iterations on the smooth
+ * part, each an exact piecewise-linear problem; W - h theta sum L_e b b^T must stay positive definite. */
+void dp_net_ws_relaxation(dp_net_ws *w, const dp_relaxation *const *gamma, double theta);
 
 /* W's band storage, to be filled by the caller; call dp_net_ws_W_changed after changing it. */
 double *dp_net_ws_W(dp_net_ws *w);
