@@ -87,6 +87,8 @@ static const char *const dampers[] = {
     "{\"law\":\"none\"}", "{\"law\":\"coulomb\",\"phi0\":0.3,\"belt_velocity\":0.4}",
     "{\"law\":\"coulomb\",\"phi0\":0.5,\"relaxation\":{\"kind\":\"rational\",\"a\":0.5,\"b\":1}}",
     "{\"law\":\"bingham\",\"tau\":0.4,\"c\":0.3,\"belt_velocity\":0.2,\"relaxation\":{\"kind\":\"linear\",\"L\":0.3}}",
+    "{\"law\":\"generalized-coulomb\",\"phi0\":0.2,\"phi1\":0.9,\"belt_velocity\":0.3}",
+    "{\"law\":\"generalized-coulomb\",\"phi0\":0.3,\"phi1\":0.6,\"relaxation\":{\"kind\":\"rational\",\"a\":0.2,\"b\":1}}",
 };
 #define NDAMPERS (sizeof dampers / sizeof *dampers)
 static const char *const loads[] = { NULL, "\"kind\":\"harmonic\",\"amplitude\":0.7,\"omega\":1.3,\"phase\":0.2",

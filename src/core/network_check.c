@@ -100,11 +100,6 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
         dp_errors_add(e, p, "the power relaxation is not Lipschitz at rest, so a network step need not have one "
                       "solution (one mass only, with its branches)");
     }
-    if (el->has_damper && el->damper.law == DP_DAMPER_GENERALIZED_COULOMB && el->damper.phi1 > el->damper.phi0) {
-        snprintf(p, sizeof p, "/model/elements/%zu/damper/phi1", i);
-        dp_errors_add(e, p, "a static threshold phi1 > phi0 on network elements is not supported yet (one mass "
-                      "only)");
-    }
 }
 
 void dp_network_check(const dp_spec *s, dp_errors *e)

@@ -29,7 +29,11 @@ struct dp_net_run {
     double *M, *K, *C;          /* band storage n x (p+1) */
     dp_net_elem *act;           /* the elements of the convex problem */
     const dp_relaxation **gamma; /* per active element, NULL without relaxation */
+    dp_graph *static_A;         /* per active element: generalized Coulomb's static graph (phi1), else empty */
+    unsigned char *held, *broke; /* per active element in a step: on its static graph; broke away this step */
+    int has_static;
     long *act_of;               /* element -> its index in act, or -1 */
+    size_t *act_el;             /* index in act -> element */
     double *k, *c;              /* per element: linear stiffness and viscosity */
     dp_net_ws *ws;
     double h_W;                 /* the step W was built for */
@@ -112,7 +116,11 @@ static int alloc_all(struct dp_net_run *nr)
     nr->C = calloc(band, sizeof(double));
     nr->act = calloc(ne, sizeof *nr->act);
     nr->act_of = calloc(ne, sizeof *nr->act_of);
+    nr->act_el = calloc(ne, sizeof *nr->act_el);
     nr->gamma = calloc(ne, sizeof *nr->gamma);
+    nr->static_A = calloc(ne, sizeof *nr->static_A);
+    nr->held = calloc(ne, 1);
+    nr->broke = calloc(ne, 1);
     nr->k = calloc(ne, sizeof(double));
     nr->c = calloc(ne, sizeof(double));
     nr->x = calloc(n, sizeof(double));
@@ -131,7 +139,7 @@ static int alloc_all(struct dp_net_run *nr)
     nr->all_elements = calloc(ne, sizeof(size_t));
     nr->qcap = ne + 2;
     nr->queue = calloc(nr->qcap, sizeof *nr->queue);
-    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->gamma && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
+    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->act_el && nr->gamma && nr->static_A && nr->held && nr->broke && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
            nr->rhs && nr->tmp && nr->u && nr->force && nr->Fs && nr->Fd && nr->phase && nr->phase_prev && nr->can_stick &&
            nr->all_nodes && nr->all_elements && nr->queue ? DP_OK : DP_ENOMEM;
 }
@@ -182,7 +190,16 @@ static int setup_laws(struct dp_net_run *nr)
             continue;
         if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
             nr->gamma[nr->nact] = &e->damper.relaxation, nr->relaxed = 1;
+        if (e->has_damper && e->damper.law == DP_DAMPER_GENERALIZED_COULOMB && e->damper.phi1 > e->damper.phi0) {
+            dp_model m = { .mass = 1, .damper = { .law = DP_DAMPER_COULOMB, .phi0 = e->damper.phi1 } };
+            if (dp_model_prepare(&m) != DP_OK)
+                return DP_ENOMEM;
+            nr->static_A[nr->nact] = m.damper.graph;   /* the spring's line graph of m is empty (k = 0 line) */
+            dp_graph_clear(&m.spring.graph);
+            nr->has_static = 1;
+        }
         nr->act_of[i] = (long)nr->nact;
+        nr->act_el[nr->nact] = i;
         nr->act[nr->nact++] = (dp_net_elem){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
                                              .S = lin_spring ? NULL : &e->spring.graph,
                                              .vb = e->has_damper ? e->damper.belt_velocity : 0 };
@@ -214,7 +231,9 @@ void dp_network_run_free(struct dp_net_run *nr)
     if (nr == NULL)
         return;
     dp_net_ws_free(nr->ws);
-    void *p[] = { nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    for (size_t i = 0; nr->static_A && i < nr->nact; i++)
+        dp_graph_clear(&nr->static_A[i]);
+    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->row_phase, nr->final_row, nr->final_phase, nr->queue,
                   nr->pending_row, nr->pending_phase };
@@ -306,6 +325,42 @@ static void finalize_summary(dp_run *r)
 
 /* ---- stepping --------------------------------------------------------------------------------------- */
 
+/* Generalized Coulomb (the rest branch, as one mass takes it): an element at rest at the step's start, or
+ * one whose kinetic solution reverses, is held by its static interval [-phi1, phi1] if that holds it; one
+ * that slips under the static graph has broken away and steps on its kinetic graph (phi0). Each pass
+ * moves at least one element for good, so this ends after at most 2 x elements solves. */
+static int static_solve(dp_run *r, double h)
+{
+    struct dp_net_run *nr = r->net;
+    for (size_t k = 0; k < nr->nact; k++) {
+        nr->held[k] = nr->static_A[k].n > 0 && nr->phase[nr->act_el[k]] == DP_PHASE_STICK;
+        nr->broke[k] = 0;
+    }
+    for (size_t pass = 0; pass <= 2 * nr->nact; pass++) {
+        for (size_t k = 0; k < nr->nact; k++)
+            if (nr->static_A[k].n > 0)
+                nr->act[k].A = nr->held[k] ? &nr->static_A[k] : &nr->net->el[nr->act_el[k]].damper.graph;
+        dp_net_ws_W_changed(nr->ws);
+        int s = dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+        if (s != DP_OK)
+            return s;
+        int changed = 0;
+        for (size_t k = 0; k < nr->nact; k++) {
+            if (nr->static_A[k].n == 0)
+                continue;
+            double vb = nr->act[k].vb, z0 = rel(nr->act[k].a, nr->act[k].b, nr->v) - vb, z1 = nr->force[k].z - vb;
+            if (nr->held[k] && !nr->force[k].at_rest) {
+                nr->held[k] = 0, nr->broke[k] = 1, changed = 1;
+            } else if (!nr->held[k] && !nr->broke[k] && z0 != 0 && z1 != 0 && (z0 > 0) != (z1 > 0)) {
+                nr->held[k] = 1, changed = 1;
+            }
+        }
+        if (!changed)
+            return DP_OK;
+    }
+    return DP_ESOLVE;
+}
+
 /* One theta-step of length h from time t (network_step.h for the problem it solves). */
 static int net_step(dp_run *r, double t, double h)
 {
@@ -335,7 +390,8 @@ static int net_step(dp_run *r, double t, double h)
     }
     for (size_t k = 0; k < nr->nact; k++)
         nr->u[k] = rel(nr->act[k].a, nr->act[k].b, nr->x);
-    int s = dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+    int s = nr->has_static ? static_solve(r, h)
+                           : dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
     if (s != DP_OK)
         return s;
     for (size_t i = 0; i < n; i++) {
