@@ -15,7 +15,8 @@ show() { sed 's/^/    /' "$1"; }
 CNAME=dashpot-test-image-$$
 ENGINE=
 cleanup_image() {
-    [ -z "$ENGINE" ] || "$ENGINE" rm -f "$CNAME" "$CNAME-fs" >/dev/null 2>&1
+    local c
+    [ -z "$ENGINE" ] || for c in "$CNAME" "$CNAME-fs"; do "$ENGINE" rm -f "$c" > /dev/null 2>&1; done
     cleanup
 }
 trap cleanup_image EXIT
