@@ -88,17 +88,19 @@ check "the image is its base plus 2 to 15 MB ($delta MB)" test "$delta" -ge 2 -a
 
 # ---- the daemon, as the image starts it ---------------------------------------------------------------------
 # The image's environment with DASHPOT_PORT=0 (any free port, logged) and loopback, on a shared machine.
-mapfile -t ienv < <(python3 -c 'import json, sys; print("\n".join(json.loads(sys.argv[1])))' "$(img Env)")
+lines() { python3 -c 'import json, sys; print("\n".join(json.loads(sys.argv[1])))' "$1"; }
+mapfile -t ienv < <(lines "$(img Env)")
+mapfile -t entry < <(lines "$(img Entrypoint)")
 log=$SCRATCH/dashpotd.log
 mode=run
 timeout 60 "$ENGINE" run --rm --network none --entrypoint /bin/true "$IMAGE" > "$SCRATCH/run-probe.log" 2>&1 ||
     mode=chroot
 if [ $mode = run ]; then
     echo "    running it with $ENGINE run"
-    "$ENGINE" run -d --name "$CNAME" -p 127.0.0.1::8080 "$IMAGE" > /dev/null 2> "$log"
+    "$ENGINE" run -d --name "$CNAME" -p 127.0.0.1::8080 "$IMAGE" > /dev/null 2> "$SCRATCH/run.log"
     port=$("$ENGINE" port "$CNAME" 8080/tcp 2>/dev/null | head -1 | sed 's/.*://')
-    pid=$("$ENGINE" inspect --format '{{.State.Pid}}' "$CNAME")
     for _ in $(seq 200); do curl -s --max-time 1 "http://127.0.0.1:$port/healthz" > /dev/null && break; sleep 0.1; done
+    "$ENGINE" logs "$CNAME" > "$log" 2>&1
     # in_image CMD...: CMD inside the running container, as the image's user (DASHPOT_PORT=$IN_PORT if set).
     in_image() { timeout 10 "$ENGINE" exec ${IN_PORT:+-e DASHPOT_PORT=$IN_PORT} "$CNAME" "$@"; }
     closed_port=1
@@ -112,8 +114,7 @@ else
     done
     # env and chroot exec in turn, so $! is the daemon itself; chroot --userspec drops to the image's user.
     env -i "${ienv[@]}" DASHPOT_PORT=0 DASHPOT_BIND=127.0.0.1 \
-        /usr/sbin/chroot --userspec="$uid:$gid" --groups="$gid" "$fs" $(img Entrypoint | tr -d '[]"' | tr , ' ') \
-        2> "$log" &
+        /usr/sbin/chroot --userspec="$uid:$gid" --groups="$gid" "$fs" "${entry[@]}" 2> "$log" &
     pid=$!
     DAEMON_PIDS+=("$pid")
     port=
@@ -132,12 +133,17 @@ fi
 check "the image's dashpotd starts and listens (within 20 s)" test -n "$port"
 [ -n "$port" ] || { show "$log"; finish; }
 url=http://127.0.0.1:$port
-check "the process is the image's /usr/local/bin/dashpotd" \
-    bash -c "[[ \$(readlink /proc/$pid/exe) == */usr/local/bin/dashpotd ]]"
+# The daemon's /proc entry: PID 1 seen from inside the container (its uid as the image sees it, whatever
+# the engine maps it to), or the chrooted process itself.
+proc() { if [ $mode = run ]; then in_image cat "/proc/1/$1"; else cat "/proc/$pid/$1"; fi; }
+[ $mode = run ] || check "the process is the image's /usr/local/bin/dashpotd" \
+    test "$(readlink "/proc/$pid/exe")" = "$fs/usr/local/bin/dashpotd"
 check "it runs as uid $uid (real, effective, saved, filesystem)" \
-    grep -Eq "^Uid:\s+$uid\s+$uid\s+$uid\s+$uid$" "/proc/$pid/status"
+    grep -Eq "^Uid:\s+$uid\s+$uid\s+$uid\s+$uid$" <(proc status)
 check "it runs as gid $gid (real, effective, saved, filesystem)" \
-    grep -Eq "^Gid:\s+$gid\s+$gid\s+$gid\s+$gid$" "/proc/$pid/status"
+    grep -Eq "^Gid:\s+$gid\s+$gid\s+$gid\s+$gid$" <(proc status)
+check "its command line is the image's ENTRYPOINT" \
+    test "$(proc cmdline | tr '\0' '\n')" = "$(printf '%s\n' "${entry[@]}")"
 check "its start-up log names the image's OpenAPI document and web directory" \
     bash -c "grep -q 'serving the OpenAPI document from /usr/local/share/dashpot/openapi.yaml\$' '$log' &&
              grep -q 'serving [0-9]* web files* from /usr/local/share/dashpot/web\$' '$log'"
@@ -223,7 +229,7 @@ check "the HEALTHCHECK command fails inside the image where nothing listens" hc_
 
 # ---- STOPSIGNAL ----------------------------------------------------------------------------------------------
 if [ $mode = run ]; then
-    check "$ENGINE stop: the daemon exits 0" bash -c "timeout 30 '$ENGINE' stop -t 20 '$CNAME' >/dev/null &&
+    check "$ENGINE stop: the daemon exits 0" bash -c "timeout 30 '$ENGINE' stop -t 20 '$CNAME' >/dev/null 2>&1 &&
         [ \"\$('$ENGINE' inspect --format '{{.State.ExitCode}}' '$CNAME')\" = 0 ]"
 else
     kill -"$(img StopSignal | sed 's/^SIG//')" "$pid"
