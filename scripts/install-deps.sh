@@ -8,6 +8,7 @@ pkgs=(build-essential pkg-config python3 python3-yaml libgsl-dev libcjson-dev li
 [ "${1:-}" = "--fuzz" ] && pkgs+=(clang libclang-rt-14-dev)
 [ "${1:-}" = "--robustness" ] && pkgs+=(wrk valgrind)
 [ "${1:-}" = "--siconos" ] && pkgs+=(libsiconos-kernel-dev g++)
+[ "${1:-}" = "--image" ] && pkgs+=(podman debootstrap)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
