@@ -648,3 +648,61 @@ int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, con
     }
     return DP_ESOLVE;
 }
+
+/* ---- the assignment held: event location ------------------------------------------------------------- */
+
+size_t dp_net_ws_pattern_bytes(const dp_net_ws *w)
+{
+    return (w->ne ? w->ne : 1) * sizeof *w->es;
+}
+
+void dp_net_ws_pattern_save(const dp_net_ws *w, void *buf)
+{
+    memcpy(buf, w->es, w->ne * sizeof *w->es);
+}
+
+void dp_net_ws_pattern_restore(dp_net_ws *w, const void *buf)
+{
+    memcpy(w->es, buf, w->ne * sizeof *w->es);
+    w->factored = 0;
+}
+
+int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, dp_net_force *f,
+                        double *margin)
+{
+    build_forest(w);
+    assemble_H(w, h, rhs);
+    int s = factor_reduced(w);
+    s = s ? s : solve_assignment(w);
+    if (s != DP_OK)
+        return s;
+    memcpy(v, w->vs, w->n * sizeof *v);
+    multipliers(w, h);
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *e = &w->es[i];
+        if (e->st == FREE) {
+            double z = rel_velocity(&w->el[i], v);
+            margin[i] = fmin(z - e->lo.z, e->hi.z - z);     /* -inf + x stays finite-safe: fmin */
+        } else {
+            double lo, hi;
+            sigma_interval(w, i, u[i], h, &e->fix, &lo, &hi);
+            margin[i] = fmin(e->lam - lo, hi - e->lam);
+        }
+    }
+    report(w, h, u, v, f);
+    return DP_OK;
+}
+
+void dp_net_ws_stick(dp_net_ws *w, size_t i)
+{
+    w->es[i].st = FIXED;
+    w->es[i].fix = (vertex){ w->el[i].vb, SRC_A, 0 };
+    w->factored = 0;
+}
+
+void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir)
+{
+    vertex at = w->es[i].fix;
+    set_free(w, i, u[i], h, &at, dir);
+    w->factored = 0;
+}

@@ -52,4 +52,22 @@ void dp_net_ws_W_changed(dp_net_ws *w);
 int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, const double *v_guess,
                  double *v, dp_net_force *f, unsigned long long *iters);
 
+/* ---- for event location (network_run.c): the assignment kept fixed over a shorter step ---- */
+
+/* Bytes of the current assignment (which elements are fixed where, which piece the others are on). */
+size_t dp_net_ws_pattern_bytes(const dp_net_ws *w);
+void dp_net_ws_pattern_save(const dp_net_ws *w, void *buf);
+void dp_net_ws_pattern_restore(dp_net_ws *w, const void *buf);
+
+/* Solves a step of length h with the current assignment held (no vertex met, no release): v and f as
+ * dp_net_solve, and margin[i] >= 0 while element i's assignment is consistent (a free element inside its
+ * piece, a fixed one's multiplier inside its interval), < 0 once it is not. DP_OK or DP_ESOLVE. */
+int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, dp_net_force *f,
+                        double *margin);
+
+/* Changes element i's assignment at a located event: fixed at its damper's vertex z = v_b (stick), or free
+ * on the piece leaving it towards dir (slip). */
+void dp_net_ws_stick(dp_net_ws *w, size_t i);
+void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir);
+
 #endif
