@@ -284,7 +284,8 @@ int server_start(server *s)
     s->daemon = MHD_start_daemon(flags, (uint16_t)s->cfg.port, NULL, NULL, on_request, s, MHD_OPTION_ARRAY, opts,
                                  MHD_OPTION_END);
     if (s->daemon == NULL) {
-        log_line("error: cannot listen on %s port %u", s->cfg.bind, s->cfg.port);
+        log_line("error: cannot listen on %s port %u (in use? pick another with --port N or DASHPOT_PORT=N; "
+                 "0 takes any free port)", s->cfg.bind, s->cfg.port);
         return -1;
     }
     return 0;
