@@ -192,6 +192,12 @@ check "regularized summary counts rejected steps and right-hand side evaluations
     "d['type'] == 'summary' and d['rejected'] > 0 and d['fevals'] > d['steps'] > 0"
 check "stick-slip summary has rejected 0 and fevals 0" pyjson "$SCRATCH/doc.json" \
     "d['summary']['rejected'] == 0 and d['summary']['fevals'] == 0"
+check "regularized meta names its scheme, n, stepper and tolerances, none of the stick-slip fields" \
+    pyjson <(head -n 1 "$BODY") "list(d)[:9] == ['type','version','solver','scheme','n','stepper','rtol','atol','dt'] \
+    and (d['scheme'], d['n'], d['stepper'], d['rtol'], d['atol']) == ('PC', 1000, 'msbdf', 1e-8, 1e-10) \
+    and not {'variant','events_mode','branch','theta'} & set(d)"
+check "stick-slip meta keeps variant, events_mode, branch, theta in that order" pyjson "$SCRATCH/doc.json" \
+    "list(d['meta'])[3:7] == ['variant','events_mode','branch','theta']"
 
 STAB='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}}'
 MAP='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}, "map": {"x": {"param": "mu[1]", "from": 0, "to": 2, "steps": 3},

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "dashpot/wellposedness.h"
@@ -72,6 +73,17 @@ static void add_check(dp_wp_report *r, const char *name, int holds, const char *
 
 /* prefix + x as %.17g writes it, as a check's detail. Integers below 10^15 (what k and most constants
  * are) are written by hand, the same digits; the rest by snprintf. */
+/* x with the fewest significant digits that read back as x (0.1, not 0.10000000000000001), as every other
+ * number dashpot prints. */
+static void shortest(char *out, size_t cap, double x)
+{
+    for (int digits = 1; digits <= 17; digits++) {
+        snprintf(out, cap, "%.*g", digits, x);
+        if (strtod(out, NULL) == x)
+            return;
+    }
+}
+
 static void add_number(dp_wp_report *r, const char *name, int holds, const char *prefix, double x)
 {
     char t[DP_WP_TEXT];
@@ -88,7 +100,7 @@ static void add_number(dp_wp_report *r, const char *name, int holds, const char 
             *--p = '-'; /* -0 too, as printf writes it */
         memcpy(t + n, p, (size_t)(d + sizeof d - p));
     } else {
-        snprintf(t + n, sizeof t - n, "%.17g", x);
+        shortest(t + n, sizeof t - n, x);
     }
     add_check(r, name, holds, "%s", t);
 }
@@ -209,7 +221,7 @@ static void relaxation_checks(dp_wp_report *r, const dp_relaxation *g)
               : "continuous, at most linear growth");
     double L = dp_relaxation_lipschitz(g);
     if (isfinite(L))
-        add_number(r, "gamma Lipschitz", 1, "Lipschitz constant ", L);
+        add_number(r, "gamma Lipschitz", 1, "L_gamma = ", L);
     else /* power law: gamma(u)/u = N u^(-1/N) is unbounded near 0 */
         add_check(r, "gamma Lipschitz", 0, "gamma(u)/u = %.6g at u = 1e-6 and %.6g at u = 1e-12: unbounded as "
                   "u -> 0", dp_relaxation_eval(g, 1e-6) / 1e-6, dp_relaxation_eval(g, 1e-12) / 1e-12);
@@ -283,6 +295,8 @@ static int failures(const dp_wp_report *r, const char *skip, char *why, size_t c
     why[0] = '\0';
     for (size_t i = 0; i < r->nchecks; i++) {
         if (r->check[i].holds || (skip && strcmp(r->check[i].name, skip) == 0))
+            continue;
+        if (strncmp(r->check[i].detail, "not applicable", 14) == 0) /* follows from a failure already named */
             continue;
         int w = snprintf(why + len, cap - len, "%s%s", n ? "; " : "fails: ", r->check[i].name);
         len = w > 0 && len + (size_t)w < cap ? len + (size_t)w : cap - 1;

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# tests/test_docs.sh - the documentation stays true and self-contained.
+#
+# 1. Every `<!-- example -->` block of README.md and docs/*.md prints what it shows. A block is "$ COMMAND"
+#    (continued on the next lines while a line ends with a backslash) and then the expected output;
+#    `...` in the expected output stands for text left out (any characters, across lines), everything else
+#    must match byte for byte. `<!-- file: NAME -->` blocks are written to NAME first. Each document's
+#    commands run in its own scratch directory, in order, with ./build/ pointing at this build and
+#    localhost:8080 at a fresh test daemon of its own (so counters such as /metrics start at zero).
+# 2. Nothing tracked points outside the repository: no `../shared` or `shared/seeds` (the sources are cited
+#    by title in docs/mathematics.md), and every relative link of a Markdown file names a tracked file
+#    (web addresses of other projects are allowed).
+source "$(dirname "$0")/lib/daemon.bash"
+
+# extract DOC DIR: writes DIR/cmdNN, DIR/wantNN, the file blocks, and DIR/count.
+extract() {
+    python3 - "$1" "$2" <<'PY'
+import os, re, sys
+text = open(sys.argv[1]).read()
+out = sys.argv[2]
+os.makedirs(out, exist_ok=True)
+blocks = re.findall(r'<!-- (example|file: ([^ ]+)) -->\n```[a-z]*\n(.*?)```', text, re.S)
+n = 0
+for kind, name, body in blocks:
+    if kind.startswith('file'):
+        open(os.path.join(out, name), 'w').write(body)
+        continue
+    lines = body.split('\n')
+    assert lines[0].startswith('$ '), lines[0]
+    cmd = [lines[0][2:]]
+    while cmd[-1].endswith('\\'):
+        cmd.append(lines[len(cmd)])
+    n += 1
+    open(os.path.join(out, 'cmd%02d' % n), 'w').write('\n'.join(cmd) + '\n')
+    open(os.path.join(out, 'want%02d' % n), 'w').write('\n'.join(lines[len(cmd):]))
+print(n, file=open(os.path.join(out, 'count'), 'w'))
+PY
+}
+
+# matches WANT GOT: GOT is WANT with each `...` standing for any text.
+matches() {
+    python3 - "$1" "$2" <<'PY'
+import re, sys
+want, got = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+pattern = '.*?'.join(re.escape(piece) for piece in want.split('...'))
+sys.exit(0 if re.fullmatch(pattern, got, re.S) else 1)
+PY
+}
+
+run_examples() { # run_examples DOC: every example of one document against its own daemon
+    local doc=$1 name dir count i cmd
+    name=$(basename "$doc" .md)
+    dir=$SCRATCH/$name
+    extract "$ROOT/$doc" "$dir"
+    count=$(cat "$dir/count")
+    [ "$count" -gt 0 ] || return 0
+    start_daemon "$name" || return 1
+    local port_var=PORT_$name
+    mkdir -p "$dir/build"
+    ln -s "$BUILD/dashpot" "$dir/build/dashpot"
+    for i in $(seq -f %02g "$count"); do
+        cmd=$(sed "s/localhost:8080/127.0.0.1:${!port_var}/g" "$dir/cmd$i")
+        (cd "$dir" && timeout 60 bash -c "$cmd") >"$dir/got$i" 2>&1
+        if ! check "$doc example $i: $(head -1 "$dir/cmd$i" | head -c 70)" matches "$dir/want$i" "$dir/got$i"; then
+            diff "$dir/want$i" "$dir/got$i" | head -10 | sed 's/^/    /'
+        fi
+    done
+    stop_daemon "$name"
+    EXAMPLES=$((EXAMPLES + count))
+}
+
+EXAMPLES=0
+for doc in README.md docs/*.md; do
+    run_examples "$doc"
+done
+check "the README and docs have examples ($EXAMPLES)" test "$EXAMPLES" -ge 20
+
+# ---- self-contained ----
+is_empty() { [ -z "$1" ] || { printf '    %s\n' "$1" | head -20; return 1; }; }
+cd "$ROOT" || finish
+if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    # .ci/ belongs to the machinery around the repository; this file names the patterns it looks for.
+    outside=$(git ls-files -z | grep -zv -e '^\.ci/' -e '^tests/test_docs\.sh$' |
+              xargs -0 grep -lIE '\.\./shared|shared/seeds' 2>/dev/null)
+    check "no tracked file points outside the repository (../shared, shared/seeds)" is_empty "$outside"
+    broken=$(git ls-files '*.md' | python3 -c '
+import os, re, subprocess, sys
+tracked = set(subprocess.run(["git", "ls-files"], capture_output=True, text=True).stdout.split("\n"))
+dirs = {os.path.dirname(p) for p in tracked} | {""}
+for doc in sys.stdin.read().split():
+    text = open(doc).read()
+    for target in re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", text):
+        if re.match(r"https?://", target):
+            continue
+        path = os.path.normpath(os.path.join(os.path.dirname(doc), target))
+        if path.startswith("..") or (path not in tracked and path not in dirs):
+            print(doc, "->", target)')
+    check "every relative link in the Markdown files names a tracked file or directory" is_empty "$broken"
+else
+    echo "# not a git checkout: the self-containment checks are skipped"
+fi
+finish
