@@ -2,7 +2,8 @@
 # tests/test_docs.sh - the documentation stays true and self-contained.
 #
 # 1. Every `<!-- example -->` block of README.md and docs/*.md prints what it shows. A block is "$ COMMAND"
-#    (continued on the next lines while a line ends with a backslash) and then the expected output;
+#    (continued on the next lines while a line ends with a backslash or a quote is open) and then the
+#    expected output;
 #    `...` in the expected output stands for text left out (any characters, across lines), everything else
 #    must match byte for byte. `<!-- file: NAME -->` blocks are written to NAME first. Each document's
 #    commands run in its own scratch directory, in order, with ./build/ pointing at this build and
@@ -15,7 +16,7 @@ source "$(dirname "$0")/lib/daemon.bash"
 # extract DOC DIR: writes DIR/cmdNN, DIR/wantNN, the file blocks, and DIR/count.
 extract() {
     python3 - "$1" "$2" <<'PY'
-import os, re, sys
+import os, re, shlex, sys
 text = open(sys.argv[1]).read()
 out = sys.argv[2]
 os.makedirs(out, exist_ok=True)
@@ -28,7 +29,13 @@ for kind, name, body in blocks:
     lines = body.split('\n')
     assert lines[0].startswith('$ '), lines[0]
     cmd = [lines[0][2:]]
-    while cmd[-1].endswith('\\'):
+    def incomplete(text):  # a trailing backslash, or a quote still open
+        try:
+            shlex.split(text)
+        except ValueError:
+            return True
+        return text.endswith('\\')
+    while incomplete('\n'.join(cmd)):
         cmd.append(lines[len(cmd)])
     n += 1
     open(os.path.join(out, 'cmd%02d' % n), 'w').write('\n'.join(cmd) + '\n')
@@ -37,14 +44,16 @@ print(n, file=open(os.path.join(out, 'count'), 'w'))
 PY
 }
 
-# matches WANT GOT: GOT is WANT with each `...` standing for any text.
+# matches WANT GOT: GOT is WANT with each `...` standing for any text; else the difference, and status 1.
 matches() {
-    python3 - "$1" "$2" <<'PY'
+    python3 - "$1" "$2" <<'PY' && return 0
 import re, sys
 want, got = open(sys.argv[1]).read(), open(sys.argv[2]).read()
 pattern = '.*?'.join(re.escape(piece) for piece in want.split('...'))
 sys.exit(0 if re.fullmatch(pattern, got, re.S) else 1)
 PY
+    diff "$1" "$2" | head -10 | cut -c1-300 | sed 's/^/    /'
+    return 1
 }
 
 run_examples() { # run_examples DOC: every example of one document against its own daemon
@@ -61,9 +70,7 @@ run_examples() { # run_examples DOC: every example of one document against its o
     for i in $(seq -f %02g "$count"); do
         cmd=$(sed "s/localhost:8080/127.0.0.1:${!port_var}/g" "$dir/cmd$i")
         (cd "$dir" && timeout 60 bash -c "$cmd") >"$dir/got$i" 2>&1
-        if ! check "$doc example $i: $(head -1 "$dir/cmd$i" | head -c 70)" matches "$dir/want$i" "$dir/got$i"; then
-            diff "$dir/want$i" "$dir/got$i" | head -10 | sed 's/^/    /'
-        fi
+        check "$doc example $i: $(head -1 "$dir/cmd$i" | head -c 70)" matches "$dir/want$i" "$dir/got$i"
     done
     stop_daemon "$name"
     EXAMPLES=$((EXAMPLES + count))
