@@ -196,6 +196,14 @@ static void on_mhd_error(void *cls, const char *fmt, va_list ap)
     char msg[512];
     vsnprintf(msg, sizeof msg, fmt, ap);
     msg[strcspn(msg, "\n")] = '\0';
+    /* A client that hangs up mid-response is routine (its run is cancelled and counted); say so, so that the
+     * line does not read like a failure of the daemon. */
+    static const char *const hang_up[] = { "Failed to send", "closed by remote", "no longer available for sending" };
+    for (size_t i = 0; i < sizeof hang_up / sizeof hang_up[0]; i++)
+        if (strstr(msg, hang_up[i]) != NULL) {
+            log_line("client hung up (not an error of the daemon): libmicrohttpd: %s", msg);
+            return;
+        }
     log_line("libmicrohttpd: %s", msg);
 }
 
