@@ -5,7 +5,7 @@
 #   make test SAN=1 the same under AddressSanitizer + UndefinedBehaviorSanitizer (into build-san/)
 #   make run        builds and starts dashpotd on 127.0.0.1:8080
 #   make bench      benchmarks with their peers, ratios printed (kept out of `test`)
-#   make deps       installs the Debian packages this needs (as root)
+#   make deps       installs the Debian packages this needs (as root); `make run` installs only the run ones
 
 SHELL   := /bin/bash
 CC      ?= cc
@@ -37,7 +37,7 @@ TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 TEST_SH  := $(wildcard tests/*.sh)
 PROGS    := $(BUILD)/dashpot $(if $(HTTP_SRC),$(BUILD)/dashpotd)
 
-.PHONY: all test unit integration run bench deps deps-ok clean thesis-figures fuzz bench-peers
+.PHONY: all test unit integration run bench deps deps-ok deps-run clean thesis-figures fuzz bench-peers
 
 all: $(LIB) $(PROGS)
 
@@ -73,7 +73,11 @@ test: deps-ok
 deps deps-ok:
 	@bash scripts/install-deps.sh
 
-run: deps-ok
+# `make run` needs neither cmocka nor the test tools: only what builds and runs the daemon.
+deps-run:
+	@bash scripts/install-deps.sh --run
+
+run: deps-run
 	@$(MAKE) --no-print-directory all
 	./$(BUILD)/dashpotd
 

@@ -8,10 +8,14 @@
 #    must match byte for byte. `<!-- file: NAME -->` blocks are written to NAME first. Each document's
 #    commands run in its own scratch directory, in order, with ./build/ pointing at this build and
 #    localhost:8080 at a fresh test daemon of its own (so counters such as /metrics start at zero).
-# 2. Nothing tracked points outside the repository: no `../shared` or `shared/seeds` (the sources are cited
+# 2. The README's dependency lists are scripts/install-deps.sh's, and `make run` installs no test tool.
+# 3. Nothing tracked points outside the repository: no `../shared` or `shared/seeds` (the sources are cited
 #    by title in docs/mathematics.md), and every relative link of a Markdown file names a tracked file
 #    (web addresses of other projects are allowed).
 source "$(dirname "$0")/lib/daemon.bash"
+
+is() { [ "$1" = "$2" ] || { echo "    got '$1', expected '$2'"; return 1; }; }
+is_empty() { [ -z "$1" ] || { printf '    %s\n' "$1" | head -20; return 1; }; }
 
 # extract DOC DIR: writes DIR/cmdNN, DIR/wantNN, the file blocks, and DIR/count.
 extract() {
@@ -21,6 +25,10 @@ text = open(sys.argv[1]).read()
 out = sys.argv[2]
 os.makedirs(out, exist_ok=True)
 blocks = re.findall(r'<!-- (example|file: ([^ ]+)) -->\n```[a-z]*\n(.*?)```', text, re.S)
+# The rendered page hides the markers: the prose just before each file block must name the file.
+unnamed = [m.group(1) for m in re.finditer(r'<!-- file: ([^ ]+) -->', text)
+           if '`' + m.group(1) + '`' not in text[max(0, m.start() - 400):m.start()]]
+open(os.path.join(out, 'unnamed'), 'w').write(' '.join(unnamed))
 n = 0
 for kind, name, body in blocks:
     if kind.startswith('file'):
@@ -62,6 +70,7 @@ run_examples() { # run_examples DOC: every example of one document against its o
     dir=$SCRATCH/$name
     extract "$ROOT/$doc" "$dir"
     count=$(cat "$dir/count")
+    check "$doc: the text before each file block says to save it under its name" is_empty "$(cat "$dir/unnamed")"
     [ "$count" -gt 0 ] || return 0
     start_daemon "$name" || return 1
     local port_var=PORT_$name
@@ -82,8 +91,25 @@ for doc in README.md docs/*.md; do
 done
 check "the README and docs have examples ($EXAMPLES)" test "$EXAMPLES" -ge 20
 
+# ---- the dependency lists: `make run` installs no test tool, and the README names what the script installs ----
+run_deps=$(bash "$ROOT/scripts/install-deps.sh" --list --run)
+test_deps=$(bash "$ROOT/scripts/install-deps.sh" --list)
+check "make run installs only what builds and runs (no libcmocka-dev, curl, python3): $run_deps" \
+    bash -c "! grep -qwE 'libcmocka-dev|curl|python3' <<<'$run_deps' && grep -qw libmicrohttpd-dev <<<'$run_deps'"
+check "make run calls install-deps.sh --run" \
+    bash -c "cd '$ROOT' && make -n run 2>/dev/null | grep -m1 install-deps | grep -qx 'bash scripts/install-deps.sh --run'"
+readme_deps() { # the README's package list after "$1 needs"/"$1 adds", backquoted, on one line
+    python3 - "$ROOT/README.md" "$1" <<'PY'
+import re, sys
+text = re.sub(r'\s+', ' ', open(sys.argv[1]).read())
+m = re.search(re.escape(sys.argv[2]) + r' (?:needs|adds) `([^`]*)`', text)
+print(m.group(1) if m else '')
+PY
+}
+check "the README's make run list is the script's --run list" is "$(readme_deps '`make run`')" "$run_deps"
+check "the README's make test list adds what the script adds" is "$run_deps $(readme_deps '`make test`')" "$test_deps"
+
 # ---- self-contained ----
-is_empty() { [ -z "$1" ] || { printf '    %s\n' "$1" | head -20; return 1; }; }
 cd "$ROOT" || finish
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
     # .ci/ belongs to the machinery around the repository; this file names the patterns it looks for.
