@@ -197,7 +197,7 @@ check "regularized meta names its scheme, n, stepper and tolerances, none of the
     and (d['scheme'], d['n'], d['stepper'], d['rtol'], d['atol']) == ('PC', 1000, 'msbdf', 1e-8, 1e-10) \
     and not {'variant','events_mode','branch','theta'} & set(d)"
 check "stick-slip meta keeps variant, events_mode, branch, theta in that order" pyjson "$SCRATCH/doc.json" \
-    "list(d['meta'])[3:7] == ['variant','events_mode','branch','theta']"
+    "list(d['meta'])[2:6] == ['variant','events_mode','branch','theta']"
 
 STAB='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}}'
 MAP='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}, "map": {"x": {"param": "mu[1]", "from": 0, "to": 2, "steps": 3},
