@@ -98,6 +98,19 @@ check "64 MiB + 1 byte is refused (exit 2, 'larger than 64 MiB')" \
   bash -c "[ $rc -eq 2 ] && grep -qF 'larger than 64 MiB' '$tmp/over.err'"
 rm -f "$tmp/max.json" "$tmp/over.json"
 
+# The well-posedness report prints numbers shortest (0.1, not 0.10000000000000001), witnesses included.
+echo '{"model": {"mass": 1, "spring": {"law": "linear", "k": 0.1}, "damper": {"law": "graph", "points": [[-0.1, -1], [0, 0.3], [0.7, 0.1]]}}}' \
+  | "$bin" wellposedness - > "$tmp/wp.json"
+check "well-posedness: k = 0.1 and the witness (0, 0.3), (0.7, 0.1) printed shortest; only the failing check named" py "
+import json
+d = json.load(open('$tmp/wp.json'))
+details = {c['hypothesis']: c['detail'] for c in d['checks']}
+assert details['linear spring F_s = k x (seed 001 (1))'] == 'k = 0.1', details
+assert details['A monotone (seed 001 (6))'].startswith('points (v, F) = (0, 0.3) and (0.7, 0.1) have'), details
+assert d['existence']['reason'] == 'fails: A monotone (seed 001 (6))', d['existence']
+assert '0000000' not in open('$tmp/wp.json').read()
+"
+
 # output.max_samples: every = ceil(steps / (N - 1)) keeps the samples at or under N (10^4 steps here).
 for n in 2 3 10 999 1000 10001 20000; do
   sed "s/\"every\": 2000/\"max_samples\": $n/" "$tmp/decay.json" | "$bin" simulate - --format ndjson > "$tmp/budget.ndjson"
