@@ -6,7 +6,7 @@
 #   make run        builds and starts dashpotd on 127.0.0.1:8080
 #   make bench      benchmarks with their peers, ratios printed (kept out of `test`)
 #   make image      the container image dashpot:VERSION, with docker or podman, offline too (docs/operations.md)
-#   make deps       installs the Debian packages this needs (as root)
+#   make deps       installs the Debian packages this needs (as root); `make run` installs only the run ones
 
 SHELL   := /bin/bash
 CC      ?= cc
@@ -38,7 +38,7 @@ TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 TEST_SH  := $(filter-out tests/test_image.sh,$(wildcard tests/*.sh))
 PROGS    := $(BUILD)/dashpot $(if $(HTTP_SRC),$(BUILD)/dashpotd)
 
-.PHONY: all test unit integration run bench deps deps-ok clean thesis-figures fuzz bench-peers
+.PHONY: all test unit integration run bench deps deps-ok deps-run clean thesis-figures fuzz bench-peers
 
 all: $(LIB) $(PROGS)
 
@@ -74,7 +74,11 @@ test: deps-ok
 deps deps-ok:
 	@bash scripts/install-deps.sh
 
-run: deps-ok
+# `make run` needs neither cmocka nor the test tools: only what builds and runs the daemon.
+deps-run:
+	@bash scripts/install-deps.sh --run
+
+run: deps-run
 	@$(MAKE) --no-print-directory all
 	./$(BUILD)/dashpotd
 
