@@ -190,7 +190,8 @@ static void test_coulomb_chain_energy_balance(void **state)
         "{\"between\":[\"ground\",1],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.8}},"
         "{\"between\":[1,2],\"spring\":{\"law\":\"linear\",\"k\":1.5},\"damper\":{\"law\":\"coulomb\",\"phi0\":0.4}},"
         "{\"between\":[2,\"ground\"],\"spring\":{\"law\":\"linear\",\"k\":0.5}}]},"
-        "\"initial\":{\"x\":[2,-1,3],\"v\":[0,1,0]},\"solver\":{\"dt\":0.0005,\"t_end\":25,\"theta\":0.5}}";
+        "\"initial\":{\"x\":[2,-1,3],\"v\":[0,1,0]},\"solver\":{\"dt\":0.0005,\"t_end\":25,\"theta\":0.5,"
+        "\"events\":\"none\"}}";
     rows r;
     rows_run(json, 509, &r);
     assert_int_equal(r.status, DP_DONE);
@@ -264,7 +265,8 @@ static void test_records_do_not_depend_on_the_block(void **state)
     rows_run(json, 1000, &b);
     assert_int_equal(a.n, b.n);
     assert_int_equal(a.events, b.events);
-    assert_true(a.events > 12);   /* six blocks changed phase together, more than once */
+    assert_true(a.events >= 6);   /* the six identical blocks stick in one step: six events at once */
+    assert_true(a.ev[a.events - 1].t == a.ev[a.events - 6].t);
     assert_memory_equal(a.d, b.d, a.n * a.width * sizeof *a.d);
     for (size_t i = 0; i < a.events; i++)
         assert_true(a.ev[i].t == b.ev[i].t && a.ev[i].element == b.ev[i].element && a.ev[i].kind == b.ev[i].kind);

@@ -693,11 +693,54 @@ int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double 
     return DP_OK;
 }
 
-void dp_net_ws_stick(dp_net_ws *w, size_t i)
+int dp_net_ws_pattern_same(const dp_net_ws *w, const void *buf)
 {
-    w->es[i].st = FIXED;
-    w->es[i].fix = (vertex){ w->el[i].vb, SRC_A, 0 };
+    const elem_state *old = buf;
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *a = &w->es[i], *b = &old[i];
+        if (a->st != b->st)
+            return 0;
+        if (a->st == FIXED ? a->fix.z != b->fix.z : a->lo.z != b->lo.z || a->hi.z != b->hi.z)
+            return 0;
+    }
+    return 1;
+}
+
+void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v)
+{
+    elem_state *s = &w->es[i];
+    if (s->st == FIXED)
+        return;
+    double z = rel_velocity(&w->el[i], v);
+    s->fix = fabs(z - s->lo.z) <= fabs(s->hi.z - z) ? s->lo : s->hi;
+    s->st = FIXED;
     w->factored = 0;
+}
+
+int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u)
+{
+    const elem_state *s = &w->es[i];
+    double lo, hi;
+    if (s->st != FIXED)
+        return 0;
+    sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
+    return s->lam > hi ? 1 : s->lam < lo ? -1 : 0;
+}
+
+int dp_net_ws_fixed(const dp_net_ws *w, size_t i)
+{
+    return w->es[i].st == FIXED;
+}
+
+int dp_net_ws_at_rest(const dp_net_ws *w, size_t i)
+{
+    const elem_state *s = &w->es[i];
+    const dp_net_elem *e = &w->el[i];
+    double lo, hi;
+    if (s->st != FIXED || e->A == NULL || arg_A(e, &s->fix) != 0)
+        return 0;
+    dp_graph_force(e->A, 0, &lo, &hi);
+    return hi > lo;
 }
 
 void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir)

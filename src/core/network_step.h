@@ -65,9 +65,17 @@ void dp_net_ws_pattern_restore(dp_net_ws *w, const void *buf);
 int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, dp_net_force *f,
                         double *margin);
 
-/* Changes element i's assignment at a located event: fixed at its damper's vertex z = v_b (stick), or free
- * on the piece leaving it towards dir (slip). */
-void dp_net_ws_stick(dp_net_ws *w, size_t i);
+/* Whether the current assignment is the saved one (same fixed vertices, same pieces). */
+int dp_net_ws_pattern_same(const dp_net_ws *w, const void *buf);
+
+/* At a located event: a free element i that reached an end of its piece is fixed at that end (the one
+ * nearer its relative velocity in v); a fixed one is freed onto the piece towards its multiplier's
+ * violation (the last held solve's). dp_net_ws_violation: +1 above its interval, -1 below, 0 inside. */
+void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v);
+int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u);
 void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir);
+/* Element i is fixed (at any vertex) / at its damper's vertex at zero relative velocity (sticking). */
+int dp_net_ws_fixed(const dp_net_ws *w, size_t i);
+int dp_net_ws_at_rest(const dp_net_ws *w, size_t i);
 
 #endif
