@@ -86,6 +86,11 @@ int dp_spec_copy(dp_spec *dst, const dp_spec *src);
  * no element from an end to itself, the solver and laws the network stepping supports. */
 void dp_network_check(const dp_spec *s, dp_errors *errs);
 
+/* Whether a network run locates its events inside steps (network_run.c): events "locate", some element can
+ * stick, and every law's pieces stay put as the step shrinks (linear springs, no relaxation or static
+ * threshold); otherwise a phase change is reported at the end of its step. */
+int dp_network_locates(const dp_spec *s);
+
 /* Checks the spec as a whole (the cross-field rules the JSON schema cannot state: theta only with linear
  * parts, the contraction condition (4.10) for the thesis variant, x0 within the rope, the step count limit
  * `max_steps`), appending located errors. Requires dp_model_prepare() to have run.

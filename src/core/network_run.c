@@ -716,13 +716,7 @@ int dp_network_run_init(dp_run *r)
     nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
     if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL)
         return DP_ENOMEM;
-    int sticky = 0, moving_vertices = 0;
-    for (size_t k = 0; k < nr->nact; k++)
-        sticky |= nr->can_stick[nr->act_el[k]], moving_vertices |= nr->act[k].S != NULL;
-    /* Location holds an assignment over shorter steps: its pieces must not move with the step's length, so
-     * graph springs (vertices at (y - u)/h), relaxation and static thresholds are stepped without it. */
-    nr->locate = r->spec.solver.events == DP_EVENTS_LOCATE && sticky && !moving_vertices && !nr->relaxed &&
-                 !nr->has_static;
+    nr->locate = dp_network_locates(&r->spec);
     if ((s = check_step_bound(r)) != DP_OK)
         return s;
     memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
@@ -776,6 +770,23 @@ int dp_network_run_advance(dp_run *r)
             emit_row(r);
     }
     return DP_OK;
+}
+
+/* Location holds an assignment over shorter steps: its pieces must not move with the step's length, so
+ * graph springs (vertices at (y - u)/h), relaxation and static thresholds are stepped without it. */
+int dp_network_locates(const dp_spec *s)
+{
+    int sticky = 0;
+    for (size_t i = 0; i < s->net->nel; i++) {
+        const dp_element *e = &s->net->el[i];
+        if (e->has_spring && e->spring.law != DP_SPRING_LINEAR)
+            return 0;
+        if (e->has_damper && (e->damper.relaxation.kind != DP_RELAX_NONE ||
+                              (e->damper.law == DP_DAMPER_GENERALIZED_COULOMB && e->damper.phi1 > e->damper.phi0)))
+            return 0;
+        sticky |= dp_element_can_stick(e);
+    }
+    return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }
 
 const dp_columns *dp_run_columns(const dp_run *r)

@@ -53,7 +53,8 @@ static int network_meta(const dp_spec *s, dp_buf *out)
     const dp_solver_spec *sv = &s->solver;
     const dp_network *net = s->net;
     int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"stick-slip\"");
-    st |= lit(out, ",\"variant\":\"exact\",\"events_mode\":\"step\",\"model\":\"network\"");
+    const char *mode = dp_network_locates(s) ? "locate" : sv->events == DP_EVENTS_NONE ? "none" : "step";
+    st |= lit(out, ",\"variant\":\"exact\",\"events_mode\":\"") | lit(out, mode) | lit(out, "\",\"model\":\"network\"");
     st |= num(out, "theta", sv->theta) | num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
     st |= num(out, "steps", dp_spec_steps(s));
     st |= lit(out, ",\"every\":") | whole(out, s->output.every);
