@@ -102,6 +102,22 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
     }
 }
 
+/* The regularized scheme on networks (network_regularized.c): (PCn), one n, a dense Jacobian. */
+static void check_regularized(const dp_spec *s, dp_errors *e)
+{
+    const dp_solver_spec *sv = &s->solver;
+    if (sv->scheme != DP_SCHEME_PC)
+        dp_errors_add(e, "/solver/scheme", "networks take scheme PC (Yosida dampers); PI is for one mass");
+    if (sv->n_count != 1)
+        dp_errors_add(e, "/solver/n", "networks take one n per run (a convergence study is for one mass)");
+    if (s->net->n > DP_NETWORK_MAX_MATRIX_NODES)
+        dp_errors_add(e, "/model/masses", "the regularized scheme integrates a dense Jacobian: at most %d nodes, "
+                      "got %zu (the stick-slip solver takes up to %d)", DP_NETWORK_MAX_MATRIX_NODES, s->net->n,
+                      DP_NETWORK_MAX_NODES);
+    if (!(sv->rtol >= 0 && sv->atol >= 0 && sv->rtol + sv->atol > 0) || !isfinite(sv->rtol + sv->atol))
+        dp_errors_add(e, "/solver/rtol", "rtol and atol must be finite, >= 0 and not both 0");
+}
+
 void dp_network_check(const dp_spec *s, dp_errors *e)
 {
     const dp_network *net = s->net;
@@ -112,8 +128,11 @@ void dp_network_check(const dp_spec *s, dp_errors *e)
     check_matrix(net->C, n, "/model/damping_matrix", 0, e);
     for (size_t i = 0; i < net->nel; i++)
         check_element(s, i, e);
-    if (s->solver.kind != DP_SOLVER_STICK_SLIP)
-        dp_errors_add(e, "/solver/kind", "networks are stepped by the stick-slip solver only (for now)");
+    if (s->solver.kind == DP_SOLVER_REGULARIZED)
+        check_regularized(s, e);
+    else if (s->solver.kind != DP_SOLVER_STICK_SLIP)
+        dp_errors_add(e, "/solver/kind", "networks take the stick-slip or the regularized solver (the analytic "
+                      "closed form is for one mass)");
     else if (s->solver.variant != DP_VARIANT_EXACT)
         dp_errors_add(e, "/solver/variant", "networks take the exact variant only (the thesis' algorithm is for "
                       "one mass)");

@@ -15,50 +15,12 @@
 
 #include <gsl/gsl_linalg.h>
 
-#include "network_step.h"
+#include "network_run.h"
 #include "root.h"
-#include "run_internal.h"
 
 /* Row storage per block: the block holds at most this many numbers of rows. */
 #define ROW_BUDGET (1u << 20)
 
-struct dp_net_run {
-    size_t n, nel, p, nact;
-    int relaxed;                /* some element has a relaxation gamma */
-    double theta;
-    const dp_network *net;
-    double *M, *K, *C;          /* band storage n x (p+1) */
-    dp_net_elem *act;           /* the elements of the convex problem */
-    const dp_relaxation **gamma; /* per active element, NULL without relaxation */
-    dp_graph *static_A;         /* per active element: generalized Coulomb's static graph (phi1), else empty */
-    unsigned char *held, *broke; /* per active element in a step: on its static graph; broke away this step */
-    int has_static;
-    int locate;                 /* events located inside the step (located_step) */
-    int solved;                 /* the workspace holds the assignment of the last step */
-    void *pattern;              /* the assignment at a sub-step's start */
-    double *margin;             /* per active element, of the assignment held over a shorter step */
-    double *roots;              /* per active element, when its held assignment fails (INFINITY: not here) */
-    long *act_of;               /* element -> its index in act, or -1 */
-    size_t *act_el;             /* index in act -> element */
-    double *k, *c;              /* per element: linear stiffness and viscosity */
-    dp_net_ws *ws;
-    double h_W;                 /* the step W was built for */
-    double *x, *v, *v1, *rhs, *tmp, *u;
-    dp_net_force *force;
-    double *Fs, *Fd;            /* per element, at the current state */
-    unsigned char *phase, *phase_prev, *can_stick;
-    dp_columns cols;
-    size_t *all_nodes, *all_elements;
-    size_t row_len, rows_cap, rows_used;
-    double *rows;               /* rows_cap rows of row_len numbers */
-    unsigned char *row_phase;   /* rows_cap x cols.elements */
-    double *final_row;          /* the summary's row */
-    unsigned char *final_phase;
-    dp_record *queue;           /* records that did not fit the caller's block */
-    size_t nq, iq, qcap;
-    double *pending_row;        /* the data of a queued row */
-    unsigned char *pending_phase;
-};
 
 static size_t bandwidth(const dp_network *net)
 {
@@ -85,7 +47,7 @@ static void to_band(const double *A, size_t n, size_t p, double *B)
 }
 
 /* y = A x for symmetric band A (n, p). */
-static void band_symv(const double *A, size_t n, size_t p, const double *x, double *y)
+void nr_band_symv(const double *A, size_t n, size_t p, const double *x, double *y)
 {
     for (size_t i = 0; i < n; i++)
         y[i] = A[i * (p + 1)] * x[i];
@@ -97,7 +59,7 @@ static void band_symv(const double *A, size_t n, size_t p, const double *x, doub
         }
 }
 
-static double rel(long a, long b, const double *x)
+double nr_rel(long a, long b, const double *x)
 {
     return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
 }
@@ -237,6 +199,7 @@ void dp_network_run_free(struct dp_net_run *nr)
     if (nr == NULL)
         return;
     dp_net_ws_free(nr->ws);
+    dp_network_regularized_free(nr->reg);
     for (size_t i = 0; nr->static_A && i < nr->nact; i++)
         dp_graph_clear(&nr->static_A[i]);
     void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
@@ -256,7 +219,7 @@ static void element_forces(struct dp_net_run *nr, int stepped)
 {
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
-        double u = rel(e->a, e->b, nr->x), z = rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
+        double u = nr_rel(e->a, e->b, nr->x), z = nr_rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
         double fs = nr->k[i] * u, fd = nr->c[i] * (z - vb), lo, hi;
         long k = nr->act_of[i];
         int rest = z == vb;
@@ -297,7 +260,7 @@ static dp_row fill_row(const struct dp_net_run *nr, double t, double *data, unsi
 }
 
 /* Queues a record for the caller: into its block while it has room and nothing waits, else the queue. */
-static void put(dp_run *r, const dp_record *rec)
+void nr_put(dp_run *r, const dp_record *rec)
 {
     struct dp_net_run *nr = r->net;
     if (nr->nq == 0 && r->out && r->out_n < r->out_cap) {
@@ -315,7 +278,7 @@ static void put(dp_run *r, const dp_record *rec)
     nr->queue[nr->nq++] = *rec;
 }
 
-static void emit_row(dp_run *r)
+void nr_emit_row(dp_run *r)
 {
     struct dp_net_run *nr = r->net;
     r->countdown = r->spec.output.every;
@@ -328,11 +291,11 @@ static void emit_row(dp_run *r)
     } else {
         rec.u.row = fill_row(nr, r->cur.t, nr->pending_row, nr->pending_phase);
     }
-    put(r, &rec);
+    nr_put(r, &rec);
     r->sum.samples++;
 }
 
-static void finalize_summary(dp_run *r)
+void nr_finalize_summary(dp_run *r)
 {
     struct dp_net_run *nr = r->net;
     r->sum.final_row = fill_row(nr, r->cur.t, nr->final_row, nr->final_phase);
@@ -363,7 +326,7 @@ static int static_solve(dp_run *r, double h)
         for (size_t k = 0; k < nr->nact; k++) {
             if (nr->static_A[k].n == 0)
                 continue;
-            double vb = nr->act[k].vb, z0 = rel(nr->act[k].a, nr->act[k].b, nr->v) - vb, z1 = nr->force[k].z - vb;
+            double vb = nr->act[k].vb, z0 = nr_rel(nr->act[k].a, nr->act[k].b, nr->v) - vb, z1 = nr->force[k].z - vb;
             if (nr->held[k] && !nr->force[k].at_rest) {
                 nr->held[k] = 0, nr->broke[k] = 1, changed = 1;
             } else if (!nr->held[k] && !nr->broke[k] && z0 != 0 && z1 != 0 && (z0 > 0) != (z1 > 0)) {
@@ -384,13 +347,13 @@ static void step_rhs(struct dp_net_run *nr, double t, double h)
     double th = nr->theta;
     if (h != nr->h_W)
         build_W(nr, h);
-    band_symv(nr->M, n, p, nr->v, nr->rhs);
-    band_symv(nr->C, n, p, nr->v, nr->tmp);
+    nr_band_symv(nr->M, n, p, nr->v, nr->rhs);
+    nr_band_symv(nr->C, n, p, nr->v, nr->tmp);
     for (size_t i = 0; i < n; i++) {
         nr->rhs[i] -= h * (1 - th) * nr->tmp[i];
         nr->v1[i] = nr->x[i] + h * th * (1 - th) * nr->v[i];
     }
-    band_symv(nr->K, n, p, nr->v1, nr->tmp);
+    nr_band_symv(nr->K, n, p, nr->v1, nr->tmp);
     for (size_t i = 0; i < n; i++)
         nr->rhs[i] -= h * nr->tmp[i];
     for (size_t i = 0; i < nr->net->nforce; i++)
@@ -404,7 +367,7 @@ static void step_rhs(struct dp_net_run *nr, double t, double h)
             nr->rhs[e->a] -= g;
     }
     for (size_t k = 0; k < nr->nact; k++)
-        nr->u[k] = rel(nr->act[k].a, nr->act[k].b, nr->x);
+        nr->u[k] = nr_rel(nr->act[k].a, nr->act[k].b, nr->x);
 }
 
 /* x+ = x + h ((1-theta) v + theta v+), v = v+. */
@@ -437,7 +400,7 @@ static int net_step(dp_run *r, double t, double h)
 }
 
 /* Events at time t for the elements whose phase differs from `before`. */
-static void step_events(dp_run *r, const unsigned char *before, double t)
+void nr_step_events(dp_run *r, const unsigned char *before, double t)
 {
     struct dp_net_run *nr = r->net;
     for (size_t i = 0; i < nr->nel; i++) {
@@ -449,14 +412,14 @@ static void step_events(dp_run *r, const unsigned char *before, double t)
         const dp_element *e = &nr->net->el[i];
         dp_record rec = { .type = DP_RECORD_EVENT };
         rec.u.event = (dp_event){ .kind = nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP,
-                                  .t = t, .x = rel(e->a, e->b, nr->x), .v = rel(e->a, e->b, nr->v),
+                                  .t = t, .x = nr_rel(e->a, e->b, nr->x), .v = nr_rel(e->a, e->b, nr->v),
                                   .element = i };
-        put(r, &rec);
+        nr_put(r, &rec);
     }
 }
 
 /* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
-static void stick_time(dp_run *r, const unsigned char *ph, double h)
+void nr_stick_time(dp_run *r, const unsigned char *ph, double h)
 {
     for (size_t i = 0; i < r->net->nel; i++)
         if (ph[i] == DP_PHASE_STICK)
@@ -562,8 +525,8 @@ static int located_step(dp_run *r, double t, double h)
         if (dp_net_ws_pattern_same(nr->ws, nr->pattern) || sub > 2 * nr->nact + 4) {
             take_velocity(nr, left);
             element_forces(nr, 1);
-            step_events(r, nr->phase_prev, t + left);
-            stick_time(r, nr->phase, left);
+            nr_step_events(r, nr->phase_prev, t + left);
+            nr_stick_time(r, nr->phase, left);
             return DP_OK;
         }
         size_t k;
@@ -575,8 +538,8 @@ static int located_step(dp_run *r, double t, double h)
                 return s;
             take_velocity(nr, left);
             element_forces(nr, 1);
-            step_events(r, nr->phase_prev, t + left);
-            stick_time(r, nr->phase, left);
+            nr_step_events(r, nr->phase_prev, t + left);
+            nr_stick_time(r, nr->phase, left);
             return DP_OK;
         }
         held_margin(&(held_ctx){ r, t, k }, at);     /* the state at the event, assignment held */
@@ -587,14 +550,14 @@ static int located_step(dp_run *r, double t, double h)
         for (size_t j = 0; j < nr->nact; j++)
             if (j == k || nr->roots[j] <= at + 1e-12 * left)
                 nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
-        stick_time(r, nr->phase_prev, at);
-        step_events(r, nr->phase_prev, t + at);
+        nr_stick_time(r, nr->phase_prev, at);
+        nr_step_events(r, nr->phase_prev, t + at);
         t += at, left -= at;
     }
     return DP_OK;
 }
 
-static int state_finite(const struct dp_net_run *nr)
+int nr_state_finite(const struct dp_net_run *nr)
 {
     for (size_t i = 0; i < nr->n; i++)
         if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
@@ -606,7 +569,7 @@ static int state_finite(const struct dp_net_run *nr)
 }
 
 /* Moves queued records into the caller's block (a queued row into a block slot of its own). */
-static void flush(dp_run *r)
+void nr_flush(dp_run *r)
 {
     struct dp_net_run *nr = r->net;
     while (nr->iq < nr->nq && r->out_n < r->out_cap) {
@@ -631,7 +594,7 @@ static void flush(dp_run *r)
 }
 
 /* Row slots for this block: one per record the caller can take, within ROW_BUDGET numbers. */
-static int reserve_rows(dp_run *r)
+int nr_reserve_rows(dp_run *r)
 {
     struct dp_net_run *nr = r->net;
     size_t want = r->out_cap, fit = ROW_BUDGET / (nr->row_len ? nr->row_len : 1);
@@ -721,6 +684,14 @@ int dp_network_run_init(dp_run *r)
         return s;
     memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
     memcpy(nr->v, r->spec.v0v, nr->n * sizeof *nr->v);
+    if (r->spec.solver.kind == DP_SOLVER_REGULARIZED) {
+        if ((s = dp_network_regularized_init(r)) != DP_OK)
+            return s;
+        r->countdown = 1;
+        nr_finalize_summary(r);
+        nr_emit_row(r);
+        return DP_OK;
+    }
     build_W(nr, r->h);
     /* The initial forces and phases: an exact step of a billionth of dt from the initial state says which
      * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
@@ -731,17 +702,19 @@ int dp_network_run_init(dp_run *r)
     else
         element_forces(nr, 0);
     r->countdown = 1;
-    finalize_summary(r);
-    emit_row(r);     /* the initial state: queued, no block yet */
+    nr_finalize_summary(r);
+    nr_emit_row(r);     /* the initial state: queued, no block yet */
     return DP_OK;
 }
 
 int dp_network_run_advance(dp_run *r)
 {
     struct dp_net_run *nr = r->net;
-    if (reserve_rows(r) != DP_OK)
+    if (nr->reg)
+        return dp_network_regularized_advance(r);
+    if (nr_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
-    flush(r);
+    nr_flush(r);
     while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
@@ -751,23 +724,23 @@ int dp_network_run_advance(dp_run *r)
             memcpy(nr->phase_prev, nr->phase, nr->nel);
             if ((s = net_step(r, t, h)) == DP_OK) {
                 element_forces(nr, 1);
-                step_events(r, nr->phase_prev, t + h);
-                stick_time(r, nr->phase, h);
+                nr_step_events(r, nr->phase_prev, t + h);
+                nr_stick_time(r, nr->phase, h);
             }
         }
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
         r->n++;
         r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
-        if (!state_finite(nr))
+        if (!nr_state_finite(nr))
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
         r->sum.steps = r->n;
         if (r->n >= r->nsteps) {
             r->finished = 1;
-            finalize_summary(r);
+            nr_finalize_summary(r);
         }
         if (--r->countdown <= 0 || r->n >= r->nsteps)
-            emit_row(r);
+            nr_emit_row(r);
     }
     return DP_OK;
 }

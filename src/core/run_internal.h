@@ -3,6 +3,8 @@
 #ifndef DASHPOT_CORE_RUN_INTERNAL_H
 #define DASHPOT_CORE_RUN_INTERNAL_H
 
+#include <gsl/gsl_odeiv2.h>
+
 #include "dashpot/analytic.h"
 #include "dashpot/run.h"
 
@@ -90,6 +92,8 @@ int dp_analytic_advance(dp_run *r);
 int dp_regularized_init(dp_run *r);
 int dp_regularized_advance(dp_run *r);
 void dp_regularized_free(struct dp_regularized *reg);
+/* The GSL odeiv2 stepper of a dp_stepper (regularized.c). */
+const gsl_odeiv2_step_type *dp_regularized_step_type(dp_stepper s);
 int dp_network_run_init(dp_run *r);
 int dp_network_run_advance(dp_run *r);
 void dp_network_run_free(struct dp_net_run *nr);
