@@ -2,8 +2,9 @@
 # tests/test_network.sh - network documents (systems.md §1, docs/networks.md) end to end, over HTTP and the
 # CLI: the 3-mass chain in every format (column names, array lengths, no NaN, events that name an element),
 # every kind of bad network input refused with 422 and the exact JSON Pointer, and two unconnected
-# networks in one document equal to the two separate runs, number for number. The JSON checks are python3
-# so that nothing here trusts the program's own parser. Env BUILD (default build).
+# networks in one document equal to the two separate runs, number for number, and the examples of
+# docs/networks.md print what it shows. The JSON checks are python3 so that nothing here trusts the
+# program's own parser. Env BUILD (default build).
 source "$(dirname "$0")/lib/daemon.bash"
 CLI=$BUILD/dashpot
 BODY=$SCRATCH/body
@@ -261,6 +262,34 @@ key = lambda x: (x["t"], x["element"], x["kind"])
 want = sorted([x for x in ea] + [dict(x, element=x["element"] + 3) for x in eb], key=key)
 assert sorted(e, key=key) == want, (len(e), len(want))
 '
+
+# ---- docs/networks.md: its examples print what it shows (the README's conventions, tests/test_readme.sh) ----
+DOC=$SCRATCH/doc
+mkdir -p "$DOC/build"
+ln -s "$CLI" "$DOC/build/dashpot"
+python3 - "$ROOT/docs/networks.md" "$DOC" <<'PY'
+import os, re, sys
+text, out = open(sys.argv[1]).read(), sys.argv[2]
+n = 0
+for kind, name, body in re.findall(r'<!-- (example|file: ([^ ]+)) -->\n```[a-z]*\n(.*?)```', text, re.S):
+    if kind.startswith('file'):
+        open(os.path.join(out, name), 'w').write(body)
+        continue
+    cmd, _, expected = body.partition('\n')
+    n += 1
+    open(os.path.join(out, 'cmd%02d' % n), 'w').write(cmd[2:] + '\n')
+    open(os.path.join(out, 'want%02d' % n), 'w').write(expected)
+open(os.path.join(out, 'count'), 'w').write(str(n))
+PY
+count=$(cat "$DOC/count")
+check "docs/networks.md has examples ($count)" test "$count" -ge 4
+for i in $(seq -f %02g "$count"); do
+    cmd=$(sed "s/localhost:8080/127.0.0.1:$PORT_net/g" "$DOC/cmd$i")
+    (cd "$DOC" && timeout 30 bash -c "$cmd") >"$DOC/got$i" 2>&1
+    if ! check "docs/networks.md example $i: $(head -c 70 "$DOC/cmd$i")" cmp -s "$DOC/got$i" "$DOC/want$i"; then
+        diff "$DOC/want$i" "$DOC/got$i" | head -10 | sed 's/^/    /'
+    fi
+done
 
 stop_daemon net
 check "SIGTERM: exit 0" is "$RC_net" 0
