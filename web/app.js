@@ -8,6 +8,7 @@
 // data-samples (sample lines received), data-points (samples held for plotting), data-summary-samples and
 // data-events, data-bands (stick intervals shaded) and data-run (runs started so far); each canvas carries
 // data-points (the points its last drawing went through). #panel-stability has data-state and data-run.
+// A network run (meta.model "network", docs/networks.md) is held and drawn by network.js instead.
 
 import { Table, Plot } from './plot.js';
 import { Editor, pretty } from './editor.js';
