@@ -15,10 +15,12 @@
 // The sample budget: a request without an "output" member is sent with output.max_samples of about the
 // plots' width in device pixels, so a 10^8-step run streams what the canvas can show, not 10^8 samples; the
 // server picks every (docs/http.md), the page says the curve is decimated. An explicit output is sent as is.
+// A network run (meta.model "network", docs/networks.md) is held and drawn by network.js instead.
 
 import { Table, Plot } from './plot.js';
 import { Editor, pretty } from './editor.js';
 import { PRESETS } from './presets.js';
+import { NetworkView } from './network.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
@@ -38,6 +40,7 @@ const ui = {
 const headers = (accept) => ({ 'Content-Type': 'application/json', Accept: accept,
   ...(ui.token ? { Authorization: 'Bearer ' + ui.token } : {}) });
 const editor = new Editor($('editor'), () => run());
+const network = new NetworkView(); // a run of a network model (meta.model "network") is drawn there
 
 // ---- presets and tabs ----
 
@@ -137,8 +140,9 @@ async function problemOf(res) {
 let sim = newRun();
 
 function newRun() {
-  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), events: [], stick: [], stickStart: null, meta: null,
-    summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0, label: '' };
+  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, events: [], stick: [], stickStart: null,
+    meta: null, summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
+    label: '' };
 }
 
 const stickBands = () => (sim.stickStart === null ? sim.stick : [...sim.stick, [sim.stickStart, sim.lastT]]);
@@ -155,6 +159,8 @@ const plots = [
 ];
 
 function drawAll() {
+  network.show(!!sim.net);
+  if (sim.net) { network.draw(sim.net); return; }
   for (const p of plots) { p.setTable(sim.table); p.draw(); }
 }
 
@@ -167,7 +173,7 @@ function setSimState(state) {
   const d = $('panel-simulate').dataset;
   d.state = state;
   d.samples = sim.samples;
-  d.points = sim.table.n;
+  d.points = sim.net ? sim.net.table.n : sim.table.n;
   d.events = sim.events.length;
   d.summarySamples = sim.summary ? sim.summary.samples : '';
   d.bands = stickBands().length;
@@ -197,6 +203,7 @@ function onRecord(o) {
     case 'sample':
       sim.samples++;
       sim.lastT = o.t;
+      if (sim.net) { sim.net.push(o); break; }
       if (sim.table.n < MAX_POINTS) sim.table.push(o);
       if (o.phase === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
       if (o.phase === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
@@ -209,6 +216,7 @@ function onRecord(o) {
     case 'meta':
       sim.meta = o;
       sim.tEnd = o.t_end;
+      if (o.model === 'network') sim.net = network.start(o);
       renderWellposedness(o.wellposedness, o);
       break;
     case 'summary': sim.summary = o; break;
@@ -296,14 +304,16 @@ function renderStats(state) {
     if (m.every > 1) h += `<span class="chip warn" id="decimated" title="output.every = ${m.every}">decimated: 1 sample per ${num(m.every)} steps` +
       (sim.budget ? ` (at most ${num(sim.budget)}, about the plot width; set "output" in the request to choose)` : '') + '</span>';
     if (m.branch) h += chip('branch', m.branch);
+    if (m.model === 'network') h += chip('nodes', num(m.nodes)) + chip('elements', num(m.elements));
     const wp = m.wellposedness;
     if (wp) for (const k of ['existence', 'uniqueness'])
       h += `<span class="chip ${wp[k].guaranteed ? 'ok' : 'no'}" title="${esc(wp[k].theorem || wp[k].reason)}"><b>${k}</b> ${wp[k].guaranteed ? '\u2713' : '\u2717 not'} guaranteed</span>`;
   }
   h += chip('samples', num(sim.samples)) + chip('events', num(sim.events.length));
   if (s) {
-    h += chip('stick time', num(s.stick_time)) + chip('final x', num(s.final.x, 6));
-    if (sim.samples > sim.table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
+    h += chip('stick time', num(s.stick_time));
+    if (!sim.net) h += chip('final x', num(s.final.x, 6));
+    if (sim.samples > (sim.net || sim).table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
   }
   $('stats').innerHTML = h;
   if (state === 'done') {

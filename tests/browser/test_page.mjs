@@ -106,7 +106,8 @@ function unexpected(from, allowed) {
 
 const state = (page, panel) => page.evaluate((id) => {
   const d = document.getElementById(id).dataset;
-  return { ...d, canvases: [...document.querySelectorAll(`#${id} canvas`)].map((c) => +c.dataset.points) };
+  // the plots on screen: a network run hides the one-mass plots and shows its own (web/network.js)
+  return { ...d, canvases: [...document.querySelectorAll(`#${id} canvas`)].filter((c) => c.offsetParent !== null).map((c) => +c.dataset.points) };
 }, panel);
 
 async function waitRun(page, panel, after) {
@@ -124,7 +125,7 @@ async function press(page, panel) {
 }
 
 // Pixels of saturated colour (curves and markers, not the grey grid, frame and labels) per canvas.
-const inked = (page) => page.evaluate(() => [...document.querySelectorAll('#panel-simulate canvas')].map((c) => {
+const inked = (page) => page.evaluate(() => [...document.querySelectorAll('#panel-simulate canvas')].filter((c) => c.offsetParent !== null).map((c) => {
   const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
   let n = 0;
   for (let i = 0; i < d.length; i += 4)
@@ -189,6 +190,56 @@ async function runPreset(page, name, id, origin) {
   return { d, lines, full };
 }
 
+// Runs a network preset (web/network.js) and checks what the page shows against the daemon's own stream:
+// the samples held and drawn, the per-node curves and their legend, the events, and the space-time picture:
+// the share of its pixels in the colour of the slowest velocity (a stuck block on the belt, v = -V) against
+// the share of (sample, node) pairs stuck in the stream. Returns what it found for the caller's own checks.
+async function runNetworkPreset(page, name, id, origin) {
+  const from = problems.length;
+  await page.selectOption('#preset', id);
+  const d = await press(page, 'panel-simulate');
+  const spec = await page.inputValue('#spec');
+  const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: spec, headers: { Accept: 'application/x-ndjson' } });
+  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  const meta = lines[0], samples = lines.filter((o) => o.type === 'sample'), events = lines.filter((o) => o.type === 'event');
+  const nodes = meta.columns.nodes.length, curves = Math.min(8, nodes);
+  check(d.state === 'done' && meta.model === 'network', `${name}: network preset ${id} streams to its end`, JSON.stringify(d));
+  check(+d.samples === samples.length && +d.points === samples.length && +d.summarySamples === samples.length,
+    `${name}: ${id}: ${samples.length} samples streamed and held for plotting`, JSON.stringify(d));
+  check(d.canvases.length === 3 && d.canvases.every((n) => n === samples.length),
+    `${name}: ${id}: the space-time picture and both per-node plots drew ${samples.length} samples (one-mass plots hidden)`,
+    JSON.stringify(d.canvases));
+  check(+d.events === events.length && events.every((e) => Number.isInteger(e.element) && e.element < meta.elements),
+    `${name}: ${id}: ${events.length} events, each naming an element`, `page: ${d.events}`);
+  const view = await page.evaluate(() => {
+    const box = document.getElementById('network-plots'), c = document.getElementById('plot-spacetime');
+    const [l, t, w, h] = c.dataset.area.split(',').map(Number), k = c.width / c.clientWidth;
+    const px = c.getContext('2d').getImageData(Math.ceil(l * k), Math.ceil(t * k), Math.floor(w * k) - 1, Math.floor(h * k) - 1).data;
+    let dark = 0, all = 0;
+    const colours = new Set();
+    for (let i = 0; i < px.length; i += 4) {
+      if (px[i + 3] === 0) continue; // columns not reached (none once the run is done)
+      all++;
+      colours.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
+      if (Math.abs(px[i] - 68) + Math.abs(px[i + 1] - 1) + Math.abs(px[i + 2] - 84) < 6) dark++;
+    }
+    return { nodes: +box.dataset.nodes, curves: +box.dataset.curves, legend: document.getElementById('legend-nodes-x').children.length,
+      oneHidden: document.getElementById('plots-one').hidden, dark: dark / Math.max(1, all), all, area: w * h * k * k, colours: colours.size };
+  });
+  check(view.nodes === nodes && view.curves === curves && view.legend === curves && view.oneHidden,
+    `${name}: ${id}: ${nodes} nodes in the picture, ${curves} per-node curves with their legend`, JSON.stringify(view));
+  const vmin = Math.min(...samples.map((s) => Math.min(...s.v)));
+  const stuck = samples.reduce((a, s) => a + s.v.filter((v) => v === vmin).length, 0) / (samples.length * nodes);
+  check(view.all > 0.95 * view.area && Math.abs(view.dark - stuck) < 0.03,
+    `${name}: ${id}: the picture is filled and ${(100 * view.dark).toFixed(1)}% of it has the colour of v = ${vmin} ` +
+    `(the stream: ${(100 * stuck).toFixed(1)}% of node-samples)`, JSON.stringify(view));
+  const ink = await inked(page);
+  check(ink.every((n) => n > 300), `${name}: ${id}: every network canvas carries curves or colour`, `saturated pixels: ${ink}`);
+  const bad = unexpected(from);
+  check(bad.length === 0, `${name}: ${id}: no console error, page error or failed request`, bad.join('\n    '));
+  return { d, view, events, stuck, samples, meta };
+}
+
 const out = base.endsWith('/') ? base : base + '/';
 try {
   // ---- the page at / ----
@@ -207,6 +258,21 @@ try {
   check(+belt.d.bands >= 4, `belt: the stick phases are shaded (${belt.d.bands} intervals)`);
   await screenshot(page, 'page-belt');
   await runPreset(page, 'page', 'counter-gc-motion', out);
+
+  // ---- networks (web/network.js) ----
+  const chain = await runNetworkPreset(page, 'page', 'chain-3', out);
+  check(chain.meta.nodes === 3 && chain.events.every((e) => e.element === 0) && chain.events.some((e) => e.kind === 'stick'),
+    'chain-3: the Coulomb element 0 sticks and slips (events name it)', JSON.stringify(chain.events.slice(0, 3)));
+  await screenshot(page, 'page-chain-3');
+  const bk = await runNetworkPreset(page, 'page', 'burridge-knopoff', out);
+  const kinds = (k) => bk.events.filter((e) => e.kind === k).length;
+  check(bk.meta.nodes >= 50 && kinds('stick') >= 30 && kinds('slip') >= 30 && bk.stuck > 0.05 && bk.stuck < 0.95 && bk.view.colours >= 32,
+    `burridge-knopoff: ${bk.meta.nodes} blocks stick-slip visibly (${kinds('stick')} sticks, ${kinds('slip')} slips, ` +
+    `${(100 * bk.stuck).toFixed(1)}% stuck, ${bk.view.colours} colours in the picture)`);
+  await screenshot(page, 'page-burridge-knopoff');
+  // back to one mass: the one-mass plots return, with the samples of the new run
+  const belt2 = await runPreset(page, 'page', 'belt', out);
+  check(belt2.d.canvases.length === 4, 'after a network run a one-mass preset shows its four plots again');
 
   // ---- an invalid spec: the error at the member its pointer names ----
   let from = problems.length;
