@@ -740,8 +740,8 @@ static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     sample_budget(c, o, ptr, s, out);
     get_bool(c, o, ptr, "samples", &out->samples);
     get_bool(c, o, ptr, "events", &out->events);
-    parse_columns(c, o, ptr, "nodes", "a node", s->net ? s->net->n : 0, &out->nodes, &out->nnodes);
-    parse_columns(c, o, ptr, "elements", "an element", s->net ? s->net->nel : 0, &out->elements,
+    parse_columns(c, o, ptr, "nodes", "a node", s, s->net ? s->net->n : 0, &out->nodes, &out->nnodes);
+    parse_columns(c, o, ptr, "elements", "an element", s, s->net ? s->net->nel : 0, &out->elements,
                   &out->nelements);
 }
 
