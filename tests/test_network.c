@@ -233,6 +233,31 @@ static void test_located_chain_is_second_order(void **state)
     free(ref.d);
 }
 
+/* Parallel stick intervals (two on [ground, 0], one on [0, ground]) under a load of 0.5 all stick; the
+ * reported split gives each its share in proportion to its interval's width: 0.1, 0.3 and -0.1. */
+static void test_parallel_stick_intervals_share_the_load(void **state)
+{
+    (void)state;
+    const char *json = "{\"model\":{\"masses\":[1],\"elements\":["
+        "{\"between\":[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":1}},"
+        "{\"between\":[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":3}},"
+        "{\"between\":[0,\"ground\"],\"damper\":{\"law\":\"coulomb\",\"phi0\":1}}],"
+        "\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":0.5}]},\"solver\":{\"dt\":0.01,\"t_end\":1}}";
+    rows r;
+    rows_run(json, 64, &r);
+    assert_int_equal(r.status, DP_DONE);
+    static const double share[3] = { 0.1, 0.3, -0.1 };
+    for (size_t i = 0; i < r.n; i++) {
+        const double *o = r.d + i * r.width;
+        assert_true(o[1] == 0 && o[2] == 0);
+        for (int e = 0; e < 3; e++) {
+            assert_true(fabs(o[6 + e] - share[e]) < 1e-12);
+            assert_true(o[9 + e] == DP_PHASE_STICK);
+        }
+    }
+    free(r.d);
+}
+
 /* The regularized scheme (PCn, Yosida dampers) converges to the exact stepping at rate 1/n: each decade of n
  * takes a decade off the error (measured 8.3e-3, 8.4e-4, 8.4e-5 for n = 1e2, 1e3, 1e4). */
 static void test_regularized_converges_at_rate_one_over_n(void **state)
@@ -444,6 +469,7 @@ int main(void)
         cmocka_unit_test(test_sticking_block_does_not_creep),
         cmocka_unit_test(test_records_do_not_depend_on_the_block),
         cmocka_unit_test(test_relaxation_step_bound),
+        cmocka_unit_test(test_parallel_stick_intervals_share_the_load),
         cmocka_unit_test(test_regularized_converges_at_rate_one_over_n),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

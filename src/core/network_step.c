@@ -526,6 +526,73 @@ static int release(dp_net_ws *w, double h, const double *u)
     return 0;
 }
 
+/* Whether free element i sits exactly at rest (z = v_b, inside A's interval there) between two ends the
+ * fixed forest already joins: a stick interval in parallel with a fixed one, which could not be fixed itself
+ * (its constraint depends on the others). */
+static int parallel_at_rest(dp_net_ws *w, size_t i, const dp_net_force *o)
+{
+    const dp_net_elem *e = &w->el[i];
+    double lo, hi;
+    if (w->es[i].st != FREE || e->A == NULL || e->S != NULL || o->z != e->vb || w->g1[i] != 0 || w->g0[i] != 0)
+        return 0;
+    dp_graph_force(e->A, 0, &lo, &hi);
+    return hi > lo && find(w, (long)end_index(w, e->a)) == find(w, (long)end_index(w, e->b));
+}
+
+/* A fixed element at rest with the same ends as free element i (either way round), or -1; *sign is +1 when
+ * it has i's orientation. */
+static long parallel_partner(const dp_net_ws *w, size_t i, double *sign)
+{
+    const dp_net_elem *e = &w->el[i];
+    for (long slot = w->head[end_index(w, e->a)]; slot >= 0; slot = w->next_edge[slot]) {
+        size_t j = (size_t)slot / 2;
+        const dp_net_elem *p = &w->el[j];
+        if (j == i || p->A == NULL || p->S != NULL || w->es[j].fix.src != SRC_A || w->es[j].fix.y != 0)
+            continue;
+        if (p->a == e->a && p->b == e->b)
+            return *sign = 1, (long)j;
+        if (p->a == e->b && p->b == e->a)
+            return *sign = -1, (long)j;
+    }
+    return -1;
+}
+
+/* Parallel stick intervals hold their common force together, but how they split it is not determined by
+ * the motion: the split reported gives each its lower bound plus a share of the rest in proportion to its
+ * interval's width (so each stays inside its own interval), and all of them stick. */
+static void share_parallel(dp_net_ws *w, dp_net_force *f)
+{
+    for (size_t i = 0; i < w->ne; i++) {
+        double sign_i;
+        long j;
+        if (!parallel_at_rest(w, i, &f[i]) || (j = parallel_partner(w, i, &sign_i)) < 0)
+            continue;
+        /* the group: j and every free element at rest parallel to it (in j's orientation) */
+        double total = f[j].lambda, lo_sum, hi_sum, lo, hi;
+        dp_graph_force(w->el[j].A, 0, &lo_sum, &hi_sum);
+        for (size_t k = i; k < w->ne; k++) {
+            double sg;
+            if (parallel_at_rest(w, k, &f[k]) && parallel_partner(w, k, &sg) == j) {
+                dp_graph_force(w->el[k].A, 0, &lo, &hi);
+                total += sg * f[k].lambda;
+                lo_sum += sg > 0 ? lo : -hi, hi_sum += sg > 0 ? hi : -lo;
+                f[k].at_rest = 2;   /* mark: in this group */
+            }
+        }
+        double spare = total - lo_sum, width = hi_sum - lo_sum;
+        for (size_t k = 0; k < w->ne; k++) {
+            double sg = 1;
+            if (k != (size_t)j && !(f[k].at_rest == 2 && parallel_partner(w, k, &sg) == j))
+                continue;
+            dp_graph_force(w->el[k].A, 0, &lo, &hi);
+            double klo = sg > 0 ? lo : -hi, khi = sg > 0 ? hi : -lo;
+            double share = klo + spare * (khi - klo) / width;
+            f[k].lambda = f[k].a = sg * share;
+            f[k].at_rest = 1;
+        }
+    }
+}
+
 static void report(dp_net_ws *w, double h, const double *u, const double *v, dp_net_force *f)
 {
     for (size_t i = 0; i < w->ne; i++) {
@@ -554,6 +621,7 @@ static void report(dp_net_ws *w, double h, const double *u, const double *v, dp_
         if (o->at_rest)
             o->z = e->vb;
     }
+    share_parallel(w, f);
 }
 
 /* The piecewise-linear problem (the relaxation frozen in its linearization) from the start point v. */
