@@ -19,7 +19,7 @@ ASAN_UBSAN := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize
 SANFLAGS := $(if $(SAN),$(ASAN_UBSAN))
 CPPFLAGS += -Iinclude -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
 ALL_CFLAGS = $(WARN) $(CFLAGS) $(SANFLAGS)
-LDLIBS_CORE := -lgsl -lgslcblas -lm
+LDLIBS_CORE := -lgsl -lgslcblas -llapack -lm
 LDLIBS_JSON := -lcjson
 LDLIBS_HTTP := -lmicrohttpd -lpthread
 LDFLAGS += $(SANFLAGS)

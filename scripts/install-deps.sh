@@ -3,7 +3,7 @@
 # Fast when everything is present (dpkg query only); installs the missing ones with apt-get as root,
 # or prints the exact command when not root. Used by `make test`, `make run` and .ci/run.
 set -euo pipefail
-pkgs=(build-essential pkg-config python3 python3-yaml libgsl-dev libcjson-dev libmicrohttpd-dev libcmocka-dev curl)
+pkgs=(build-essential pkg-config python3 python3-yaml libgsl-dev liblapack-dev libcjson-dev libmicrohttpd-dev libcmocka-dev curl)
 [ "${1:-}" = "--bench" ] && pkgs+=(wrk python3-numpy python3-scipy valgrind)
 [ "${1:-}" = "--fuzz" ] && pkgs+=(clang libclang-rt-14-dev)
 [ "${1:-}" = "--robustness" ] && pkgs+=(wrk valgrind)
