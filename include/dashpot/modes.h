@@ -15,7 +15,8 @@
 #include "dashpot/status.h"
 
 /* Dense eigenproblems cost n^3: documents past these sizes are refused (DP_ELIMIT). */
-#define DP_MODES_MAX_NODES 2000
+#define DP_MODES_MAX_NODES 2000         /* chains (the O(n^2) route) */
+#define DP_MODES_MAX_DENSE_NODES 1000   /* anything else */
 #define DP_MODES_MAX_DAMPED_NODES 400
 
 /* One damped eigenvalue lambda of (lambda^2 M + lambda C + K) phi = 0 with Im lambda >= 0. */

@@ -377,6 +377,11 @@ int dp_modes_solve(size_t n, const double *M, const double *K, const double *C, 
     if (!out->lambda || !out->shape || !out->rigid || !out->participation || !out->modal_damping)
         return DP_ENOMEM;
     out->tridiagonal = is_chain(n, M, K);
+    if (!out->tridiagonal && n > DP_MODES_MAX_DENSE_NODES) {
+        dp_errors_add(errs, pointer_K, "a network that is not a chain (diagonal masses, tridiagonal stiffness) is "
+                      "solved densely, for up to %d nodes, not %zu", DP_MODES_MAX_DENSE_NODES, n);
+        return DP_ELIMIT;
+    }
     s = out->tridiagonal ? solve_chain(n, M, K, out) : solve_dense(n, M, K, out);
     s = s ? s : finish_shapes(n, M, m_diagonal(n, M), K, pointer_K, out, errs);
     s = s ? s : modal_damping(n, damped ? C : NULL, out);
