@@ -66,4 +66,8 @@ void dp_network_linear_parts(const dp_network *net, double *M, double *K, double
  * linear analysis leaves out. Writes their indices into `out` (room for net->nel) and returns how many. */
 size_t dp_network_nonlinear_elements(const dp_network *net, size_t *out);
 
+struct dp_wp_report;
+/* What the theory guarantees for a checked network (network_wellposedness.c). */
+void dp_network_wellposedness(const dp_network *net, struct dp_wp_report *rep);
+
 #endif

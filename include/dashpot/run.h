@@ -30,13 +30,28 @@ typedef enum dp_event_kind { DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2 } dp_event_ki
 typedef struct dp_event {
     dp_event_kind kind;
     double t, x, v;
+    size_t element;  /* networks: the element that changed phase (x, v: its elongation and rate) */
 } dp_event;
 
-typedef enum dp_record_type { DP_RECORD_SAMPLE = 1, DP_RECORD_EVENT = 2 } dp_record_type;
+/* A network run's columns (dp_run_columns): the nodes and elements its rows hold, in order. */
+typedef struct dp_columns {
+    size_t nodes, elements;
+    const size_t *node, *element;   /* their indices in the model */
+} dp_columns;
+
+/* A network sample: arrays over the columns, owned by the run and valid until its next dp_run_next. */
+typedef struct dp_row {
+    double t;
+    const double *x, *v;            /* per node column */
+    const double *Fs, *Fd;          /* per element column */
+    const unsigned char *phase;     /* per element column: a dp_phase */
+} dp_row;
+
+typedef enum dp_record_type { DP_RECORD_SAMPLE = 1, DP_RECORD_EVENT = 2, DP_RECORD_ROW = 3 } dp_record_type;
 
 typedef struct dp_record {
     dp_record_type type;
-    union { dp_sample sample; dp_event event; } u;
+    union { dp_sample sample; dp_event event; dp_row row; } u;
 } dp_record;
 
 typedef struct dp_summary {
@@ -48,6 +63,7 @@ typedef struct dp_summary {
                                     * regularized: Jacobian evaluations */
     unsigned long long rejected;   /* regularized: steps the error control rejected (0 elsewhere) */
     unsigned long long fevals;     /* regularized: right-hand side evaluations (0 elsewhere) */
+    dp_row final_row;              /* networks: the state at t_end (arrays valid while the run lives) */
 } dp_summary;
 
 typedef struct dp_run dp_run;
@@ -64,6 +80,9 @@ int dp_run_next(dp_run *run, dp_record *buf, size_t cap, size_t *n);
 
 /* Running totals; final once dp_run_next returned DP_DONE. */
 const dp_summary *dp_run_summary(const dp_run *run);
+
+/* A network run's columns; NULL for the one-mass model (whose samples are dp_sample records). */
+const dp_columns *dp_run_columns(const dp_run *run);
 
 /* Fraction of simulated time done, in [0, 1]. */
 double dp_run_progress(const dp_run *run);

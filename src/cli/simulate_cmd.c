@@ -57,6 +57,7 @@ static int stream(dp_run *run, dp_format fmt, const dp_buf *meta, progress *pg)
     dp_buf b = { 0 };
     dp_encoder enc;
     dp_encoder_init(&enc, fmt);
+    dp_encoder_set_columns(&enc, dp_run_columns(run));
     int s = recs ? dp_encoder_begin(&enc, &b, meta->data) : DP_ENOMEM, io = 0;
     size_t n;
     while (s == DP_OK || s == DP_MORE) {

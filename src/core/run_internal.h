@@ -52,6 +52,8 @@ struct dp_run {
     dp_coulomb_arc an_arc;
     /* regularized solver (regularized.c): its GSL workspace */
     struct dp_regularized *reg;
+    /* network solver (network_run.c) */
+    struct dp_net_run *net;
 };
 
 /* Queues one record for the caller. */
@@ -87,6 +89,11 @@ int dp_analytic_advance(dp_run *r);
 int dp_regularized_init(dp_run *r);
 int dp_regularized_advance(dp_run *r);
 void dp_regularized_free(struct dp_regularized *reg);
+int dp_network_run_init(dp_run *r);
+int dp_network_run_advance(dp_run *r);
+void dp_network_run_free(struct dp_net_run *nr);
+/* Whether records wait in the network run's queue. */
+int dp_network_run_pending(const dp_run *r);
 
 /* The step length of step n (the last one ends exactly at t_end). */
 static inline double dp_run_step_length(const dp_run *r)

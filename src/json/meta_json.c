@@ -46,9 +46,37 @@ static int whole(dp_buf *out, long v)
     return dp_buf_append(out, p, (size_t)(t + sizeof t - p));
 }
 
+/* A network run's meta: its size and the columns its rows hold, so an array member can be read by name. */
+static int network_meta(const dp_spec *s, dp_buf *out)
+{
+    const dp_solver_spec *sv = &s->solver;
+    const dp_network *net = s->net;
+    int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"stick-slip\"");
+    st |= lit(out, ",\"variant\":\"exact\",\"events_mode\":\"step\",\"model\":\"network\"");
+    st |= num(out, "theta", sv->theta) | num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
+    st |= num(out, "steps", dp_spec_steps(s));
+    st |= lit(out, ",\"every\":") | whole(out, s->output.every);
+    st |= lit(out, ",\"nodes\":") | whole(out, (long)net->n) | lit(out, ",\"elements\":") | whole(out, (long)net->nel);
+    st |= lit(out, ",\"columns\":{\"nodes\":[");
+    size_t nn = s->output.nodes ? s->output.nnodes : net->n, ne = s->output.elements ? s->output.nelements : net->nel;
+    for (size_t i = 0; i < nn; i++)
+        st |= lit(out, i ? "," : "") | whole(out, (long)(s->output.nodes ? s->output.nodes[i] : i));
+    st |= lit(out, "],\"elements\":[");
+    for (size_t i = 0; i < ne; i++)
+        st |= lit(out, i ? "," : "") | whole(out, (long)(s->output.elements ? s->output.elements[i] : i));
+    st |= lit(out, "]},\"wellposedness\":");
+    dp_wp_report wp;
+    dp_network_wellposedness(net, &wp);
+    st |= dp_wellposedness_json(&wp, out);
+    st |= dp_buf_append(out, "}", 1);
+    return st ? DP_ENOMEM : DP_OK;
+}
+
 /* Written piece by piece rather than with snprintf: this object opens every run, small ones included. */
 int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
 {
+    if (s->net)
+        return network_meta(s, out);
     const dp_solver_spec *sv = &s->solver;
     int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"") | lit(out, solver_name(sv));
     st |= lit(out, "\",\"variant\":\"") | lit(out, variant_name(sv));

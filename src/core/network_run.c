@@ -1,0 +1,480 @@
+/* src/core/network_run.c - the stick-slip solver on a network: theta-steps solved exactly by
+ * network_step.c, samples as rows over the chosen columns, a phase change per element as an event.
+ *
+ * The linear parts are weighted exactly as the one-mass scheme weights them (mathematics.md §4):
+ *     W = M + h theta C + h^2 theta^2 K,
+ *     rhs = M v - h (1-theta) C v - h K (x + h theta (1-theta) v) + h f(t + theta h) + h sum_e c_e v_b,e b_e,
+ * and the graphs at the step's end (springs at u + h z, as the one-mass step takes them), so a network of
+ * one node and one element [ground, 0] is the one-mass model step for step. Events are resolved to the
+ * step: a phase change is reported at the end of the step that made it.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_step.h"
+#include "run_internal.h"
+
+/* Row storage per block: the block holds at most this many numbers of rows. */
+#define ROW_BUDGET (1u << 20)
+
+struct dp_net_run {
+    size_t n, nel, p, nact;
+    double theta;
+    const dp_network *net;
+    double *M, *K, *C;          /* band storage n x (p+1) */
+    dp_net_elem *act;           /* the elements of the convex problem */
+    long *act_of;               /* element -> its index in act, or -1 */
+    double *k, *c;              /* per element: linear stiffness and viscosity */
+    dp_net_ws *ws;
+    double h_W;                 /* the step W was built for */
+    double *x, *v, *v1, *rhs, *tmp, *u;
+    dp_net_force *force;
+    double *Fs, *Fd;            /* per element, at the current state */
+    unsigned char *phase, *phase_prev, *can_stick;
+    dp_columns cols;
+    size_t *all_nodes, *all_elements;
+    size_t row_len, rows_cap, rows_used;
+    double *rows;               /* rows_cap rows of row_len numbers */
+    unsigned char *row_phase;   /* rows_cap x cols.elements */
+    double *final_row;          /* the summary's row */
+    unsigned char *final_phase;
+    dp_record *queue;           /* records that did not fit the caller's block */
+    size_t nq, iq, qcap;
+    double *pending_row;        /* the data of a queued row */
+    unsigned char *pending_phase;
+};
+
+static size_t bandwidth(const dp_network *net)
+{
+    size_t n = net->n, p = 0;
+    const double *mats[3] = { net->M, net->K, net->C };
+    for (int m = 0; m < 3; m++)
+        if (mats[m])
+            for (size_t i = 0; i < n; i++)
+                for (size_t j = i + p + 1; j < n; j++)
+                    if (mats[m][i * n + j] != 0)
+                        p = j - i;
+    for (size_t e = 0; e < net->nel; e++)
+        if (net->el[e].a >= 0 && net->el[e].b >= 0 && (size_t)labs(net->el[e].a - net->el[e].b) > p)
+            p = (size_t)labs(net->el[e].a - net->el[e].b);
+    return p;
+}
+
+/* Dense row-major n x n into band storage. */
+static void to_band(const double *A, size_t n, size_t p, double *B)
+{
+    for (size_t i = 0; i < n; i++)
+        for (size_t d = 0; d <= p && i + d < n; d++)
+            B[i * (p + 1) + d] = A[(i + d) * n + i];
+}
+
+/* y = A x for symmetric band A (n, p). */
+static void band_symv(const double *A, size_t n, size_t p, const double *x, double *y)
+{
+    for (size_t i = 0; i < n; i++)
+        y[i] = A[i * (p + 1)] * x[i];
+    for (size_t i = 0; i < n; i++)
+        for (size_t d = 1; d <= p && i + d < n; d++) {
+            double a = A[i * (p + 1) + d];
+            y[i] += a * x[i + d];
+            y[i + d] += a * x[i];
+        }
+}
+
+static double rel(long a, long b, const double *x)
+{
+    return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
+}
+
+static void build_W(struct dp_net_run *nr, double h)
+{
+    size_t len = nr->n * (nr->p + 1);
+    double *W = dp_net_ws_W(nr->ws), th = nr->theta;
+    for (size_t i = 0; i < len; i++)
+        W[i] = nr->M[i] + h * th * nr->C[i] + h * h * th * th * nr->K[i];
+    dp_net_ws_W_changed(nr->ws);
+    nr->h_W = h;
+}
+
+/* ---- allocation ------------------------------------------------------------------------------------- */
+
+static int alloc_all(struct dp_net_run *nr)
+{
+    size_t n = nr->n, ne = nr->nel ? nr->nel : 1, band = n * (nr->p + 1);
+    nr->M = calloc(band, sizeof(double));
+    nr->K = calloc(band, sizeof(double));
+    nr->C = calloc(band, sizeof(double));
+    nr->act = calloc(ne, sizeof *nr->act);
+    nr->act_of = calloc(ne, sizeof *nr->act_of);
+    nr->k = calloc(ne, sizeof(double));
+    nr->c = calloc(ne, sizeof(double));
+    nr->x = calloc(n, sizeof(double));
+    nr->v = calloc(n, sizeof(double));
+    nr->v1 = calloc(n, sizeof(double));
+    nr->rhs = calloc(n, sizeof(double));
+    nr->tmp = calloc(n, sizeof(double));
+    nr->u = calloc(ne, sizeof(double));
+    nr->force = calloc(ne, sizeof *nr->force);
+    nr->Fs = calloc(ne, sizeof(double));
+    nr->Fd = calloc(ne, sizeof(double));
+    nr->phase = calloc(ne, 1);
+    nr->phase_prev = calloc(ne, 1);
+    nr->can_stick = calloc(ne, 1);
+    nr->all_nodes = calloc(n, sizeof(size_t));
+    nr->all_elements = calloc(ne, sizeof(size_t));
+    nr->qcap = ne + 2;
+    nr->queue = calloc(nr->qcap, sizeof *nr->queue);
+    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
+           nr->rhs && nr->tmp && nr->u && nr->force && nr->Fs && nr->Fd && nr->phase && nr->phase_prev && nr->can_stick &&
+           nr->all_nodes && nr->all_elements && nr->queue ? DP_OK : DP_ENOMEM;
+}
+
+/* B += w b b^T in band storage for an element's incidence vector b. */
+static void band_add_incidence(double *B, size_t p, long a, long b, double w)
+{
+    if (w == 0)
+        return;
+    if (a >= 0)
+        B[(size_t)a * (p + 1)] += w;
+    if (b >= 0)
+        B[(size_t)b * (p + 1)] += w;
+    if (a >= 0 && b >= 0) {
+        size_t lo = (size_t)(a < b ? a : b), d = (size_t)labs(a - b);
+        B[lo * (p + 1) + d] -= w;
+    }
+}
+
+/* The linear parts straight into band storage (a dense n x n copy would not fit a chain of 10^4 blocks);
+ * the elements' nonlinear laws into the convex problem's list. */
+static int setup_laws(struct dp_net_run *nr)
+{
+    const dp_network *net = nr->net;
+    size_t n = nr->n, p = nr->p;
+    if (net->M)
+        to_band(net->M, n, p, nr->M);
+    else
+        for (size_t i = 0; i < n; i++)
+            nr->M[i * (p + 1)] = net->mass[i];
+    if (net->K)
+        to_band(net->K, n, p, nr->K);
+    if (net->C)
+        to_band(net->C, n, p, nr->C);
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        int lin_spring = !e->has_spring || e->spring.law == DP_SPRING_LINEAR;
+        nr->k[i] = e->has_spring && lin_spring ? e->spring.k : 0;
+        nr->c[i] = e->has_damper && (e->damper.law == DP_DAMPER_LINEAR || e->damper.law == DP_DAMPER_BINGHAM)
+                   ? e->damper.c : 0;
+        int set_damper = e->has_damper && e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR;
+        nr->can_stick[i] = (unsigned char)dp_element_can_stick(e);
+        nr->act_of[i] = -1;
+        band_add_incidence(nr->K, p, e->a, e->b, nr->k[i]);
+        band_add_incidence(nr->C, p, e->a, e->b, nr->c[i]);
+        if (!set_damper && lin_spring)
+            continue;
+        nr->act_of[i] = (long)nr->nact;
+        nr->act[nr->nact++] = (dp_net_elem){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
+                                             .S = lin_spring ? NULL : &e->spring.graph,
+                                             .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+    }
+    return DP_OK;
+}
+
+static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
+{
+    for (size_t i = 0; i < nr->n; i++)
+        nr->all_nodes[i] = i;
+    for (size_t i = 0; i < nr->nel; i++)
+        nr->all_elements[i] = i;
+    nr->cols.nodes = o->nodes ? o->nnodes : nr->n;
+    nr->cols.node = o->nodes ? o->nodes : nr->all_nodes;
+    nr->cols.elements = o->elements ? o->nelements : nr->nel;
+    nr->cols.element = o->elements ? o->elements : nr->all_elements;
+    nr->row_len = 2 * nr->cols.nodes + 2 * nr->cols.elements;
+    size_t rl = nr->row_len ? nr->row_len : 1, ne = nr->cols.elements ? nr->cols.elements : 1;
+    nr->final_row = calloc(rl, sizeof(double));
+    nr->pending_row = calloc(rl, sizeof(double));
+    nr->final_phase = calloc(ne, 1);
+    nr->pending_phase = calloc(ne, 1);
+    return nr->final_row && nr->pending_row && nr->final_phase && nr->pending_phase ? DP_OK : DP_ENOMEM;
+}
+
+void dp_network_run_free(struct dp_net_run *nr)
+{
+    if (nr == NULL)
+        return;
+    dp_net_ws_free(nr->ws);
+    void *p[] = { nr->M, nr->K, nr->C, nr->act, nr->act_of, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+                  nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
+                  nr->all_elements, nr->rows, nr->row_phase, nr->final_row, nr->final_phase, nr->queue,
+                  nr->pending_row, nr->pending_phase };
+    for (size_t i = 0; i < sizeof p / sizeof *p; i++)
+        free(p[i]);
+    free(nr);
+}
+
+/* ---- the state's forces and rows ------------------------------------------------------------------- */
+
+/* Each element's forces and phase at the current state; `stepped`: after a step (forces from its
+ * solution), else the initial state (set-valued forces taken closest to zero). */
+static void element_forces(struct dp_net_run *nr, int stepped)
+{
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        double u = rel(e->a, e->b, nr->x), z = rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
+        double fs = nr->k[i] * u, fd = nr->c[i] * (z - vb), lo, hi;
+        long k = nr->act_of[i];
+        int rest = z == vb;
+        if (k >= 0 && stepped) {
+            const dp_net_force *f = &nr->force[k];
+            fs += f->s, fd += f->a, rest = f->at_rest;
+        } else if (k >= 0) {
+            if (nr->act[k].S) {
+                dp_graph_force(nr->act[k].S, u, &lo, &hi);
+                fs += fmin(fmax(0.0, lo), hi);
+            }
+            if (nr->act[k].A) {
+                dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
+                fd += fmin(fmax(0.0, lo), hi);
+            }
+        }
+        nr->Fs[i] = fs, nr->Fd[i] = fd;
+        nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
+    }
+}
+
+static dp_row fill_row(const struct dp_net_run *nr, double t, double *data, unsigned char *ph)
+{
+    size_t nn = nr->cols.nodes, ne = nr->cols.elements;
+    dp_row row = { .t = t, .x = data, .v = data + nn, .Fs = data + 2 * nn, .Fd = data + 2 * nn + ne, .phase = ph };
+    for (size_t j = 0; j < nn; j++) {
+        size_t i = nr->cols.node[j];
+        data[j] = nr->x[i], data[nn + j] = nr->v[i];
+    }
+    for (size_t j = 0; j < ne; j++) {
+        size_t i = nr->cols.element[j];
+        data[2 * nn + j] = nr->Fs[i], data[2 * nn + ne + j] = nr->Fd[i];
+        ph[j] = nr->phase[i];
+    }
+    return row;
+}
+
+/* Queues a record for the caller: into its block while it has room and nothing waits, else the queue. */
+static void put(dp_run *r, const dp_record *rec)
+{
+    struct dp_net_run *nr = r->net;
+    if (nr->nq == 0 && r->out && r->out_n < r->out_cap)
+        r->out[r->out_n++] = *rec;
+    else if (nr->nq < nr->qcap)
+        nr->queue[nr->nq++] = *rec;
+}
+
+static void emit_row(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    r->countdown = r->spec.output.every;
+    if (!r->spec.output.samples)
+        return;
+    dp_record rec = { .type = DP_RECORD_ROW };
+    if (nr->nq == 0 && r->out && r->out_n < r->out_cap && nr->rows_used < nr->rows_cap) {
+        size_t s = nr->rows_used++;
+        rec.u.row = fill_row(nr, r->cur.t, nr->rows + s * nr->row_len, nr->row_phase + s * nr->cols.elements);
+    } else {
+        rec.u.row = fill_row(nr, r->cur.t, nr->pending_row, nr->pending_phase);
+    }
+    put(r, &rec);
+    r->sum.samples++;
+}
+
+static void finalize_summary(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    r->sum.final_row = fill_row(nr, r->cur.t, nr->final_row, nr->final_phase);
+}
+
+/* ---- stepping --------------------------------------------------------------------------------------- */
+
+/* One theta-step of length h from time t (network_step.h for the problem it solves). */
+static int net_step(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    size_t n = nr->n, p = nr->p;
+    double th = nr->theta;
+    if (h != nr->h_W)
+        build_W(nr, h);
+    band_symv(nr->M, n, p, nr->v, nr->rhs);
+    band_symv(nr->C, n, p, nr->v, nr->tmp);
+    for (size_t i = 0; i < n; i++) {
+        nr->rhs[i] -= h * (1 - th) * nr->tmp[i];
+        nr->v1[i] = nr->x[i] + h * th * (1 - th) * nr->v[i];
+    }
+    band_symv(nr->K, n, p, nr->v1, nr->tmp);
+    for (size_t i = 0; i < n; i++)
+        nr->rhs[i] -= h * nr->tmp[i];
+    for (size_t i = 0; i < nr->net->nforce; i++)
+        nr->rhs[nr->net->force[i].node] += h * dp_forcing_eval(&nr->net->force[i].f, t + th * h);
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        double g = e->has_damper ? h * nr->c[i] * e->damper.belt_velocity : 0;
+        if (g != 0 && e->b >= 0)
+            nr->rhs[e->b] += g;
+        if (g != 0 && e->a >= 0)
+            nr->rhs[e->a] -= g;
+    }
+    for (size_t k = 0; k < nr->nact; k++)
+        nr->u[k] = rel(nr->act[k].a, nr->act[k].b, nr->x);
+    int s = dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+    if (s != DP_OK)
+        return s;
+    for (size_t i = 0; i < n; i++) {
+        nr->x[i] += h * ((1 - th) * nr->v[i] + th * nr->v1[i]);
+        nr->v[i] = nr->v1[i];
+    }
+    return DP_OK;
+}
+
+static int state_finite(const struct dp_net_run *nr)
+{
+    for (size_t i = 0; i < nr->n; i++)
+        if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
+            return 0;
+    for (size_t i = 0; i < nr->nel; i++)
+        if (!isfinite(nr->Fs[i]) || !isfinite(nr->Fd[i]))
+            return 0;
+    return 1;
+}
+
+/* Events for the elements whose phase changed in the step just done; time spent sticking. */
+static void phase_events(dp_run *r, const unsigned char *before, double h)
+{
+    struct dp_net_run *nr = r->net;
+    for (size_t i = 0; i < nr->nel; i++) {
+        if (nr->phase[i] == DP_PHASE_STICK)
+            r->sum.stick_time += h;
+        if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
+            continue;
+        r->sum.events++;
+        if (!r->spec.output.events)
+            continue;
+        const dp_element *e = &nr->net->el[i];
+        dp_record rec = { .type = DP_RECORD_EVENT };
+        rec.u.event = (dp_event){ .kind = nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP,
+                                  .t = r->cur.t, .x = rel(e->a, e->b, nr->x), .v = rel(e->a, e->b, nr->v),
+                                  .element = i };
+        put(r, &rec);
+    }
+}
+
+/* Moves queued records into the caller's block (a queued row into a block slot of its own). */
+static void flush(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    while (nr->iq < nr->nq && r->out_n < r->out_cap) {
+        dp_record rec = nr->queue[nr->iq];
+        if (rec.type == DP_RECORD_ROW) {
+            if (nr->rows_used == nr->rows_cap)
+                break;
+            size_t s = nr->rows_used++;
+            double *d = nr->rows + s * nr->row_len;
+            unsigned char *ph = nr->row_phase + s * nr->cols.elements;
+            memcpy(d, nr->pending_row, nr->row_len * sizeof *d);
+            memcpy(ph, nr->pending_phase, nr->cols.elements);
+            size_t nn = nr->cols.nodes, ne = nr->cols.elements;
+            rec.u.row = (dp_row){ .t = rec.u.row.t, .x = d, .v = d + nn, .Fs = d + 2 * nn, .Fd = d + 2 * nn + ne,
+                                  .phase = ph };
+        }
+        r->out[r->out_n++] = rec;
+        nr->iq++;
+    }
+    if (nr->iq == nr->nq)
+        nr->iq = nr->nq = 0;
+}
+
+/* Row slots for this block: one per record the caller can take, within ROW_BUDGET numbers. */
+static int reserve_rows(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    size_t want = r->out_cap, fit = ROW_BUDGET / (nr->row_len ? nr->row_len : 1);
+    if (want > fit)
+        want = fit ? fit : 1;
+    nr->rows_used = 0;
+    if (want <= nr->rows_cap)
+        return DP_OK;
+    double *rows = realloc(nr->rows, want * (nr->row_len ? nr->row_len : 1) * sizeof *rows);
+    if (rows == NULL)
+        return DP_ENOMEM;
+    nr->rows = rows;
+    unsigned char *ph = realloc(nr->row_phase, want * (nr->cols.elements ? nr->cols.elements : 1));
+    if (ph == NULL)
+        return DP_ENOMEM;
+    nr->row_phase = ph;
+    nr->rows_cap = want;
+    return DP_OK;
+}
+
+int dp_network_run_init(dp_run *r)
+{
+    struct dp_net_run *nr = calloc(1, sizeof *nr);
+    if (nr == NULL)
+        return DP_ENOMEM;
+    r->net = nr;
+    nr->net = r->spec.net;
+    nr->n = nr->net->n, nr->nel = nr->net->nel, nr->theta = r->spec.solver.theta;
+    nr->p = bandwidth(nr->net);
+    int s = alloc_all(nr);
+    s = s ? s : setup_laws(nr);
+    s = s ? s : setup_columns(nr, &r->spec.output);
+    if (s == DP_OK && (nr->ws = dp_net_ws_alloc(nr->n, nr->p, nr->nact, nr->act)) == NULL)
+        s = DP_ENOMEM;
+    if (s != DP_OK)
+        return s;
+    memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
+    memcpy(nr->v, r->spec.v0v, nr->n * sizeof *nr->v);
+    build_W(nr, r->h);
+    element_forces(nr, 0);
+    r->cur.t = 0;
+    r->countdown = 1;
+    finalize_summary(r);
+    emit_row(r);     /* the initial state: queued, no block yet */
+    return DP_OK;
+}
+
+int dp_network_run_advance(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    if (reserve_rows(r) != DP_OK)
+        return DP_ENOMEM;
+    flush(r);
+    while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
+        double h = dp_run_step_length(r), t = r->cur.t;
+        int s = net_step(r, t, h);
+        if (s != DP_OK)
+            return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
+        r->n++;
+        r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
+        memcpy(nr->phase_prev, nr->phase, nr->nel);
+        element_forces(nr, 1);
+        if (!state_finite(nr))
+            return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
+        phase_events(r, nr->phase_prev, h);
+        r->sum.steps = r->n;
+        if (r->n >= r->nsteps) {
+            r->finished = 1;
+            finalize_summary(r);
+        }
+        if (--r->countdown <= 0 || r->n >= r->nsteps)
+            emit_row(r);
+    }
+    return DP_OK;
+}
+
+const dp_columns *dp_run_columns(const dp_run *r)
+{
+    return r->net ? &r->net->cols : NULL;
+}
+
+int dp_network_run_pending(const dp_run *r)
+{
+    return r->net->nq > r->net->iq;
+}
