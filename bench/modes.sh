@@ -13,7 +13,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 mkdir -p "$build/bench"
 cc -std=c17 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-prototypes -O2 -g -Iinclude -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE \
-  bench/modes_bench.c -o "$build/bench/modes_bench" "$build/libdashpot.a" -lgsl -lgslcblas -llapack -lm
+  bench/modes_bench.c -o "$build/bench/modes_bench" "$build/libdashpot.a" -lgsl -lgslcblas -lm
 
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 MKL_NUM_THREADS=1
 taskset_cmd=""

@@ -1,5 +1,5 @@
 /* bench/modes_bench.c - natural modes of chains of 10, 100 and 1000 masses through dp_modes_solve (the
- * tridiagonal MRRR route), timed per solve, and the same chains through the dense GSL route (a coupling of
+ * tridiagonal route, tridiag.c), timed per solve, and the same chains through the dense GSL route (a coupling of
  * 1e-300 in M forces it) for reference. Writes each chain's M and K diagonals for the peer
  * (bench/modes_peer.py, scipy.linalg.eigh) and "key value" lines: seconds per solve and the eigenvalues'
  * checksum. Usage: modes_bench OUTDIR */

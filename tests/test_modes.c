@@ -1,6 +1,6 @@
 /* tests/test_modes.c - modes, damped eigenvalues and receptance (issue 17) against Höschl's printed numbers
  * (seed 003, Ex. 1-4, 28, 29, 36; misprints noted where they are), against LAPACK's dsygv (a solver
- * independent of GSL's gensymmv and of the dstevr chain route) on random SPD pairs, repeated eigenvalues
+ * independent of GSL's gensymmv and of the QL + inverse iteration chain route) on random SPD pairs, repeated eigenvalues
  * and badly scaled systems, against closed forms for damping, and with bad input.
  *
  * Every check prints what it was about when it fails. Tolerances are stated where they are used.

@@ -5,8 +5,8 @@
  *
  * The core works on dense n*n row-major matrices (dp_network_linear_parts gives them for a network), so
  * that Höschl's coupled examples given as matrices and chains of elements go through the same code. A
- * diagonal M with a tridiagonal K (every chain) takes LAPACK's tridiagonal MRRR route, O(n^2) with the
- * shapes; anything else takes GSL's generalized symmetric solver.
+ * diagonal M with a tridiagonal K (every chain) takes a tridiagonal route (bisection and inverse
+ * iteration), O(n^2) with the shapes; anything else takes GSL's generalized symmetric solver.
  */
 #ifndef DASHPOT_MODES_H
 #define DASHPOT_MODES_H

@@ -1,9 +1,9 @@
 /* src/core/modes.c - natural modes and damped eigenvalues of M x'' + C x' + K x = 0 (systems.md §2).
  *
  * Why two routes for the undamped problem: a chain of masses has a diagonal M and a tridiagonal K, and
- * then M^-1/2 K M^-1/2 is a symmetric tridiagonal matrix whose eigenpairs LAPACK's MRRR (dstevr) finds in
- * O(n^2); a dense generalized solver (GSL's gensymmv, which is O(n^3) whatever the structure) is used for
- * everything else. The damped problem goes through the first-order form [0 I; -M^-1 K -M^-1 C], whose
+ * then M^-1/2 K M^-1/2 is a symmetric tridiagonal matrix whose eigenpairs bisection and inverse iteration
+ * find in O(n^2) (tridiag.c); a dense generalized solver (GSL's gensymmv, which is O(n^3) whatever the
+ * structure) is used for everything else. The damped problem goes through the first-order form [0 I; -M^-1 K -M^-1 C], whose
  * eigenvalues come in conjugate pairs; one of each pair is kept.
  *
  * A mode is rigid when K phi vanishes to round-off (|lambda| ||M phi|| <= 1e-12 ||K||_F ||phi||): a
@@ -20,15 +20,10 @@
 #include <gsl/gsl_matrix.h>
 
 #include "dashpot/modes.h"
+#include "tridiag.h"
 
 #define RIGID_TOL 1e-12
 #define SYMMETRY_TOL 1e-12
-
-/* LAPACK's symmetric tridiagonal eigensolver (Fortran calling convention, hidden string lengths last). */
-extern void dstevr_(const char *jobz, const char *range, const int *n, double *d, double *e, const double *vl,
-                    const double *vu, const int *il, const int *iu, const double *abstol, int *m, double *w,
-                    double *z, const int *ldz, int *isuppz, double *work, const int *lwork, int *iwork,
-                    const int *liwork, int *info, size_t jobz_len, size_t range_len);
 
 void dp_modes_free(dp_modes *m)
 {
@@ -47,7 +42,7 @@ static double max_abs(size_t n, const double *A)
 {
     double a = 0;
     for (size_t k = 0; k < n * n; k++)
-        a = fmax(a, fabs(A[k]));
+        a = a > fabs(A[k]) ? a : fabs(A[k]); /* not fmax: a libm call per entry */
     return a;
 }
 
@@ -99,29 +94,21 @@ static int is_chain(size_t n, const double *M, const double *K)
 
 static int solve_chain(size_t n, const double *M, const double *K, dp_modes *out)
 {
-    int nn = (int)n, m = 0, info = 0, lwork = 20 * nn, liwork = 10 * nn, il = 1, iu = nn;
-    double vl = 0, vu = 0, abstol = 0;
-    double *d = malloc(n * sizeof *d), *e = malloc(n * sizeof *e), *work = malloc((size_t)lwork * sizeof *work);
-    int *iwork = malloc((size_t)liwork * sizeof *iwork), *isuppz = malloc(2 * n * sizeof *isuppz);
-    int s = d && e && work && iwork && isuppz ? DP_OK : DP_ENOMEM;
+    double *d = malloc(n * sizeof *d), *e = malloc(n * sizeof *e);
+    int s = d && e ? DP_OK : DP_ENOMEM;
     if (s == DP_OK) {
         for (size_t i = 0; i < n; i++) {
             d[i] = K[i * n + i] / M[i * n + i];
             e[i] = i + 1 < n ? K[i * n + i + 1] / sqrt(M[i * n + i] * M[(i + 1) * n + i + 1]) : 0;
         }
-        dstevr_("V", "A", &nn, d, e, &vl, &vu, &il, &iu, &abstol, &m, out->lambda, out->shape, &nn, isuppz, work,
-                &lwork, iwork, &liwork, &info, 1, 1);
-        if (info != 0 || m != nn)
-            s = DP_ESOLVE;
+        if (dp_tridiag_eigen(n, d, e, out->lambda, out->shape) != 0)
+            s = DP_ENOMEM;
         for (size_t k = 0; s == DP_OK && k < n; k++) /* y = M^1/2 phi: phi_i = y_i / sqrt(m_i), M-normalized */
             for (size_t i = 0; i < n; i++)
                 out->shape[k * n + i] /= sqrt(M[i * n + i]);
     }
     free(d);
     free(e);
-    free(work);
-    free(iwork);
-    free(isuppz);
     return s;
 }
 
@@ -175,7 +162,7 @@ static double fix_sign(size_t n, double *phi)
 {
     double big = 0;
     for (size_t i = 0; i < n; i++)
-        big = fmax(big, fabs(phi[i]));
+        big = big > fabs(phi[i]) ? big : fabs(phi[i]);
     for (size_t i = 0; i < n; i++)
         if (fabs(phi[i]) > 1e-8 * big) {
             if (phi[i] > 0)
