@@ -5,7 +5,8 @@
 #   make test SAN=1 the same under AddressSanitizer + UndefinedBehaviorSanitizer (into build-san/)
 #   make run        builds and starts dashpotd on 127.0.0.1:8080
 #   make bench      benchmarks with their peers, ratios printed (kept out of `test`)
-#   make deps       installs the Debian packages this needs (as root)
+#   make image      the container image dashpot:VERSION, with docker or podman, offline too (docs/operations.md)
+#   make deps       installs the Debian packages this needs (as root); `make run` installs only the run ones
 
 SHELL   := /bin/bash
 CC      ?= cc
@@ -36,10 +37,10 @@ CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 LIB      := $(BUILD)/libdashpot.a
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
-TEST_SH  := $(wildcard tests/*.sh)
+TEST_SH  := $(filter-out tests/test_image.sh,$(wildcard tests/*.sh))
 PROGS    := $(BUILD)/dashpot $(if $(HTTP_SRC),$(BUILD)/dashpotd)
 
-.PHONY: all test unit integration run bench deps deps-ok clean thesis-figures fuzz bench-peers
+.PHONY: all test unit integration run bench deps deps-ok deps-run clean thesis-figures fuzz bench-peers
 
 all: $(LIB) $(PROGS)
 
@@ -75,7 +76,11 @@ test: deps-ok
 deps deps-ok:
 	@bash scripts/install-deps.sh
 
-run: deps-ok
+# `make run` needs neither cmocka nor the test tools: only what builds and runs the daemon.
+deps-run:
+	@bash scripts/install-deps.sh --run
+
+run: deps-run
 	@$(MAKE) --no-print-directory all
 	./$(BUILD)/dashpotd
 
@@ -110,14 +115,17 @@ fuzz:
 
 # The robustness suite, kept out of `make test` for its length (~3 min; CI runs it once, on the plain
 # build): the HTTP tests with every daemon under valgrind memcheck (zero definite or indirect leaks, no memory
-# error; the 10^7-sample stream skipped), 30 s of mixed load with 64 connections (wrk), and the faults
-# (1000 hang-ups, slowloris, hostile bodies, divergence, SIGTERM under load). Each runs even if one failed.
+# error; the 10^7-sample stream skipped), 30 s of mixed load with 64 connections (wrk), the faults
+# (1000 hang-ups, slowloris, hostile bodies, divergence, SIGTERM under load), and the container image built
+# and run (tests/test_image.sh: about a minute cold, seconds warm; it needs root or a working engine, and the
+# network for the Dockerfile's apt-get). Each runs even if one failed.
 .PHONY: robustness
 robustness: all
 	@bash scripts/install-deps.sh --robustness
 	@fail=0; echo "== DASHPOT_VALGRIND=1 tests/test_http.sh"; \
 	DASHPOT_VALGRIND=1 BUILD=$(BUILD) bash tests/test_http.sh || fail=1; \
-	for t in tests/robustness/*.sh; do echo "== $$t"; BUILD=$(BUILD) bash $$t || fail=1; done; exit $$fail
+	for t in tests/robustness/*.sh tests/test_image.sh; do echo "== $$t"; BUILD=$(BUILD) bash $$t || fail=1; done; \
+	exit $$fail
 
 bench: all
 	@bash bench/run.sh $(BUILD)
@@ -173,3 +181,12 @@ uninstall:
 	-rmdir $(DESTDIR)$(includedir)/dashpot $(DESTDIR)$(datadir)/dashpot/web $(DESTDIR)$(datadir)/dashpot 2>/dev/null
 
 .PHONY: install uninstall
+
+# ---- make image ------------------------------------------------------------------------------------------------
+# The Dockerfile built into dashpot:VERSION with docker or podman; where no registry is reachable its Debian
+# base is made with debootstrap from the machine's Debian mirror (scripts/image.sh; docs/operations.md,
+# "Container image"). tests/test_image.sh builds and runs it (in `make robustness`).
+image:
+	@BUILD=$(BUILD) bash scripts/image.sh
+
+.PHONY: image

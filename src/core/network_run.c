@@ -9,10 +9,14 @@
  * step: a phase change is reported at the end of the step that made it.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_linalg.h>
+
 #include "network_step.h"
+#include "root.h"
 #include "run_internal.h"
 
 /* Row storage per block: the block holds at most this many numbers of rows. */
@@ -20,11 +24,22 @@
 
 struct dp_net_run {
     size_t n, nel, p, nact;
+    int relaxed;                /* some element has a relaxation gamma */
     double theta;
     const dp_network *net;
     double *M, *K, *C;          /* band storage n x (p+1) */
     dp_net_elem *act;           /* the elements of the convex problem */
+    const dp_relaxation **gamma; /* per active element, NULL without relaxation */
+    dp_graph *static_A;         /* per active element: generalized Coulomb's static graph (phi1), else empty */
+    unsigned char *held, *broke; /* per active element in a step: on its static graph; broke away this step */
+    int has_static;
+    int locate;                 /* events located inside the step (located_step) */
+    int solved;                 /* the workspace holds the assignment of the last step */
+    void *pattern;              /* the assignment at a sub-step's start */
+    double *margin;             /* per active element, of the assignment held over a shorter step */
+    double *roots;              /* per active element, when its held assignment fails (INFINITY: not here) */
     long *act_of;               /* element -> its index in act, or -1 */
+    size_t *act_el;             /* index in act -> element */
     double *k, *c;              /* per element: linear stiffness and viscosity */
     dp_net_ws *ws;
     double h_W;                 /* the step W was built for */
@@ -107,6 +122,11 @@ static int alloc_all(struct dp_net_run *nr)
     nr->C = calloc(band, sizeof(double));
     nr->act = calloc(ne, sizeof *nr->act);
     nr->act_of = calloc(ne, sizeof *nr->act_of);
+    nr->act_el = calloc(ne, sizeof *nr->act_el);
+    nr->gamma = calloc(ne, sizeof *nr->gamma);
+    nr->static_A = calloc(ne, sizeof *nr->static_A);
+    nr->held = calloc(ne, 1);
+    nr->broke = calloc(ne, 1);
     nr->k = calloc(ne, sizeof(double));
     nr->c = calloc(ne, sizeof(double));
     nr->x = calloc(n, sizeof(double));
@@ -125,7 +145,7 @@ static int alloc_all(struct dp_net_run *nr)
     nr->all_elements = calloc(ne, sizeof(size_t));
     nr->qcap = ne + 2;
     nr->queue = calloc(nr->qcap, sizeof *nr->queue);
-    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
+    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->act_el && nr->gamma && nr->static_A && nr->held && nr->broke && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
            nr->rhs && nr->tmp && nr->u && nr->force && nr->Fs && nr->Fd && nr->phase && nr->phase_prev && nr->can_stick &&
            nr->all_nodes && nr->all_elements && nr->queue ? DP_OK : DP_ENOMEM;
 }
@@ -166,14 +186,26 @@ static int setup_laws(struct dp_net_run *nr)
         nr->k[i] = e->has_spring && lin_spring ? e->spring.k : 0;
         nr->c[i] = e->has_damper && (e->damper.law == DP_DAMPER_LINEAR || e->damper.law == DP_DAMPER_BINGHAM)
                    ? e->damper.c : 0;
-        int set_damper = e->has_damper && e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR;
+        int set_damper = e->has_damper && ((e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR)
+                                           || e->damper.relaxation.kind != DP_RELAX_NONE);
         nr->can_stick[i] = (unsigned char)dp_element_can_stick(e);
         nr->act_of[i] = -1;
         band_add_incidence(nr->K, p, e->a, e->b, nr->k[i]);
         band_add_incidence(nr->C, p, e->a, e->b, nr->c[i]);
         if (!set_damper && lin_spring)
             continue;
+        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
+            nr->gamma[nr->nact] = &e->damper.relaxation, nr->relaxed = 1;
+        if (e->has_damper && e->damper.law == DP_DAMPER_GENERALIZED_COULOMB && e->damper.phi1 > e->damper.phi0) {
+            dp_model m = { .mass = 1, .damper = { .law = DP_DAMPER_COULOMB, .phi0 = e->damper.phi1 } };
+            if (dp_model_prepare(&m) != DP_OK)
+                return DP_ENOMEM;
+            nr->static_A[nr->nact] = m.damper.graph;   /* the spring's line graph of m is empty (k = 0 line) */
+            dp_graph_clear(&m.spring.graph);
+            nr->has_static = 1;
+        }
         nr->act_of[i] = (long)nr->nact;
+        nr->act_el[nr->nact] = i;
         nr->act[nr->nact++] = (dp_net_elem){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
                                              .S = lin_spring ? NULL : &e->spring.graph,
                                              .vb = e->has_damper ? e->damper.belt_velocity : 0 };
@@ -205,7 +237,9 @@ void dp_network_run_free(struct dp_net_run *nr)
     if (nr == NULL)
         return;
     dp_net_ws_free(nr->ws);
-    void *p[] = { nr->M, nr->K, nr->C, nr->act, nr->act_of, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    for (size_t i = 0; nr->static_A && i < nr->nact; i++)
+        dp_graph_clear(&nr->static_A[i]);
+    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->row_phase, nr->final_row, nr->final_phase, nr->queue,
                   nr->pending_row, nr->pending_phase };
@@ -239,6 +273,8 @@ static void element_forces(struct dp_net_run *nr, int stepped)
                 fd += fmin(fmax(0.0, lo), hi);
             }
         }
+        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
+            fd -= dp_relaxation_eval(&e->damper.relaxation, z - vb);
         nr->Fs[i] = fs, nr->Fd[i] = fd;
         nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
     }
@@ -264,10 +300,19 @@ static dp_row fill_row(const struct dp_net_run *nr, double t, double *data, unsi
 static void put(dp_run *r, const dp_record *rec)
 {
     struct dp_net_run *nr = r->net;
-    if (nr->nq == 0 && r->out && r->out_n < r->out_cap)
+    if (nr->nq == 0 && r->out && r->out_n < r->out_cap) {
         r->out[r->out_n++] = *rec;
-    else if (nr->nq < nr->qcap)
-        nr->queue[nr->nq++] = *rec;
+        return;
+    }
+    if (nr->nq == nr->qcap) {   /* a step with more changes than the queue held: grow it, never drop */
+        dp_record *q = realloc(nr->queue, 2 * nr->qcap * sizeof *q);
+        if (q == NULL) {
+            dp_run_fail(r, DP_ENOMEM, "out of memory for the events of one step");
+            return;
+        }
+        nr->queue = q, nr->qcap *= 2;
+    }
+    nr->queue[nr->nq++] = *rec;
 }
 
 static void emit_row(dp_run *r)
@@ -295,10 +340,46 @@ static void finalize_summary(dp_run *r)
 
 /* ---- stepping --------------------------------------------------------------------------------------- */
 
-/* One theta-step of length h from time t (network_step.h for the problem it solves). */
-static int net_step(dp_run *r, double t, double h)
+/* Generalized Coulomb (the rest branch, as one mass takes it): an element at rest at the step's start, or
+ * one whose kinetic solution reverses, is held by its static interval [-phi1, phi1] if that holds it; one
+ * that slips under the static graph has broken away and steps on its kinetic graph (phi0). Each pass
+ * moves at least one element for good, so this ends after at most 2 x elements solves. */
+static int static_solve(dp_run *r, double h)
 {
     struct dp_net_run *nr = r->net;
+    for (size_t k = 0; k < nr->nact; k++) {
+        nr->held[k] = nr->static_A[k].n > 0 && nr->phase[nr->act_el[k]] == DP_PHASE_STICK;
+        nr->broke[k] = 0;
+    }
+    for (size_t pass = 0; pass <= 2 * nr->nact; pass++) {
+        for (size_t k = 0; k < nr->nact; k++)
+            if (nr->static_A[k].n > 0)
+                nr->act[k].A = nr->held[k] ? &nr->static_A[k] : &nr->net->el[nr->act_el[k]].damper.graph;
+        dp_net_ws_W_changed(nr->ws);
+        int s = dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+        if (s != DP_OK)
+            return s;
+        int changed = 0;
+        for (size_t k = 0; k < nr->nact; k++) {
+            if (nr->static_A[k].n == 0)
+                continue;
+            double vb = nr->act[k].vb, z0 = rel(nr->act[k].a, nr->act[k].b, nr->v) - vb, z1 = nr->force[k].z - vb;
+            if (nr->held[k] && !nr->force[k].at_rest) {
+                nr->held[k] = 0, nr->broke[k] = 1, changed = 1;
+            } else if (!nr->held[k] && !nr->broke[k] && z0 != 0 && z1 != 0 && (z0 > 0) != (z1 > 0)) {
+                nr->held[k] = 1, changed = 1;
+            }
+        }
+        if (!changed)
+            return DP_OK;
+    }
+    return DP_ESOLVE;
+}
+
+/* The right side of a step of length h from the current state at time t, W for h, and the elongations the
+ * spring graphs see (network_step.h for the problem they define). */
+static void step_rhs(struct dp_net_run *nr, double t, double h)
+{
     size_t n = nr->n, p = nr->p;
     double th = nr->theta;
     if (h != nr->h_W)
@@ -324,12 +405,191 @@ static int net_step(dp_run *r, double t, double h)
     }
     for (size_t k = 0; k < nr->nact; k++)
         nr->u[k] = rel(nr->act[k].a, nr->act[k].b, nr->x);
-    int s = dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
-    if (s != DP_OK)
-        return s;
-    for (size_t i = 0; i < n; i++) {
-        nr->x[i] += h * ((1 - th) * nr->v[i] + th * nr->v1[i]);
+}
+
+/* x+ = x + h ((1-theta) v + theta v+), v = v+. */
+static void take_velocity(struct dp_net_run *nr, double h)
+{
+    for (size_t i = 0; i < nr->n; i++) {
+        nr->x[i] += h * ((1 - nr->theta) * nr->v[i] + nr->theta * nr->v1[i]);
         nr->v[i] = nr->v1[i];
+    }
+}
+
+/* The exact solution of a step of length h from time t into v1 and the forces; the state is not moved. */
+static int net_step_keep(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    step_rhs(nr, t, h);
+    int s = nr->has_static ? static_solve(r, h)
+                           : dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+    nr->solved = s == DP_OK;
+    return s;
+}
+
+/* One theta-step of length h from time t, solved exactly. */
+static int net_step(dp_run *r, double t, double h)
+{
+    int s = net_step_keep(r, t, h);
+    if (s == DP_OK)
+        take_velocity(r->net, h);
+    return s;
+}
+
+/* Events at time t for the elements whose phase differs from `before`. */
+static void step_events(dp_run *r, const unsigned char *before, double t)
+{
+    struct dp_net_run *nr = r->net;
+    for (size_t i = 0; i < nr->nel; i++) {
+        if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
+            continue;
+        r->sum.events++;
+        if (!r->spec.output.events)
+            continue;
+        const dp_element *e = &nr->net->el[i];
+        dp_record rec = { .type = DP_RECORD_EVENT };
+        rec.u.event = (dp_event){ .kind = nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP,
+                                  .t = t, .x = rel(e->a, e->b, nr->x), .v = rel(e->a, e->b, nr->v),
+                                  .element = i };
+        put(r, &rec);
+    }
+}
+
+/* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
+static void stick_time(dp_run *r, const unsigned char *ph, double h)
+{
+    for (size_t i = 0; i < r->net->nel; i++)
+        if (ph[i] == DP_PHASE_STICK)
+            r->sum.stick_time += h;
+}
+
+/* ---- located events ------------------------------------------------------------------------------ */
+
+typedef struct held_ctx {
+    dp_run *r;
+    double t;
+    size_t k;      /* the element whose margin is sought */
+} held_ctx;
+
+/* Element k's margin after a step of length s with the sub-step's starting assignment held. */
+static double held_margin(void *vctx, double s)
+{
+    held_ctx *c = vctx;
+    struct dp_net_run *nr = c->r->net;
+    if (s <= 0)
+        return 0;
+    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+    step_rhs(nr, c->t, s);
+    if (dp_net_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
+        return NAN;
+    return nr->margin[c->k];
+}
+
+/* The earliest instant in (0, h] where the starting assignment stops being consistent, and its element;
+ * h when none does (or the exact step disagrees for another reason). */
+static double earliest_event(dp_run *r, double t, double h, size_t *which, double *roots)
+{
+    struct dp_net_run *nr = r->net;
+    held_ctx c = { r, t, 0 };
+    double first = h, s0 = 1e-9 * h;
+    size_t m = nr->nact;
+    *which = (size_t)-1;
+    double *end = malloc(2 * (m ? m : 1) * sizeof *end), *start = end + (m ? m : 1);
+    if (end == NULL)
+        return h;
+    held_margin(&c, s0);             /* just after the start: the assignment holds there, or fails at once */
+    memcpy(start, nr->margin, m * sizeof *start);
+    if (held_margin(&c, h) != held_margin(&c, h)) {
+        free(end);
+        return h;
+    }
+    memcpy(end, nr->margin, m * sizeof *end);
+    for (size_t k = 0; k < m; k++) {
+        roots[k] = INFINITY;
+        if (!(end[k] < 0))
+            continue;
+        if (!(start[k] >= 0)) {      /* fails at once: no instant inside the step to split at */
+            first = 0, *which = k;
+            break;
+        }
+        c.k = k;
+        roots[k] = dp_root_bracket(held_margin, &c, s0, h, start[k], end[k], 1e-15 * h, &r->sum.iterations);
+        if (roots[k] < first)
+            first = roots[k], *which = k;
+    }
+    free(end);
+    return first;
+}
+
+/* Element k's assignment failed at time t (the state is there, the held assignment in the workspace): a
+ * fixed element is freed towards its force; a free one that reached a vertex is fixed there if the vertex's
+ * interval holds it just after (a stick), else freed beyond it (a reversal through the belt speed, a kink:
+ * no stick, as for one mass). Returns the element's phase after. */
+static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
+{
+    struct dp_net_run *nr = r->net;
+    double s0 = 1e-9 * (left > 0 ? left : 1);
+    if (dp_net_ws_fixed(nr->ws, k)) {
+        int dir = dp_net_ws_violation(nr->ws, k, s0, nr->u);
+        dp_net_ws_slip(nr->ws, k, s0, nr->u, dir >= 0 ? 1 : -1);
+    } else {
+        dp_net_ws_fix_end(nr->ws, k, nr->v);
+        dp_net_ws_pattern_save(nr->ws, nr->pattern);
+        double m = left > 0 ? held_margin(&(held_ctx){ r, t, k }, s0) : 0;
+        if (m < 0)
+            dp_net_ws_slip(nr->ws, k, s0, nr->u, dp_net_ws_violation(nr->ws, k, s0, nr->u) >= 0 ? 1 : -1);
+    }
+    if (!nr->can_stick[nr->act_el[k]])
+        return DP_PHASE_NONE;
+    return dp_net_ws_at_rest(nr->ws, k) ? DP_PHASE_STICK : DP_PHASE_SLIP;
+}
+
+/* A step split at its phase changes: while the exact step over what is left changes some element's phase,
+ * the starting assignment is held up to the earliest instant where it fails, the step is taken to there,
+ * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
+ * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. */
+static int located_step(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    double left = h;
+    for (size_t sub = 0; left > 0; sub++) {
+        memcpy(nr->phase_prev, nr->phase, nr->nel);
+        dp_net_ws_pattern_save(nr->ws, nr->pattern);
+        int s = net_step_keep(r, t, left);
+        if (s != DP_OK)
+            return s;
+        element_forces(nr, 1);
+        if (dp_net_ws_pattern_same(nr->ws, nr->pattern) || sub > 2 * nr->nact + 4) {
+            take_velocity(nr, left);
+            element_forces(nr, 1);
+            step_events(r, nr->phase_prev, t + left);
+            stick_time(r, nr->phase, left);
+            return DP_OK;
+        }
+        size_t k;
+        double at = earliest_event(r, t, left, &k, nr->roots);
+        if (k == (size_t)-1 || !(at > 1e-9 * left) || at >= left) {
+            /* no instant to split at (a change at the very start, or none the held assignment sees) */
+            dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+            if ((s = net_step_keep(r, t, left)) != DP_OK)
+                return s;
+            take_velocity(nr, left);
+            element_forces(nr, 1);
+            step_events(r, nr->phase_prev, t + left);
+            stick_time(r, nr->phase, left);
+            return DP_OK;
+        }
+        held_margin(&(held_ctx){ r, t, k }, at);     /* the state at the event, assignment held */
+        take_velocity(nr, at);
+        element_forces(nr, 1);
+        /* every element whose assignment fails at this instant (to the root's tolerance) switches here:
+         * identical blocks stick together */
+        for (size_t j = 0; j < nr->nact; j++)
+            if (j == k || nr->roots[j] <= at + 1e-12 * left)
+                nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
+        stick_time(r, nr->phase_prev, at);
+        step_events(r, nr->phase_prev, t + at);
+        t += at, left -= at;
     }
     return DP_OK;
 }
@@ -343,27 +603,6 @@ static int state_finite(const struct dp_net_run *nr)
         if (!isfinite(nr->Fs[i]) || !isfinite(nr->Fd[i]))
             return 0;
     return 1;
-}
-
-/* Events for the elements whose phase changed in the step just done; time spent sticking. */
-static void phase_events(dp_run *r, const unsigned char *before, double h)
-{
-    struct dp_net_run *nr = r->net;
-    for (size_t i = 0; i < nr->nel; i++) {
-        if (nr->phase[i] == DP_PHASE_STICK)
-            r->sum.stick_time += h;
-        if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
-            continue;
-        r->sum.events++;
-        if (!r->spec.output.events)
-            continue;
-        const dp_element *e = &nr->net->el[i];
-        dp_record rec = { .type = DP_RECORD_EVENT };
-        rec.u.event = (dp_event){ .kind = nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP,
-                                  .t = r->cur.t, .x = rel(e->a, e->b, nr->x), .v = rel(e->a, e->b, nr->v),
-                                  .element = i };
-        put(r, &rec);
-    }
 }
 
 /* Moves queued records into the caller's block (a queued row into a block slot of its own). */
@@ -413,6 +652,47 @@ static int reserve_rows(dp_run *r)
     return DP_OK;
 }
 
+/* sup gamma' over the line: the slope that can eat into W's definiteness. */
+static double relaxation_rise(const dp_relaxation *g)
+{
+    if (g->kind == DP_RELAX_LINEAR)
+        return g->L > 0 ? g->L : 0;
+    return dp_relaxation_lipschitz(g);
+}
+
+/* With relaxation the step's problem is strongly monotone while W - h theta sum_e L_e b_e b_e^T is positive
+ * definite (the n-DOF form of thesis (4.10), m + h theta c + h^2 theta^2 k > h theta L_gamma for one mass);
+ * checked for the nominal and the last step by GSL's band Cholesky. */
+static int check_step_bound(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    if (!nr->relaxed)
+        return DP_OK;
+    size_t len = nr->n * (nr->p + 1);
+    double *B = malloc(len * sizeof *B), th = nr->theta;
+    if (B == NULL)
+        return DP_ENOMEM;
+    double hs[2] = { r->h, r->spec.solver.t_end - (double)(r->nsteps - 1) * r->h };
+    int ok = 1;
+    for (int k = 0; k < 2 && ok; k++) {
+        double h = hs[k];
+        for (size_t i = 0; i < len; i++)
+            B[i] = nr->M[i] + h * th * nr->C[i] + h * h * th * th * nr->K[i];
+        for (size_t a = 0; a < nr->nact; a++)
+            if (nr->gamma[a])
+                band_add_incidence(B, nr->p, nr->act[a].a, nr->act[a].b, -h * th * relaxation_rise(nr->gamma[a]));
+        gsl_matrix_view v = gsl_matrix_view_array(B, nr->n, nr->p + 1);
+        ok = gsl_linalg_cholesky_band_decomp(&v.matrix) == 0;
+    }
+    free(B);
+    if (ok)
+        return DP_OK;
+    snprintf(r->error_pointer, sizeof r->error_pointer, "/solver/dt");
+    return dp_run_fail(r, DP_EINVAL, "with relaxation a step has one solution only while W - h theta sum_e L_e b_e "
+                       "b_e^T is positive definite (thesis (4.10) for n masses); at dt = %g it is not: take a "
+                       "smaller dt", r->h);
+}
+
 int dp_network_run_init(dp_run *r)
 {
     struct dp_net_run *nr = calloc(1, sizeof *nr);
@@ -429,11 +709,33 @@ int dp_network_run_init(dp_run *r)
         s = DP_ENOMEM;
     if (s != DP_OK)
         return s;
+    if (nr->relaxed)
+        dp_net_ws_relaxation(nr->ws, nr->gamma, nr->theta);
+    nr->pattern = malloc(dp_net_ws_pattern_bytes(nr->ws));
+    nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
+    nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
+    if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL)
+        return DP_ENOMEM;
+    int sticky = 0, moving_vertices = 0;
+    for (size_t k = 0; k < nr->nact; k++)
+        sticky |= nr->can_stick[nr->act_el[k]], moving_vertices |= nr->act[k].S != NULL;
+    /* Location holds an assignment over shorter steps: its pieces must not move with the step's length, so
+     * graph springs (vertices at (y - u)/h), relaxation and static thresholds are stepped without it. */
+    nr->locate = r->spec.solver.events == DP_EVENTS_LOCATE && sticky && !moving_vertices && !nr->relaxed &&
+                 !nr->has_static;
+    if ((s = check_step_bound(r)) != DP_OK)
+        return s;
     memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
     memcpy(nr->v, r->spec.v0v, nr->n * sizeof *nr->v);
     build_W(nr, r->h);
-    element_forces(nr, 0);
-    r->cur.t = 0;
+    /* The initial forces and phases: an exact step of a billionth of dt from the initial state says which
+     * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
+     * leaves its assignment for the first located step. */
+    double h0 = 1e-9 * r->h;
+    if (net_step_keep(r, 0, h0) == DP_OK)
+        element_forces(nr, 1);
+    else
+        element_forces(nr, 0);
     r->countdown = 1;
     finalize_summary(r);
     emit_row(r);     /* the initial state: queued, no block yet */
@@ -448,16 +750,23 @@ int dp_network_run_advance(dp_run *r)
     flush(r);
     while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
         double h = dp_run_step_length(r), t = r->cur.t;
-        int s = net_step(r, t, h);
+        int s;
+        if (nr->locate && nr->solved) {
+            s = located_step(r, t, h);
+        } else {
+            memcpy(nr->phase_prev, nr->phase, nr->nel);
+            if ((s = net_step(r, t, h)) == DP_OK) {
+                element_forces(nr, 1);
+                step_events(r, nr->phase_prev, t + h);
+                stick_time(r, nr->phase, h);
+            }
+        }
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
         r->n++;
         r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
-        memcpy(nr->phase_prev, nr->phase, nr->nel);
-        element_forces(nr, 1);
         if (!state_finite(nr))
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
-        phase_events(r, nr->phase_prev, h);
         r->sum.steps = r->n;
         if (r->n >= r->nsteps) {
             r->finished = 1;

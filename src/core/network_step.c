@@ -59,6 +59,10 @@ struct dp_net_ws {
     double *rhs_eff, *y, *vs, *d, *res;
     long *head, *next_edge, *deg; /* the fixed forest's adjacency, for the multipliers */
     size_t *queue;
+    /* relaxation: gamma per element (NULL: none), linearized at zk as g0 + g1 (z - zk) */
+    const dp_relaxation *const *gamma;
+    double theta;
+    double *zk, *g0, *g1, *gshift, *zprev;
 };
 
 dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
@@ -86,7 +90,12 @@ dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
     w->next_edge = calloc(2 * m, sizeof *w->next_edge);
     w->deg = calloc(n + 1, sizeof *w->deg);
     w->queue = calloc(n + 1, sizeof *w->queue);
-    if (!w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
+    w->zk = calloc(m, sizeof *w->zk);
+    w->g0 = calloc(m, sizeof *w->g0);
+    w->g1 = calloc(m, sizeof *w->g1);
+    w->gshift = calloc(m, sizeof *w->gshift);
+    w->zprev = calloc(m, sizeof *w->zprev);
+    if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->zprev ||!w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
         !w->y || !w->vs || !w->d || !w->res || !w->head || !w->next_edge || !w->deg || !w->queue) {
         dp_net_ws_free(w);
         return NULL;
@@ -101,7 +110,14 @@ void dp_net_ws_free(dp_net_ws *w)
     free(w->W), free(w->H), free(w->R), free(w->es), free(w->parent), free(w->pot), free(w->kidx);
     free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->head);
     free(w->next_edge), free(w->deg), free(w->queue);
+    free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->zprev);
     free(w);
+}
+
+void dp_net_ws_relaxation(dp_net_ws *w, const dp_relaxation *const *gamma, double theta)
+{
+    w->gamma = gamma;
+    w->theta = theta;
 }
 
 double *dp_net_ws_W(dp_net_ws *w)
@@ -139,9 +155,10 @@ static double arg_S(double u, double h, const vertex *at)
 }
 
 /* The piece of Sigma_e leaving `at` towards dir: slope in z, force there, the next vertex. */
-static int sigma_piece(const dp_net_elem *e, double u, double h, const vertex *at, int dir, double *slope,
-                       double *f, vertex *next)
+static int sigma_piece(const dp_net_ws *w, size_t i, double u, double h, const vertex *at, int dir,
+                       double *slope, double *f, vertex *next)
 {
+    const dp_net_elem *e = &w->el[i];
     dp_graph_piece_t pc;
     *slope = 0, *f = 0;
     next->z = dir * INFINITY, next->src = SRC_NONE, next->y = 0;
@@ -162,14 +179,18 @@ static int sigma_piece(const dp_net_elem *e, double u, double h, const vertex *a
         if (isfinite(pc.next) && (dir > 0 ? z < next->z : z > next->z))
             *next = (vertex){ z, SRC_S, pc.next };
     }
+    *slope -= w->g1[i];                                  /* the relaxation, linearized */
+    *f -= w->g0[i] + w->g1[i] * (at->z - w->zk[i]);
     return 1;
 }
 
 /* The force interval of Sigma_e at a vertex. */
-static void sigma_interval(const dp_net_elem *e, double u, double h, const vertex *at, double *lo, double *hi)
+static void sigma_interval(const dp_net_ws *w, size_t i, double u, double h, const vertex *at, double *lo,
+                           double *hi)
 {
-    double l, r;
-    *lo = *hi = 0;
+    const dp_net_elem *e = &w->el[i];
+    double l, r, g = w->g0[i] + w->g1[i] * (at->z - w->zk[i]);
+    *lo = *hi = -g;
     if (e->A) {
         dp_graph_force(e->A, arg_A(e, at), &l, &r);
         *lo += l, *hi += r;
@@ -186,7 +207,7 @@ static int set_free(dp_net_ws *w, size_t i, double u, double h, const vertex *at
     elem_state *s = &w->es[i];
     double slope, f;
     vertex nx;
-    if (!sigma_piece(&w->el[i], u, h, at, dir, &slope, &f, &nx))
+    if (!sigma_piece(w, i, u, h, at, dir, &slope, &f, &nx))
         return 0;
     s->st = FREE;
     s->zref = at->z, s->lam0 = f, s->slope = slope;
@@ -442,7 +463,7 @@ static int assign_start(dp_net_ws *w, double h, const double *u, const double *v
             at.src = SRC_A, at.y = z - e->vb;
         else if (e->S && dp_graph_has_vertex(e->S, u[i] + h * z))
             at.src = SRC_S, at.y = u[i] + h * z;
-        sigma_interval(e, u[i], h, &at, &lo, &hi);
+        sigma_interval(w, i, u[i], h, &at, &lo, &hi);
         if (lo == hi && !isfinite(lo))
             return 0;                    /* outside the domain */
         if (lo < hi && join(w, e, z)) {  /* a vertex with a force interval */
@@ -452,7 +473,7 @@ static int assign_start(dp_net_ws *w, double h, const double *u, const double *v
         if (!set_free(w, i, u[i], h, &at, +1) && !set_free(w, i, u[i], h, &at, -1))
             return 0;
         /* inside a piece (not at a vertex): the piece reaches back to the previous vertex */
-        if (at.src == SRC_NONE && sigma_piece(e, u[i], h, &at, -1, &slope, &f, &below))
+        if (at.src == SRC_NONE && sigma_piece(w, i, u[i], h, &at, -1, &slope, &f, &below))
             w->es[i].lo = below;
     }
     return 1;
@@ -495,7 +516,7 @@ static int release(dp_net_ws *w, double h, const double *u)
         if (s->st != FIXED)
             continue;
         double lo, hi;
-        sigma_interval(&w->el[i], u[i], h, &s->fix, &lo, &hi);
+        sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
         if (inside(s->lam, lo, hi))
             continue;
         vertex at = s->fix;
@@ -515,6 +536,7 @@ static void report(dp_net_ws *w, double h, const double *u, const double *v, dp_
         o->z = rel_velocity(e, v);
         vertex at = s->st == FIXED ? s->fix : (vertex){ o->z, SRC_NONE, 0 };
         o->lambda = s->st == FIXED ? s->lam : s->lam0 + s->slope * (o->z - s->zref);
+        o->lambda += w->g0[i] + w->g1[i] * (at.z - w->zk[i]);   /* the graphs' part, without gamma */
         if (e->A)
             dp_graph_force(e->A, arg_A(e, &at), &alo, &ahi);
         if (e->S)
@@ -534,13 +556,13 @@ static void report(dp_net_ws *w, double h, const double *u, const double *v, dp_
     }
 }
 
-int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, const double *v_guess,
-                 double *v, dp_net_force *f, unsigned long long *iters)
+/* The piecewise-linear problem (the relaxation frozen in its linearization) from the start point v. */
+static int solve_pl(dp_net_ws *w, double h, const double *rhs, const double *u, double *v,
+                    unsigned long long *iters)
 {
     size_t n = w->n;
     if (h != w->h_factored)
         w->factored = 0, w->h_factored = h;
-    memcpy(v, v_guess, n * sizeof *v);
     if (!assign_start(w, h, u, v)) {
         memset(v, 0, n * sizeof *v);
         if (!assign_start(w, h, u, v))
@@ -564,10 +586,8 @@ int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, con
         if (which < 0) {
             memcpy(v, w->vs, n * sizeof *v);
             multipliers(w, h);
-            if (!release(w, h, u)) {
-                report(w, h, u, v, f);
+            if (!release(w, h, u))
                 return DP_OK;
-            }
             continue;
         }
         for (size_t i = 0; i < n; i++)
@@ -577,4 +597,155 @@ int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, con
         b->fix = side > 0 ? b->hi : b->lo;
     }
     return DP_ESOLVE;
+}
+
+static double zmax_change(const dp_net_ws *w, const double *v)
+{
+    double worst = 0;
+    for (size_t i = 0; i < w->ne; i++)
+        if (w->gamma[i]) {
+            double z = rel_velocity(&w->el[i], v);
+            worst = fmax(worst, fabs(z - w->zk[i]) / (1 + fabs(z)));
+        }
+    return worst;
+}
+
+int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, const double *v_guess,
+                 double *v, dp_net_force *f, unsigned long long *iters)
+{
+    memcpy(v, v_guess, w->n * sizeof *v);
+    if (w->gamma == NULL) {
+        int s = solve_pl(w, h, rhs, u, v, iters);
+        if (s == DP_OK)
+            report(w, h, u, v, f);
+        return s;
+    }
+    double th = w->theta;
+    for (size_t i = 0; i < w->ne; i++) {
+        w->zk[i] = rel_velocity(&w->el[i], v_guess);
+        w->gshift[i] = (1 - th) * w->zk[i] - w->el[i].vb;
+    }
+    /* Newton-Josephy: gamma linearized at the last iterate, each linearized step solved exactly; the
+     * iterates settle on the active set and then converge quadratically to rounding. */
+    for (int it = 0; it < 100; it++) {
+        for (size_t i = 0; i < w->ne; i++) {
+            if (w->gamma[i] == NULL)
+                continue;
+            double arg = th * w->zk[i] + w->gshift[i];
+            w->g0[i] = dp_relaxation_eval(w->gamma[i], arg);
+            w->g1[i] = th * dp_relaxation_slope(w->gamma[i], arg);
+        }
+        int s = solve_pl(w, h, rhs, u, v, iters);
+        if (s != DP_OK)
+            return s;
+        double change = zmax_change(w, v);
+        for (size_t i = 0; i < w->ne; i++)
+            w->zk[i] = rel_velocity(&w->el[i], v);
+        if (change <= 1e-14) {
+            report(w, h, u, v, f);
+            return DP_OK;
+        }
+    }
+    return DP_ESOLVE;
+}
+
+/* ---- the assignment held: event location ------------------------------------------------------------- */
+
+size_t dp_net_ws_pattern_bytes(const dp_net_ws *w)
+{
+    return (w->ne ? w->ne : 1) * sizeof *w->es;
+}
+
+void dp_net_ws_pattern_save(const dp_net_ws *w, void *buf)
+{
+    memcpy(buf, w->es, w->ne * sizeof *w->es);
+}
+
+void dp_net_ws_pattern_restore(dp_net_ws *w, const void *buf)
+{
+    memcpy(w->es, buf, w->ne * sizeof *w->es);
+    w->factored = 0;
+}
+
+int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, dp_net_force *f,
+                        double *margin)
+{
+    build_forest(w);
+    assemble_H(w, h, rhs);
+    int s = factor_reduced(w);
+    s = s ? s : solve_assignment(w);
+    if (s != DP_OK)
+        return s;
+    memcpy(v, w->vs, w->n * sizeof *v);
+    multipliers(w, h);
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *e = &w->es[i];
+        if (e->st == FREE) {
+            double z = rel_velocity(&w->el[i], v);
+            margin[i] = fmin(z - e->lo.z, e->hi.z - z);     /* -inf + x stays finite-safe: fmin */
+        } else {
+            double lo, hi;
+            sigma_interval(w, i, u[i], h, &e->fix, &lo, &hi);
+            margin[i] = fmin(e->lam - lo, hi - e->lam);
+        }
+    }
+    report(w, h, u, v, f);
+    return DP_OK;
+}
+
+int dp_net_ws_pattern_same(const dp_net_ws *w, const void *buf)
+{
+    const elem_state *old = buf;
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *a = &w->es[i], *b = &old[i];
+        if (a->st != b->st)
+            return 0;
+        if (a->st == FIXED ? a->fix.z != b->fix.z : a->lo.z != b->lo.z || a->hi.z != b->hi.z)
+            return 0;
+    }
+    return 1;
+}
+
+void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v)
+{
+    elem_state *s = &w->es[i];
+    if (s->st == FIXED)
+        return;
+    double z = rel_velocity(&w->el[i], v);
+    s->fix = fabs(z - s->lo.z) <= fabs(s->hi.z - z) ? s->lo : s->hi;
+    s->st = FIXED;
+    w->factored = 0;
+}
+
+int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u)
+{
+    const elem_state *s = &w->es[i];
+    double lo, hi;
+    if (s->st != FIXED)
+        return 0;
+    sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
+    return s->lam > hi ? 1 : s->lam < lo ? -1 : 0;
+}
+
+int dp_net_ws_fixed(const dp_net_ws *w, size_t i)
+{
+    return w->es[i].st == FIXED;
+}
+
+int dp_net_ws_at_rest(const dp_net_ws *w, size_t i)
+{
+    const elem_state *s = &w->es[i];
+    const dp_net_elem *e = &w->el[i];
+    double lo, hi;
+    if (s->st != FIXED || e->A == NULL || arg_A(e, &s->fix) != 0)
+        return 0;
+    dp_graph_force(e->A, 0, &lo, &hi);
+    return hi > lo;
+}
+
+void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir)
+{
+    vertex at = w->es[i].fix;
+    set_free(w, i, u[i], h, &at, dir);
+    w->factored = 0;
 }

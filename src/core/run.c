@@ -76,7 +76,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
     default: s = dp_stick_slip_init(r); break;
     }
     if (s != DP_OK) {
-        dp_errors_add(errs, "", "%s", r->error[0] ? r->error : dp_strerror(s));
+        dp_errors_add(errs, r->error_pointer, "%s", r->error[0] ? r->error : dp_strerror(s));
         dp_run_free(r);
         *status = s;
         return NULL;

@@ -42,6 +42,7 @@ struct dp_run {
     dp_ss_law law;
     int finished, status;
     char error[256];
+    char error_pointer[DP_POINTER_MAX]; /* where an allocation-time error is (a spec field), "" if anywhere */
     /* Output of the block being produced; overflow goes to `pending`, drained first on the next call. */
     dp_record *out;
     size_t out_n, out_cap;

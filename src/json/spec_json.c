@@ -704,11 +704,32 @@ static void parse_solver(ctx *c, const cJSON *o, const at *ptr, dp_solver_spec *
         s->Z = (int)z;
 }
 
+/* "max_samples": N, a sample budget for clients that draw rather than store (the browser page asks for about
+ * its canvas width): every = ceil(steps / (N - 1)), so floor(steps/every) + 1 samples plus the final one when
+ * every does not divide steps come to at most N. Needs the solver parsed first (dt, t_end). */
+static const range MAX_SAMPLES = { 2, 9007199254740992.0, 0, " >= 2 (at most 2^53)" };
+
+static void sample_budget(ctx *c, const cJSON *o, const at *ptr, const dp_spec *s, dp_output_spec *out)
+{
+    double budget;
+    if (!get_num(c, o, ptr, "max_samples", &MAX_SAMPLES, 0, 1, &budget))
+        return;
+    if (cJSON_GetObjectItemCaseSensitive(o, "every") != NULL) {
+        at p = { ptr, "max_samples", 0 };
+        fail(c, &p, "give either every or max_samples, not both");
+        return;
+    }
+    if (s->solver.dt > 0 && isfinite(s->solver.t_end) && s->solver.t_end > 0) {
+        double every = ceil(dp_spec_steps(s) / (budget - 1));
+        out->every = every < 1 ? 1 : every > 9007199254740992.0 ? 9007199254740992L : (long)every;
+    }
+}
+
 #include "network_json.inc"
 
 static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
-    static const char *const keys[] = { "every", "samples", "events", "nodes", "elements", NULL };
+    static const char *const keys[] = { "every", "max_samples", "samples", "events", "nodes", "elements", NULL };
     dp_output_spec *out = &s->output;
     if (!want_object(c, o, ptr))
         return;
@@ -716,6 +737,7 @@ static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     double every;
     if (get_num(c, o, ptr, "every", &EVERY, 0, 1, &every))
         out->every = (long)every;
+    sample_budget(c, o, ptr, s, out);
     get_bool(c, o, ptr, "samples", &out->samples);
     get_bool(c, o, ptr, "events", &out->events);
     parse_columns(c, o, ptr, "nodes", "a node", s->net ? s->net->n : 0, &out->nodes, &out->nnodes);

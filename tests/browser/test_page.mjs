@@ -146,8 +146,25 @@ async function runPreset(page, name, id, origin) {
   await page.selectOption('#preset', id);
   const d = await press(page, 'panel-simulate');
   const spec = await page.inputValue('#spec');
-  const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: spec, headers: { Accept: 'application/x-ndjson' } });
-  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  // The page sends a request without "output" with output.max_samples = its sample budget (data-budget).
+  const budget = +d.budget || 0;
+  const stream = async (body) => (await (await fetch(origin + 'v1/simulate', { method: 'POST', body,
+    headers: { Accept: 'application/x-ndjson' } })).text()).trim().split('\n').map((l) => JSON.parse(l));
+  const full = await stream(spec);
+  const lines = budget ? await stream(JSON.stringify({ ...JSON.parse(spec), output: { max_samples: budget } })) : full;
+  check(budget > 0 === !('output' in JSON.parse(spec)), `${name}: ${id}: a sample budget (${budget}) is asked for exactly when the request has no output`);
+  if (budget) {
+    const fullSamples = full.filter((o) => o.type === 'sample').length, every = Math.ceil(full[0].steps / (budget - 1));
+    const got = lines.filter((o) => o.type === 'sample').length;
+    const width = await page.evaluate(() => document.getElementById('plot-xv').clientWidth * devicePixelRatio);
+    check(budget >= Math.min(200, width) && budget <= Math.max(200, 1.01 * width) && +d.every === every && lines[0].every === every &&
+      got <= budget && got >= Math.min(budget, fullSamples) / 2,
+      `${name}: ${id}: about the plot's width (${width} px) in samples: budget ${budget}, every ${every}, ${got} of ${fullSamples}`,
+      JSON.stringify({ budget, every: d.every, got, fullSamples }));
+  }
+  const chip = await page.evaluate(() => document.getElementById('decimated')?.textContent || '');
+  check((+d.every > 1) === /^decimated: 1 sample per/.test(chip) && (!budget || +d.every === 1 || chip.includes('about the plot width')),
+    `${name}: ${id}: the page says when the curve is decimated (every ${d.every})`, chip);
   const samples = lines.filter((o) => o.type === 'sample').length;
   const events = lines.filter((o) => o.type === 'event').length;
   const summary = lines[lines.length - 1];
@@ -163,12 +180,13 @@ async function runPreset(page, name, id, origin) {
   const shown = await page.textContent('#wp-body');
   check(shown.includes(wp.existence.guaranteed ? wp.existence.theorem : wp.existence.reason) &&
     shown.includes(wp.uniqueness.guaranteed ? wp.uniqueness.theorem : wp.uniqueness.reason) &&
-    wp.checks.every((c) => shown.includes(c.hypothesis)), `${name}: ${id}: the meta line's well-posedness report is shown`);
+    wp.checks.every((c) => shown.includes(`${c.hypothesis}: ${c.detail}`)) && !/Lipschitz\s+Lipschitz/.test(shown),
+    `${name}: ${id}: the meta line's well-posedness report is shown, each check as "hypothesis: detail"`);
   const ink = await inked(page);
   check(ink.every((n) => n > 300), `${name}: ${id}: every canvas carries curves`, `saturated pixels per canvas: ${ink}`);
   const bad = unexpected(from);
   check(bad.length === 0, `${name}: ${id}: no console error, page error or failed request`, bad.join('\n    '));
-  return { d, lines };
+  return { d, lines, full };
 }
 
 const out = base.endsWith('/') ? base : base + '/';
@@ -182,7 +200,8 @@ try {
   check((await page.title()).startsWith('dashpot'), 'the page has its title');
 
   const thesis = await runPreset(page, 'page', 'thesis-4-gamma', out);
-  check(thesis.lines.length > 10000, 'thesis x0 = 4 with gamma: 10001 samples of dt = 1e-3 over T = 10');
+  check(thesis.full.length > 10000 && thesis.lines.length < 1200, 'thesis x0 = 4 with gamma: 10001 samples of dt = 1e-3 over T = 10, ' +
+    `the page fetched ${thesis.lines.length - 2}`);
   await screenshot(page, 'page-thesis');
   const belt = await runPreset(page, 'page', 'belt', out);
   check(+belt.d.bands >= 4, `belt: the stick phases are shaded (${belt.d.bands} intervals)`);
@@ -212,6 +231,20 @@ try {
     'the problem document is listed under the editor (status, pointer, line)', shown.title + ' | ' + shown.list);
   let extra = unexpected(from, /status of 422/);
   check(extra.length === 0, 'the invalid spec causes no other console error', extra.join('\n    '));
+  // The plots of the previous run stay, marked stale, and the preset menu no longer names its preset.
+  const stale = () => page.evaluate(() => {
+    const panel = document.getElementById('panel-simulate'), note = document.getElementById('stale-note');
+    return { stale: panel.dataset.stale, note: note.hidden ? '' : note.textContent, menu: document.getElementById('preset').value,
+      menuText: document.getElementById('preset').selectedOptions[0]?.textContent,
+      opacity: +getComputedStyle(panel.querySelector('.plots')).opacity,
+      previous: document.querySelector('#preset option[value="counter-gc-motion"]').textContent };
+  });
+  let st = await stale();
+  check(st.stale === 'true' && st.note.startsWith('Stale:') && st.note.includes(st.previous) && st.note.includes('(422)') && st.opacity < 1,
+    'after a 422 the previous plots are marked stale, naming the run they are from', JSON.stringify(st));
+  check(st.menu === '' && st.menuText === '(edited request)', 'after a 422 of an edited request the preset menu says "(edited request)"',
+    JSON.stringify(st));
+  check(d.canvases.every((n) => n > 0), 'the stale plots are still drawn', JSON.stringify(d.canvases));
   await screenshot(page, 'page-invalid');
 
   from = problems.length;
@@ -223,6 +256,16 @@ try {
     'malformed JSON: the 400 marks the byte where the daemon stopped reading', JSON.stringify(malformed));
   extra = unexpected(from, /status of 400/);
   check(extra.length === 0, 'the malformed spec causes no other console error', extra.join('\n    '));
+  st = await stale();
+  check(st.stale === 'true' && st.note.includes('(400)'), 'after a 400 the plots stay marked stale', JSON.stringify(st));
+  // A new preset: the menu names it, the old plots say they are old until Run; a run clears the mark.
+  await page.selectOption('#preset', 'forced');
+  st = await stale();
+  check(st.stale === 'true' && st.menu === 'forced' && st.note.includes('press Run'), 'a new preset keeps the old plots marked stale until Run',
+    JSON.stringify(st));
+  d = await press(page, 'panel-simulate');
+  st = await stale();
+  check(d.state === 'done' && st.stale === 'false' && st.note === '' && st.opacity === 1, 'a successful run clears the stale mark', JSON.stringify(st));
 
   // ---- the stability tab ----
   from = problems.length;
@@ -236,6 +279,11 @@ try {
   check(d.state === 'done' && map.complete && map.w > 500 && map.h > 400 && map.src.startsWith('blob:'),
     'the stability map (image/svg+xml) is drawn', JSON.stringify(map));
   check(/asymptotically stable/.test(map.info) && /unstable/.test(map.info), 'the map\'s verdict counts are shown (JSON)', map.info);
+  await page.selectOption('#preset', 'stability-one');
+  d = await press(page, 'panel-stability');
+  const model = await page.textContent('#stab-model');
+  check(d.state === 'done' && model.includes('stable iff (1.10) mu2 - lambda*mu1 > 0; here mu2 - lambda*mu1 = 0.5') && !/> 0 =/.test(model),
+    'one law: the thesis condition and the value of its left side, not "> 0 = 0.5"', model);
   extra = unexpected(from);
   check(extra.length === 0, 'the stability map: no console error', extra.join('\n    '));
   await screenshot(page, 'page-stability');
