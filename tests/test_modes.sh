@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # tests/test_modes.sh - `dashpot modes|response` and POST /v1/modes, /v1/response end to end (issue 17):
 # Höschl's double pendulum (seed 003 Ex. 28-29) and a chain of elements against closed forms computed here
-# in Python (stdlib only), Rayleigh damping ratios, left-out set-valued elements, the three formats of the
+# in Python (stdlib only), a free decay by the stick-slip network solver against the modal superposition,
+# Rayleigh damping ratios, left-out set-valued elements, the three formats of the
 # response curve by --format and by Accept, and bad input (422 with JSON Pointers, CLI exit 2).
 # Env BUILD (default build). Prints "N passed, M failed"; exit 1 on any failure.
 source "$(dirname "$0")/lib/daemon.bash"
@@ -83,6 +84,47 @@ all(abs(m['omega'] - w) < 1e-12 * w and abs(m['damping_ratio'] - (0.05 / (2 * w)
     for j, m, z in zip(range(1, 4), d['modes'], d['damped'])
     for w in [math.sqrt(8 * (1 - math.cos((2 * j - 1) * math.pi / 7)))]) and
 all(m['shape'][0] > 0 for m in d['modes'])"
+
+# A free decay by the stick-slip network solver (theta = 1/2, dt = 1e-3) against the modal superposition of
+# these modes: undamped x(t) = sum_k phi_k (phi_k^T M x0) cos(w_k t); with dampers c = 0.05 k on every
+# spring (C = 0.05 K, proportional) each term decays as e^(-z w t)(cos w_d t + z w / w_d sin w_d t). The
+# trapezoidal rule's phase error is ~ w^3 dt^2 t / 12 < 1e-5 here; 1e-4 catches a wrong sign or factor.
+decay_spec() { # decay_spec C_FACTOR
+    cat <<JSON
+{"model": {"masses": [1, 2],
+           "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 3}, "damper": {"law": "linear", "c": $(python3 -c "print(3 * $1)")}},
+                        {"between": [0, 1], "spring": {"law": "linear", "k": 1}, "damper": {"law": "linear", "c": $1}}]},
+ "initial": {"x": [1, -0.5], "v": [0, 0]},
+ "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 10, "theta": 0.5},
+ "output": {"every": 250}}
+JSON
+}
+free_decay() { # free_decay C_FACTOR
+    decay_spec "$1" >"$T/decay$1.json"
+    "$BIN" simulate "$T/decay$1.json" --format ndjson >"$T/decay$1.ndjson" && "$BIN" modes "$T/decay$1.json" >"$T/decay$1.modes" &&
+    python3 - "$T/decay$1.ndjson" "$T/decay$1.modes" <<'PY'
+import json, math, sys
+rows = [r for r in map(json.loads, open(sys.argv[1])) if r["type"] == "sample"]
+modes = json.load(open(sys.argv[2]))["modes"]
+M, x0 = [1, 2], [1, -0.5]
+worst = 0
+for r in rows:
+    t, x = r["t"], [0.0, 0.0]
+    for m in modes:
+        w, z, phi = m["omega"], m["damping_ratio"] or 0, m["shape"]
+        q0 = sum(phi[i] * M[i] * x0[i] for i in range(2))
+        wd = w * math.sqrt(1 - z * z)
+        g = math.exp(-z * w * t) * (math.cos(wd * t) + z * w / wd * math.sin(wd * t))
+        for i in range(2):
+            x[i] += phi[i] * q0 * g
+    worst = max(worst, max(abs(a - b) for a, b in zip(x, r["x"])))
+assert len(rows) == 41, len(rows)
+assert worst < 1e-4, worst
+print("    largest difference", worst)
+PY
+}
+check "free decay of a linear network (stick-slip solver) = the modal superposition, undamped" free_decay 0
+check "free decay with proportional element dampers = the damped modal superposition" free_decay 0.05
 
 # ---- bad input on the CLI: exit 2, pointer on stderr ----
 bad() { # bad NAME JSON POINTER [modes|response]
