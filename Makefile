@@ -21,6 +21,8 @@ SANFLAGS := $(if $(SAN),$(ASAN_UBSAN))
 CPPFLAGS += -Iinclude -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
 ALL_CFLAGS = $(WARN) $(CFLAGS) $(SANFLAGS)
 LDLIBS_CORE := -lgsl -lgslcblas -lm
+# The unit tests alone also link LAPACK: an independent reference for the eigensolvers (test_modes.c).
+LDLIBS_TEST := -llapack
 LDLIBS_JSON := -lcjson
 LDLIBS_HTTP := -lmicrohttpd -lpthread
 LDFLAGS += $(SANFLAGS)
@@ -58,7 +60,7 @@ $(BUILD)/dashpotd: $(HTTP_OBJ) $(LIB)
 
 $(BUILD)/tests/%: tests/%.c $(LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -Itests $< -o $@ $(LIB) -lcmocka $(LDLIBS_JSON) $(LDLIBS_CORE)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -Itests $< -o $@ $(LIB) -lcmocka $(LDLIBS_JSON) $(LDLIBS_CORE) $(LDLIBS_TEST)
 
 # Every unit test program runs even if an earlier one fails; the target fails if any did.
 unit: $(TEST_BIN)

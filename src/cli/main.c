@@ -16,6 +16,8 @@ static int usage(FILE *to)
             "  dashpot stability SPEC.json|- [--format json|csv|svg]\n"
             "  dashpot wellposedness SPEC.json|-\n"
             "  dashpot convergence SPEC.json|- [--ref-dt H]\n"
+            "  dashpot modes SPEC.json|-\n"
+            "  dashpot response SPEC.json|- [--format json|ndjson|csv]\n"
             "  dashpot --help | --version | COMMAND --help\n\n"
             "Exit codes: 0 success, 1 failure while running, 2 bad usage or invalid spec.\n"
             "Specs: see README.md and api/openapi.yaml.\n", DP_VERSION);
@@ -42,6 +44,14 @@ static const struct { const char *name, *text; } command_help[] = {
     { "convergence",
       "usage: dashpot convergence SPEC.json|- [--ref-dt H]\n\n"
       "A convergence study of the regularized solver (docs/regularized.md); --ref-dt sets the reference step.\n" },
+    { "modes",
+      "usage: dashpot modes SPEC.json|-\n\n"
+      "Natural modes of a network's linear part (frequencies, mass-normalized shapes, participation) and,\n"
+      "with damping, the damped eigenvalues; set-valued elements are left out and listed (docs/modes.md).\n" },
+    { "response",
+      "usage: dashpot response SPEC.json|- [--format json|ndjson|csv]\n\n"
+      "The receptance of response_node to a harmonic force at force_node over \"omega\", with the\n"
+      "resonances and antiresonances located (docs/modes.md).\n" },
 };
 
 /* 1 when argv[2..] asks for help. */
@@ -77,6 +87,8 @@ int main(int argc, char **argv)
         return dp_cli_wellposedness(argc - 1, argv + 1);
     if (strcmp(argv[1], "convergence") == 0)
         return dp_cli_convergence(argc - 1, argv + 1);
+    if (strcmp(argv[1], "modes") == 0 || strcmp(argv[1], "response") == 0)
+        return (argv[1][0] == 'm' ? dp_cli_modes : dp_cli_response)(argc - 1, argv + 1);
     fprintf(stderr, "dashpot: unknown command \"%s\"\n", argv[1]);
     return usage(stderr);
 }
