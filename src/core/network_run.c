@@ -202,7 +202,7 @@ void dp_network_run_free(struct dp_net_run *nr)
     dp_network_regularized_free(nr->reg);
     for (size_t i = 0; nr->static_A && i < nr->nact; i++)
         dp_graph_clear(&nr->static_A[i]);
-    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->row_phase, nr->final_row, nr->final_phase, nr->queue,
                   nr->pending_row, nr->pending_phase };
@@ -431,57 +431,57 @@ void nr_stick_time(dp_run *r, const unsigned char *ph, double h)
 typedef struct held_ctx {
     dp_run *r;
     double t;
-    size_t k;      /* the element whose margin is sought */
+    const unsigned char *cand;   /* the elements whose held assignment fails by the step's end */
 } held_ctx;
 
-/* Element k's margin after a step of length s with the sub-step's starting assignment held. */
+/* The smallest margin among the candidates after a step of length s with the sub-step's starting
+ * assignment held (nr->margin gets every element's). */
 static double held_margin(void *vctx, double s)
 {
     held_ctx *c = vctx;
     struct dp_net_run *nr = c->r->net;
-    if (s <= 0)
-        return 0;
     dp_net_ws_pattern_restore(nr->ws, nr->pattern);
     step_rhs(nr, c->t, s);
     if (dp_net_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
         return NAN;
-    return nr->margin[c->k];
+    double m = INFINITY;
+    for (size_t k = 0; k < nr->nact; k++)
+        if (c->cand == NULL || c->cand[k])
+            m = fmin(m, nr->margin[k]);
+    return m;
 }
 
-/* The earliest instant in (0, h] where the starting assignment stops being consistent, and its element;
- * h when none does (or the exact step disagrees for another reason). */
-static double earliest_event(dp_run *r, double t, double h, size_t *which, double *roots)
+/* The earliest instant in (0, h] where the starting assignment stops being consistent: a root of the
+ * candidates' smallest margin, found once for all of them (each evaluation is one held solve); in
+ * `fails` the elements whose margin is zero there (identical blocks fail together). Returns h when the
+ * held assignment does not fail, 0 when it fails at once. */
+static double earliest_event(dp_run *r, double t, double h, unsigned char *fails)
 {
     struct dp_net_run *nr = r->net;
-    held_ctx c = { r, t, 0 };
-    double first = h, s0 = 1e-9 * h;
     size_t m = nr->nact;
-    *which = (size_t)-1;
-    double *end = malloc(2 * (m ? m : 1) * sizeof *end), *start = end + (m ? m : 1);
-    if (end == NULL)
-        return h;
+    held_ctx c = { r, t, NULL };
+    double s0 = 1e-9 * h, *start = nr->roots;
+    memset(fails, 0, m ? m : 1);
     held_margin(&c, s0);             /* just after the start: the assignment holds there, or fails at once */
     memcpy(start, nr->margin, m * sizeof *start);
-    if (held_margin(&c, h) != held_margin(&c, h)) {
-        free(end);
+    if (!(held_margin(&c, h) == held_margin(&c, h)))
         return h;
-    }
-    memcpy(end, nr->margin, m * sizeof *end);
+    size_t ncand = 0;
     for (size_t k = 0; k < m; k++) {
-        roots[k] = INFINITY;
-        if (!(end[k] < 0))
-            continue;
-        if (!(start[k] >= 0)) {      /* fails at once: no instant inside the step to split at */
-            first = 0, *which = k;
-            break;
-        }
-        c.k = k;
-        roots[k] = dp_root_bracket(held_margin, &c, s0, h, start[k], end[k], 1e-15 * h, &r->sum.iterations);
-        if (roots[k] < first)
-            first = roots[k], *which = k;
+        fails[k] = nr->margin[k] < 0;
+        ncand += fails[k];
+        if (fails[k] && !(start[k] >= 0))
+            return 0;
     }
-    free(end);
-    return first;
+    if (ncand == 0)
+        return h;
+    c.cand = fails;
+    double g0 = held_margin(&c, s0), g1 = held_margin(&c, h);
+    double at = dp_root_bracket(held_margin, &c, s0, h, g0, g1, 1e-15 * h, &r->sum.iterations);
+    held_margin(&c, at);
+    for (size_t k = 0; k < m; k++)      /* the ones that fail here; the others wait for their own instant */
+        fails[k] = fails[k] && nr->margin[k] <= 1e-9 * fmax(start[k], 1e-300);
+    return at;
 }
 
 /* Element k's assignment failed at time t (the state is there, the held assignment in the workspace): a
@@ -498,7 +498,12 @@ static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
     } else {
         dp_net_ws_fix_end(nr->ws, k, nr->v);
         dp_net_ws_pattern_save(nr->ws, nr->pattern);
-        double m = left > 0 ? held_margin(&(held_ctx){ r, t, k }, s0) : 0;
+        unsigned char *only = calloc(nr->nact, 1);
+        if (only == NULL)
+            return nr->phase[nr->act_el[k]];
+        only[k] = 1;
+        double m = left > 0 ? held_margin(&(held_ctx){ r, t, only }, s0) : 0;
+        free(only);
         if (m < 0)
             dp_net_ws_slip(nr->ws, k, s0, nr->u, dp_net_ws_violation(nr->ws, k, s0, nr->u) >= 0 ? 1 : -1);
     }
@@ -529,9 +534,8 @@ static int located_step(dp_run *r, double t, double h)
             nr_stick_time(r, nr->phase, left);
             return DP_OK;
         }
-        size_t k;
-        double at = earliest_event(r, t, left, &k, nr->roots);
-        if (k == (size_t)-1 || !(at > 1e-9 * left) || at >= left) {
+        double at = earliest_event(r, t, left, nr->fails);
+        if (!(at > 1e-9 * left) || at >= left) {
             /* no instant to split at (a change at the very start, or none the held assignment sees) */
             dp_net_ws_pattern_restore(nr->ws, nr->pattern);
             if ((s = net_step_keep(r, t, left)) != DP_OK)
@@ -542,13 +546,13 @@ static int located_step(dp_run *r, double t, double h)
             nr_stick_time(r, nr->phase, left);
             return DP_OK;
         }
-        held_margin(&(held_ctx){ r, t, k }, at);     /* the state at the event, assignment held */
+        held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
         take_velocity(nr, at);
         element_forces(nr, 1);
         /* every element whose assignment fails at this instant (to the root's tolerance) switches here:
          * identical blocks stick together */
         for (size_t j = 0; j < nr->nact; j++)
-            if (j == k || nr->roots[j] <= at + 1e-12 * left)
+            if (nr->fails[j])
                 nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
         nr_stick_time(r, nr->phase_prev, at);
         nr_step_events(r, nr->phase_prev, t + at);
@@ -677,7 +681,8 @@ int dp_network_run_init(dp_run *r)
     nr->pattern = malloc(dp_net_ws_pattern_bytes(nr->ws));
     nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
     nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
-    if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL)
+    nr->fails = calloc(nr->nact ? nr->nact : 1, 1);
+    if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL || nr->fails == NULL)
         return DP_ENOMEM;
     nr->locate = dp_network_locates(&r->spec);
     if ((s = check_step_bound(r)) != DP_OK)

@@ -23,7 +23,8 @@ struct dp_net_run {
     int solved;                 /* the workspace holds the assignment of the last step */
     void *pattern;              /* the assignment at a sub-step's start */
     double *margin;             /* per active element, of the assignment held over a shorter step */
-    double *roots;              /* per active element, when its held assignment fails (INFINITY: not here) */
+    double *roots;              /* per active element: its margin just after a sub-step's start */
+    unsigned char *fails;       /* per active element: its held assignment fails at the located instant */
     struct dp_net_reg *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
     long *act_of;               /* element -> its index in act, or -1 */
     size_t *act_el;             /* index in act -> element */
