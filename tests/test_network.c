@@ -94,7 +94,9 @@ static const char *const dampers[] = {
 static const char *const loads[] = { NULL, "\"kind\":\"harmonic\",\"amplitude\":0.7,\"omega\":1.3,\"phase\":0.2",
                                      "\"kind\":\"constant\",\"value\":0.2" };
 
-/* The one-mass model and the network of one node and one element [ground, 0] step for step. */
+/* The one-mass model and a network of two unconnected copies of it step for step: node 0 of the network
+ * (stepped by the general network step) is the one-mass trajectory. (A network of just one node and one
+ * element [ground, 0] is handed to the one-mass solver itself, network_one_mass.c: checked bit for bit.) */
 static void test_one_node_is_the_one_mass_model(void **state)
 {
     (void)state;
@@ -116,9 +118,12 @@ static void test_one_node_is_the_one_mass_model(void **state)
                     snprintf(one, sizeof one, "{\"model\":{\"mass\":1.3,\"spring\":%s,\"damper\":%s%s},"
                              "\"initial\":{\"x\":1.5,\"v\":0.2},%s,\"theta\":%g},\"output\":{\"every\":7}}",
                              springs[s], dampers[d], fo1, sv, theta);
-                    snprintf(net, sizeof net, "{\"model\":{\"masses\":[1.3],\"elements\":[{\"between\":[\"ground\",0],"
-                             "\"spring\":%s,\"damper\":%s}]%s},\"initial\":{\"x\":[1.5],\"v\":[0.2]},%s,\"theta\":%g},"
-                             "\"output\":{\"every\":7}}", springs[s], dampers[d], fo2, sv, theta);
+                    if (loads[f])
+                        snprintf(fo2, sizeof fo2, ",\"forcing\":[{\"node\":0,%s},{\"node\":1,%s}]", loads[f], loads[f]);
+                    snprintf(net, sizeof net, "{\"model\":{\"masses\":[1.3,1.3],\"elements\":[{\"between\":[\"ground\",0],"
+                             "\"spring\":%s,\"damper\":%s},{\"between\":[\"ground\",1],\"spring\":%s,\"damper\":%s}]%s},"
+                             "\"initial\":{\"x\":[1.5,1.5],\"v\":[0.2,0.2]},%s,\"theta\":%g},\"output\":{\"every\":7}}",
+                             springs[s], dampers[d], springs[s], dampers[d], fo2, sv, theta);
                     traj a;
                     rows b;
                     assert_int_equal(traj_run(one, &a), DP_OK);
@@ -127,16 +132,33 @@ static void test_one_node_is_the_one_mass_model(void **state)
                     assert_int_equal(b.status, DP_DONE);
                     assert_int_equal(a.n, b.n);
                     for (size_t i = 0; i < a.n; i++) {
-                        const double *r = b.d + i * b.width;
+                        const double *r = b.d + i * b.width;   /* t, x0 x1, v0 v1, Fs0 Fs1, Fd0 Fd1, phase0 phase1 */
                         assert_true(a.s[i].t == r[0]);
                         assert_true(fabs(a.s[i].x - r[1]) <= 1e-12 * (1 + fabs(a.s[i].x)));
-                        assert_true(fabs(a.s[i].v - r[2]) <= 1e-12 * (1 + fabs(a.s[i].v)));
+                        assert_true(fabs(a.s[i].v - r[3]) <= 1e-12 * (1 + fabs(a.s[i].v)));
+                        assert_true(r[1] == r[2] && r[3] == r[4]);   /* the two copies agree exactly */
                         if (i > 0) {
-                            assert_true(fabs(a.s[i].Fs - r[3]) <= 1e-11 * (1 + fabs(a.s[i].Fs)));
-                            assert_true(fabs(a.s[i].Fd - r[4]) <= 1e-11 * (1 + fabs(a.s[i].Fd)));
-                            assert_int_equal((int)a.s[i].phase, (int)r[5]);
+                            assert_true(fabs(a.s[i].Fs - r[5]) <= 1e-11 * (1 + fabs(a.s[i].Fs)));
+                            assert_true(fabs(a.s[i].Fd - r[7]) <= 1e-11 * (1 + fabs(a.s[i].Fd)));
+                            assert_int_equal((int)a.s[i].phase, (int)r[9]);
                         }
                     }
+                    /* the one-node network: the one-mass solver's own numbers */
+                    free(b.d);
+                    rows c;
+                    char one_node[1024];
+                    snprintf(one_node, sizeof one_node, "{\"model\":{\"masses\":[1.3],\"elements\":[{\"between\":"
+                             "[\"ground\",0],\"spring\":%s,\"damper\":%s}]%s%s%s},\"initial\":{\"x\":[1.5],\"v\":[0.2]},%s,"
+                             "\"theta\":%g},\"output\":{\"every\":7}}", springs[s], dampers[d],
+                             loads[f] ? ",\"forcing\":[{\"node\":0," : "", loads[f] ? loads[f] : "", loads[f] ? "}]" : "",
+                             sv, theta);
+                    rows_run(one_node, 257, &c);
+                    assert_int_equal(c.n, a.n);
+                    for (size_t i = 0; i < a.n; i++) {
+                        const double *r = c.d + i * c.width;
+                        assert_true(a.s[i].x == r[1] && a.s[i].v == r[2] && a.s[i].Fs == r[3] && a.s[i].Fd == r[4]);
+                    }
+                    b = c;
                     traj_free(&a);
                     free(b.d);
                     cases++;
@@ -144,8 +166,9 @@ static void test_one_node_is_the_one_mass_model(void **state)
     assert_int_equal(cases, (2 + 2) * NDAMPERS * 3);   /* linear spring: two thetas; the others: theta 1 */
 }
 
-/* With events located, the one-mass model and the one-node network split their steps at the same instants:
- * the same trajectory and the same events, to the root finders' tolerance. */
+/* With events located, the one-mass model and a network of two unconnected copies of it (the general network
+ * step) split their steps at the same instants: the same trajectory and the same events (each copy's),
+ * to the root finders' tolerance. */
 static void test_one_node_located_events(void **state)
 {
     (void)state;
@@ -159,14 +182,16 @@ static void test_one_node_located_events(void **state)
         for (int th = 0; th < 2; th++)
             for (int f = 0; f < 2; f++) {
                 const char *load = f ? ",\"forcing\":{\"kind\":\"harmonic\",\"amplitude\":0.9,\"omega\":1.3}" : "";
-                const char *nload = f ? ",\"forcing\":[{\"node\":0,\"kind\":\"harmonic\",\"amplitude\":0.9,\"omega\":1.3}]" : "";
+                const char *nload = f ? ",\"forcing\":[{\"node\":0,\"kind\":\"harmonic\",\"amplitude\":0.9,\"omega\":1.3},"
+                                        "{\"node\":1,\"kind\":\"harmonic\",\"amplitude\":0.9,\"omega\":1.3}]" : "";
                 snprintf(one, sizeof one, "{\"model\":{\"mass\":1.3,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":%s%s},"
                          "\"initial\":{\"x\":1.5,\"v\":0.2},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":%s},"
                          "\"output\":{\"every\":10}}", located[d], load, th ? "1" : "0.5");
-                snprintf(net, sizeof net, "{\"model\":{\"masses\":[1.3],\"elements\":[{\"between\":[\"ground\",0],"
-                         "\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":%s}]%s},\"initial\":{\"x\":[1.5],"
-                         "\"v\":[0.2]},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":%s},\"output\":{\"every\":10}}",
-                         located[d], nload, th ? "1" : "0.5");
+                snprintf(net, sizeof net, "{\"model\":{\"masses\":[1.3,1.3],\"elements\":[{\"between\":[\"ground\",0],"
+                         "\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":%s},{\"between\":[\"ground\",1],"
+                         "\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":%s}]%s},\"initial\":{\"x\":[1.5,1.5],"
+                         "\"v\":[0.2,0.2]},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":%s},\"output\":{\"every\":10}}",
+                         located[d], located[d], nload, th ? "1" : "0.5");
                 traj a;
                 rows b;
                 assert_int_equal(traj_run(one, &a), DP_OK);
@@ -174,11 +199,11 @@ static void test_one_node_located_events(void **state)
                 assert_int_equal(a.n, b.n);
                 for (size_t i = 0; i < a.n; i++) {
                     const double *r = b.d + i * b.width;
-                    assert_true(fabs(a.s[i].x - r[1]) < 1e-12 && fabs(a.s[i].v - r[2]) < 1e-12);
+                    assert_true(fabs(a.s[i].x - r[1]) < 1e-12 && fabs(a.s[i].v - r[3]) < 1e-12);
                 }
                 for (size_t i = 0, j = 0; i < a.ne; i++, j++) {
                     /* a touch of the belt speed may show on the network as a stick and a slip 1e-8 apart */
-                    while (j < b.events && fabs(b.ev[j].t - a.e[i].t) > 1e-6)
+                    while (j < b.events && (b.ev[j].element != 0 || fabs(b.ev[j].t - a.e[i].t) > 1e-6))
                         j++;
                     assert_true(j < b.events);
                     assert_true(fabs(b.ev[j].t - a.e[i].t) < 1e-12 && b.ev[j].kind == a.e[i].kind);

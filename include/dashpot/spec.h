@@ -91,6 +91,10 @@ void dp_network_check(const dp_spec *s, dp_errors *errs);
  * threshold); otherwise a phase change is reported at the end of its step. */
 int dp_network_locates(const dp_spec *s);
 
+/* Whether a network is one mass on one element [ground, 0] with diagonal mass, stepped by the stick-slip
+ * solver: then it runs on the one-mass solver itself (network_one_mass.c), bit for bit and as fast. */
+int dp_network_is_one_mass(const dp_spec *s);
+
 /* Checks the spec as a whole (the cross-field rules the JSON schema cannot state: theta only with linear
  * parts, the contraction condition (4.10) for the thesis variant, x0 within the rope, the step count limit
  * `max_steps`), appending located errors. Requires dp_model_prepare() to have run.

@@ -243,7 +243,7 @@ static void element_forces(struct dp_net_run *nr, int stepped)
     }
 }
 
-static dp_row fill_row(const struct dp_net_run *nr, double t, double *data, unsigned char *ph)
+dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data, unsigned char *ph)
 {
     size_t nn = nr->cols.nodes, ne = nr->cols.elements;
     dp_row row = { .t = t, .x = data, .v = data + nn, .Fs = data + 2 * nn, .Fd = data + 2 * nn + ne, .phase = ph };
@@ -287,9 +287,9 @@ void nr_emit_row(dp_run *r)
     dp_record rec = { .type = DP_RECORD_ROW };
     if (nr->nq == 0 && r->out && r->out_n < r->out_cap && nr->rows_used < nr->rows_cap) {
         size_t s = nr->rows_used++;
-        rec.u.row = fill_row(nr, r->cur.t, nr->rows + s * nr->row_len, nr->row_phase + s * nr->cols.elements);
+        rec.u.row = nr_fill_row(nr, r->cur.t, nr->rows + s * nr->row_len, nr->row_phase + s * nr->cols.elements);
     } else {
-        rec.u.row = fill_row(nr, r->cur.t, nr->pending_row, nr->pending_phase);
+        rec.u.row = nr_fill_row(nr, r->cur.t, nr->pending_row, nr->pending_phase);
     }
     nr_put(r, &rec);
     r->sum.samples++;
@@ -298,7 +298,7 @@ void nr_emit_row(dp_run *r)
 void nr_finalize_summary(dp_run *r)
 {
     struct dp_net_run *nr = r->net;
-    r->sum.final_row = fill_row(nr, r->cur.t, nr->final_row, nr->final_phase);
+    r->sum.final_row = nr_fill_row(nr, r->cur.t, nr->final_row, nr->final_phase);
 }
 
 /* ---- stepping --------------------------------------------------------------------------------------- */
@@ -687,6 +687,8 @@ int dp_network_run_init(dp_run *r)
     nr->locate = dp_network_locates(&r->spec);
     if ((s = check_step_bound(r)) != DP_OK)
         return s;
+    if (dp_network_is_one_mass(&r->spec))
+        return dp_network_one_mass_init(r);
     memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
     memcpy(nr->v, r->spec.v0v, nr->n * sizeof *nr->v);
     if (r->spec.solver.kind == DP_SOLVER_REGULARIZED) {
@@ -754,6 +756,8 @@ int dp_network_run_advance(dp_run *r)
  * graph springs (vertices at (y - u)/h), relaxation and static thresholds are stepped without it. */
 int dp_network_locates(const dp_spec *s)
 {
+    if (dp_network_is_one_mass(s))   /* the one-mass solver locates every damper that can stick */
+        return s->solver.events == DP_EVENTS_LOCATE && dp_element_can_stick(&s->net->el[0]);
     int sticky = 0;
     for (size_t i = 0; i < s->net->nel; i++) {
         const dp_element *e = &s->net->el[i];
@@ -775,4 +779,9 @@ const dp_columns *dp_run_columns(const dp_run *r)
 int dp_network_run_pending(const dp_run *r)
 {
     return r->net->nq > r->net->iq;
+}
+
+int dp_network_run_is_one_mass(const dp_run *r)
+{
+    return r->net != NULL && r->net->one_mass;
 }

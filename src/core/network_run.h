@@ -26,6 +26,7 @@ struct dp_net_run {
     double *roots;              /* per active element: its margin just after a sub-step's start */
     unsigned char *fails;       /* per active element: its held assignment fails at the located instant */
     struct dp_net_reg *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
+    int one_mass;               /* stepped by the one-mass solver (network_one_mass.c) */
     long *act_of;               /* element -> its index in act, or -1 */
     size_t *act_el;             /* index in act -> element */
     double *k, *c;              /* per element: linear stiffness and viscosity */
@@ -67,6 +68,13 @@ int nr_state_finite(const struct dp_net_run *nr);
 double nr_rel(long a, long b, const double *x);
 /* y = A x for a symmetric band matrix A (n, bandwidth p) in GSL's storage. */
 void nr_band_symv(const double *A, size_t n, size_t p, const double *x, double *y);
+
+/* A row over the columns from the current state, its numbers written to data and ph. */
+dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data, unsigned char *ph);
+
+/* One mass on one element [ground, 0] (network_one_mass.c): stepped by the one-mass solver, its records
+ * rewritten as rows and element events. */
+int dp_network_one_mass_init(dp_run *r);
 
 /* The regularized scheme on networks (network_regularized.c). */
 int dp_network_regularized_init(dp_run *r);

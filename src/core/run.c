@@ -82,7 +82,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
         return NULL;
     }
     r->sum.final = r->cur;
-    if (r->net == NULL)
+    if (r->net == NULL || dp_network_run_is_one_mass(r))
         dp_run_emit_state(r); /* queued in `pending`: no block yet */
     *status = DP_OK;
     return r;
@@ -90,7 +90,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
 
 static int advance(dp_run *r)
 {
-    if (r->net)
+    if (r->net && !dp_network_run_is_one_mass(r))
         return dp_network_run_advance(r);
     if (r->spec.solver.kind == DP_SOLVER_ANALYTIC)
         return dp_analytic_advance(r);
@@ -121,6 +121,8 @@ int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
     *n = r->out_n;
     r->out = NULL;
     r->sum.final = r->cur;
+    if (r->net && dp_network_run_is_one_mass(r) && dp_network_one_mass_rows(r, buf, *n) != DP_OK)
+        dp_run_fail(r, DP_ENOMEM, "out of memory for the rows of a block");
     if (r->status != DP_OK)
         return r->status;
     if (r->finished && r->npending == 0 && !(r->net && dp_network_run_pending(r)))

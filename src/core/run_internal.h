@@ -97,6 +97,9 @@ const gsl_odeiv2_step_type *dp_regularized_step_type(dp_stepper s);
 int dp_network_run_init(dp_run *r);
 int dp_network_run_advance(dp_run *r);
 void dp_network_run_free(struct dp_net_run *nr);
+/* A network stepped by the one-mass solver (network_one_mass.c): its block rewritten as rows. */
+int dp_network_run_is_one_mass(const dp_run *r);
+int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n);
 /* Whether records wait in the network run's queue. */
 int dp_network_run_pending(const dp_run *r);
 
