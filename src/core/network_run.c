@@ -18,8 +18,6 @@
 #include "network_run.h"
 #include "root.h"
 
-/* Row storage per block: the block holds at most this many numbers of rows. */
-#define ROW_BUDGET (1u << 20)
 
 
 static size_t bandwidth(const dp_network *net)
@@ -215,7 +213,7 @@ void dp_network_run_free(struct dp_net_run *nr)
 
 /* Each element's forces and phase at the current state; `stepped`: after a step (forces from its
  * solution), else the initial state (set-valued forces taken closest to zero). */
-static void element_forces(struct dp_net_run *nr, int stepped)
+void nr_element_forces(struct dp_net_run *nr, int stepped)
 {
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
@@ -241,64 +239,6 @@ static void element_forces(struct dp_net_run *nr, int stepped)
         nr->Fs[i] = fs, nr->Fd[i] = fd;
         nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
     }
-}
-
-dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data, unsigned char *ph)
-{
-    size_t nn = nr->cols.nodes, ne = nr->cols.elements;
-    dp_row row = { .t = t, .x = data, .v = data + nn, .Fs = data + 2 * nn, .Fd = data + 2 * nn + ne, .phase = ph };
-    for (size_t j = 0; j < nn; j++) {
-        size_t i = nr->cols.node[j];
-        data[j] = nr->x[i], data[nn + j] = nr->v[i];
-    }
-    for (size_t j = 0; j < ne; j++) {
-        size_t i = nr->cols.element[j];
-        data[2 * nn + j] = nr->Fs[i], data[2 * nn + ne + j] = nr->Fd[i];
-        ph[j] = nr->phase[i];
-    }
-    return row;
-}
-
-/* Queues a record for the caller: into its block while it has room and nothing waits, else the queue. */
-void nr_put(dp_run *r, const dp_record *rec)
-{
-    struct dp_net_run *nr = r->net;
-    if (nr->nq == 0 && r->out && r->out_n < r->out_cap) {
-        r->out[r->out_n++] = *rec;
-        return;
-    }
-    if (nr->nq == nr->qcap) {   /* a step with more changes than the queue held: grow it, never drop */
-        dp_record *q = realloc(nr->queue, 2 * nr->qcap * sizeof *q);
-        if (q == NULL) {
-            dp_run_fail(r, DP_ENOMEM, "out of memory for the events of one step");
-            return;
-        }
-        nr->queue = q, nr->qcap *= 2;
-    }
-    nr->queue[nr->nq++] = *rec;
-}
-
-void nr_emit_row(dp_run *r)
-{
-    struct dp_net_run *nr = r->net;
-    r->countdown = r->spec.output.every;
-    if (!r->spec.output.samples)
-        return;
-    dp_record rec = { .type = DP_RECORD_ROW };
-    if (nr->nq == 0 && r->out && r->out_n < r->out_cap && nr->rows_used < nr->rows_cap) {
-        size_t s = nr->rows_used++;
-        rec.u.row = nr_fill_row(nr, r->cur.t, nr->rows + s * nr->row_len, nr->row_phase + s * nr->cols.elements);
-    } else {
-        rec.u.row = nr_fill_row(nr, r->cur.t, nr->pending_row, nr->pending_phase);
-    }
-    nr_put(r, &rec);
-    r->sum.samples++;
-}
-
-void nr_finalize_summary(dp_run *r)
-{
-    struct dp_net_run *nr = r->net;
-    r->sum.final_row = nr_fill_row(nr, r->cur.t, nr->final_row, nr->final_phase);
 }
 
 /* ---- stepping --------------------------------------------------------------------------------------- */
@@ -341,7 +281,7 @@ static int static_solve(dp_run *r, double h)
 
 /* The right side of a step of length h from the current state at time t, W for h, and the elongations the
  * spring graphs see (network_step.h for the problem they define). */
-static void step_rhs(struct dp_net_run *nr, double t, double h)
+void nr_step_rhs(struct dp_net_run *nr, double t, double h)
 {
     size_t n = nr->n, p = nr->p;
     double th = nr->theta;
@@ -371,7 +311,7 @@ static void step_rhs(struct dp_net_run *nr, double t, double h)
 }
 
 /* x+ = x + h ((1-theta) v + theta v+), v = v+. */
-static void take_velocity(struct dp_net_run *nr, double h)
+void nr_take_velocity(struct dp_net_run *nr, double h)
 {
     for (size_t i = 0; i < nr->n; i++) {
         nr->x[i] += h * ((1 - nr->theta) * nr->v[i] + nr->theta * nr->v1[i]);
@@ -380,10 +320,10 @@ static void take_velocity(struct dp_net_run *nr, double h)
 }
 
 /* The exact solution of a step of length h from time t into v1 and the forces; the state is not moved. */
-static int net_step_keep(dp_run *r, double t, double h)
+int nr_net_step_keep(dp_run *r, double t, double h)
 {
     struct dp_net_run *nr = r->net;
-    step_rhs(nr, t, h);
+    nr_step_rhs(nr, t, h);
     int s = nr->has_static ? static_solve(r, h)
                            : dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
     nr->solved = s == DP_OK;
@@ -393,230 +333,10 @@ static int net_step_keep(dp_run *r, double t, double h)
 /* One theta-step of length h from time t, solved exactly. */
 static int net_step(dp_run *r, double t, double h)
 {
-    int s = net_step_keep(r, t, h);
+    int s = nr_net_step_keep(r, t, h);
     if (s == DP_OK)
-        take_velocity(r->net, h);
+        nr_take_velocity(r->net, h);
     return s;
-}
-
-/* Events at time t for the elements whose phase differs from `before`. */
-void nr_step_events(dp_run *r, const unsigned char *before, double t)
-{
-    struct dp_net_run *nr = r->net;
-    for (size_t i = 0; i < nr->nel; i++) {
-        if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
-            continue;
-        r->sum.events++;
-        if (!r->spec.output.events)
-            continue;
-        const dp_element *e = &nr->net->el[i];
-        dp_record rec = { .type = DP_RECORD_EVENT };
-        rec.u.event = (dp_event){ .kind = nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP,
-                                  .t = t, .x = nr_rel(e->a, e->b, nr->x), .v = nr_rel(e->a, e->b, nr->v),
-                                  .element = i };
-        nr_put(r, &rec);
-    }
-}
-
-/* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
-void nr_stick_time(dp_run *r, const unsigned char *ph, double h)
-{
-    for (size_t i = 0; i < r->net->nel; i++)
-        if (ph[i] == DP_PHASE_STICK)
-            r->sum.stick_time += h;
-}
-
-/* ---- located events ------------------------------------------------------------------------------ */
-
-typedef struct held_ctx {
-    dp_run *r;
-    double t;
-    const unsigned char *cand;   /* the elements whose held assignment fails by the step's end */
-} held_ctx;
-
-/* The smallest margin among the candidates after a step of length s with the sub-step's starting
- * assignment held (nr->margin gets every element's). */
-static double held_margin(void *vctx, double s)
-{
-    held_ctx *c = vctx;
-    struct dp_net_run *nr = c->r->net;
-    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
-    step_rhs(nr, c->t, s);
-    if (dp_net_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
-        return NAN;
-    double m = INFINITY;
-    for (size_t k = 0; k < nr->nact; k++)
-        if (c->cand == NULL || c->cand[k])
-            m = fmin(m, nr->margin[k]);
-    return m;
-}
-
-/* The earliest instant in (0, h] where the starting assignment stops being consistent: a root of the
- * candidates' smallest margin, found once for all of them (each evaluation is one held solve); in
- * `fails` the elements whose margin is zero there (identical blocks fail together). Returns h when the
- * held assignment does not fail, 0 when it fails at once. */
-static double earliest_event(dp_run *r, double t, double h, unsigned char *fails)
-{
-    struct dp_net_run *nr = r->net;
-    size_t m = nr->nact;
-    held_ctx c = { r, t, NULL };
-    double s0 = 1e-9 * h, *start = nr->roots;
-    memset(fails, 0, m ? m : 1);
-    held_margin(&c, s0);             /* just after the start: the assignment holds there, or fails at once */
-    memcpy(start, nr->margin, m * sizeof *start);
-    if (!(held_margin(&c, h) == held_margin(&c, h)))
-        return h;
-    size_t ncand = 0;
-    for (size_t k = 0; k < m; k++) {
-        fails[k] = nr->margin[k] < 0;
-        ncand += fails[k];
-        if (fails[k] && !(start[k] >= 0))
-            return 0;
-    }
-    if (ncand == 0)
-        return h;
-    c.cand = fails;
-    double g0 = held_margin(&c, s0), g1 = held_margin(&c, h);
-    double at = dp_root_bracket(held_margin, &c, s0, h, g0, g1, 1e-15 * h, &r->sum.iterations);
-    held_margin(&c, at);
-    for (size_t k = 0; k < m; k++)      /* the ones that fail here; the others wait for their own instant */
-        fails[k] = fails[k] && nr->margin[k] <= 1e-9 * fmax(start[k], 1e-300);
-    return at;
-}
-
-/* Element k's assignment failed at time t (the state is there, the held assignment in the workspace): a
- * fixed element is freed towards its force; a free one that reached a vertex is fixed there if the vertex's
- * interval holds it just after (a stick), else freed beyond it (a reversal through the belt speed, a kink:
- * no stick, as for one mass). Returns the element's phase after. */
-static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
-{
-    struct dp_net_run *nr = r->net;
-    double s0 = 1e-9 * (left > 0 ? left : 1);
-    if (dp_net_ws_fixed(nr->ws, k)) {
-        int dir = dp_net_ws_violation(nr->ws, k, s0, nr->u);
-        dp_net_ws_slip(nr->ws, k, s0, nr->u, dir >= 0 ? 1 : -1);
-    } else {
-        dp_net_ws_fix_end(nr->ws, k, nr->v);
-        dp_net_ws_pattern_save(nr->ws, nr->pattern);
-        unsigned char *only = calloc(nr->nact, 1);
-        if (only == NULL)
-            return nr->phase[nr->act_el[k]];
-        only[k] = 1;
-        double m = left > 0 ? held_margin(&(held_ctx){ r, t, only }, s0) : 0;
-        free(only);
-        if (m < 0)
-            dp_net_ws_slip(nr->ws, k, s0, nr->u, dp_net_ws_violation(nr->ws, k, s0, nr->u) >= 0 ? 1 : -1);
-    }
-    if (!nr->can_stick[nr->act_el[k]])
-        return DP_PHASE_NONE;
-    return dp_net_ws_at_rest(nr->ws, k) ? DP_PHASE_STICK : DP_PHASE_SLIP;
-}
-
-/* A step split at its phase changes: while the exact step over what is left changes some element's phase,
- * the starting assignment is held up to the earliest instant where it fails, the step is taken to there,
- * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
- * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. */
-static int located_step(dp_run *r, double t, double h)
-{
-    struct dp_net_run *nr = r->net;
-    double left = h;
-    for (size_t sub = 0; left > 0; sub++) {
-        memcpy(nr->phase_prev, nr->phase, nr->nel);
-        dp_net_ws_pattern_save(nr->ws, nr->pattern);
-        int s = net_step_keep(r, t, left);
-        if (s != DP_OK)
-            return s;
-        element_forces(nr, 1);
-        if (dp_net_ws_pattern_same(nr->ws, nr->pattern) || sub > 2 * nr->nact + 4) {
-            take_velocity(nr, left);
-            element_forces(nr, 1);
-            nr_step_events(r, nr->phase_prev, t + left);
-            nr_stick_time(r, nr->phase, left);
-            return DP_OK;
-        }
-        double at = earliest_event(r, t, left, nr->fails);
-        if (!(at > 1e-9 * left) || at >= left) {
-            /* no instant to split at (a change at the very start, or none the held assignment sees) */
-            dp_net_ws_pattern_restore(nr->ws, nr->pattern);
-            if ((s = net_step_keep(r, t, left)) != DP_OK)
-                return s;
-            take_velocity(nr, left);
-            element_forces(nr, 1);
-            nr_step_events(r, nr->phase_prev, t + left);
-            nr_stick_time(r, nr->phase, left);
-            return DP_OK;
-        }
-        held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
-        take_velocity(nr, at);
-        element_forces(nr, 1);
-        /* every element whose assignment fails at this instant (to the root's tolerance) switches here:
-         * identical blocks stick together */
-        for (size_t j = 0; j < nr->nact; j++)
-            if (nr->fails[j])
-                nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
-        nr_stick_time(r, nr->phase_prev, at);
-        nr_step_events(r, nr->phase_prev, t + at);
-        t += at, left -= at;
-    }
-    return DP_OK;
-}
-
-int nr_state_finite(const struct dp_net_run *nr)
-{
-    for (size_t i = 0; i < nr->n; i++)
-        if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
-            return 0;
-    for (size_t i = 0; i < nr->nel; i++)
-        if (!isfinite(nr->Fs[i]) || !isfinite(nr->Fd[i]))
-            return 0;
-    return 1;
-}
-
-/* Moves queued records into the caller's block (a queued row into a block slot of its own). */
-void nr_flush(dp_run *r)
-{
-    struct dp_net_run *nr = r->net;
-    while (nr->iq < nr->nq && r->out_n < r->out_cap) {
-        dp_record rec = nr->queue[nr->iq];
-        if (rec.type == DP_RECORD_ROW) {
-            if (nr->rows_used == nr->rows_cap)
-                break;
-            size_t s = nr->rows_used++;
-            double *d = nr->rows + s * nr->row_len;
-            unsigned char *ph = nr->row_phase + s * nr->cols.elements;
-            memcpy(d, nr->pending_row, nr->row_len * sizeof *d);
-            memcpy(ph, nr->pending_phase, nr->cols.elements);
-            size_t nn = nr->cols.nodes, ne = nr->cols.elements;
-            rec.u.row = (dp_row){ .t = rec.u.row.t, .x = d, .v = d + nn, .Fs = d + 2 * nn, .Fd = d + 2 * nn + ne,
-                                  .phase = ph };
-        }
-        r->out[r->out_n++] = rec;
-        nr->iq++;
-    }
-    if (nr->iq == nr->nq)
-        nr->iq = nr->nq = 0;
-}
-
-/* Row slots for this block: one per record the caller can take, within ROW_BUDGET numbers. */
-int nr_reserve_rows(dp_run *r)
-{
-    struct dp_net_run *nr = r->net;
-    size_t want = r->out_cap, fit = ROW_BUDGET / (nr->row_len ? nr->row_len : 1);
-    if (want > fit)
-        want = fit ? fit : 1;
-    nr->rows_used = 0;
-    if (want <= nr->rows_cap)
-        return DP_OK;
-    double *rows = realloc(nr->rows, want * (nr->row_len ? nr->row_len : 1) * sizeof *rows);
-    if (rows == NULL)
-        return DP_ENOMEM;
-    nr->rows = rows;
-    unsigned char *ph = realloc(nr->row_phase, want * (nr->cols.elements ? nr->cols.elements : 1));
-    if (ph == NULL)
-        return DP_ENOMEM;
-    nr->row_phase = ph;
-    nr->rows_cap = want;
-    return DP_OK;
 }
 
 /* sup gamma' over the line: the slope that can eat into W's definiteness. */
@@ -704,10 +424,10 @@ int dp_network_run_init(dp_run *r)
      * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
      * leaves its assignment for the first located step. */
     double h0 = 1e-9 * r->h;
-    if (net_step_keep(r, 0, h0) == DP_OK)
-        element_forces(nr, 1);
+    if (nr_net_step_keep(r, 0, h0) == DP_OK)
+        nr_element_forces(nr, 1);
     else
-        element_forces(nr, 0);
+        nr_element_forces(nr, 0);
     r->countdown = 1;
     nr_finalize_summary(r);
     nr_emit_row(r);     /* the initial state: queued, no block yet */
@@ -726,11 +446,11 @@ int dp_network_run_advance(dp_run *r)
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
         if (nr->locate && nr->solved) {
-            s = located_step(r, t, h);
+            s = nr_located_step(r, t, h);
         } else {
             memcpy(nr->phase_prev, nr->phase, nr->nel);
             if ((s = net_step(r, t, h)) == DP_OK) {
-                element_forces(nr, 1);
+                nr_element_forces(nr, 1);
                 nr_step_events(r, nr->phase_prev, t + h);
                 nr_stick_time(r, nr->phase, h);
             }

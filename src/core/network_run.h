@@ -69,6 +69,16 @@ double nr_rel(long a, long b, const double *x);
 /* y = A x for a symmetric band matrix A (n, bandwidth p) in GSL's storage. */
 void nr_band_symv(const double *A, size_t n, size_t p, const double *x, double *y);
 
+/* The stepping pieces located events are made of (network_run.c): the right side of a step of length h
+ * from time t, its exact solution into v1 and the forces (state unmoved), moving the state by it, and the
+ * elements' forces and phases (`stepped`: from the last solution; else the initial state). */
+void nr_step_rhs(struct dp_net_run *nr, double t, double h);
+int nr_net_step_keep(dp_run *r, double t, double h);
+void nr_take_velocity(struct dp_net_run *nr, double h);
+void nr_element_forces(struct dp_net_run *nr, int stepped);
+/* One step of length h from t split at its phase changes (network_events.c). */
+int nr_located_step(dp_run *r, double t, double h);
+
 /* A row over the columns from the current state, its numbers written to data and ph. */
 dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data, unsigned char *ph);
 
