@@ -33,12 +33,7 @@ static void rows_push(rows *r, const dp_row *w)
     }
     double *o = r->d + r->n++ * r->width;
     o[0] = w->t;
-    memcpy(o + 1, w->x, r->nx * sizeof *o);
-    memcpy(o + 1 + r->nx, w->v, r->nx * sizeof *o);
-    memcpy(o + 1 + 2 * r->nx, w->Fs, r->ne * sizeof *o);
-    memcpy(o + 1 + 2 * r->nx + r->ne, w->Fd, r->ne * sizeof *o);
-    for (size_t i = 0; i < r->ne; i++)
-        o[1 + 2 * r->nx + 2 * r->ne + i] = w->phase[i];
+    memcpy(o + 1, w->val, (r->width - 1) * sizeof *o);   /* x, v, Fs, Fd, phase */
 }
 
 /* Runs a network document with blocks of `cap` records. */
@@ -58,7 +53,8 @@ static void rows_run(const char *json, size_t cap, rows *r)
     assert_non_null(run);
     const dp_columns *c = dp_run_columns(run);
     assert_non_null(c);
-    r->nx = c->nodes, r->ne = c->elements, r->width = 1 + 2 * r->nx + 3 * r->ne;
+    r->nx = c->nodes, r->ne = c->elements, r->width = 1 + c->width;
+    assert_int_equal(c->width, 2 * r->nx + 3 * r->ne);
     dp_record *buf = malloc(cap * sizeof *buf);
     size_t n;
     do {

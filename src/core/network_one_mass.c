@@ -86,9 +86,9 @@ int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n)
         take_sample(nr, &buf[i].u.sample);
         size_t k = nr->rows_used++;
         buf[i].type = DP_RECORD_ROW;
-        buf[i].u.row = nr_fill_row(nr, t, nr->rows + k * nr->row_len, nr->row_phase + k * nr->cols.elements);
+        buf[i].u.row = nr_fill_row(nr, t, nr->rows + k * nr->row_len);
     }
     take_sample(nr, &r->sum.final);
-    r->sum.final_row = nr_fill_row(nr, r->sum.final.t, nr->final_row, nr->final_phase);
+    r->sum.final_row = nr_fill_row(nr, r->sum.final.t, nr->final_row);
     return DP_OK;
 }

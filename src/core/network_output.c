@@ -12,20 +12,18 @@
 /* Row storage per block: the block holds at most this many numbers of rows. */
 #define ROW_BUDGET (1u << 20)
 
-dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data, unsigned char *ph)
+dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data)
 {
     size_t nn = nr->cols.nodes, ne = nr->cols.elements;
-    dp_row row = { .t = t, .x = data, .v = data + nn, .Fs = data + 2 * nn, .Fd = data + 2 * nn + ne, .phase = ph };
     for (size_t j = 0; j < nn; j++) {
         size_t i = nr->cols.node[j];
         data[j] = nr->x[i], data[nn + j] = nr->v[i];
     }
     for (size_t j = 0; j < ne; j++) {
         size_t i = nr->cols.element[j];
-        data[2 * nn + j] = nr->Fs[i], data[2 * nn + ne + j] = nr->Fd[i];
-        ph[j] = nr->phase[i];
+        data[2 * nn + j] = nr->Fs[i], data[2 * nn + ne + j] = nr->Fd[i], data[2 * nn + 2 * ne + j] = nr->phase[i];
     }
-    return row;
+    return (dp_row){ .t = t, .val = data };
 }
 
 /* Queues a record for the caller: into its block while it has room and nothing waits, else the queue. */
@@ -56,9 +54,9 @@ void nr_emit_row(dp_run *r)
     dp_record rec = { .type = DP_RECORD_ROW };
     if (nr->nq == 0 && r->out && r->out_n < r->out_cap && nr->rows_used < nr->rows_cap) {
         size_t s = nr->rows_used++;
-        rec.u.row = nr_fill_row(nr, r->cur.t, nr->rows + s * nr->row_len, nr->row_phase + s * nr->cols.elements);
+        rec.u.row = nr_fill_row(nr, r->cur.t, nr->rows + s * nr->row_len);
     } else {
-        rec.u.row = nr_fill_row(nr, r->cur.t, nr->pending_row, nr->pending_phase);
+        rec.u.row = nr_fill_row(nr, r->cur.t, nr->pending_row);
     }
     nr_put(r, &rec);
     r->sum.samples++;
@@ -67,7 +65,7 @@ void nr_emit_row(dp_run *r)
 void nr_finalize_summary(dp_run *r)
 {
     struct dp_net_run *nr = r->net;
-    r->sum.final_row = nr_fill_row(nr, r->cur.t, nr->final_row, nr->final_phase);
+    r->sum.final_row = nr_fill_row(nr, r->cur.t, nr->final_row);
 }
 
 
@@ -84,7 +82,10 @@ void nr_step_events(dp_run *r, const unsigned char *before, double t)
         const dp_element *e = &nr->net->el[i];
         dp_record rec = { .type = DP_RECORD_EVENT };
         rec.u.event = (dp_event){ .kind = nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP,
-                                  .t = t, .x = nr_rel(e->a, e->b, nr->x), .v = nr_rel(e->a, e->b, nr->v),
+                                  .t = t, .x = nr_rel(e->a, e->b, nr->x),
+                                  /* a stick holds the belt's speed exactly; the state carries its rounding */
+                                  .v = nr->phase[i] == DP_PHASE_STICK && e->has_damper ? e->damper.belt_velocity
+                                                                                       : nr_rel(e->a, e->b, nr->v),
                                   .element = i };
         nr_put(r, &rec);
     }
@@ -121,12 +122,8 @@ void nr_flush(dp_run *r)
                 break;
             size_t s = nr->rows_used++;
             double *d = nr->rows + s * nr->row_len;
-            unsigned char *ph = nr->row_phase + s * nr->cols.elements;
             memcpy(d, nr->pending_row, nr->row_len * sizeof *d);
-            memcpy(ph, nr->pending_phase, nr->cols.elements);
-            size_t nn = nr->cols.nodes, ne = nr->cols.elements;
-            rec.u.row = (dp_row){ .t = rec.u.row.t, .x = d, .v = d + nn, .Fs = d + 2 * nn, .Fd = d + 2 * nn + ne,
-                                  .phase = ph };
+            rec.u.row.val = d;
         }
         r->out[r->out_n++] = rec;
         nr->iq++;
@@ -149,10 +146,6 @@ int nr_reserve_rows(dp_run *r)
     if (rows == NULL)
         return DP_ENOMEM;
     nr->rows = rows;
-    unsigned char *ph = realloc(nr->row_phase, want * (nr->cols.elements ? nr->cols.elements : 1));
-    if (ph == NULL)
-        return DP_ENOMEM;
-    nr->row_phase = ph;
     nr->rows_cap = want;
     return DP_OK;
 }

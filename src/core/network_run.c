@@ -183,13 +183,17 @@ static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
     nr->cols.node = o->nodes ? o->nodes : nr->all_nodes;
     nr->cols.elements = o->elements ? o->nelements : nr->nel;
     nr->cols.element = o->elements ? o->elements : nr->all_elements;
-    nr->row_len = 2 * nr->cols.nodes + 2 * nr->cols.elements;
-    size_t rl = nr->row_len ? nr->row_len : 1, ne = nr->cols.elements ? nr->cols.elements : 1;
+    size_t nn = nr->cols.nodes, ne = nr->cols.elements;
+    static const char *const names[] = { "x", "v", "Fs", "Fd", "phase" };
+    nr->cols.ngroups = 5;
+    for (size_t g = 0; g < 5; g++)
+        nr->cols.group[g] = (dp_column_group){ .name = names[g], .n = g < 2 ? nn : ne,
+                                               .index = g < 2 ? nr->cols.node : nr->cols.element, .phase = g == 4 };
+    nr->row_len = nr->cols.width = 2 * nn + 3 * ne;
+    size_t rl = nr->row_len ? nr->row_len : 1;
     nr->final_row = calloc(rl, sizeof(double));
     nr->pending_row = calloc(rl, sizeof(double));
-    nr->final_phase = calloc(ne, 1);
-    nr->pending_phase = calloc(ne, 1);
-    return nr->final_row && nr->pending_row && nr->final_phase && nr->pending_phase ? DP_OK : DP_ENOMEM;
+    return nr->final_row && nr->pending_row ? DP_OK : DP_ENOMEM;
 }
 
 void dp_network_run_free(struct dp_net_run *nr)
@@ -202,8 +206,7 @@ void dp_network_run_free(struct dp_net_run *nr)
         dp_graph_clear(&nr->static_A[i]);
     void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
-                  nr->all_elements, nr->rows, nr->row_phase, nr->final_row, nr->final_phase, nr->queue,
-                  nr->pending_row, nr->pending_phase };
+                  nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
     free(nr);

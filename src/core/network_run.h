@@ -39,14 +39,11 @@ struct dp_net_run {
     dp_columns cols;
     size_t *all_nodes, *all_elements;
     size_t row_len, rows_cap, rows_used;
-    double *rows;               /* rows_cap rows of row_len numbers */
-    unsigned char *row_phase;   /* rows_cap x cols.elements */
+    double *rows;               /* rows_cap rows of row_len (= cols.width) numbers */
     double *final_row;          /* the summary's row */
-    unsigned char *final_phase;
     dp_record *queue;           /* records that did not fit the caller's block */
     size_t nq, iq, qcap;
     double *pending_row;        /* the data of a queued row */
-    unsigned char *pending_phase;
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */
@@ -80,7 +77,7 @@ void nr_element_forces(struct dp_net_run *nr, int stepped);
 int nr_located_step(dp_run *r, double t, double h);
 
 /* A row over the columns from the current state, its numbers written to data and ph. */
-dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data, unsigned char *ph);
+dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data);
 
 /* One mass on one element [ground, 0] (network_one_mass.c): stepped by the one-mass solver, its records
  * rewritten as rows and element events. */

@@ -229,64 +229,52 @@ static int encode_event(dp_encoder *e, dp_buf *b, const dp_event *ev)
 }
 
 
-/* ---- network rows: arrays over the run's columns (systems.md §1) ------------------------------------ */
+/* ---- rows: named groups of numbers over the run's columns (dp_columns, systems.md §1) --------------- */
 
-/* Bytes a row may take: every number at most 25 characters plus a separator, a phase word per element,
- * the keys and framing, and DP_DECIMAL_MAX of scribble room after the last number. */
+/* Bytes a row may take: every number at most 25 characters plus a separator, a phase word, the keys and
+ * framing, and DP_DECIMAL_MAX of scribble room after the last number. */
 static size_t row_bytes(const dp_columns *c)
 {
-    return 32 * (2 * c->nodes + 2 * c->elements + 1) + 8 * c->elements + 128;
+    size_t keys = 0;
+    for (size_t g = 0; g < c->ngroups; g++)
+        keys += strlen(c->group[g].name) + 8;
+    return 32 * (c->width + 1) + keys + 128;
 }
 
-static char *put_array(char *p, const char *key, size_t klen, const double *a, size_t n, int csv)
+static char *put_phase(char *p, double code, int csv)
 {
-    if (!csv) {
-        memcpy(p, key, klen);
-        p += klen;
-        *p++ = '[';
-    }
-    for (size_t i = 0; i < n; i++) {
-        if (i || csv)
-            *p++ = ',';
-        p = put_num(p, a[i]);
-    }
+    const char *name = phase_name((dp_phase)(int)code);
+    if (name == NULL)
+        return csv ? p : PUT(p, "null");
     if (!csv)
-        *p++ = ']';
+        *p++ = '"';
+    p = put_lit(p, name, strlen(name));
+    if (!csv)
+        *p++ = '"';
     return p;
 }
 
-static char *put_row_phases(char *p, const unsigned char *ph, size_t n, int csv)
-{
-    if (!csv)
-        p = PUT(p, ",\"phase\":[");
-    for (size_t i = 0; i < n; i++) {
-        const char *name = phase_name((dp_phase)ph[i]);
-        if (i || csv)
-            *p++ = ',';
-        if (name == NULL && !csv)
-            p = PUT(p, "null");
-        else if (name != NULL && csv)
-            p = put_lit(p, name, strlen(name));
-        else if (name != NULL) {
-            *p++ = '"';
-            p = put_lit(p, name, strlen(name));
-            *p++ = '"';
-        }
-    }
-    if (!csv)
-        *p++ = ']';
-    return p;
-}
-
-/* "t":..,"x":[..],"v":[..],"Fs":[..],"Fd":[..],"phase":[..] (CSV: the same values, comma-separated). */
+/* "t":..,"<group>":[..],... (CSV: the same values, comma-separated). */
 static char *put_row_members(const dp_columns *c, char *p, const dp_row *r, int csv)
 {
     p = put_num(csv ? p : PUT(p, "\"t\":"), r->t);
-    p = put_array(p, ",\"x\":", 5, r->x, c->nodes, csv);
-    p = put_array(p, ",\"v\":", 5, r->v, c->nodes, csv);
-    p = put_array(p, ",\"Fs\":", 6, r->Fs, c->elements, csv);
-    p = put_array(p, ",\"Fd\":", 6, r->Fd, c->elements, csv);
-    return put_row_phases(p, r->phase, c->elements, csv);
+    const double *v = r->val;
+    for (size_t g = 0; g < c->ngroups; g++) {
+        const dp_column_group *grp = &c->group[g];
+        if (!csv) {
+            p = PUT(p, ",\"");
+            p = put_lit(p, grp->name, strlen(grp->name));
+            p = PUT(p, "\":[");
+        }
+        for (size_t i = 0; i < grp->n; i++, v++) {
+            if (i || csv)
+                *p++ = ',';
+            p = grp->phase ? put_phase(p, *v, csv) : put_num(p, *v);
+        }
+        if (!csv)
+            *p++ = ']';
+    }
+    return p;
 }
 
 static int encode_row(dp_encoder *e, dp_buf *b, const dp_row *r)
@@ -315,20 +303,17 @@ static int encode_row(dp_encoder *e, dp_buf *b, const dp_row *r)
     return DP_OK;
 }
 
-/* The CSV header of a network run: t,x<i>...,v<i>...,Fs<e>...,Fd<e>...,phase<e>... */
+/* The CSV header of a run with columns: t, then <group><index> for every entry of every group. */
 static int csv_row_header(dp_buf *b, const dp_columns *c)
 {
-    static const char *const names[] = { "x", "v", "Fs", "Fd", "phase" };
     int s = dp_buf_append(b, "t", 1);
-    char cell[48];
-    for (int k = 0; k < 5 && s == DP_OK; k++) {
-        size_t n = k < 2 ? c->nodes : c->elements;
-        const size_t *idx = k < 2 ? c->node : c->element;
-        for (size_t i = 0; i < n && s == DP_OK; i++) {
-            int len = snprintf(cell, sizeof cell, ",%s%zu", names[k], idx[i]);
+    char cell[64];
+    for (size_t g = 0; g < c->ngroups && s == DP_OK; g++)
+        for (size_t i = 0; i < c->group[g].n && s == DP_OK; i++) {
+            size_t idx = c->group[g].index ? c->group[g].index[i] : i;
+            int len = snprintf(cell, sizeof cell, ",%s%zu", c->group[g].name, idx);
             s = dp_buf_append(b, cell, (size_t)len);
         }
-    }
     return s ? s : dp_buf_append(b, "\n", 1);
 }
 
