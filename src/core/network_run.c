@@ -390,6 +390,7 @@ int dp_network_run_init(dp_run *r)
         return DP_ENOMEM;
     r->net = nr;
     nr->net = r->spec.net;
+    r->cols = &nr->cols;
     nr->n = nr->net->n, nr->nel = nr->net->nel, nr->theta = r->spec.solver.theta;
     nr->p = bandwidth(nr->net);
     int s = alloc_all(nr);
@@ -496,7 +497,7 @@ int dp_network_locates(const dp_spec *s)
 
 const dp_columns *dp_run_columns(const dp_run *r)
 {
-    return r->net ? &r->net->cols : NULL;
+    return r->cols;
 }
 
 int dp_network_run_pending(const dp_run *r)

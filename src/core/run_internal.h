@@ -57,6 +57,8 @@ struct dp_run {
     struct dp_regularized *reg;
     /* network solver (network_run.c) */
     struct dp_net_run *net;
+    /* the columns of a run whose samples are rows (dp_run_columns); NULL for one-mass samples */
+    const dp_columns *cols;
 };
 
 /* Queues one record for the caller. */
