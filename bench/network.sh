@@ -31,7 +31,7 @@ c++ -O2 -std=c++17 -Wall -Wextra -Werror -isystem /usr/include/siconos -isystem 
 dp="$build/bench/network_bench" sic="$build/bench/siconos_chain_peer"
 
 # Single-threaded programs, best of several runs where affordable; every Siconos run is bounded.
-sic_run() { timeout 900 "$sic" "$@"; }
+sic_run() { OPENBLAS_NUM_THREADS=1 timeout 900 "$sic" "$@"; } # one thread, as dashpot
 kv() { awk -v k="$2" '$1 == k { print $2; f = 1 } END { if (!f) print "-" }' "$1"; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0 && a != "-") printf "%.0f", a / b; else printf "-" }'; }
 ratio2() { awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0 && a != "-") printf "%.2f", a / b; else printf "-" }'; }
