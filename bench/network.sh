@@ -7,7 +7,7 @@
 # is dashpot's side. docs/benchmarks.md ("Networks") explains the figures.
 #
 # Usage: BUILD=build bash bench/network.sh   (also run by `make bench` and `make bench-peers`)
-#   SICONOS_CHAIN1000_STEPS (default 1): Siconos takes ~25 s a step at 1000 blocks (its dense Lemke solve of
+#   SICONOS_CHAIN1000_STEPS (default 1): Siconos takes 25-35 s a step at 1000 blocks (its dense Lemke solve of
 #   the 2n x 2n relay LCP and the n x 2n Delassus product grow like n^3), so it is stepped this many times.
 # Exits non-zero, loudly, if dashpot and Siconos disagree beyond rounding (network_bench.c, rounding_ok) in
 # any case. Speed goals are measured and reported, not enforced.
@@ -91,7 +91,7 @@ for n in 10 100 1000; do
     "$(kv "$tmp/d.txt" ns_per_block_step)" "$(kv "$tmp/d.txt" events_per_step)" "$steps" \
     "$(kv "$tmp/s.chain$n.0.5" steps)"
 done
-echo "  Siconos at 1000 blocks: $sic1000 step(s) (SICONOS_CHAIN1000_STEPS), ~25 s each"
+echo "  Siconos at 1000 blocks: $sic1000 step(s) (SICONOS_CHAIN1000_STEPS), 25-35 s each"
 echo
 
 # Burridge-Knopoff in the plate's frame: leaf springs kg = 1, neighbour springs kc = 10, friction bounds
