@@ -196,6 +196,8 @@ bad "element with neither spring nor damper" /model/elements/1 'd["model"]["elem
 bad "element with an unknown member" /model/elements/1/mass 'd["model"]["elements"][1]["mass"] = 1'
 bad "a zero mass" /model/masses/1 'd["model"]["masses"][1] = 0'
 bad "a negative mass" /model/masses/2 'd["model"]["masses"][2] = -1.5'
+# With no node count to check them against, output.nodes/elements add no errors of their own.
+bad "masses not an array, with output.nodes and output.elements" /model/masses 'd["model"]["masses"] = "three"'
 bad "an empty masses array" /model/masses 'd["model"]["masses"] = []; d["model"]["elements"] = []; d["model"]["forcing"] = []; d["initial"] = {}; del d["output"]["nodes"], d["output"]["elements"]'
 bad "initial.x of 2 numbers for 3 nodes" /initial/x 'd["initial"]["x"] = [1, 2]'
 bad "initial.v of 4 numbers for 3 nodes" /initial/v 'd["initial"]["v"] = [0, 0, 0, 0]'
