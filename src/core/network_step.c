@@ -919,7 +919,10 @@ int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u)
     if (s->st != FIXED)
         return 0;
     sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
-    return s->lam > hi ? 1 : s->lam < lo ? -1 : 0;
+    if (s->lam > hi || s->lam < lo)
+        return s->lam > hi ? 1 : -1;
+    /* at a located release the force is at a bound to rounding: the nearer one (an end ray's is infinite) */
+    return !isfinite(hi) ? -1 : !isfinite(lo) ? 1 : s->lam - lo > hi - s->lam ? 1 : -1;
 }
 
 int dp_net_ws_fixed(const dp_net_ws *w, size_t i)
