@@ -116,7 +116,23 @@ done
 growth=$(ratio2 "$(kv "$tmp/b.10000" ns_per_block_step)" "$(kv "$tmp/b.100" ns_per_block_step)")
 rss_growth=$(ratio2 "$(kv "$tmp/b4.10000" maxrss_kb)" "$(kv "$tmp/b.10000" maxrss_kb)")
 echo "  stick: fraction of block-time stuck; iter/step: active-set iterations (each refactors the whole band)"
-echo "  located events are not measured: network runs step with \"events\":\"none\" semantics only (meta: events_mode step)"
+echo
+
+# The same chains with located events: every phase change splits its step at the instant it happens, found
+# by a bracketed root of the held assignment's margins (each evaluation one held solve of the whole band), so
+# the cost per step is about (1 + phase changes per step x ~30 held solves) x O(n): it grows with the number
+# of changes per step, which grows with n in this window.
+echo "the same chains with located events (\"events\":\"locate\"), 500 steps"
+printf '  %-6s %12s %12s %10s\n' blocks 'ns/step' 'ns/block' 'ev/step'
+for n in 100 1000 10000; do
+  reps=$(( n == 10000 ? 1 : n == 1000 ? 2 : 5 ))
+  # shellcheck disable=SC2086
+  "$dp" mode=time n=$n $bk steps=500 reps=$reps locate=1 >"$tmp/l.$n"
+  printf '  %-6s %12s %12s %10s\n' "$n" "$(kv "$tmp/l.$n" ns_per_step)" "$(kv "$tmp/l.$n" ns_per_block_step)" \
+    "$(kv "$tmp/l.$n" events_per_step)"
+done
+lgrowth=$(ratio2 "$(kv "$tmp/l.10000" ns_per_block_step)" "$(kv "$tmp/l.100" ns_per_block_step)")
+echo "  growth of the cost per block-step, 10^4 / 10^2 blocks: ${lgrowth}x (bounded by the phase changes per step)"
 echo
 
 echo "one node against the one-mass model (m = 1, k = 1, phi0 = 1, belt 0.5, x0 = -2; \"events\":\"none\"), 1e5 steps"

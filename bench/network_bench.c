@@ -11,6 +11,7 @@
  * A Burridge-Knopoff chain is this chain in the plate's frame: kg the leaf springs, the belt at -V.
  *
  * Usage: network_bench mode=MODE key=value ...   keys: n m kg kc phi0 het phic vb F0 xamp dt steps theta reps
+ *                                                  locate (1: "events":"locate", else "none")
  *   mode=compare sic=FILE  "events":"none" step by step against Siconos' records (per step t, x[n], v[n], Fc
  *                          per Coulomb element, native doubles): max |dx|, |dv|, |dF|, the rounding verdict.
  *   mode=time              output off ("samples": false): ns per step and per block-step (best of reps), the
@@ -36,7 +37,7 @@
 #define EPS 2.220446049250313e-16
 
 typedef struct params {
-    double n, m, kg, kc, phi0, het, phic, vb, F0, xamp, dt, theta;
+    double n, m, kg, kc, phi0, het, phic, vb, F0, xamp, dt, theta, locate;
     long long steps, reps;
     const char *mode, *sic;
 } params;
@@ -62,7 +63,7 @@ static int parse_args(int argc, char **argv, params *p)
     struct { const char *key; double *d; } nums[] = {
         { "n", &p->n }, { "m", &p->m }, { "kg", &p->kg }, { "kc", &p->kc }, { "phi0", &p->phi0 },
         { "het", &p->het }, { "phic", &p->phic }, { "vb", &p->vb }, { "F0", &p->F0 }, { "xamp", &p->xamp },
-        { "dt", &p->dt }, { "theta", &p->theta },
+        { "dt", &p->dt }, { "theta", &p->theta }, { "locate", &p->locate },
     };
     for (int i = 1; i < argc; i++) {
         char *eq = strchr(argv[i], '=');
@@ -129,9 +130,9 @@ static void add(text *t, const char *fmt, ...)
 
 static void solver_and_output(text *t, const params *p, int samples)
 {
-    add(t, "\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":%.17g,\"theta\":%.17g,\"events\":\"none\"},"
+    add(t, "\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":%.17g,\"theta\":%.17g,\"events\":\"%s\"},"
            "\"output\":{\"every\":1,\"samples\":%s,\"events\":false}}",
-        p->dt, (double)p->steps * p->dt, p->theta, samples ? "true" : "false");
+        p->dt, (double)p->steps * p->dt, p->theta, p->locate == 1 ? "locate" : "none", samples ? "true" : "false");
 }
 
 /* The chain as a network document (mode=single: one node, one element). */
@@ -241,28 +242,29 @@ static double bound(const params *p, size_t e)
  * around it is not, and the two codes may report different, equally valid splits. So the resultants are
  * compared, each element force is checked against its bound, and the element-wise difference is reported
  * as `split`. Returns -1 when the record is missing or at another time. */
-static int compare_row(const params *p, const dp_row *row, size_t nf, FILE *sic, double *rec, double *work,
-                       diff *d)
+static int compare_row(const params *p, const dp_columns *c, const dp_row *row, size_t nf, FILE *sic, double *rec,
+                       double *work, diff *d)
 {
     size_t n = (size_t)p->n, len = 1 + 2 * n + nf;
+    const double *x = row->val, *v = row->val + c->nodes, *Fd = row->val + 2 * c->nodes + c->elements;
     if (fread(rec, sizeof *rec, len, sic) != len || fabs(rec[0] - row->t) > 1e-9 * (1 + row->t)) {
         fprintf(stderr, "network_bench: Siconos' record %lld missing or at t = %.17g, not %.17g\n", d->n, rec[0],
                 row->t);
         return -1;
     }
     for (size_t i = 0; i < n; i++) {
-        d->dx = fmax(d->dx, fabs(row->x[i] - rec[1 + i]));
-        d->dv = fmax(d->dv, fabs(row->v[i] - rec[1 + n + i]));
-        d->ax = fmax(d->ax, fabs(row->x[i]));
-        d->av = fmax(d->av, fabs(row->v[i]));
+        d->dx = fmax(d->dx, fabs(x[i] - rec[1 + i]));
+        d->dv = fmax(d->dv, fabs(v[i] - rec[1 + n + i]));
+        d->ax = fmax(d->ax, fabs(x[i]));
+        d->av = fmax(d->av, fabs(v[i]));
     }
     const double *Fs = rec + 1 + 2 * n;
     for (size_t e = 0; e < nf; e++) {
         double phi = bound(p, e);
-        d->split = fmax(d->split, fabs(row->Fd[e] - Fs[e]));
-        d->over = fmax(d->over, fmax(fabs(row->Fd[e]) - phi, fabs(Fs[e]) - phi));
+        d->split = fmax(d->split, fabs(Fd[e] - Fs[e]));
+        d->over = fmax(d->over, fmax(fabs(Fd[e]) - phi, fabs(Fs[e]) - phi));
     }
-    resultants(row->Fd, n, nf, work);
+    resultants(Fd, n, nf, work);
     resultants(Fs, n, nf, work + n);
     for (size_t i = 0; i < n; i++) {
         d->dr = fmax(d->dr, fabs(work[i] - work[n + i]));
@@ -308,7 +310,7 @@ static int compare(const params *p)
         s = dp_run_next(run, buf, BLOCK, &got);
         for (size_t i = 0; i < got && !bad; i++)
             if (buf[i].type == DP_RECORD_ROW && buf[i].u.row.t > 0) /* Siconos' records start after step 1 */
-                bad = compare_row(p, &buf[i].u.row, nf, sic, rec, work, &d) != 0;
+                bad = compare_row(p, dp_run_columns(run), &buf[i].u.row, nf, sic, rec, work, &d) != 0;
         if (s != DP_MORE)
             break;
     }
@@ -413,8 +415,8 @@ static int single(const params *p)
     int same = 0;
     if (run && buf && run_through(run, buf) >= 0) {
         const dp_row *f = &dp_run_summary(run)->final_row;
-        same = f->x[0] == ra.final.x && f->v[0] == ra.final.v;
-        printf("final_x_one_mass %.17g\nfinal_x_network %.17g\n", ra.final.x, f->x[0]);
+        same = f->val[0] == ra.final.x && f->val[1] == ra.final.v;   /* one node: x, v first */
+        printf("final_x_one_mass %.17g\nfinal_x_network %.17g\n", ra.final.x, f->val[0]);
     }
     dp_run_free(run);
     free(buf);
