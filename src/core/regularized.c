@@ -384,6 +384,8 @@ static int integrate_past(dp_run *r, double ts, unsigned long long *budget)
         if (*budget == 0)
             return DP_MORE;
         (*budget)--;
+        if (dp_run_stopped(r, r->reg->fevals + r->reg->jevals))
+            return r->status;
         int s = step(r, ts);
         if (s != DP_OK)
             return s;

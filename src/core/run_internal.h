@@ -52,6 +52,10 @@ struct dp_run {
     dp_coulomb_arc an_arc;
     /* regularized solver (regularized.c): its GSL workspace */
     struct dp_regularized *reg;
+    /* the stop hook (dp_run_set_stop) and the work count at which it is polled next */
+    dp_stop_fn stop;
+    void *stop_ctx;
+    unsigned long long poll_at;
 };
 
 /* Queues one record for the caller. */
@@ -76,6 +80,23 @@ static inline void dp_run_emit_state(dp_run *r)
 void dp_run_emit_event(dp_run *r, dp_event_kind kind, double t, double x, double v);
 /* Marks the run failed with a status and message; returns the status. */
 int dp_run_fail(dp_run *r, int status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+/* Work done so far by a time-stepping solver: steps plus the evaluations and iterations inside them. */
+static inline unsigned long long dp_run_work(const dp_run *r)
+{
+    return r->n + r->sum.iterations;
+}
+
+/* Asks the stop hook (run.c); on stop fails the run with DP_ECANCEL and returns 1. */
+int dp_run_poll_stop(dp_run *r, unsigned long long work);
+
+/* The solvers' advance loops call this with their work count (monotone): the hook is asked once every
+ * DP_RUN_POLL_WORK units, so the check costs one comparison per step. Returns 1 when the run must stop
+ * (it has failed with DP_ECANCEL: return r->status). */
+static inline int dp_run_stopped(dp_run *r, unsigned long long work)
+{
+    return r->stop != NULL && work >= r->poll_at && dp_run_poll_stop(r, work);
+}
 
 /* Solver entry points: prepare at allocation, then advance until the block is full or the run ends. */
 int dp_stick_slip_init(dp_run *r);

@@ -147,6 +147,8 @@ static void phase_event(dp_run *r, dp_phase before)
 static unsigned long long fast_stop(const dp_run *r)
 {
     unsigned long long stop = r->nsteps - 1;
+    if (r->n + DP_RUN_POLL_WORK < stop) /* back to the advance loop's stop poll now and then */
+        stop = r->n + DP_RUN_POLL_WORK;
     if (r->spec.output.samples && r->n + (unsigned long long)r->countdown - 1 < stop)
         stop = r->n + (unsigned long long)r->countdown - 1;
     return stop;
@@ -223,6 +225,8 @@ int dp_stick_slip_advance(dp_run *r)
 {
     const dp_ss_law *L = &r->law;
     while (dp_run_room(r)) {
+        if (dp_run_stopped(r, dp_run_work(r)))
+            return r->status;
         if (L->closed && fast_steps(r) != DP_OK)
             return r->status;
         double h = dp_run_step_length(r), fc = 0, fs = 0;
