@@ -265,9 +265,9 @@ int server_start(server *s)
     }
     load_openapi(s);
     page_load(s);
-    unsigned flags = embedded ? MHD_USE_NO_LISTEN_SOCKET | MHD_USE_ERROR_LOG
+    unsigned flags = embedded ? MHD_USE_NO_LISTEN_SOCKET | MHD_USE_ERROR_LOG | MHD_ALLOW_SUSPEND_RESUME
                               : MHD_USE_EPOLL_INTERNAL_THREAD | MHD_USE_ITC | MHD_USE_TURBO | MHD_USE_ERROR_LOG |
-                                    (ipv6 ? MHD_USE_IPv6 : 0);
+                                    MHD_ALLOW_SUSPEND_RESUME | (ipv6 ? MHD_USE_IPv6 : 0);
     /* Function pointers travel as intptr_t in MHD_OptionItem.value (MHD's documented convention). */
     struct MHD_OptionItem opts[] = {
         { MHD_OPTION_EXTERNAL_LOGGER, (intptr_t)on_mhd_error, s }, /* first, so that it sees every message */
@@ -278,7 +278,8 @@ int server_start(server *s)
         { MHD_OPTION_NOTIFY_CONNECTION, (intptr_t)on_connection, s },
         { MHD_OPTION_UNESCAPE_CALLBACK, (intptr_t)unescape_keep_nul, NULL },
         { embedded ? MHD_OPTION_END : MHD_OPTION_SOCK_ADDR, 0, &sa },
-        { MHD_OPTION_THREAD_POOL_SIZE, (intptr_t)(s->cfg.threads > 1 ? s->cfg.threads : 0), NULL },
+        /* one thread more than solver slots (slots.c): the small routes never wait behind solver work */
+        { MHD_OPTION_THREAD_POOL_SIZE, (intptr_t)(s->cfg.threads + 1), NULL },
         { MHD_OPTION_END, 0, NULL },
     };
     s->daemon = MHD_start_daemon(flags, (uint16_t)s->cfg.port, NULL, NULL, on_request, s, MHD_OPTION_ARRAY, opts,
@@ -324,8 +325,10 @@ void server_shutdown(server *s)
     if (left > 0) {
         log_line("shutdown: grace period over, ending %lld run(s) with an error line", left);
         atomic_store(&s->abort_streams, 1);
+        slots_open(s);
         left = wait_runs(s, ABORT_WAIT);
     }
+    slots_open(s); /* MHD must not be stopped with connections suspended */
     if (left > 0)
         log_line("shutdown: closing %lld stalled stream(s)", left);
     MHD_stop_daemon(s->daemon);
@@ -336,6 +339,11 @@ server *server_new(void)
 {
     server *s = calloc(1, sizeof *s);
     if (s && pthread_mutex_init(&s->conns_lock, NULL) != 0) {
+        free(s);
+        return NULL;
+    }
+    if (s && pthread_mutex_init(&s->slots_lock, NULL) != 0) {
+        pthread_mutex_destroy(&s->conns_lock);
         free(s);
         return NULL;
     }
@@ -352,5 +360,6 @@ void server_free(server *s)
     page_free(s);
     stability_pool_free(s);
     pthread_mutex_destroy(&s->conns_lock);
+    pthread_mutex_destroy(&s->slots_lock);
     free(s);
 }

@@ -45,6 +45,7 @@ struct stream {
     int failed;           /* ...and it was an error */
     int delivered;        /* MHD was told END_OF_STREAM: the client got everything */
     double deadline;      /* monotonic seconds */
+    struct MHD_Connection *conn; /* parked there when no solver slot is free (slots.c) */
     int fd;               /* the connection's socket, watched for the client's hang-up (-1: not watched) */
     double peer_check;    /* monotonic seconds of the next look at the socket */
     int stopped;          /* why the stop hook ended the run: STOP_* */
@@ -140,8 +141,12 @@ static ssize_t stream_read(void *cls, uint64_t pos, char *buf, size_t max)
             st->delivered = 1;
             return MHD_CONTENT_READER_END_OF_STREAM;
         }
+        if (!slot_take(st->r, st->conn))
+            return 0; /* parked (suspended): called again once a slot is handed over */
         st->out.len = st->off = 0;
-        if (stream_fill(st) == DP_ECANCEL && st->stopped == STOP_GONE)
+        int s = stream_fill(st);
+        slot_give(st->r);
+        if (s == DP_ECANCEL && st->stopped == STOP_GONE)
             return MHD_CONTENT_READER_END_WITH_ERROR;
     }
     size_t n = st->out.len - st->off < max ? st->out.len - st->off : max;
@@ -200,7 +205,7 @@ static dp_run *prepare(struct MHD_Connection *c, request *r, dp_buf *meta, enum 
 }
 
 /* A stream over run (owned from here on, also on failure) with the opening already encoded. */
-static stream *stream_new(request *r, dp_run *run, dp_format f, const char *meta, int fd)
+static stream *stream_new(struct MHD_Connection *c, request *r, dp_run *run, dp_format f, const char *meta, int fd)
 {
     stream *st = malloc(sizeof *st);
     if (st == NULL) {
@@ -213,6 +218,7 @@ static stream *stream_new(request *r, dp_run *run, dp_format f, const char *meta
     st->run = run;
     st->deadline = r->t_start + r->srv->cfg.max_wall;
     st->fd = fd;
+    st->conn = c;
     st->peer_check = now_seconds() + PEER_CHECK_INTERVAL;
     dp_run_set_stop(run, stream_stop, st);
     atomic_fetch_add(&r->refs, 1);
@@ -263,7 +269,7 @@ enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r)
         return respond_status(c, r, DP_ENOMEM, NULL, NULL);
     dp_run *run = prepare(c, r, &meta, &answer);
     const union MHD_ConnectionInfo *ci = MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
-    stream *st = run ? stream_new(r, run, offer_format[f], meta.data, ci ? ci->connect_fd : -1) : NULL;
+    stream *st = run ? stream_new(c, r, run, offer_format[f], meta.data, ci ? ci->connect_fd : -1) : NULL;
     dp_buf_free(&meta);
     if (run == NULL)
         return answer;
