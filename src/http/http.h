@@ -98,6 +98,7 @@ typedef struct server {
     struct web *web;             /* the page's files, read at start-up (page.c) */
     atomic_int draining;         /* SIGTERM seen: /readyz says 503 */
     atomic_int abort_streams;    /* grace period over: streams end with an error line */
+    atomic_llong connections_admitted; /* connections holding a --max-connections place (conn_admit) */
     pthread_mutex_t conns_lock;  /* guards `conns`, the open connections (deadline.c) */
     struct conn *conns;
     _Atomic(dp_stability_ws *) ws_pool[WS_POOL]; /* NULL or an idle workspace, taken by exchange */
@@ -118,6 +119,7 @@ typedef struct request {
     const char *allow;           /* wrong method: the methods the path takes (a static string), else NULL */
     int status;                  /* HTTP status queued, 0 until then */
     int too_large;               /* the body passed cfg.body_limit */
+    int close;                   /* the response closes the connection (a framing fault) */
     double t_start;              /* monotonic seconds */
     unsigned long long bytes;    /* body bytes sent (streams count as they go) */
     dp_buf body;                 /* the request body as it arrives */
@@ -207,6 +209,8 @@ void deadline_open(server *s, struct MHD_Connection *c, void **socket_context);
 void deadline_close(server *s, void **socket_context);
 /* The request has arrived (1) or its response is done and the next one's clock starts (0). */
 void deadline_mark(struct MHD_Connection *c, int arrived);
+/* Whether connection c may be served: it holds, or now takes, one of the cfg.max_connections places. */
+int conn_admit(server *s, struct MHD_Connection *c);
 /* Shuts down connections past their deadline; returns how many. */
 unsigned deadline_sweep(server *s);
 
