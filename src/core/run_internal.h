@@ -22,6 +22,7 @@ typedef struct dp_ss_law {
     int locate;          /* split steps at phase changes (events "locate" and a damper that can stick) */
     int motion;          /* branch "motion": leave rest whenever a motion solves the step */
     const dp_graph *A, *S;
+    size_t *kink_hint;   /* where the last step's kink searches ended (the run's kink_hint[2]) */
     const dp_relaxation *gamma;
     const dp_forcing *F;
     int F_const;         /* F is `none` or `constant`: F0 */
@@ -40,6 +41,7 @@ struct dp_run {
     dp_sample cur;              /* state at t = cur.t */
     dp_summary sum;
     dp_ss_law law;
+    size_t kink_hint[2];        /* stick-slip: the damper's and the spring graph's last kink (inclusion.c) */
     int finished, status;
     char error[256];
     /* Output of the block being produced; overflow goes to `pending`, drained first on the next call. */

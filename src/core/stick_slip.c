@@ -72,7 +72,7 @@ dp_inclusion dp_ss_step_inclusion(const dp_ss_law *L, const step_state *s, doubl
         .b = L->m * s->v - h * (1 - th) * L->c * s->v + h * L->c * L->vb
            - h * L->k * (s->x + h * th * (1 - th) * s->v) + h * dp_forcing_eval(L->F, s->t + th * h),
         .h = h, .A = L->A, .a_shift = L->vb, .S = L->S, .s_x = s->x, .s_h = h,
-        .gamma = L->gamma, .g_theta = th, .g_shift = (1 - th) * s->v - L->vb,
+        .gamma = L->gamma, .g_theta = th, .g_shift = (1 - th) * s->v - L->vb, .hint = L->kink_hint,
     };
 }
 
@@ -313,6 +313,7 @@ int dp_stick_slip_init(dp_run *r)
     L->vb = d->belt_velocity;
     L->theta = r->spec.solver.theta;
     L->A = &d->graph;
+    L->kink_hint = r->kink_hint;
     L->S = linear_spring ? NULL : &m->spring.graph;
     L->gamma = &d->relaxation;
     L->F = &m->forcing;
