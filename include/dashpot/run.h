@@ -71,12 +71,15 @@ double dp_run_progress(const dp_run *run);
 /* A description of the last error of dp_run_next, "" if none. */
 const char *dp_run_error(const dp_run *run);
 
-/* A stop hook: returns nonzero when the run must end now (a deadline passed, the client left, shutdown).
+/* A stop hook: returns > 0 when the run must end now (a deadline passed, the client left, shutdown), 0 to
+ * go on, < 0 to yield: dp_run_next then returns DP_MORE at once with the records made so far (maybe none),
+ * and the run goes on at the next call (a server's thread serves its other connections meanwhile).
  * The solvers poll it every DP_RUN_POLL_WORK units of work (a unit is one time step, one evaluation of a
- * step's implicit equation, one fixed-point iteration or one right-hand side evaluation), never between
- * records only, so a run stops within a bounded amount of work whatever its output decimation
+ * step's implicit equation, one fixed-point iteration, one right-hand side evaluation or one sample), never
+ * between records only, so a run stops within a bounded amount of work whatever its output decimation
  * (docs/operations.md, "Stopping a run"). Once it said stop, dp_run_next returns DP_ECANCEL and
- * dp_run_error says when the run stopped. The hook runs on the thread calling dp_run_next; NULL removes it. */
+ * dp_run_error says when the run stopped. A yield inside a step (a thesis step of up to 10^6 iterations)
+ * is honoured after that step. The hook runs on the thread calling dp_run_next; NULL removes it. */
 typedef int (*dp_stop_fn)(void *ctx);
 #define DP_RUN_POLL_WORK 4096
 void dp_run_set_stop(dp_run *run, dp_stop_fn stop, void *ctx);

@@ -385,7 +385,7 @@ static int integrate_past(dp_run *r, double ts, unsigned long long *budget)
             return DP_MORE;
         (*budget)--;
         if (dp_run_stopped(r, r->n + r->reg->fevals + r->reg->jevals))
-            return r->status;
+            return r->status == DP_OK ? DP_MORE : r->status; /* a yield: as if the budget ran out */
         int s = step(r, ts);
         if (s != DP_OK)
             return s;

@@ -89,12 +89,13 @@ static inline unsigned long long dp_run_work(const dp_run *r)
     return r->n + r->sum.iterations;
 }
 
-/* Asks the stop hook (run.c); on stop fails the run with DP_ECANCEL and returns 1. */
+/* Asks the stop hook (run.c); on stop fails the run with DP_ECANCEL and returns 1; on a yield returns 1
+ * with r->status still DP_OK. */
 int dp_run_poll_stop(dp_run *r, unsigned long long work);
 
 /* The solvers' advance loops call this with their work count (monotone): the hook is asked once every
- * DP_RUN_POLL_WORK units, so the check costs one comparison per step. Returns 1 when the run must stop
- * (it has failed with DP_ECANCEL: return r->status). */
+ * DP_RUN_POLL_WORK units, so the check costs one comparison per step. Returns 1 when the advance loop must
+ * return r->status now: DP_ECANCEL (stopped) or DP_OK (a yield; call it only between steps). */
 static inline int dp_run_stopped(dp_run *r, unsigned long long work)
 {
     return r->stop != NULL && work >= r->poll_at && dp_run_poll_stop(r, work);

@@ -33,7 +33,8 @@ int dp_thesis_advance(dp_run *r)
             Fc = phi0 * ((FF > 0) - (FF < 0));
             double vi = r->cur.v, vn = vi;
             for (int i = 1; i <= sv->Z; i++) {
-                if (dp_run_stopped(r, dp_run_work(r))) /* Z may be 10^6: poll inside the step too */
+                /* Z may be 10^6: poll inside the step too, for a stop only (a yield waits for the step) */
+                if (dp_run_stopped(r, dp_run_work(r)) && r->status != DP_OK)
                     return r->status;
                 vn = (FF - Fc + dp_relaxation_eval(L->gamma, vi)) / p2;
                 r->sum.iterations++;

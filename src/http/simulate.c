@@ -49,6 +49,8 @@ struct stream {
     int fd;               /* the connection's socket, watched for the client's hang-up (-1: not watched) */
     double peer_check;    /* monotonic seconds of the next look at the socket */
     int stopped;          /* why the stop hook ended the run: STOP_* */
+    double slice_end;     /* monotonic seconds: the block being computed yields to the thread's other work */
+    int yielded;          /* ...and it did */
     dp_record recs[BLOCK];
 };
 
@@ -60,6 +62,10 @@ enum { STOP_NONE, STOP_SHUTDOWN, STOP_DEADLINE, STOP_GONE };
 
 /* Seconds between two looks at the socket for a hang-up while the solver runs (a recv each). */
 #define PEER_CHECK_INTERVAL 0.01
+/* Seconds of solver work one call computes before it yields: libmicrohttpd pins each connection to one
+ * pool thread, so a block computed for seconds would hold up every other connection of that thread
+ * (a health probe among them), however many threads are free. */
+#define SLICE 0.01
 
 /* Whether the client has closed or reset its connection: recv peeks (consumes nothing) without waiting;
  * 0 is its FIN, an error other than "nothing yet" its RST. A pipelined request's bytes read as "still here". */
@@ -86,7 +92,13 @@ static int stream_stop(void *ctx)
         if (peer_gone(st->fd))
             st->stopped = STOP_GONE;
     }
-    return st->stopped != STOP_NONE;
+    if (st->stopped != STOP_NONE)
+        return 1;
+    if (now > st->slice_end) {
+        st->yielded = 1;
+        return -1;
+    }
+    return 0;
 }
 
 /* Writes the closing error (its encoding failing too leaves the stream to end as it is). */
@@ -100,7 +112,9 @@ static void stream_fail(stream *st, int status, const char *detail)
 static int stream_fill(stream *st)
 {
     size_t n = 0, samples = 0;
-    int s = stream_stop(st) ? DP_ECANCEL : dp_run_next(st->run, st->recs, BLOCK, &n);
+    st->slice_end = now_seconds() + SLICE;
+    st->yielded = 0;
+    int s = stream_stop(st) > 0 ? DP_ECANCEL : dp_run_next(st->run, st->recs, BLOCK, &n);
     if (s == DP_ECANCEL && st->stopped != STOP_NONE) {
         char detail[96];
         if (st->stopped == STOP_DEADLINE)
@@ -145,9 +159,15 @@ static ssize_t stream_read(void *cls, uint64_t pos, char *buf, size_t max)
             return 0; /* parked (suspended): called again once a slot is handed over */
         st->out.len = st->off = 0;
         int s = stream_fill(st);
-        slot_give(st->r);
+        if (!st->yielded) /* a block cut by its slice keeps the slot: the worker stays busy with it */
+            slot_give(st->r);
         if (s == DP_ECANCEL && st->stopped == STOP_GONE)
             return MHD_CONTENT_READER_END_WITH_ERROR;
+        if (st->yielded && st->off == st->out.len) { /* a slice, nothing to send yet: let the thread */
+            MHD_suspend_connection(st->conn);         /* serve its other connections, then come back */
+            MHD_resume_connection(st->conn);
+            return 0;
+        }
     }
     size_t n = st->out.len - st->off < max ? st->out.len - st->off : max;
     memcpy(buf, st->out.data + st->off, n);
@@ -167,6 +187,7 @@ void stream_free(stream *st)
     else
         atomic_fetch_add(st->failed ? &m->runs_failed : &m->runs_completed, 1);
     atomic_fetch_sub(&m->runs_in_flight, 1);
+    slot_give(st->r); /* held if the stream ended in the middle of a sliced block */
     dp_run_free(st->run);
     dp_encoder_clear(&st->enc);
     dp_buf_free(&st->out);
@@ -276,6 +297,7 @@ enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r)
     if (st == NULL)
         return respond_status(c, r, DP_ENOMEM, NULL, NULL);
     int s = stream_fill(st);
+    r->keep_slot = st->yielded; /* the first block goes on in stream_read: route_dispatch keeps the slot */
     if (s < 0 && s != DP_ECANCEL)
         return early_failure(c, st, s);
     if (s == DP_DONE && st->off == 0)
