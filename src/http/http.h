@@ -114,7 +114,6 @@ typedef struct request {
     struct request *wait_next;   /* the slot queue (slots.c) */
     struct MHD_Connection *wait_conn;
     int slot_held, slot_granted; /* holds a solver slot; one was handed over while it was parked */
-    int keep_slot;               /* its stream's first block was cut by its time slice: the slot stays */
     atomic_int refs;             /* 1, or 2 while a streamed response holds it */
     int route;                   /* ROUTE_* */
     const char *allow;           /* wrong method: the methods the path takes (a static string), else NULL */

@@ -76,8 +76,7 @@ enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r)
         if (!slot_take(r, c))
             return MHD_YES; /* parked until a slot is handed over: called again then */
         enum MHD_Result res = routes[i].h(c, r);
-        if (!r->keep_slot)
-            slot_give(r);
+        slot_give(r);
         return res;
     }
     return respond_problem(c, r, 404, NULL, "no such route", NULL, NULL);

@@ -159,7 +159,7 @@ static ssize_t stream_read(void *cls, uint64_t pos, char *buf, size_t max)
             return 0; /* parked (suspended): called again once a slot is handed over */
         st->out.len = st->off = 0;
         int s = stream_fill(st);
-        if (!st->yielded) /* a block cut by its slice keeps the slot: the worker stays busy with it */
+        if (!st->yielded || st->off != st->out.len) /* a slice with nothing to send keeps its slot */
             slot_give(st->r);
         if (s == DP_ECANCEL && st->stopped == STOP_GONE)
             return MHD_CONTENT_READER_END_WITH_ERROR;
@@ -297,7 +297,6 @@ enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r)
     if (st == NULL)
         return respond_status(c, r, DP_ENOMEM, NULL, NULL);
     int s = stream_fill(st);
-    r->keep_slot = st->yielded; /* the first block goes on in stream_read: route_dispatch keeps the slot */
     if (s < 0 && s != DP_ECANCEL)
         return early_failure(c, st, s);
     if (s == DP_DONE && st->off == 0)
