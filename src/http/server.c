@@ -192,6 +192,7 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls, en
     if (r == NULL)
         return;
     *con_cls = NULL;
+    slot_give(r); /* a slot it holds or was handed (a stream gives its own back in stream_free) */
     deadline_mark(c, 0);
     double dt = now_seconds() - r->t_start;
     metrics_request(&s->m, r->route, r->status, dt);

@@ -13,7 +13,8 @@
  * The queue and the count are guarded by one mutex, taken once per block (a block is ~512 records), and a
  * connection is suspended and resumed under it, so a resume never comes before its suspend. At shutdown
  * slots_open lets everything through and resumes every parked connection (MHD must not be stopped with
- * suspended ones); runs then end at once on the abort flag.
+ * suspended ones); runs then end at once on the abort flag. Every request gives back what it holds when it
+ * completes (on_completed, stream_free), also a slot handed to it whose connection closed on resuming.
  */
 #include "http.h"
 
@@ -23,6 +24,7 @@ int slot_take(request *r, struct MHD_Connection *c)
     if (r->slot_held)
         return 1;
     pthread_mutex_lock(&s->slots_lock);
+    r->wait_conn = NULL;
     int got = r->slot_granted || s->slots_open || s->m.workers_busy < s->cfg.threads;
     if (got && !r->slot_granted && !s->slots_open)
         atomic_fetch_add(&s->m.workers_busy, 1);
@@ -46,19 +48,33 @@ int slot_take(request *r, struct MHD_Connection *c)
 void slot_give(request *r)
 {
     server *s = r->srv;
-    if (!r->slot_held)
-        return;
-    r->slot_held = 0;
     pthread_mutex_lock(&s->slots_lock);
-    request *w = s->wait_head;
-    if (w != NULL) {
-        s->wait_head = w->wait_next;
-        if (s->wait_head == NULL)
-            s->wait_tail = NULL;
-        w->slot_granted = 1; /* the slot passes on: slots_busy stays */
-        MHD_resume_connection(w->wait_conn);
-    } else {
-        atomic_fetch_sub(&s->m.workers_busy, 1);
+    if (r->wait_conn != NULL) { /* still parked: the request ends before its turn came (not expected) */
+        request **p = &s->wait_head, *prev = NULL;
+        while (*p && *p != r)
+            prev = *p, p = &(*p)->wait_next;
+        if (*p) {
+            *p = r->wait_next;
+            if (s->wait_tail == r)
+                s->wait_tail = prev;
+        }
+        r->wait_conn = NULL;
+    }
+    /* Held, or handed over while parked and never used (its connection closed on resuming): both count. */
+    if (r->slot_held || r->slot_granted) {
+        r->slot_held = r->slot_granted = 0;
+        request *w = s->wait_head;
+        if (w != NULL) {
+            s->wait_head = w->wait_next;
+            if (s->wait_head == NULL)
+                s->wait_tail = NULL;
+            w->slot_granted = 1; /* the slot passes on: workers_busy stays */
+            struct MHD_Connection *c = w->wait_conn;
+            w->wait_conn = NULL;
+            MHD_resume_connection(c);
+        } else {
+            atomic_fetch_sub(&s->m.workers_busy, 1);
+        }
     }
     pthread_mutex_unlock(&s->slots_lock);
 }
@@ -75,7 +91,9 @@ void slots_open(server *s)
     s->slots_open = 1;
     for (request *w = s->wait_head, *next; w != NULL; w = next) {
         next = w->wait_next; /* read first: once resumed, w may be served and freed */
-        MHD_resume_connection(w->wait_conn); /* it finds the slots open and goes on */
+        struct MHD_Connection *c = w->wait_conn;
+        w->wait_conn = NULL;
+        MHD_resume_connection(c); /* it finds the slots open and goes on */
     }
     s->wait_head = s->wait_tail = NULL;
     pthread_mutex_unlock(&s->slots_lock);
