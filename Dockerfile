@@ -5,6 +5,7 @@
 #   docker build -t dashpot:0.1.0 .
 #   docker run --rm -p 8080:8080 dashpot:0.1.0
 #   curl -s localhost:8080/healthz
+#   make image        # the same with podman or docker, and without a registry (docs/operations.md)
 #
 # Settings are DASHPOT_* environment variables (docs/http.md, "Settings"); this image sets the four a
 # container needs and leaves the rest at the daemon's defaults. Set the port with DASHPOT_PORT, not --port:

@@ -5,7 +5,8 @@
 #   make test SAN=1 the same under AddressSanitizer + UndefinedBehaviorSanitizer (into build-san/)
 #   make run        builds and starts dashpotd on 127.0.0.1:8080
 #   make bench      benchmarks with their peers, ratios printed (kept out of `test`)
-#   make deps       installs the Debian packages this needs (as root)
+#   make image      the container image dashpot:VERSION, with docker or podman, offline too (docs/operations.md)
+#   make deps       installs the Debian packages this needs (as root); `make run` installs only the run ones
 
 SHELL   := /bin/bash
 CC      ?= cc
@@ -20,6 +21,8 @@ SANFLAGS := $(if $(SAN),$(ASAN_UBSAN))
 CPPFLAGS += -Iinclude -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
 ALL_CFLAGS = $(WARN) $(CFLAGS) $(SANFLAGS)
 LDLIBS_CORE := -lgsl -lgslcblas -lm
+# The unit tests alone also link LAPACK: an independent reference for the eigensolvers (test_modes.c).
+LDLIBS_TEST := -llapack
 LDLIBS_JSON := -lcjson
 LDLIBS_HTTP := -lmicrohttpd -lpthread
 LDFLAGS += $(SANFLAGS)
@@ -34,10 +37,10 @@ CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 LIB      := $(BUILD)/libdashpot.a
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
-TEST_SH  := $(wildcard tests/*.sh)
+TEST_SH  := $(filter-out tests/test_image.sh,$(wildcard tests/*.sh))
 PROGS    := $(BUILD)/dashpot $(if $(HTTP_SRC),$(BUILD)/dashpotd)
 
-.PHONY: all test unit integration run bench deps deps-ok clean thesis-figures fuzz bench-peers
+.PHONY: all test unit integration run bench deps deps-ok deps-run clean thesis-figures fuzz bench-peers
 
 all: $(LIB) $(PROGS)
 
@@ -57,7 +60,7 @@ $(BUILD)/dashpotd: $(HTTP_OBJ) $(LIB)
 
 $(BUILD)/tests/%: tests/%.c $(LIB)
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -Itests $< -o $@ $(LIB) -lcmocka $(LDLIBS_JSON) $(LDLIBS_CORE)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -Itests $< -o $@ $(LIB) -lcmocka $(LDLIBS_JSON) $(LDLIBS_CORE) $(LDLIBS_TEST)
 
 # Every unit test program runs even if an earlier one fails; the target fails if any did.
 unit: $(TEST_BIN)
@@ -73,7 +76,11 @@ test: deps-ok
 deps deps-ok:
 	@bash scripts/install-deps.sh
 
-run: deps-ok
+# `make run` needs neither cmocka nor the test tools: only what builds and runs the daemon.
+deps-run:
+	@bash scripts/install-deps.sh --run
+
+run: deps-run
 	@$(MAKE) --no-print-directory all
 	./$(BUILD)/dashpotd
 
@@ -108,21 +115,26 @@ fuzz:
 
 # The robustness suite, kept out of `make test` for its length (~3 min; CI runs it once, on the plain
 # build): the HTTP tests with every daemon under valgrind memcheck (zero definite or indirect leaks, no memory
-# error; the 10^7-sample stream skipped), 30 s of mixed load with 64 connections (wrk), and the faults
-# (1000 hang-ups, slowloris, hostile bodies, divergence, SIGTERM under load). Each runs even if one failed.
+# error; the 10^7-sample stream skipped), 30 s of mixed load with 64 connections (wrk), the faults
+# (1000 hang-ups, slowloris, hostile bodies, divergence, SIGTERM under load), and the container image built
+# and run (tests/test_image.sh: about a minute cold, seconds warm; it needs root or a working engine, and the
+# network for the Dockerfile's apt-get). Each runs even if one failed.
 .PHONY: robustness
 robustness: all
 	@bash scripts/install-deps.sh --robustness
 	@fail=0; echo "== DASHPOT_VALGRIND=1 tests/test_http.sh"; \
 	DASHPOT_VALGRIND=1 BUILD=$(BUILD) bash tests/test_http.sh || fail=1; \
-	for t in tests/robustness/*.sh; do echo "== $$t"; BUILD=$(BUILD) bash $$t || fail=1; done; exit $$fail
+	for t in tests/robustness/*.sh tests/test_image.sh; do echo "== $$t"; BUILD=$(BUILD) bash $$t || fail=1; done; \
+	exit $$fail
 
 bench: all
 	@bash bench/run.sh $(BUILD)
 
-# dashpot's stick-slip solver next to Siconos (installed from Debian if missing): accuracy and speed.
+# dashpot's stick-slip solver next to Siconos (installed from Debian if missing): accuracy and speed, for one
+# mass (siconos.sh) and for networks (network.sh: chains, Burridge-Knopoff scaling, one node vs one mass).
 bench-peers: all
-	BUILD=$(BUILD) bash bench/siconos.sh
+	@fail=0; for b in bench/siconos.sh bench/network.sh; do echo "== $$b"; BUILD=$(BUILD) bash $$b || fail=1; done; \
+	exit $$fail
 
 clean:
 	rm -rf build build-san build-fuzz
@@ -171,3 +183,12 @@ uninstall:
 	-rmdir $(DESTDIR)$(includedir)/dashpot $(DESTDIR)$(datadir)/dashpot/web $(DESTDIR)$(datadir)/dashpot 2>/dev/null
 
 .PHONY: install uninstall
+
+# ---- make image ------------------------------------------------------------------------------------------------
+# The Dockerfile built into dashpot:VERSION with docker or podman; where no registry is reachable its Debian
+# base is made with debootstrap from the machine's Debian mirror (scripts/image.sh; docs/operations.md,
+# "Container image"). tests/test_image.sh builds and runs it (in `make robustness`).
+image:
+	@BUILD=$(BUILD) bash scripts/image.sh
+
+.PHONY: image

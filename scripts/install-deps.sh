@@ -1,13 +1,22 @@
 #!/usr/bin/env bash
 # scripts/install-deps.sh - installs the Debian 12 packages dashpot builds, tests and benchmarks with.
 # Fast when everything is present (dpkg query only); installs the missing ones with apt-get as root,
-# or prints the exact command when not root. Used by `make test`, `make run` and .ci/run.
+# or prints the exact command when not root. Used by `make test` (no argument: build and test),
+# `make run` (--run: only what building and running needs), the benchmarks and .ci/run.
+# --list [--run|--bench|...] prints the packages instead of installing them (tests/test_docs.sh compares
+# them with the README).
 set -euo pipefail
-pkgs=(build-essential pkg-config python3 python3-yaml libgsl-dev libcjson-dev libmicrohttpd-dev libcmocka-dev curl)
+list=0
+[ "${1:-}" = "--list" ] && { list=1; shift; }
+pkgs=(build-essential pkg-config libgsl-dev libcjson-dev libmicrohttpd-dev)   # build and run (the image's build stage)
+test_pkgs=(python3 python3-yaml libcmocka-dev liblapack-dev curl)            # the tests add these (LAPACK: test_modes.c's reference)
+[ "${1:-}" = "--run" ] || pkgs+=("${test_pkgs[@]}")
 [ "${1:-}" = "--bench" ] && pkgs+=(wrk python3-numpy python3-scipy valgrind)
 [ "${1:-}" = "--fuzz" ] && pkgs+=(clang libclang-rt-14-dev)
 [ "${1:-}" = "--robustness" ] && pkgs+=(wrk valgrind)
 [ "${1:-}" = "--siconos" ] && pkgs+=(libsiconos-kernel-dev g++)
+[ "${1:-}" = "--image" ] && pkgs+=(podman debootstrap)
+[ $list = 1 ] && { echo "${pkgs[*]}"; exit 0; }
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -65,6 +65,76 @@ check "unknown format exits 2" test $rc -eq 2
 check "unknown command exits 2" test $rc -eq 2
 check "--version" bash -c "'$bin' --version | grep -q '^dashpot '"
 
+# Help and usage errors: --help on stdout with exit 0, a bad value named on stderr with exit 2.
+for cmd in simulate stability wellposedness convergence; do
+  "$bin" $cmd --help > "$tmp/help.out" 2> "$tmp/help.err"; rc=$?
+  check "$cmd --help exits 0 with its usage on stdout, nothing on stderr" \
+    bash -c "[ $rc -eq 0 ] && grep -q '^usage: dashpot $cmd ' '$tmp/help.out' && [ ! -s '$tmp/help.err' ]"
+done
+check "simulate --help documents --quiet and when the progress bar shows" \
+  bash -c "'$bin' simulate -h | grep -q -- '--quiet  *no progress bar (one is drawn on standard error only when it is a terminal'"
+"$bin" simulate "$tmp/decay.json" --format svg 2> "$tmp/fmt.err"; rc=$?
+check "--format svg exits 2 naming the bad value" \
+  bash -c "[ $rc -eq 2 ] && grep -qF 'dashpot: simulate: unknown format (expected json, ndjson or csv): \"svg\"' '$tmp/fmt.err'"
+"$bin" simulate "$tmp/decay.json" --frobnicate 2> "$tmp/opt.err"; rc=$?
+check "an unknown option exits 2 naming it" bash -c "[ $rc -eq 2 ] && grep -qF 'unknown option \"--frobnicate\"' '$tmp/opt.err'"
+"$bin" simulate 2> "$tmp/nospec.err"; rc=$?
+check "no spec exits 2 saying so" bash -c "[ $rc -eq 2 ] && grep -qF 'no spec given' '$tmp/nospec.err'"
+"$bin" simulate "$tmp/decay.json" > /dev/full 2> "$tmp/full.err"; rc=$?
+check "output that cannot be written (/dev/full) exits 1, never 0" \
+  bash -c "[ $rc -eq 1 ] && grep -qF 'cannot write the output' '$tmp/full.err'"
+
+# The input limit is 64 MiB exactly (README "Limits"): a spec padded to 64 MiB is read, one byte more is not.
+py "
+import sys
+spec = open('$tmp/decay.json').read().rstrip()
+open('$tmp/max.json', 'w').write(spec + ' ' * (64 * 2**20 - len(spec)))
+open('$tmp/over.json', 'w').write(spec + ' ' * (64 * 2**20 + 1 - len(spec)))
+"
+"$bin" simulate "$tmp/max.json" --format csv > "$tmp/max.csv" 2>&1; rc=$?
+check "a 64 MiB spec is read" bash -c "[ $rc -eq 0 ] && cmp -s '$tmp/max.csv' '$tmp/out.csv'"
+"$bin" simulate "$tmp/over.json" 2> "$tmp/over.err" >/dev/null; rc=$?
+check "64 MiB + 1 byte is refused (exit 2, 'larger than 64 MiB')" \
+  bash -c "[ $rc -eq 2 ] && grep -qF 'larger than 64 MiB' '$tmp/over.err'"
+rm -f "$tmp/max.json" "$tmp/over.json"
+
+# The well-posedness report prints numbers shortest (0.1, not 0.10000000000000001), witnesses included.
+echo '{"model": {"mass": 1, "spring": {"law": "linear", "k": 0.1}, "damper": {"law": "graph", "points": [[-0.1, -1], [0, 0.3], [0.7, 0.1]]}}}' \
+  | "$bin" wellposedness - > "$tmp/wp.json"
+check "well-posedness: k = 0.1 and the witness (0, 0.3), (0.7, 0.1) printed shortest; only the failing check named" py "
+import json
+d = json.load(open('$tmp/wp.json'))
+details = {c['hypothesis']: c['detail'] for c in d['checks']}
+assert details['linear spring F_s = k x (seed 001 (1))'] == 'k = 0.1', details
+assert details['A monotone (seed 001 (6))'].startswith('points (v, F) = (0, 0.3) and (0.7, 0.1) have'), details
+assert d['existence']['reason'] == 'fails: A monotone (seed 001 (6))', d['existence']
+assert '0000000' not in open('$tmp/wp.json').read()
+"
+
+# output.max_samples: every = ceil(steps / (N - 1)) keeps the samples at or under N (10^4 steps here).
+for n in 2 3 10 999 1000 10001 20000; do
+  sed "s/\"every\": 2000/\"max_samples\": $n/" "$tmp/decay.json" | "$bin" simulate - --format ndjson > "$tmp/budget.ndjson"
+  check "max_samples $n: at most $n samples, more than half of them, every as in the meta line" py "
+import json, math
+rows = [json.loads(l) for l in open('$tmp/budget.ndjson')]
+every = math.ceil(10000 / ($n - 1))
+samples = sum(r['type'] == 'sample' for r in rows)
+assert rows[0]['every'] == every, (rows[0]['every'], every)
+assert samples == 10000 // every + 1 + (10000 % every != 0) <= $n, samples
+assert samples >= min($n, 10001) / 2, samples
+"
+done
+check "max_samples 10001 keeps every step (every 1)" py "
+import json
+rows = [json.loads(l) for l in open('$tmp/budget.ndjson')]
+assert rows[0]['every'] == 1 and sum(r['type'] == 'sample' for r in rows) == 10001
+"
+for bad in '"max_samples": 1' '"max_samples": 2.5' '"max_samples": "many"' '"max_samples": 10, "every": 2'; do
+  sed "s/\"every\": 2000/$bad/" "$tmp/decay.json" | "$bin" simulate - 2> "$tmp/budget.err" >/dev/null; rc=$?
+  check "output {$bad} exits 2 naming /output/max_samples" \
+    bash -c "[ $rc -eq 2 ] && grep -q '^dashpot: -: /output/max_samples: ' '$tmp/budget.err'"
+done
+
 # Negative damping (gamma = 50 v adds energy: growth like e^(25 t)) overflows: a diverging run is an error with a final error line, never NaN in the output.
 cat > "$tmp/diverge.json" <<'JSON'
 {"model": {"mass": 1, "spring": {"law": "linear", "k": 1},

@@ -105,6 +105,10 @@ check "the log has no raw control byte or byte >= 0x80 at all" bash -c "! LC_ALL
 check "a quote in the method is escaped too" grep -qF 'GE\x22T "/y" 404' "$LOG_main"
 check "the daemon listens on 127.0.0.1 only by default (/proc/net/tcp)" \
     grep -qE "^ *[0-9]+: 0100007F:$(printf %04X "$PORT_main") 00000000:0000 0A" /proc/net/tcp
+timeout 10 "$DAEMON" --port "$PORT_main" 2>"$SCRATCH/busy.log"
+check "a second daemon on a busy port exits 1" is "$?" 1
+check "...and its message says how to pick another port" \
+    grep -qF "cannot listen on 127.0.0.1 port $PORT_main (in use? pick another with --port N or DASHPOT_PORT=N" "$SCRATCH/busy.log"
 
 # ---- formats ----
 req POST "$U/v1/simulate" --data-binary "$SPEC"
@@ -164,6 +168,22 @@ ok = ok and all(float(r.split(",")[0]) >= 0 for r in rows[1:])
 sys.exit(0 if ok else 1)' "$BODY"
 req POST "$U/v1/simulate" -H 'Accept: text/html;q=0.9, text/csv;q=0.5' --data-binary "$SPEC"
 check "Accept picks the best acceptable offer (text/csv)" is "$STATUS $(header Content-Type)" "200 text/csv; charset=utf-8"
+# Every spelling of each format, and what a wildcard picks (docs/http.md, "POST /v1/simulate").
+for spelling in 'application/json -> application/json' 'application/* -> application/json' '*/* -> application/json' \
+    'application/x-ndjson -> application/x-ndjson' 'application/ndjson -> application/x-ndjson' \
+    'Application/NDJSON -> application/x-ndjson' 'application/ndjson;q=0.5, text/csv;q=0.4 -> application/x-ndjson' \
+    'text/event-stream -> text/event-stream' 'text/csv -> text/csv; charset=utf-8' 'text/* -> text/csv; charset=utf-8' \
+    'text/*;q=0.9, application/json;q=0.1 -> text/csv; charset=utf-8' 'text/plain, */*;q=0.1 -> application/json'; do
+    req POST "$U/v1/simulate" -H "Accept: ${spelling%% -> *}" --data-binary "$TINY_SPEC"
+    check "Accept: $spelling" is "$STATUS $(header Content-Type)" "200 ${spelling#* -> }"
+done
+req POST "$U/v1/simulate" -H 'Accept: application/ndjson' --data-binary "$TINY_SPEC"
+check "Accept: application/ndjson is the same NDJSON as application/x-ndjson" cmp -s "$BODY" "$SCRATCH/tiny.ndjson"
+req POST "$U/v1/simulate" -H 'Accept: application/ndjson;q=0' --data-binary "$TINY_SPEC"
+check "Accept: application/ndjson;q=0 is 406" problem 406
+req POST "$U/v1/stability" -H 'Accept: text/*' --data-binary '{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]},
+  "map": {"x": {"param": "mu[1]", "from": 0, "to": 2, "steps": 2}, "y": {"param": "lambda[1]", "from": 0.25, "to": 1.75, "steps": 2}}}'
+check "stability map with Accept: text/* is CSV" is "$STATUS $(header Content-Type)" "200 text/csv; charset=utf-8"
 
 REG='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 1}},
  "initial": {"x": 4.5, "v": 0}, "solver": {"kind": "regularized", "n": 1000, "dt": 1, "t_end": 10}}'
@@ -172,6 +192,12 @@ check "regularized summary counts rejected steps and right-hand side evaluations
     "d['type'] == 'summary' and d['rejected'] > 0 and d['fevals'] > d['steps'] > 0"
 check "stick-slip summary has rejected 0 and fevals 0" pyjson "$SCRATCH/doc.json" \
     "d['summary']['rejected'] == 0 and d['summary']['fevals'] == 0"
+check "regularized meta names its scheme, n, stepper and tolerances, none of the stick-slip fields" \
+    pyjson <(head -n 1 "$BODY") "list(d)[:9] == ['type','version','solver','scheme','n','stepper','rtol','atol','dt'] \
+    and (d['scheme'], d['n'], d['stepper'], d['rtol'], d['atol']) == ('PC', 1000, 'msbdf', 1e-8, 1e-10) \
+    and not {'variant','events_mode','branch','theta'} & set(d)"
+check "stick-slip meta keeps variant, events_mode, branch, theta in that order" pyjson "$SCRATCH/doc.json" \
+    "list(d['meta'])[2:6] == ['variant','events_mode','branch','theta']"
 
 STAB='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}}'
 MAP='{"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]}, "map": {"x": {"param": "mu[1]", "from": 0, "to": 2, "steps": 3},

@@ -4,7 +4,8 @@
 # once per media type that documents a response example of the same name (errors: with Accept */*, or the
 # example's x-accept), and the answer must have the expected status (x-expect-status, default 200), that
 # content type and the shape of the response example of the same name (the same members, the same error pointers,
-# the same sequence of stream objects, the same CSV header).
+# the same sequence of stream objects, the same CSV header) and, but for SVG, be the example exactly (JSON member for
+# member in the same order, text byte for byte).
 #
 # The linter comes from npm (@redocly/cli, pinned). It is installed once into a cache directory
 # (DASHPOT_CACHE, default ~/.cache/dashpot); if it cannot be installed the test fails, it is never skipped.
@@ -96,6 +97,18 @@ def shape(value, media):
         return value.lstrip()[:4]
     return lines_shape(value, media)
 
+def exactly(text, value, media):
+    """The response is the documented example: JSON equal member for member and in the same order, other text
+    byte for byte (a YAML block scalar ends with one newline, as the streams do)."""
+    if media in ("application/json", "application/problem+json"):
+        doc = json.loads(value) if isinstance(value, str) else value
+        try:
+            got = json.loads(text)
+        except ValueError:
+            return False, json.dumps(doc)
+        return json.dumps(got) == json.dumps(doc), json.dumps(doc)
+    return text == value or text + "\n" == value, value
+
 def try_example(path, method, name, ex, responses):
     status = int(ex.get("x-expect-status", 200))
     body = ex["value"] if isinstance(ex["value"], str) else json.dumps(ex["value"])
@@ -116,6 +129,9 @@ def try_example(path, method, name, ex, responses):
             continue
         a, b = shape(text, media), shape(want["value"], media)
         report(a == b, what + ", shape as documented", f"got {a}\n    documented {b}")
+        if media != "image/svg+xml":
+            same, shown = exactly(text, want["value"], media)
+            report(same, what + ", the documented example exactly", f"got        {text[:600]}\n    documented {shown[:600]}")
 
 def try_get(path, op):
     resp = op["responses"]["200"]

@@ -542,7 +542,7 @@ static const row rows[] = {
     { "theta with the analytic solver", TOP(",'solver':{'kind':'analytic','theta':1}"), NULL, DP_EINVAL,
       "/solver/theta", "for kind \"analytic\"; expected one of: kind, t_end, dt", 0 },
     { "unknown key in output", TOP(",'output':{'every':1,'format':'csv'}"), NULL, DP_EINVAL, "/output/format",
-      "expected one of: every, samples, events", 0 },
+      "expected one of: every, max_samples, samples, events", 0 },
     { "unknown key in initial", TOP(",'initial':{'x0':1}"), NULL, DP_EINVAL, "/initial/x0",
       "expected one of: x, v", 0 },
     { "pointer escaping of a key", MODEL_WITH(",'a/b~c':1"), NULL, DP_EINVAL, "/model/a~1b~0c",

@@ -6,17 +6,27 @@
 //
 // For tests and curious people, #panel-simulate carries data-state (idle, running, done, error, stopped),
 // data-samples (sample lines received), data-points (samples held for plotting), data-summary-samples and
-// data-events, data-bands (stick intervals shaded) and data-run (runs started so far); each canvas carries
-// data-points (the points its last drawing went through). #panel-stability has data-state and data-run.
+// data-events, data-bands (stick intervals shaded) and data-run (runs started so far), data-budget (the
+// output.max_samples the page asked for, empty when the request chose its own output) and data-every (the
+// meta line's every), data-stale ("true" while the plots are not the editor's request: after a refused
+// request or a new preset); each canvas carries data-points (the points its last drawing went through).
+// #panel-stability has data-state and data-run.
+//
+// The sample budget: a request without an "output" member is sent with output.max_samples of about the
+// plots' width in device pixels, so a 10^8-step run streams what the canvas can show, not 10^8 samples; the
+// server picks every (docs/http.md), the page says the curve is decimated. An explicit output is sent as is.
+// A network run (meta.model "network", docs/networks.md) is held and drawn by network.js instead.
 
 import { Table, Plot } from './plot.js';
 import { Editor, pretty } from './editor.js';
 import { PRESETS } from './presets.js';
+import { NetworkView } from './network.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
 const num = (v, d = 4) => (typeof v === 'number' ? (Number.isInteger(v) ? v.toLocaleString('en') : +v.toPrecision(d) + '') : '\u2014');
 const MAX_POINTS = 2e6; // samples kept for plotting; a longer run is summarised, not drawn whole
+const presetText = (p) => pretty(p.spec) + '\n';
 
 const ui = {
   tab: 'simulate',
@@ -30,6 +40,7 @@ const ui = {
 const headers = (accept) => ({ 'Content-Type': 'application/json', Accept: accept,
   ...(ui.token ? { Authorization: 'Bearer ' + ui.token } : {}) });
 const editor = new Editor($('editor'), () => run());
+const network = new NetworkView(); // a run of a network model (meta.model "network") is drawn there
 
 // ---- presets and tabs ----
 
@@ -44,16 +55,36 @@ function fillPresets() {
     }
     group.append(new Option(p.label, p.id));
   }
+  sel.prepend(new Option('(edited request)', ''));
+  sel.options[0].disabled = true;
   sel.addEventListener('change', () => loadPreset(sel.value));
+}
+
+// The preset menu names the preset only while the editor holds its request.
+function syncPresetMenu() {
+  const p = PRESETS.find((q) => q.id === ui.preset[ui.tab]);
+  const same = p && editor.text.trim() === presetText(p).trim();
+  $('preset').value = same ? p.id : '';
+  if (p) $('preset-note').textContent = same ? p.note : `Edited from \u201c${p.label}\u201d; pick a preset to start again from one.`;
+}
+
+// Marks the plots as not showing the editor's request (why), or clears the mark (why = null).
+function markStale(why) {
+  const panel = $('panel-simulate');
+  panel.dataset.stale = String(!!why);
+  panel.classList.toggle('stale', !!why);
+  $('stale-note').hidden = !why;
+  if (why) $('stale-note').textContent = why;
 }
 
 function loadPreset(id) {
   stop();
   const p = PRESETS.find((q) => q.id === id) || PRESETS[0];
   ui.preset[p.kind] = p.id;
-  ui.text[p.kind] = pretty(p.spec) + '\n';
+  ui.text[p.kind] = presetText(p);
   showTab(p.kind, true);
   history.replaceState(null, '', '#' + p.id);
+  if (p.kind === 'simulate' && sim.meta) markStale(`Stale: these plots are from the previous run (${sim.label}); press Run for this preset.`);
 }
 
 function showTab(tab, fromPreset = false) {
@@ -67,13 +98,14 @@ function showTab(tab, fromPreset = false) {
   if (!ui.preset[tab]) { // the first visit of a tab starts with its first preset
     const p = PRESETS.find((q) => q.kind === tab);
     ui.preset[tab] = p.id;
-    ui.text[tab] = pretty(p.spec) + '\n';
+    ui.text[tab] = presetText(p);
   }
   const p = PRESETS.find((q) => q.id === ui.preset[tab]);
   $('preset').value = p.id;
   $('preset-note').textContent = p.note;
   $('spec-label').textContent = tab === 'simulate' ? 'Request to v1/simulate (JSON)' : 'Request to v1/stability (JSON)';
   editor.text = ui.text[tab];
+  syncPresetMenu();
   showProblem(null);
   if (tab === 'simulate') drawAll();
 }
@@ -108,8 +140,9 @@ async function problemOf(res) {
 let sim = newRun();
 
 function newRun() {
-  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), events: [], stick: [], stickStart: null, meta: null,
-    summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now() };
+  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, events: [], stick: [], stickStart: null,
+    meta: null, summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
+    label: '' };
 }
 
 const stickBands = () => (sim.stickStart === null ? sim.stick : [...sim.stick, [sim.stickStart, sim.lastT]]);
@@ -126,6 +159,8 @@ const plots = [
 ];
 
 function drawAll() {
+  network.show(!!sim.net);
+  if (sim.net) { network.draw(sim.net); return; }
   for (const p of plots) { p.setTable(sim.table); p.draw(); }
 }
 
@@ -138,11 +173,29 @@ function setSimState(state) {
   const d = $('panel-simulate').dataset;
   d.state = state;
   d.samples = sim.samples;
-  d.points = sim.table.n;
+  d.points = sim.net ? sim.net.table.n : sim.table.n;
   d.events = sim.events.length;
   d.summarySamples = sim.summary ? sim.summary.samples : '';
   d.bands = stickBands().length;
   d.run = ui.runs;
+  d.budget = sim.budget || '';
+  d.every = sim.meta ? sim.meta.every : '';
+}
+
+// About the plots' width in device pixels: more samples than that cannot be told apart on the canvas.
+function sampleBudget() {
+  const w = Math.max(...plots.map((p) => p.canvas.clientWidth)) * (window.devicePixelRatio || 1);
+  return Math.min(10000, Math.max(200, Math.round(w)));
+}
+
+// The request as sent: with the sample budget when it has no "output" member of its own (see the top).
+function withBudget(text) {
+  let spec;
+  try { spec = JSON.parse(text); } catch { return { body: text, budget: 0 }; } // the daemon says where
+  if (!spec || typeof spec !== 'object' || Array.isArray(spec) || 'output' in spec || Object.keys(spec).length === 0)
+    return { body: text, budget: 0 };
+  const budget = sampleBudget();
+  return { body: text.replace(/^\s*\{/, (open) => `${open}"output": {"max_samples": ${budget}}, `), budget };
 }
 
 function onRecord(o) {
@@ -150,6 +203,7 @@ function onRecord(o) {
     case 'sample':
       sim.samples++;
       sim.lastT = o.t;
+      if (sim.net) { sim.net.push(o); break; }
       if (sim.table.n < MAX_POINTS) sim.table.push(o);
       if (o.phase === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
       if (o.phase === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
@@ -162,6 +216,7 @@ function onRecord(o) {
     case 'meta':
       sim.meta = o;
       sim.tEnd = o.t_end;
+      if (o.model === 'network') sim.net = network.start(o);
       renderWellposedness(o.wellposedness, o);
       break;
     case 'summary': sim.summary = o; break;
@@ -178,16 +233,22 @@ async function runSimulation() {
   setRunning(true);
   $('status').textContent = 'sending\u2026';
   const started = performance.now();
+  const label = $('preset').value ? $('preset').selectedOptions[0].textContent : 'an edited request';
+  const { body, budget } = withBudget(editor.text);
   let state = 'error';
   try {
-    const res = await fetch('v1/simulate', { method: 'POST', body: editor.text, signal: ctl.signal,
+    const res = await fetch('v1/simulate', { method: 'POST', body, signal: ctl.signal,
       headers: headers('application/x-ndjson') });
-    if (!res.ok) { // no run: the last one stays on screen, the problem goes next to the editor
+    if (!res.ok) { // no run: the last one stays on screen, marked stale; the problem goes next to the editor
       showProblem(await problemOf(res));
+      if (sim.meta) markStale(`Stale: the plots are from the previous run (${sim.label}), not from this request (${res.status}).`);
       return;
     }
     sim = newRun();
     sim.started = started;
+    sim.budget = budget;
+    sim.label = label;
+    markStale(null);
     renderStats();
     drawAll();
     $('wp-body').innerHTML = '<span class="muted">waiting for the meta line\u2026</span>';
@@ -236,17 +297,23 @@ function renderStats(state) {
   const chip = (k, v) => `<span class="chip"><b>${esc(k)}</b> ${esc(v)}</span>`;
   let h = '';
   if (m) {
-    h += chip('solver', m.solver + (m.variant ? ' (' + m.variant + ')' : '')) + chip('\u03b8', num(m.theta)) +
-      chip('dt', num(m.dt)) + chip('T', num(m.t_end));
+    h += chip('solver', m.solver + (m.variant ? ' (' + m.variant + ')' : m.scheme ? ' (' + m.scheme + ')' : ''));
+    if (m.theta !== undefined) h += chip('\u03b8', num(m.theta));
+    if (m.scheme) h += chip(m.scheme === 'PI' ? 'k' : 'n', num(m.scheme === 'PI' ? m.k : m.n)) + chip('stepper', m.stepper);
+    h += chip('dt', num(m.dt)) + chip('T', num(m.t_end));
+    if (m.every > 1) h += `<span class="chip warn" id="decimated" title="output.every = ${m.every}">decimated: 1 sample per ${num(m.every)} steps` +
+      (sim.budget ? ` (at most ${num(sim.budget)}, about the plot width; set "output" in the request to choose)` : '') + '</span>';
     if (m.branch) h += chip('branch', m.branch);
+    if (m.model === 'network') h += chip('nodes', num(m.nodes)) + chip('elements', num(m.elements));
     const wp = m.wellposedness;
     if (wp) for (const k of ['existence', 'uniqueness'])
       h += `<span class="chip ${wp[k].guaranteed ? 'ok' : 'no'}" title="${esc(wp[k].theorem || wp[k].reason)}"><b>${k}</b> ${wp[k].guaranteed ? '\u2713' : '\u2717 not'} guaranteed</span>`;
   }
   h += chip('samples', num(sim.samples)) + chip('events', num(sim.events.length));
   if (s) {
-    h += chip('stick time', num(s.stick_time)) + chip('final x', num(s.final.x, 6));
-    if (sim.samples > sim.table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
+    h += chip('stick time', num(s.stick_time));
+    if (!sim.net) h += chip('final x', num(s.final.x, 6));
+    if (sim.samples > (sim.net || sim).table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
   }
   $('stats').innerHTML = h;
   if (state === 'done') {
@@ -272,7 +339,7 @@ function renderWellposedness(wp, meta) {
     h += '</p>';
   }
   h += '<ul class="checks">' + wp.checks.map((c) => `<li class="${c.holds ? 'ok' : 'no'}"><span class="tick">${c.holds ? '\u2713' : '\u2717'}</span>
-      <span>${esc(c.hypothesis)}</span> <span class="muted">${esc(c.detail)}</span></li>`).join('') + '</ul>';
+      <span>${esc(c.hypothesis)}:</span> <span class="muted">${esc(c.detail)}</span></li>`).join('') + '</ul>';
   body.innerHTML = h;
 }
 
@@ -340,7 +407,11 @@ function renderStability(d) {
       <table class="roots"><thead><tr><th>root</th><th>Re z</th><th>Im z</th><th>error bound</th></tr></thead><tbody>` +
       d.roots.map((r, i) => `<tr><td>${i + 1}</td><td>${num(r.re, 8)}</td><td>${num(r.im, 8)}</td><td>${num(r.error, 2)}</td></tr>`).join('') +
       `</tbody></table><p>Hurwitz minors: <code>${esc((d.hurwitz_minors || []).map((x) => num(x, 6)).join(', '))}</code></p>`;
-    if (d.model) more += `<p>Thesis model ${esc(d.model.name)}, condition ${esc(d.model.condition)} <code>${esc(d.model.expression)}</code> = ${num(d.model.value, 6)}: ${esc(d.model.verdict ?? 'does not apply')}</p>`;
+    if (d.model) {
+      const lhs = d.model.expression.replace(/\s*>\s*0$/, ''); // "value" is the left side of "... > 0"
+      more += `<p id="stab-model">Thesis model ${esc(d.model.name)}, stable iff ${esc(d.model.condition)} <code>${esc(d.model.expression)}</code>; here ` +
+        `<code>${esc(lhs)}</code> = ${num(d.model.value, 6)}: ${esc(d.model.verdict ?? 'does not apply')}</p>`;
+    }
   }
   $('stab-info').innerHTML = info;
   $('stab-analysis').innerHTML = more;
@@ -363,6 +434,7 @@ function stop() {
 function run() {
   if (ui.controller) { stop(); return; }
   ui.text[ui.tab] = editor.text;
+  syncPresetMenu();
   if (ui.tab === 'simulate') runSimulation(); else runStability();
 }
 

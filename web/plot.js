@@ -66,7 +66,8 @@ function niceRange(lo, hi, count) {
   return [Math.floor(lo / step + 1e-9) * step, Math.ceil(hi / step - 1e-9) * step];
 }
 
-const css = (name) => getComputedStyle(document.documentElement).getPropertyValue(name).trim() || '#000';
+// A colour: a CSS variable of the page (--name) or a colour as it is (the network view's per-node curves).
+const css = (name) => (name.startsWith('--') ? getComputedStyle(document.documentElement).getPropertyValue(name).trim() || '#000' : name);
 
 // opts: { x: {col, label, range?: () => [lo, hi]}, y: {label}, series: [{col, color, dash?}],
 //         bands?: () => [[x0, x1], ...], markers?: () => [{x, y, kind}] }

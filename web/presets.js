@@ -99,3 +99,62 @@ PRESETS.push({
   note: 'No map: the verdict, the roots with their error bounds and the Hurwitz minors of one law.',
   spec: { mass: 1, law: { lambda: [1, 0.5], mu: [1, 1] } },
 });
+
+// ---- networks (docs/networks.md): drawn by network.js ----
+PRESETS.push({
+  id: 'chain-3', group: 'Networks of masses', label: '3-mass chain: friction, spring, dashpot', kind: 'simulate',
+  note: 'Masses 1, 2, 1.5: node 0 on a spring to the ground with Coulomb friction \u03c6\u2080 0.3, a spring k = 2 to node 1, ' +
+    'a dashpot c = 0.1 to node 2, which is shaken by cos 2t. Node 0 slips, sticks and slips again while the others swing.',
+  spec: {
+    model: {
+      masses: [1, 2, 1.5],
+      elements: [
+        { between: ['ground', 0], spring: linear, damper: { law: 'coulomb', phi0: 0.3, belt_velocity: 0 } },
+        { between: [0, 1], spring: { law: 'linear', k: 2 } },
+        { between: [1, 2], damper: { law: 'linear', c: 0.1 } },
+      ],
+      forcing: [{ node: 2, kind: 'harmonic', amplitude: 1, omega: 2, phase: 0 }],
+    },
+    initial: { x: [1, -0.5, 2], v: [0, 0.3, 0] },
+    solver: { kind: 'stick-slip', dt: 0.001, t_end: 20, theta: 0.5 },
+    output: { every: 10 },
+  },
+});
+
+// Burridge-Knopoff in the plate's frame: n blocks, each on a leaf spring kp to the plate (the ground here)
+// and with friction against the ground, which moves at -V in this frame (belt_velocity -V); neighbour
+// springs kc. The friction is Carlson-Langer velocity weakening: Coulomb phi0 with the rational relaxation
+// gamma(z) = alpha phi0 z/(vf + |z|), so a slipping block carries phi0 (1 - alpha |z|/(vf + |z|)) sign z, down to
+// (1 - alpha) phi0 when fast (docs/networks.md). Frictions and initial stresses vary from block to block (fixed
+// numbers, no randomness): every block starts stuck (v = -V) with its leaf spring at 30-95 % of its friction, so
+// the weakest break away first, load their neighbours, and slip fronts run along the chain; blocks stick again
+// when their speed relative to the ground falls back to zero, and the plate loads them again: the weakening
+// keeps the stick-slip cycles going (constant Coulomb friction would let the chain settle into steady sliding).
+// Relaxation is stepped under the n-mass step bound W - h theta sum L b b^T > 0 (refused at /solver/dt past it):
+// with L = alpha phi0 / vf <= 0.5 * 2 / 0.05 = 20, h theta L = 0.1 < m = 1, far inside it.
+function burridgeKnopoff(n, V, kp, kc, alpha, vf) {
+  const elements = [], x = [];
+  for (let i = 0; i < n; i++) {
+    const phi0 = +(1 + Math.sin(7.3 * i) ** 2).toFixed(3);
+    const relaxation = { kind: 'rational', a: +(alpha * phi0).toFixed(4), b: vf };
+    elements.push({ between: ['ground', i], spring: { law: 'linear', k: kp }, damper: { law: 'coulomb', phi0, belt_velocity: -V, relaxation } });
+    x.push(+(-(phi0 / kp) * (0.3 + 0.65 * Math.sin(3.1 * i) ** 2)).toFixed(3));
+  }
+  for (let i = 0; i + 1 < n; i++) elements.push({ between: [i, i + 1], spring: { law: 'linear', k: kc } });
+  return {
+    model: { masses: Array(n).fill(1), elements },
+    initial: { x, v: Array(n).fill(-V) },
+    solver: { kind: 'stick-slip', dt: 0.01, t_end: 100, theta: 0.5 },
+    output: { every: 10 },
+  };
+}
+PRESETS.push({
+  id: 'burridge-knopoff', group: 'Networks of masses', label: 'Burridge\u2013Knopoff chain of 60 blocks', kind: 'simulate',
+  note: '60 blocks (m = 1) on leaf springs kp = 1 to a plate moving at V = 0.1, neighbour springs kc = 0.5, ' +
+    'Carlson\u2013Langer friction against the ground, which moves at \u2212V in the plate\u2019s frame: Coulomb ' +
+    '\u03c6\u2080 between 1 and 2 weakened by the relaxation \u03b3 = 0.5 \u03c6\u2080 z/(0.05 + |z|), so a fast block keeps ' +
+    'half its friction. In the space\u2013time picture a stuck block is dark (v = \u2212V): the weakest blocks break ' +
+    'away, slip fronts run along the chain, blocks stick, the plate loads them again, and the stick\u2013slip cycles ' +
+    'go on for the whole run. dt = 0.01 is far inside the step bound h\u03b8L < m (h\u03b8L = 0.1).',
+  spec: burridgeKnopoff(60, 0.1, 1, 0.5, 0.5, 0.05),
+});

@@ -52,10 +52,16 @@ typedef struct dp_encoder {
     dp_number_text recent[6]; /* the six numbers of the last sample: a repeated value is laid out from its
                                  digits, not converted again (a force constant while slipping, F_s = x when
                                  k = 1) */
+    const dp_columns *cols;   /* a network run's columns (dp_encoder_set_columns), NULL for one mass */
 } dp_encoder;
 
 void dp_encoder_init(dp_encoder *e, dp_format f);
 void dp_encoder_clear(dp_encoder *e);
+
+/* A network run's columns (dp_run_columns), before dp_encoder_begin: rows are written with array members
+ * (CSV: one column per node and element), events name their element, the summary's final state is a row.
+ * NULL keeps the one-mass layout. The columns must outlive the encoder's use. */
+void dp_encoder_set_columns(dp_encoder *e, const dp_columns *cols);
 
 /* The opening: the meta object (`meta_json`, a complete JSON object written by the caller) as the NDJSON
  * meta line, SSE "meta" event, JSON document head, or the CSV header line (meta not written). */

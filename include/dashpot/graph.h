@@ -57,4 +57,16 @@ double dp_graph_yosida(const dp_graph *g, double l, double y);
 /* Largest slope dF/dy over the graph: its Lipschitz constant as a force law (INFINITY with a vertical piece). */
 double dp_graph_lipschitz(const dp_graph *g);
 
+/* The piece of the curve leaving y in direction dir (+1: growing y, -1: falling y): F = f + slope (y' - y)
+ * for y' between y and `next` (the next vertex's y, +/-INFINITY on an end ray). blocked: the graph's domain
+ * ends at y on that side (a vertical end ray), so y cannot move that way. */
+typedef struct dp_graph_piece_t {
+    int blocked;
+    double slope, f, next;
+} dp_graph_piece_t;
+void dp_graph_piece(const dp_graph *g, double y, int dir, dp_graph_piece_t *pc);
+
+/* Whether y is exactly one of the graph's vertices. */
+int dp_graph_has_vertex(const dp_graph *g, double y);
+
 #endif

@@ -27,6 +27,11 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
  * for analysis only; such a model must never be given to a solver. */
 int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_errors *errs);
 
+/* Parses {"model": ...} for a well-posedness report and fills it: a one-mass model leniently (as
+ * dp_model_parse_lenient), a network strictly with its checks (dp_network_check). DP_OK, DP_ESYNTAX,
+ * DP_EINVAL (errors listed), DP_ENOMEM. */
+int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_errors *errs);
+
 /* Appends the meta object of a run (solver, its parameters, step count, library version, and the model's
  * well-posedness report) as one JSON object to out. Shared by the CLI and the daemon so that both describe
  * a run in the same words. DP_OK or DP_ENOMEM. */

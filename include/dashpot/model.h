@@ -94,6 +94,8 @@ int dp_forcing_is_constant(const dp_forcing *f, double *value);
 /* gamma(v) and its global Lipschitz constant (INFINITY for power). */
 double dp_relaxation_eval(const dp_relaxation *r, double v);
 double dp_relaxation_lipschitz(const dp_relaxation *r);
+/* gamma'(v) (INFINITY for power at 0). */
+double dp_relaxation_slope(const dp_relaxation *r, double v);
 /* sup |gamma| (INFINITY when unbounded). */
 double dp_relaxation_bound(const dp_relaxation *r);
 

@@ -30,13 +30,43 @@ typedef enum dp_event_kind { DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2 } dp_event_ki
 typedef struct dp_event {
     dp_event_kind kind;
     double t, x, v;
+    size_t element;  /* networks: the element that changed phase (x, v: its elongation and rate) */
 } dp_event;
 
-typedef enum dp_record_type { DP_RECORD_SAMPLE = 1, DP_RECORD_EVENT = 2 } dp_record_type;
+/* One named group of a row's numbers: written as an array "name": [...] in JSON, as columns name<index>
+ * in CSV. A phase group holds dp_phase codes, written "stick", "slip" or null. */
+typedef struct dp_column_group {
+    const char *name;
+    size_t n;
+    const size_t *index;   /* each entry's index in the model (a node, an element), for CSV headers */
+    int phase;
+} dp_column_group;
+
+#define DP_COLUMNS_MAX_GROUPS 8
+
+/* What the rows of a run hold (dp_run_columns), declared once at the run's start so that the encoders
+ * build their keys from it: groups in order, width numbers per row. Networks also keep which nodes and
+ * elements the groups are over. */
+typedef struct dp_columns {
+    size_t ngroups;
+    dp_column_group group[DP_COLUMNS_MAX_GROUPS];
+    size_t width;
+    size_t nodes, elements;
+    const size_t *node, *element;
+} dp_columns;
+
+/* A sample as a time and a run-owned row of `width` numbers (the groups in order), valid until the run's
+ * next dp_run_next. */
+typedef struct dp_row {
+    double t;
+    const double *val;
+} dp_row;
+
+typedef enum dp_record_type { DP_RECORD_SAMPLE = 1, DP_RECORD_EVENT = 2, DP_RECORD_ROW = 3 } dp_record_type;
 
 typedef struct dp_record {
     dp_record_type type;
-    union { dp_sample sample; dp_event event; } u;
+    union { dp_sample sample; dp_event event; dp_row row; } u;
 } dp_record;
 
 typedef struct dp_summary {
@@ -48,6 +78,7 @@ typedef struct dp_summary {
                                     * regularized: Jacobian evaluations */
     unsigned long long rejected;   /* regularized: steps the error control rejected (0 elsewhere) */
     unsigned long long fevals;     /* regularized: right-hand side evaluations (0 elsewhere) */
+    dp_row final_row;              /* runs with columns: the state at t_end (valid while the run lives) */
 } dp_summary;
 
 typedef struct dp_run dp_run;
@@ -64,6 +95,9 @@ int dp_run_next(dp_run *run, dp_record *buf, size_t cap, size_t *n);
 
 /* Running totals; final once dp_run_next returned DP_DONE. */
 const dp_summary *dp_run_summary(const dp_run *run);
+
+/* A run's columns when its samples are rows (networks); NULL for the one-mass model (dp_sample records). */
+const dp_columns *dp_run_columns(const dp_run *run);
 
 /* Fraction of simulated time done, in [0, 1]. */
 double dp_run_progress(const dp_run *run);

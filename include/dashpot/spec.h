@@ -7,6 +7,7 @@
 #define DASHPOT_SPEC_H
 
 #include "dashpot/model.h"
+#include "dashpot/network.h"
 #include "dashpot/status.h"
 
 /* Hard ceiling on time steps of one run (front ends may set lower ones): 10^9 steps of a few ns each
@@ -59,6 +60,8 @@ typedef struct dp_output_spec {
     long every;           /* emit every n-th step as a sample, >= 1 */
     int samples;          /* emit samples at all */
     int events;           /* emit events */
+    size_t *nodes, nnodes;        /* networks: the nodes written (NULL: all) */
+    size_t *elements, nelements;  /* networks: the elements written (NULL: all) */
 } dp_output_spec;
 
 typedef struct dp_spec {
@@ -66,6 +69,8 @@ typedef struct dp_spec {
     double x0, v0;
     dp_solver_spec solver;
     dp_output_spec output;
+    dp_network *net;      /* a network document ("masses" or "mass_matrix"); NULL for the one-mass model */
+    double *x0v, *v0v;    /* networks: the initial state, net->n each */
 } dp_spec;
 
 /* A spec with every default set (stick-slip, exact, theta 1, dt 1e-3, t_end 10, every 1) and an empty model. */
@@ -73,6 +78,22 @@ void dp_spec_init(dp_spec *s);
 
 /* Frees what the spec owns; accepts an initialised or zeroed spec. */
 void dp_spec_clear(dp_spec *s);
+
+/* Deep copy of a whole spec into an uninitialised dst. DP_OK or DP_ENOMEM (dst then cleared). */
+int dp_spec_copy(dp_spec *dst, const dp_spec *src);
+
+/* The network rules (network_check.c): mass matrix positive definite, stiffness and damping semidefinite,
+ * no element from an end to itself, the solver and laws the network stepping supports. */
+void dp_network_check(const dp_spec *s, dp_errors *errs);
+
+/* Whether a network run locates its events inside steps (network_run.c): events "locate", some element can
+ * stick, and every law's pieces stay put as the step shrinks (linear springs, no relaxation or static
+ * threshold); otherwise a phase change is reported at the end of its step. */
+int dp_network_locates(const dp_spec *s);
+
+/* Whether a network is one mass on one element [ground, 0] with diagonal mass, stepped by the stick-slip
+ * solver: then it runs on the one-mass solver itself (network_one_mass.c), bit for bit and as fast. */
+int dp_network_is_one_mass(const dp_spec *s);
 
 /* Checks the spec as a whole (the cross-field rules the JSON schema cannot state: theta only with linear
  * parts, the contraction condition (4.10) for the thesis variant, x0 within the rope, the step count limit

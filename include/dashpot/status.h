@@ -2,6 +2,10 @@
  *
  * The core returns a dp_status and never prints. Validation errors carry the JSON Pointer of the field
  * they are about (RFC 6901), so that the CLI and the daemon can say exactly what is wrong and where.
+ *
+ * Before using the library, call gsl_set_error_handler_off() (<gsl/gsl_errno.h>) once, before starting
+ * threads: libdashpot checks every GSL status itself and returns it as a dp_status, but GSL's default
+ * handler aborts the process first (docs/operations.md, "Linking against libdashpot").
  */
 #ifndef DASHPOT_STATUS_H
 #define DASHPOT_STATUS_H

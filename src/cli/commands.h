@@ -28,5 +28,7 @@ int dp_cli_simulate(int argc, char **argv);
 int dp_cli_stability(int argc, char **argv);
 int dp_cli_wellposedness(int argc, char **argv);
 int dp_cli_convergence(int argc, char **argv);
+int dp_cli_modes(int argc, char **argv);
+int dp_cli_response(int argc, char **argv);
 
 #endif

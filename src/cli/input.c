@@ -19,14 +19,20 @@ char *dp_cli_read_input(const char *path, size_t *len)
     char *buf = malloc(cap);
     const char *why = buf == NULL ? "out of memory" : NULL;
     while (why == NULL) {
-        if (n + 1 == cap) {
-            char *bigger = cap > DP_CLI_MAX_INPUT ? NULL : realloc(buf, cap * 2);
+        if (n == DP_CLI_MAX_INPUT) { /* full: the input may still end right here */
+            char extra;
+            why = fread(&extra, 1, 1, f) == 1 ? "larger than 64 MiB" : ferror(f) ? strerror(errno) : "";
+            break;
+        }
+        if (n + 1 == cap) { /* grow, to at most DP_CLI_MAX_INPUT bytes and the NUL */
+            size_t grown = cap * 2 > DP_CLI_MAX_INPUT + 1 ? DP_CLI_MAX_INPUT + 1 : cap * 2;
+            char *bigger = realloc(buf, grown);
             if (bigger == NULL) {
-                why = cap > DP_CLI_MAX_INPUT ? "larger than 64 MiB" : "out of memory";
+                why = "out of memory";
                 break;
             }
             buf = bigger;
-            cap *= 2;
+            cap = grown;
         }
         size_t got = fread(buf + n, 1, cap - n - 1, f);
         n += got;

@@ -16,10 +16,51 @@ static int usage(FILE *to)
             "  dashpot stability SPEC.json|- [--format json|csv|svg]\n"
             "  dashpot wellposedness SPEC.json|-\n"
             "  dashpot convergence SPEC.json|- [--ref-dt H]\n"
-            "  dashpot --help | --version\n\n"
+            "  dashpot modes SPEC.json|-\n"
+            "  dashpot response SPEC.json|- [--format json|ndjson|csv]\n"
+            "  dashpot --help | --version | COMMAND --help\n\n"
             "Exit codes: 0 success, 1 failure while running, 2 bad usage or invalid spec.\n"
             "Specs: see README.md and api/openapi.yaml.\n", DP_VERSION);
     return to == stdout ? DP_EXIT_OK : DP_EXIT_USAGE;
+}
+
+/* `dashpot COMMAND --help`: what the command takes, on stdout, exit 0. */
+static const struct { const char *name, *text; } command_help[] = {
+    { "simulate",
+      "usage: dashpot simulate SPEC.json|- [--format json|ndjson|csv] [--quiet]\n\n"
+      "Runs one simulation and writes it to standard output as it is computed.\n"
+      "  --format json    one document: meta, samples, events, summary (the default)\n"
+      "  --format ndjson  one object per line: meta, samples and events, summary\n"
+      "  --format csv     samples only: t,x,v,Fs,Fd,Fc,phase\n"
+      "  --quiet          no progress bar (one is drawn on standard error only when it is a terminal\n"
+      "                   and the run has at least 2e6 steps)\n"
+      "  -                read the spec from standard input\n" },
+    { "stability",
+      "usage: dashpot stability SPEC.json|- [--format json|csv|svg]\n\n"
+      "Stability of a linear fully implicit law; csv and svg need a \"map\" (docs/stability.md).\n" },
+    { "wellposedness",
+      "usage: dashpot wellposedness SPEC.json|-\n\n"
+      "Which existence and uniqueness theorems apply to the spec's model (docs/mathematics.md section 5).\n" },
+    { "convergence",
+      "usage: dashpot convergence SPEC.json|- [--ref-dt H]\n\n"
+      "A convergence study of the regularized solver (docs/regularized.md); --ref-dt sets the reference step.\n" },
+    { "modes",
+      "usage: dashpot modes SPEC.json|-\n\n"
+      "Natural modes of a network's linear part (frequencies, mass-normalized shapes, participation) and,\n"
+      "with damping, the damped eigenvalues; set-valued elements are left out and listed (docs/modes.md).\n" },
+    { "response",
+      "usage: dashpot response SPEC.json|- [--format json|ndjson|csv]\n\n"
+      "The receptance of response_node to a harmonic force at force_node over \"omega\", with the\n"
+      "resonances and antiresonances located (docs/modes.md).\n" },
+};
+
+/* 1 when argv[2..] asks for help. */
+static int wants_help(int argc, char **argv)
+{
+    for (int i = 2; i < argc; i++)
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
+            return 1;
+    return 0;
 }
 
 int main(int argc, char **argv)
@@ -33,6 +74,11 @@ int main(int argc, char **argv)
         printf("dashpot %s\n", DP_VERSION);
         return DP_EXIT_OK;
     }
+    for (size_t i = 0; i < sizeof command_help / sizeof command_help[0]; i++)
+        if (strcmp(argv[1], command_help[i].name) == 0 && wants_help(argc, argv)) {
+            fputs(command_help[i].text, stdout);
+            return fflush(stdout) == 0 ? DP_EXIT_OK : DP_EXIT_FAIL;
+        }
     if (strcmp(argv[1], "simulate") == 0)
         return dp_cli_simulate(argc - 1, argv + 1);
     if (strcmp(argv[1], "stability") == 0)
@@ -41,6 +87,8 @@ int main(int argc, char **argv)
         return dp_cli_wellposedness(argc - 1, argv + 1);
     if (strcmp(argv[1], "convergence") == 0)
         return dp_cli_convergence(argc - 1, argv + 1);
+    if (strcmp(argv[1], "modes") == 0 || strcmp(argv[1], "response") == 0)
+        return (argv[1][0] == 'm' ? dp_cli_modes : dp_cli_response)(argc - 1, argv + 1);
     fprintf(stderr, "dashpot: unknown command \"%s\"\n", argv[1]);
     return usage(stderr);
 }

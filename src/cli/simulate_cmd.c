@@ -37,9 +37,13 @@ static void progress_show(progress *p, double fraction, int final)
         fputc('\n', stderr);
 }
 
-static int usage(void)
+/* What was wrong (NULL: nothing to add), then the usage line; exit status 2. */
+static int usage(const char *why, const char *what)
 {
-    fprintf(stderr, "usage: dashpot simulate SPEC.json|- [--format json|ndjson|csv] [--quiet]\n");
+    if (why != NULL)
+        fprintf(stderr, "dashpot: simulate: %s%s%s\n", why, what ? what : "", what ? "\"" : "");
+    fprintf(stderr, "usage: dashpot simulate SPEC.json|- [--format json|ndjson|csv] [--quiet]"
+                    " (dashpot simulate --help)\n");
     return DP_EXIT_USAGE;
 }
 
@@ -57,6 +61,7 @@ static int stream(dp_run *run, dp_format fmt, const dp_buf *meta, progress *pg)
     dp_buf b = { 0 };
     dp_encoder enc;
     dp_encoder_init(&enc, fmt);
+    dp_encoder_set_columns(&enc, dp_run_columns(run));
     int s = recs ? dp_encoder_begin(&enc, &b, meta->data) : DP_ENOMEM, io = 0;
     size_t n;
     while (s == DP_OK || s == DP_MORE) {
@@ -69,11 +74,14 @@ static int stream(dp_run *run, dp_format fmt, const dp_buf *meta, progress *pg)
             break;
         progress_show(pg, dp_run_progress(run), 0);
     }
+    /* The closing part must be written whole too, or the document is cut short: that is a failure. */
+    int end = DP_OK;
     if (s == DP_DONE && io == 0)
-        dp_encoder_end(&enc, &b, dp_run_summary(run), NULL);
+        end = dp_encoder_end(&enc, &b, dp_run_summary(run), NULL);
     else if (io == 0)
-        dp_encoder_fail(&enc, &b, s, dp_run_error(run)[0] ? dp_run_error(run) : dp_strerror(s));
-    io = io ? io : flush(&b);
+        end = dp_encoder_fail(&enc, &b, s, dp_run_error(run)[0] ? dp_run_error(run) : dp_strerror(s));
+    io = io ? io : end != DP_OK ? -1 : flush(&b);
+    io = io ? io : fflush(stdout) != 0 ? -1 : 0;
     progress_show(pg, dp_run_progress(run), 1);
     if (s != DP_DONE)
         fprintf(stderr, "dashpot: simulate: %s\n", dp_run_error(run)[0] ? dp_run_error(run) : dp_strerror(s));
@@ -96,14 +104,20 @@ int dp_cli_simulate(int argc, char **argv)
             format = argv[i] + 9;
         else if (strcmp(argv[i], "--quiet") == 0)
             quiet = 1;
+        else if (strcmp(argv[i], "--format") == 0)
+            return usage("--format needs a value: json, ndjson or csv", NULL);
         else if (path == NULL && (argv[i][0] != '-' || strcmp(argv[i], "-") == 0))
             path = argv[i];
+        else if (argv[i][0] == '-' && strcmp(argv[i], "-") != 0)
+            return usage("unknown option \"", argv[i]);
         else
-            return usage();
+            return usage("one spec only, got a second: \"", argv[i]);
     }
     int fmt = dp_format_from_name(format);
-    if (path == NULL || fmt < 0 || fmt == DP_FORMAT_SSE)
-        return usage();
+    if (fmt < 0 || fmt == DP_FORMAT_SSE)
+        return usage("unknown format (expected json, ndjson or csv): \"", format);
+    if (path == NULL)
+        return usage("no spec given: a file, or - for standard input", NULL);
     dp_spec spec;
     dp_errors errs;
     dp_errors_init(&errs);

@@ -17,19 +17,15 @@ int dp_cli_wellposedness(int argc, char **argv)
     char *text = dp_cli_read_input(argv[1], &len);
     if (text == NULL)
         return DP_EXIT_USAGE;
-    dp_model m = { 0 };
     dp_errors errs;
     dp_errors_init(&errs);
-    int s = dp_model_parse_lenient(text, len, &m, &errs);
+    dp_wp_report rep;
+    int s = dp_wellposedness_parse(text, len, &rep, &errs);
     free(text);
     if (s != DP_OK) {
         dp_cli_print_errors(argv[1], &errs);
-        dp_model_clear(&m);
         return s == DP_ENOMEM ? DP_EXIT_FAIL : DP_EXIT_USAGE;
     }
-    dp_wp_report rep;
-    dp_wellposedness(&m, &rep);
-    dp_model_clear(&m);
     dp_buf b = { 0 };
     int rc = DP_EXIT_OK;
     if (dp_wellposedness_json(&rep, &b) != DP_OK || fwrite(b.data, 1, b.len, stdout) != b.len || puts("") < 0)

@@ -202,3 +202,59 @@ double dp_graph_lipschitz(const dp_graph *g)
         L = fmax(L, slope(g->y[i] - g->y[i - 1], g->f[i] - g->f[i - 1]));
     return L;
 }
+
+/* The piece of the curve that leaves y towards dir (+1 or -1): used by the network step, which walks a
+ * graph piece by piece (network_step.c). */
+void dp_graph_piece(const dp_graph *g, double y, int dir, dp_graph_piece_t *pc)
+{
+    size_t n = g->n;
+    double slope, y0, f0;        /* the piece is F = f0 + slope (y - y0) */
+    pc->blocked = 0;
+    if (dir > 0) {
+        size_t j = upper_bound(g->y, n, y);
+        if (j == n) {             /* on the right ray (or at its vertex) */
+            if (g->right[0] == 0) {
+                pc->blocked = 1;
+                pc->slope = 0, pc->f = g->f[n - 1], pc->next = y;
+                return;
+            }
+            slope = g->right[1] / g->right[0], y0 = g->y[n - 1], f0 = g->f[n - 1];
+            pc->next = INFINITY;
+        } else if (j == 0) {      /* left of the first vertex: on the left ray */
+            slope = g->left[0] > 0 ? g->left[1] / g->left[0] : 0;
+            y0 = g->y[0], f0 = g->f[0];
+            pc->next = g->y[0];
+        } else {
+            slope = (g->f[j] - g->f[j - 1]) / (g->y[j] - g->y[j - 1]);
+            y0 = g->y[j - 1], f0 = g->f[j - 1];
+            pc->next = g->y[j];
+        }
+    } else {
+        size_t j = lower_bound(g->y, n, y);
+        if (j == 0) {             /* on the left ray (or at its vertex) */
+            if (g->left[0] == 0) {
+                pc->blocked = 1;
+                pc->slope = 0, pc->f = g->f[0], pc->next = y;
+                return;
+            }
+            slope = g->left[1] / g->left[0], y0 = g->y[0], f0 = g->f[0];
+            pc->next = -INFINITY;
+        } else if (j == n) {      /* right of the last vertex: on the right ray */
+            slope = g->right[0] > 0 ? g->right[1] / g->right[0] : 0;
+            y0 = g->y[n - 1], f0 = g->f[n - 1];
+            pc->next = g->y[n - 1];
+        } else {
+            slope = (g->f[j] - g->f[j - 1]) / (g->y[j] - g->y[j - 1]);
+            y0 = g->y[j], f0 = g->f[j];
+            pc->next = g->y[j - 1];
+        }
+    }
+    pc->slope = slope;
+    pc->f = y == y0 ? f0 : f0 + slope * (y - y0);
+}
+
+int dp_graph_has_vertex(const dp_graph *g, double y)
+{
+    size_t j = lower_bound(g->y, g->n, y);
+    return j < g->n && g->y[j] == y;
+}

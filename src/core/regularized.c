@@ -229,7 +229,7 @@ void dp_regularized_check(const dp_spec *s, dp_errors *e)
 
 /* ---- the run ------------------------------------------------------------------------------------------- */
 
-static const gsl_odeiv2_step_type *step_type(dp_stepper s)
+const gsl_odeiv2_step_type *dp_regularized_step_type(dp_stepper s)
 {
     switch (s) {
     case DP_STEPPER_RK4IMP: return gsl_odeiv2_step_rk4imp;
@@ -296,7 +296,7 @@ int dp_regularized_init(dp_run *r)
      * crawl through 10^9 steps near t = 0 before the step limit stops it). */
     double L = sv->n_list[0] + g->k + g->c + dp_relaxation_lipschitz(g->gamma);
     g->h_floor = 1e-12 * g->m / L;
-    g->drv = gsl_odeiv2_driver_alloc_y_new(&g->sys, step_type(sv->stepper), g->h, sv->atol, sv->rtol);
+    g->drv = gsl_odeiv2_driver_alloc_y_new(&g->sys, dp_regularized_step_type(sv->stepper), g->h, sv->atol, sv->rtol);
     if (g->drv == NULL)
         return dp_run_fail(r, DP_ENOMEM, "out of memory allocating the %s integrator",
                            dp_stepper_name(sv->stepper));

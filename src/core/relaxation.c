@@ -19,6 +19,18 @@ double dp_relaxation_eval(const dp_relaxation *r, double v)
     return 0;
 }
 
+double dp_relaxation_slope(const dp_relaxation *r, double v)
+{
+    switch (r->kind) {
+    case DP_RELAX_NONE: return 0;
+    case DP_RELAX_RATIONAL: return r->a * r->b / ((r->b + fabs(v)) * (r->b + fabs(v)));
+    case DP_RELAX_LINEAR: return r->L;
+    case DP_RELAX_POWER:
+        return v == 0 ? INFINITY : r->N * (1 - 1 / r->N) * pow(fabs(v), -1 / r->N);
+    }
+    return 0;
+}
+
 double dp_relaxation_lipschitz(const dp_relaxation *r)
 {
     switch (r->kind) {

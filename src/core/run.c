@@ -59,9 +59,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
         *status = DP_ENOMEM;
         return NULL;
     }
-    r->spec = *spec;
-    if (dp_model_copy(&r->spec.model, &spec->model) != DP_OK) {
-        memset(&r->spec.model, 0, sizeof r->spec.model);
+    if (dp_spec_copy(&r->spec, spec) != DP_OK) {
         dp_run_free(r);
         *status = DP_ENOMEM;
         return NULL;
@@ -70,25 +68,30 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
     r->max_steps = max_steps > 0 && max_steps < DP_SPEC_MAX_STEPS ? max_steps : DP_SPEC_MAX_STEPS;
     r->nsteps = (unsigned long long)dp_spec_steps(spec);
     r->countdown = 1; /* the initial state is always a sample */
-    switch (spec->solver.kind) {
+    if (spec->net)
+        s = dp_network_run_init(r);
+    else switch (spec->solver.kind) {
     case DP_SOLVER_ANALYTIC: s = dp_analytic_init(r); break;
     case DP_SOLVER_REGULARIZED: s = dp_regularized_init(r); break;
     default: s = dp_stick_slip_init(r); break;
     }
     if (s != DP_OK) {
-        dp_errors_add(errs, "", "%s", r->error[0] ? r->error : dp_strerror(s));
+        dp_errors_add(errs, r->error_pointer, "%s", r->error[0] ? r->error : dp_strerror(s));
         dp_run_free(r);
         *status = s;
         return NULL;
     }
     r->sum.final = r->cur;
-    dp_run_emit_state(r); /* queued in `pending`: no block yet */
+    if (r->net == NULL || dp_network_run_is_one_mass(r))
+        dp_run_emit_state(r); /* queued in `pending`: no block yet */
     *status = DP_OK;
     return r;
 }
 
 static int advance(dp_run *r)
 {
+    if (r->net && !dp_network_run_is_one_mass(r))
+        return dp_network_run_advance(r);
     if (r->spec.solver.kind == DP_SOLVER_ANALYTIC)
         return dp_analytic_advance(r);
     if (r->spec.solver.kind == DP_SOLVER_REGULARIZED)
@@ -110,7 +113,7 @@ int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
         buf[r->out_n++] = r->pending[r->ipending++];
     if (r->ipending == r->npending)
         r->npending = r->ipending = 0;
-    if (dp_run_room(r)) {
+    if (dp_run_room(r) || (r->net && dp_network_run_pending(r) && r->status == DP_OK)) {
         int s = advance(r);
         if (s < 0 && r->status == DP_OK)
             dp_run_fail(r, s, "%s", dp_strerror(s));
@@ -118,9 +121,11 @@ int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
     *n = r->out_n;
     r->out = NULL;
     r->sum.final = r->cur;
+    if (r->net && dp_network_run_is_one_mass(r) && dp_network_one_mass_rows(r, buf, *n) != DP_OK)
+        dp_run_fail(r, DP_ENOMEM, "out of memory for the rows of a block");
     if (r->status != DP_OK)
         return r->status;
-    if (r->finished && r->npending == 0)
+    if (r->finished && r->npending == 0 && !(r->net && dp_network_run_pending(r)))
         return DP_DONE;
     return DP_MORE;
 }
@@ -165,6 +170,7 @@ void dp_run_free(dp_run *r)
     if (r == NULL)
         return;
     dp_regularized_free(r->reg);
+    dp_network_run_free(r->net);
     dp_spec_clear(&r->spec);
     free(r);
 }

@@ -3,6 +3,8 @@
 #ifndef DASHPOT_CORE_RUN_INTERNAL_H
 #define DASHPOT_CORE_RUN_INTERNAL_H
 
+#include <gsl/gsl_odeiv2.h>
+
 #include "dashpot/analytic.h"
 #include "dashpot/run.h"
 
@@ -44,6 +46,7 @@ struct dp_run {
     size_t kink_hint[2];        /* stick-slip: the damper's and the spring graph's last kink (inclusion.c) */
     int finished, status;
     char error[256];
+    char error_pointer[DP_POINTER_MAX]; /* where an allocation-time error is (a spec field), "" if anywhere */
     /* Output of the block being produced; overflow goes to `pending`, drained first on the next call. */
     dp_record *out;
     size_t out_n, out_cap;
@@ -54,6 +57,10 @@ struct dp_run {
     dp_coulomb_arc an_arc;
     /* regularized solver (regularized.c): its GSL workspace */
     struct dp_regularized *reg;
+    /* network solver (network_run.c) */
+    struct dp_net_run *net;
+    /* the columns of a run whose samples are rows (dp_run_columns); NULL for one-mass samples */
+    const dp_columns *cols;
     /* the stop hook (dp_run_set_stop) and the work count at which it is polled next */
     dp_stop_fn stop;
     void *stop_ctx;
@@ -111,6 +118,16 @@ int dp_analytic_advance(dp_run *r);
 int dp_regularized_init(dp_run *r);
 int dp_regularized_advance(dp_run *r);
 void dp_regularized_free(struct dp_regularized *reg);
+/* The GSL odeiv2 stepper of a dp_stepper (regularized.c). */
+const gsl_odeiv2_step_type *dp_regularized_step_type(dp_stepper s);
+int dp_network_run_init(dp_run *r);
+int dp_network_run_advance(dp_run *r);
+void dp_network_run_free(struct dp_net_run *nr);
+/* A network stepped by the one-mass solver (network_one_mass.c): its block rewritten as rows. */
+int dp_network_run_is_one_mass(const dp_run *r);
+int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n);
+/* Whether records wait in the network run's queue. */
+int dp_network_run_pending(const dp_run *r);
 
 /* The step length of step n (the last one ends exactly at t_end). */
 static inline double dp_run_step_length(const dp_run *r)

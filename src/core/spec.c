@@ -6,6 +6,7 @@
  * linear springs; the analytic solver exists only where the closed form (4.14) does.
  */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "dashpot/spec.h"
@@ -38,6 +39,49 @@ void dp_spec_clear(dp_spec *s)
     if (s == NULL)
         return;
     dp_model_clear(&s->model);
+    dp_network_free(s->net);
+    free(s->x0v);
+    free(s->v0v);
+    free(s->output.nodes);
+    free(s->output.elements);
+    s->net = NULL, s->x0v = s->v0v = NULL, s->output.nodes = s->output.elements = NULL;
+}
+
+static void *dup_array(const void *src, size_t n, size_t size, int *fail)
+{
+    if (src == NULL || n == 0)
+        return NULL;
+    void *d = malloc(n * size);
+    if (d == NULL)
+        *fail = 1;
+    else
+        memcpy(d, src, n * size);
+    return d;
+}
+
+int dp_spec_copy(dp_spec *dst, const dp_spec *src)
+{
+    *dst = *src;
+    dst->net = NULL, dst->x0v = dst->v0v = NULL, dst->output.nodes = dst->output.elements = NULL;
+    if (dp_model_copy(&dst->model, &src->model) != DP_OK) {
+        memset(&dst->model, 0, sizeof dst->model);
+        return DP_ENOMEM;
+    }
+    int fail = 0;
+    if (src->net) {
+        size_t n = src->net->n;
+        dst->net = dp_network_copy(src->net);
+        fail = dst->net == NULL;
+        dst->x0v = dup_array(src->x0v, n, sizeof(double), &fail);
+        dst->v0v = dup_array(src->v0v, n, sizeof(double), &fail);
+    }
+    dst->output.nodes = dup_array(src->output.nodes, src->output.nnodes, sizeof(size_t), &fail);
+    dst->output.elements = dup_array(src->output.elements, src->output.nelements, sizeof(size_t), &fail);
+    if (fail) {
+        dp_spec_clear(dst);
+        return DP_ENOMEM;
+    }
+    return DP_OK;
 }
 
 double dp_spec_steps(const dp_spec *s)
@@ -143,13 +187,18 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     const dp_model *m = &s->model;
-    if (m->spring.law == DP_SPRING_ROPE && s->x0 > m->spring.length)
+    if (s->net)
+        dp_network_check(s, e);
+    else if (m->spring.law == DP_SPRING_ROPE && s->x0 > m->spring.length)
         dp_errors_add(e, "/initial/x", "the rope is inextensible: x must be <= length = %g, got %g",
                       m->spring.length, s->x0);
     else
         check_domain(&m->spring.graph, s->x0, "/initial/x", "x", e);
-    check_domain(&m->damper.graph, s->v0 - m->damper.belt_velocity, "/initial/v", "v - belt_velocity", e);
-    if (s->solver.kind == DP_SOLVER_ANALYTIC)
+    if (!s->net)
+        check_domain(&m->damper.graph, s->v0 - m->damper.belt_velocity, "/initial/v", "v - belt_velocity", e);
+    if (s->net)
+        ; /* the network's solver rules are in dp_network_check */
+    else if (s->solver.kind == DP_SOLVER_ANALYTIC)
         check_analytic(s, e);
     else if (s->solver.kind == DP_SOLVER_REGULARIZED)
         dp_regularized_check(s, e);
@@ -162,6 +211,11 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
     if (max_steps <= 0 || max_steps > DP_SPEC_MAX_STEPS)
         max_steps = DP_SPEC_MAX_STEPS;
     double n = s->solver.t_end / s->solver.dt;
+    if (s->net && !(n * (double)(s->net->n + s->net->nel) <= max_steps)) {
+        dp_errors_add(e, "/solver/dt", "t_end/dt = %.6g steps of %zu nodes and %zu elements exceed the limit of "
+                      "%.6g node-steps per run", n, s->net->n, s->net->nel, max_steps);
+        return DP_ELIMIT;
+    }
     if (!(n <= max_steps)) {
         dp_errors_add(e, "/solver/dt", "t_end/dt = %.6g steps exceeds the limit of %.6g steps per run",
                       n, max_steps);

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "dashpot/wellposedness.h"
@@ -70,8 +71,32 @@ static void add_check(dp_wp_report *r, const char *name, int holds, const char *
     va_end(ap);
 }
 
-/* prefix + x as %.17g writes it, as a check's detail. Integers below 10^15 (what k and most constants
- * are) are written by hand, the same digits; the rest by snprintf. */
+/* x with the fewest significant digits that read back as x (0.1, not 0.10000000000000001), as every other
+ * number dashpot prints. */
+static void shortest(char *out, size_t cap, double x)
+{
+    for (int digits = 1; digits <= 17; digits++) {
+        snprintf(out, cap, "%.*g", digits, x);
+        if (strtod(out, NULL) == x)
+            return;
+    }
+}
+
+/* The same as a value, for "%s" in a witness's format: N(x) lives until the end of the full expression
+ * (C11 6.2.4p8, a temporary with an array member). */
+typedef struct number_text { char s[32]; } number_text;
+
+static number_text number(double x)
+{
+    number_text t;
+    shortest(t.s, sizeof t.s, x);
+    return t;
+}
+#define N(x) (number(x).s)
+
+/* prefix + x, shortest, as a check's detail. Integers below 10^15 (what k and most constants are) are
+ * written by hand, the same digits; the rest by shortest(). */
+
 static void add_number(dp_wp_report *r, const char *name, int holds, const char *prefix, double x)
 {
     char t[DP_WP_TEXT];
@@ -88,7 +113,7 @@ static void add_number(dp_wp_report *r, const char *name, int holds, const char 
             *--p = '-'; /* -0 too, as printf writes it */
         memcpy(t + n, p, (size_t)(d + sizeof d - p));
     } else {
-        snprintf(t + n, sizeof t - n, "%.17g", x);
+        shortest(t + n, sizeof t - n, x);
     }
     add_check(r, name, holds, "%s", t);
 }
@@ -105,12 +130,12 @@ static int monotone(const dp_graph *g, const char *yn, char *why, size_t cap)
         if (g->y[i] < g->y[prev] || g->f[i] < g->f[prev]) {
             for (size_t j = 0; j < i; j++) {
                 if (!isnan(g->y[j]) && (g->y[i] - g->y[j]) * (g->f[i] - g->f[j]) < 0) {
-                    snprintf(why, cap, "points (%s, F) = (%.17g, %.17g) and (%.17g, %.17g) have "
-                             "(%s1 - %s2)(F1 - F2) < 0", yn, g->y[j], g->f[j], g->y[i], g->f[i], yn, yn);
+                    snprintf(why, cap, "points (%s, F) = (%s, %s) and (%s, %s) have "
+                             "(%s1 - %s2)(F1 - F2) < 0", yn, N(g->y[j]), N(g->f[j]), N(g->y[i]), N(g->f[i]), yn, yn);
                     return 0;
                 }
             }
-            snprintf(why, cap, "the curve turns back at point %zu (%.17g, %.17g)", i, g->y[i], g->f[i]);
+            snprintf(why, cap, "the curve turns back at point %zu (%s, %s)", i, N(g->y[i]), N(g->f[i]));
             return 0;
         }
         prev = i;
@@ -125,9 +150,9 @@ static int no_gap(const dp_graph *g, char *why, size_t cap)
     for (size_t i = 1; i + 1 < g->n; i++) {
         if (isnan(g->y[i])) {
             const size_t a = i - 1, b = i + 1;
-            snprintf(why, cap, "gap between (%.17g, %.17g) and (%.17g, %.17g): the point (%.17g, %.17g) "
-                     "can be added without breaking monotonicity", g->y[a], g->f[a], g->y[b], g->f[b],
-                     (g->y[a] + g->y[b]) / 2, (g->f[a] + g->f[b]) / 2);
+            snprintf(why, cap, "gap between (%s, %s) and (%s, %s): the point (%s, %s) "
+                     "can be added without breaking monotonicity", N(g->y[a]), N(g->f[a]), N(g->y[b]), N(g->f[b]),
+                     N((g->y[a] + g->y[b]) / 2), N((g->f[a] + g->f[b]) / 2));
             return 0;
         }
     }
@@ -142,14 +167,14 @@ static int coercive(const dp_graph *g, char *why, size_t cap)
     size_t n = g->n;
     if (g->right[0] == 0 || g->left[0] == 0) {
         double y = g->right[0] == 0 ? g->y[n - 1] : g->y[0];
-        snprintf(why, cap, "F is unbounded at the fixed velocity v = %.17g, so F v grows like |F| while "
-                 "c2 F^2 grows faster", y);
+        snprintf(why, cap, "F is unbounded at the fixed velocity v = %s, so F v grows like |F| while "
+                 "c2 F^2 grows faster", N(y));
         return 0;
     }
     if ((g->right[1] == 0 && g->f[n - 1] < 0) || (g->left[1] == 0 && g->f[0] > 0)) {
         int r = g->right[1] == 0 && g->f[n - 1] < 0;
-        snprintf(why, cap, "F stays %.17g for every v %s %.17g, so F v -> -infinity", r ? g->f[n - 1] : g->f[0],
-                 r ? ">" : "<", r ? g->y[n - 1] : g->y[0]);
+        snprintf(why, cap, "F stays %s for every v %s %s, so F v -> -infinity", N(r ? g->f[n - 1] : g->f[0]),
+                 r ? ">" : "<", N(r ? g->y[n - 1] : g->y[0]));
         return 0;
     }
     text(why, cap, "F grows at most linearly with v and has the sign of v far out");
@@ -161,14 +186,14 @@ static int function_of_force(const dp_graph *g, const char *yn, char *why, size_
 {
     for (size_t i = 1; i < g->n; i++)
         if (!isnan(g->y[i]) && !isnan(g->y[i - 1]) && g->f[i] == g->f[i - 1] && g->y[i] > g->y[i - 1]) {
-            snprintf(why, cap, "F = %.17g for every %s in [%.17g, %.17g]: %s is not a function of F", g->f[i], yn,
-                     g->y[i - 1], g->y[i], yn);
+            snprintf(why, cap, "F = %s for every %s in [%s, %s]: %s is not a function of F", N(g->f[i]), yn,
+                     N(g->y[i - 1]), N(g->y[i]), yn);
             return 0;
         }
     if (g->right[1] == 0 || g->left[1] == 0) {
         int r = g->right[1] == 0;
-        snprintf(why, cap, "F = %.17g for every %s %s %.17g: %s is not a function of F", r ? g->f[g->n - 1] : g->f[0],
-                 yn, r ? ">" : "<", r ? g->y[g->n - 1] : g->y[0], yn);
+        snprintf(why, cap, "F = %s for every %s %s %s: %s is not a function of F", N(r ? g->f[g->n - 1] : g->f[0]),
+                 yn, r ? ">" : "<", N(r ? g->y[g->n - 1] : g->y[0]), yn);
         return 0;
     }
     snprintf(why, cap, "%s is a continuous non-decreasing function of F", yn);
@@ -179,8 +204,8 @@ static int growth(const dp_graph *g, const char *yn, char *why, size_t cap)
 {
     if (g->right[0] == 0 || g->left[0] == 0) {
         int r = g->right[0] == 0;
-        snprintf(why, cap, "%s = %.17g for every F %s %.17g: |f(u)| >= c1|u| - c2 fails as |u| -> infinity", yn,
-                 r ? g->y[g->n - 1] : g->y[0], r ? ">=" : "<=", r ? g->f[g->n - 1] : g->f[0]);
+        snprintf(why, cap, "%s = %s for every F %s %s: |f(u)| >= c1|u| - c2 fails as |u| -> infinity", yn,
+                 N(r ? g->y[g->n - 1] : g->y[0]), r ? ">=" : "<=", N(r ? g->f[g->n - 1] : g->f[0]));
         return 0;
     }
     snprintf(why, cap, "%s grows linearly in F at both ends", yn);
@@ -195,7 +220,7 @@ static int through_origin(const dp_graph *g, const char *yn, char *why, size_t c
         snprintf(why, cap, "%s = 0 at F = 0", yn);
         return 1;
     }
-    snprintf(why, cap, "at F = 0 the graph has %s in [%.17g, %.17g], not 0", yn, lo, hi);
+    snprintf(why, cap, "at F = 0 the graph has %s in [%s, %s], not 0", yn, N(lo), N(hi));
     return 0;
 }
 
@@ -209,7 +234,7 @@ static void relaxation_checks(dp_wp_report *r, const dp_relaxation *g)
               : "continuous, at most linear growth");
     double L = dp_relaxation_lipschitz(g);
     if (isfinite(L))
-        add_number(r, "gamma Lipschitz", 1, "Lipschitz constant ", L);
+        add_number(r, "gamma Lipschitz", 1, "L_gamma = ", L);
     else /* power law: gamma(u)/u = N u^(-1/N) is unbounded near 0 */
         add_check(r, "gamma Lipschitz", 0, "gamma(u)/u = %.6g at u = 1e-6 and %.6g at u = 1e-12: unbounded as "
                   "u -> 0", dp_relaxation_eval(g, 1e-6) / 1e-6, dp_relaxation_eval(g, 1e-12) / 1e-12);
@@ -223,8 +248,8 @@ static void framework_pc(const dp_model *m, dp_wp_report *r)
     r->framework = "PC";
     add_number(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = ", m->spring.k);
     if (d->law == DP_DAMPER_GENERALIZED_COULOMB && d->phi1 > d->phi0) {
-        add_check(r, "A monotone (seed 001 (6))", 0, "points (v, F) = (0, %.17g) and (1, %.17g) have (v1 - v2)"
-                  "(F1 - F2) < 0: the static threshold phi1 exceeds the dynamic phi0", d->phi1, d->phi0);
+        add_check(r, "A monotone (seed 001 (6))", 0, "points (v, F) = (0, %s) and (1, %s) have (v1 - v2)"
+                  "(F1 - F2) < 0: the static threshold phi1 exceeds the dynamic phi0", N(d->phi1), N(d->phi0));
         add_check(r, "A maximal (seed 001 (7))", 0, "not applicable: A is not monotone");
         add_check(r, "A coercive (seed 001 (8))", 1, "|F| <= phi1 is bounded");
     } else {
@@ -283,6 +308,8 @@ static int failures(const dp_wp_report *r, const char *skip, char *why, size_t c
     why[0] = '\0';
     for (size_t i = 0; i < r->nchecks; i++) {
         if (r->check[i].holds || (skip && strcmp(r->check[i].name, skip) == 0))
+            continue;
+        if (strncmp(r->check[i].detail, "not applicable", 14) == 0) /* follows from a failure already named */
             continue;
         int w = snprintf(why + len, cap - len, "%s%s", n ? "; " : "fails: ", r->check[i].name);
         len = w > 0 && len + (size_t)w < cap ? len + (size_t)w : cap - 1;

@@ -1,6 +1,6 @@
 /* src/http/http.h - what the files of dashpotd share: its configuration, the server and request state, and
  * the functions each file offers the others (main.c, config.c, server.c, routes.c, simulate.c,
- * stability.c, wellposedness.c, bench_static.c, negotiate.c, problem.c, metrics.c, log.c).
+ * stability.c, wellposedness.c, modes.c, bench_static.c, negotiate.c, problem.c, metrics.c, log.c).
  *
  * Ownership: the server outlives every request (MHD_stop_daemon returns only after the last one is freed).
  * A request is allocated on MHD's first call for it and freed in the NOTIFY_COMPLETED callback, except that a
@@ -62,7 +62,7 @@ int data_path(const char *given, const char *installed, int want_dir, char *out,
 
 /* ---- metrics (metrics.c) ---- */
 
-enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_CONVERGENCE, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
+enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_CONVERGENCE, ROUTE_MODES, ROUTE_RESPONSE, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
        ROUTE_STATIC, ROUTE_PAGE, ROUTE_NONE, NROUTES };
 enum { NSTATUS = 12, NBUCKETS = 12 };
 
@@ -167,6 +167,9 @@ enum MHD_Result handle_stability(struct MHD_Connection *c, request *r);
 void stability_pool_free(server *s);
 enum MHD_Result handle_wellposedness(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_convergence(struct MHD_Connection *c, request *r);
+/* POST /v1/modes and /v1/response (modes.c). */
+enum MHD_Result handle_modes(struct MHD_Connection *c, request *r);
+enum MHD_Result handle_response(struct MHD_Connection *c, request *r);
 /* GET /bench/static: the --bench-static file through the same chunked content-reader path as a stream. */
 enum MHD_Result handle_bench_static(struct MHD_Connection *c, request *r);
 /* Called by the stream's free callback: the run is gone; counts it as cancelled if it had not finished. */

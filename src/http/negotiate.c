@@ -5,6 +5,11 @@
  * the more specific match, then to the range the client listed first, then to the server's order. Quality 0
  * means "not acceptable". Malformed ranges are skipped rather than failing the request: a sloppy client
  * still gets the default.
+ *
+ * Two rules for the spellings clients actually send: application/ndjson (the ndjson.org spelling) is the
+ * same offer as application/x-ndjson; and text/event-stream is matched only by its own name, never by the
+ * range "text" with a wildcard subtype, because EventSource always asks for it by name while a client that
+ * says text-anything wants text it can read: it gets text/csv where a route has it.
  */
 #include <ctype.h>
 #include <stdlib.h>
@@ -72,17 +77,26 @@ static int parse_range(const char *p, const char *end, range *r)
     return r->q >= 0;
 }
 
+/* Other names of an offer, matched as if they were its own. */
+static const char *alias(const char *offer)
+{
+    return strcmp(offer, "application/x-ndjson") == 0 ? "application/ndjson" : NULL;
+}
+
 /* How specifically r matches the offer "type/sub": 3 exact, 2 type/ *, 1 * / *, 0 no match. */
 static int match(const range *r, const char *offer)
 {
-    const char *slash = strchr(offer, '/');
+    const char *slash = strchr(offer, '/'), *other = alias(offer);
     size_t tlen = (size_t)(slash - offer);
     if (eq(r->type, r->tlen, "*", 1) && eq(r->sub, r->slen, "*", 1))
         return 1;
+    if (other != NULL && eq(r->type, r->tlen, other, strchr(other, '/') - other)
+        && eq(r->sub, r->slen, strchr(other, '/') + 1, strlen(strchr(other, '/') + 1)))
+        return 3;
     if (!eq(r->type, r->tlen, offer, tlen))
         return 0;
     if (eq(r->sub, r->slen, "*", 1))
-        return 2;
+        return strcmp(offer, "text/event-stream") == 0 ? 0 : 2;
     return eq(r->sub, r->slen, slash + 1, strlen(slash + 1)) ? 3 : 0;
 }
 

@@ -25,6 +25,8 @@ static const struct route {
     { "/v1/stability", "POST", "POST", ROUTE_STABILITY, 1, handle_stability },
     { "/v1/wellposedness", "POST", "POST", ROUTE_WELLPOSEDNESS, 1, handle_wellposedness },
     { "/v1/convergence", "POST", "POST", ROUTE_CONVERGENCE, 1, handle_convergence },
+    { "/v1/modes", "POST", "POST", ROUTE_MODES, 1, handle_modes },
+    { "/v1/response", "POST", "POST", ROUTE_RESPONSE, 1, handle_response },
     { "/healthz", "GET", "GET, HEAD", ROUTE_HEALTHZ, 0, handle_healthz },
     { "/readyz", "GET", "GET, HEAD", ROUTE_READYZ, 0, handle_readyz },
     { "/metrics", "GET", "GET, HEAD", ROUTE_METRICS, 0, handle_metrics },

@@ -247,6 +247,14 @@ static void on_mhd_error(void *cls, const char *fmt, va_list ap)
     char msg[512];
     vsnprintf(msg, sizeof msg, fmt, ap);
     msg[strcspn(msg, "\n")] = '\0';
+    /* A client that hangs up mid-response is routine (its run is cancelled and counted); say so, so that the
+     * line does not read like a failure of the daemon. */
+    static const char *const hang_up[] = { "Failed to send", "closed by remote", "no longer available for sending" };
+    for (size_t i = 0; i < sizeof hang_up / sizeof hang_up[0]; i++)
+        if (strstr(msg, hang_up[i]) != NULL) {
+            log_line("client hung up (not an error of the daemon): libmicrohttpd: %s", msg);
+            return;
+        }
     log_line("libmicrohttpd: %s", msg);
 }
 
@@ -336,7 +344,8 @@ int server_start(server *s)
     s->daemon = MHD_start_daemon(flags, (uint16_t)s->cfg.port, NULL, NULL, on_request, s, MHD_OPTION_ARRAY, opts,
                                  MHD_OPTION_END);
     if (s->daemon == NULL) {
-        log_line("error: cannot listen on %s port %u", s->cfg.bind, s->cfg.port);
+        log_line("error: cannot listen on %s port %u (in use? pick another with --port N or DASHPOT_PORT=N; "
+                 "0 takes any free port)", s->cfg.bind, s->cfg.port);
         return -1;
     }
     return 0;

@@ -246,6 +246,7 @@ static stream *stream_new(struct MHD_Connection *c, request *r, dp_run *run, dp_
     atomic_fetch_add(&st->s->m.runs_started, 1);
     atomic_fetch_add(&st->s->m.runs_in_flight, 1);
     dp_encoder_init(&st->enc, f);
+    dp_encoder_set_columns(&st->enc, dp_run_columns(run));
     if (dp_buf_reserve(&st->out, SMALL_ANSWER_BYTES) != DP_OK ||
         dp_encoder_begin(&st->enc, &st->out, meta) != DP_OK) {
         st->delivered = st->failed = 1; /* not a client's cancellation */

@@ -14,17 +14,12 @@ enum MHD_Result handle_wellposedness(struct MHD_Connection *c, request *r)
     static const char *const offers[] = { "application/json" };
     if (negotiate(accept, offers, 1) < 0)
         return respond_problem(c, r, 406, NULL, "this route answers application/json", NULL, NULL);
-    dp_model m = { 0 };
     dp_errors errs;
     dp_errors_init(&errs);
-    int s = dp_model_parse_lenient(r->body.data ? r->body.data : "", r->body.len, &m, &errs);
-    if (s != DP_OK) {
-        dp_model_clear(&m);
-        return respond_status(c, r, s, s == DP_ESYNTAX && errs.n ? errs.item[0].message : NULL, &errs);
-    }
     dp_wp_report rep;
-    dp_wellposedness(&m, &rep);
-    dp_model_clear(&m);
+    int s = dp_wellposedness_parse(r->body.data ? r->body.data : "", r->body.len, &rep, &errs);
+    if (s != DP_OK)
+        return respond_status(c, r, s, s == DP_ESYNTAX && errs.n ? errs.item[0].message : NULL, &errs);
     dp_buf out = { 0 };
     if (dp_wellposedness_json(&rep, &out) != DP_OK || dp_buf_append(&out, "\n", 1) != DP_OK) {
         dp_buf_free(&out);

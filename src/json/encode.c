@@ -113,9 +113,17 @@ static char *put_sample_members(dp_number_text *recent, char *p, const dp_sample
     return p;
 }
 
-static char *put_event_members(char *p, const dp_event *ev)
+static char *put_event_members(char *p, const dp_event *ev, int network)
 {
     p = ev->kind == DP_EVENT_STICK ? PUT(p, "\"kind\":\"stick\"") : PUT(p, "\"kind\":\"slip\"");
+    if (network) {   /* the element, when, and its elongation u and rate du at that instant */
+        char num[24];
+        int len = snprintf(num, sizeof num, "%zu", ev->element);
+        p = put_lit(PUT(p, ",\"element\":"), num, (size_t)len);
+        p = put_num(PUT(p, ",\"t\":"), ev->t);
+        p = put_num(PUT(p, ",\"u\":"), ev->x);
+        return put_num(PUT(p, ",\"du\":"), ev->v);
+    }
     p = put_num(PUT(p, ",\"t\":"), ev->t);
     p = put_num(PUT(p, ",\"x\":"), ev->x);
     return put_num(PUT(p, ",\"v\":"), ev->v);
@@ -214,14 +222,105 @@ static int encode_event(dp_encoder *e, dp_buf *b, const dp_event *ev)
         return hold_event(e, ev);
     if (dp_buf_reserve(b, SAMPLE_MAX) != DP_OK)
         return DP_ENOMEM;
-    char *p = put_close(e, put_event_members(put_object(e, b->data + b->len, "event", 5), ev));
+    char *p = put_close(e, put_event_members(put_object(e, b->data + b->len, "event", 5), ev, e->cols != NULL));
     b->len = (size_t)(p - b->data);
     b->data[b->len] = '\0';
     return DP_OK;
 }
 
+
+/* ---- rows: named groups of numbers over the run's columns (dp_columns, systems.md §1) --------------- */
+
+/* Bytes a row may take: every number at most 25 characters plus a separator, a phase word, the keys and
+ * framing, and DP_DECIMAL_MAX of scribble room after the last number. */
+static size_t row_bytes(const dp_columns *c)
+{
+    size_t keys = 0;
+    for (size_t g = 0; g < c->ngroups; g++)
+        keys += strlen(c->group[g].name) + 8;
+    return 32 * (c->width + 1) + keys + 128;
+}
+
+static char *put_phase(char *p, double code, int csv)
+{
+    const char *name = phase_name((dp_phase)(int)code);
+    if (name == NULL)
+        return csv ? p : PUT(p, "null");
+    if (!csv)
+        *p++ = '"';
+    p = put_lit(p, name, strlen(name));
+    if (!csv)
+        *p++ = '"';
+    return p;
+}
+
+/* "t":..,"<group>":[..],... (CSV: the same values, comma-separated). */
+static char *put_row_members(const dp_columns *c, char *p, const dp_row *r, int csv)
+{
+    p = put_num(csv ? p : PUT(p, "\"t\":"), r->t);
+    const double *v = r->val;
+    for (size_t g = 0; g < c->ngroups; g++) {
+        const dp_column_group *grp = &c->group[g];
+        if (!csv) {
+            p = PUT(p, ",\"");
+            p = put_lit(p, grp->name, strlen(grp->name));
+            p = PUT(p, "\":[");
+        }
+        for (size_t i = 0; i < grp->n; i++, v++) {
+            if (i || csv)
+                *p++ = ',';
+            p = grp->phase ? put_phase(p, *v, csv) : put_num(p, *v);
+        }
+        if (!csv)
+            *p++ = ']';
+    }
+    return p;
+}
+
+static int encode_row(dp_encoder *e, dp_buf *b, const dp_row *r)
+{
+    if (e->cols == NULL)
+        return DP_EINVAL;
+    if (room(b, row_bytes(e->cols)) != DP_OK)
+        return DP_ENOMEM;
+    char *p = b->data + b->len;
+    switch (e->format) {
+    case DP_FORMAT_CSV:
+        p = put_row_members(e->cols, p, r, 1);
+        *p++ = '\n';
+        break;
+    case DP_FORMAT_JSON:
+        p = e->nsamples_written ? PUT(p, ",\n{") : PUT(p, "\n{");
+        p = PUT(put_row_members(e->cols, p, r, 0), "}");
+        break;
+    default:
+        p = put_object(e, p, "sample", 6);
+        p = put_close(e, put_row_members(e->cols, p, r, 0));
+    }
+    e->nsamples_written = 1;
+    b->len = (size_t)(p - b->data);
+    b->data[b->len] = '\0';
+    return DP_OK;
+}
+
+/* The CSV header of a run with columns: t, then <group><index> for every entry of every group. */
+static int csv_row_header(dp_buf *b, const dp_columns *c)
+{
+    int s = dp_buf_append(b, "t", 1);
+    char cell[64];
+    for (size_t g = 0; g < c->ngroups && s == DP_OK; g++)
+        for (size_t i = 0; i < c->group[g].n && s == DP_OK; i++) {
+            size_t idx = c->group[g].index ? c->group[g].index[i] : i;
+            int len = snprintf(cell, sizeof cell, ",%s%zu", c->group[g].name, idx);
+            s = dp_buf_append(b, cell, (size_t)len);
+        }
+    return s ? s : dp_buf_append(b, "\n", 1);
+}
+
 int dp_encoder_record(dp_encoder *e, dp_buf *b, const dp_record *r)
 {
+    if (r->type == DP_RECORD_ROW)
+        return encode_row(e, b, &r->u.row);
     if (r->type == DP_RECORD_SAMPLE)
         return encode_sample(e, b, &r->u.sample);
     if (r->type == DP_RECORD_EVENT)
@@ -282,6 +381,11 @@ void dp_encoder_init(dp_encoder *e, dp_format f)
     forget_numbers(e->recent);
 }
 
+void dp_encoder_set_columns(dp_encoder *e, const dp_columns *cols)
+{
+    e->cols = cols;
+}
+
 void dp_encoder_clear(dp_encoder *e)
 {
     if (e == NULL)
@@ -295,7 +399,7 @@ int dp_encoder_begin(dp_encoder *e, dp_buf *b, const char *meta_json)
 {
     switch (e->format) {
     case DP_FORMAT_CSV:
-        return put_str(b, "t,x,v,Fs,Fd,Fc,phase\n");
+        return e->cols ? csv_row_header(b, e->cols) : put_str(b, "t,x,v,Fs,Fd,Fc,phase\n");
     case DP_FORMAT_JSON: {
         int s = put_str(b, "{\"meta\":");
         s = s ? s : put_meta(b, meta_json, 0);
@@ -322,21 +426,22 @@ static int close_samples(dp_encoder *e, dp_buf *b)
             break;
         char *p = b->data + b->len;
         p = i ? PUT(p, ",\n{") : PUT(p, "\n{");
-        p = PUT(put_event_members(p, &e->events[i]), "}");
+        p = PUT(put_event_members(p, &e->events[i], e->cols != NULL), "}");
         b->len = (size_t)(p - b->data);
         b->data[b->len] = '\0';
     }
     return s ? s : put_str(b, e->nevents ? "\n],\n" : "],\n");
 }
 
-static int summary_members(dp_buf *b, const dp_summary *sm)
+static int summary_members(const dp_encoder *e, dp_buf *b, const dp_summary *sm)
 {
-    int s = dp_buf_reserve(b, SAMPLE_MAX);
+    int s = dp_buf_reserve(b, e->cols ? row_bytes(e->cols) : SAMPLE_MAX);
     if (s)
         return s;
     dp_number_text none[6];
     forget_numbers(none);
-    char *p = put_sample_members(none, PUT(b->data + b->len, "\"final\":{"), &sm->final);
+    char *p = PUT(b->data + b->len, "\"final\":{");
+    p = e->cols ? put_row_members(e->cols, p, &sm->final_row, 0) : put_sample_members(none, p, &sm->final);
     b->len = (size_t)(PUT(p, "},\"steps\":") - b->data);
     s = put_ull(b, sm->steps);
     s = s ? s : put_str(b, ",\"samples\":");
@@ -366,7 +471,7 @@ int dp_encoder_end(dp_encoder *e, dp_buf *b, const dp_summary *sm, const char *e
         if (s == DP_OK)
             b->len = (size_t)(put_object(e, b->data + b->len, "summary", 7) - b->data);
     }
-    s = s ? s : summary_members(b, sm);
+    s = s ? s : summary_members(e, b, sm);
     if (e->format == DP_FORMAT_JSON) {
         s = s ? s : put_str(b, ",\"events_dropped\":");
         s = s ? s : put_ull(b, e->events_dropped);

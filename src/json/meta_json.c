@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "dashpot/json.h"
+#include "dashpot/regularized.h"
 
 static const char *variant_name(const dp_solver_spec *s)
 {
@@ -46,15 +47,67 @@ static int whole(dp_buf *out, long v)
     return dp_buf_append(out, p, (size_t)(t + sizeof t - p));
 }
 
+static int regularized_fields(const dp_solver_spec *sv, dp_buf *out);
+
+/* A network run's meta: its size and the columns its rows hold, so an array member can be read by name. */
+static int network_meta(const dp_spec *s, dp_buf *out)
+{
+    const dp_solver_spec *sv = &s->solver;
+    const dp_network *net = s->net;
+    int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"");
+    if (sv->kind == DP_SOLVER_REGULARIZED) {
+        st |= lit(out, "regularized") | regularized_fields(sv, out) | lit(out, ",\"model\":\"network\"");
+    } else {
+        const char *mode = dp_network_locates(s) ? "locate" : sv->events == DP_EVENTS_NONE ? "none" : "step";
+        st |= lit(out, "stick-slip\",\"variant\":\"exact\",\"events_mode\":\"") | lit(out, mode);
+        st |= lit(out, "\",\"model\":\"network\"") | num(out, "theta", sv->theta);
+    }
+    st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
+    st |= num(out, "steps", dp_spec_steps(s));
+    st |= lit(out, ",\"every\":") | whole(out, s->output.every);
+    st |= lit(out, ",\"nodes\":") | whole(out, (long)net->n) | lit(out, ",\"elements\":") | whole(out, (long)net->nel);
+    st |= lit(out, ",\"columns\":{\"nodes\":[");
+    size_t nn = s->output.nodes ? s->output.nnodes : net->n, ne = s->output.elements ? s->output.nelements : net->nel;
+    for (size_t i = 0; i < nn; i++)
+        st |= lit(out, i ? "," : "") | whole(out, (long)(s->output.nodes ? s->output.nodes[i] : i));
+    st |= lit(out, "],\"elements\":[");
+    for (size_t i = 0; i < ne; i++)
+        st |= lit(out, i ? "," : "") | whole(out, (long)(s->output.elements ? s->output.elements[i] : i));
+    st |= lit(out, "]},\"wellposedness\":");
+    dp_wp_report wp;
+    dp_network_wellposedness(net, &wp);
+    st |= dp_wellposedness_json(&wp, out);
+    st |= dp_buf_append(out, "}", 1);
+    return st ? DP_ENOMEM : DP_OK;
+}
+
+/* The regularized solver's own parameters in place of the stick-slip ones (variant, events, branch, theta),
+ * which it does not have: "scheme":"PC","n":N (PI: "k"),"stepper":...,"rtol":...,"atol":... */
+static int regularized_fields(const dp_solver_spec *sv, dp_buf *out)
+{
+    int pi = sv->scheme == DP_SCHEME_PI;
+    int st = lit(out, "\",\"scheme\":\"") | lit(out, pi ? "PI\"" : "PC\"");
+    st |= num(out, pi ? "k" : "n", sv->n_list[0]);
+    st |= lit(out, ",\"stepper\":\"") | lit(out, dp_stepper_name(sv->stepper)) | lit(out, "\"");
+    return st | num(out, "rtol", sv->rtol) | num(out, "atol", sv->atol);
+}
+
 /* Written piece by piece rather than with snprintf: this object opens every run, small ones included. */
 int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
 {
+    if (s->net)
+        return network_meta(s, out);
     const dp_solver_spec *sv = &s->solver;
     int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"") | lit(out, solver_name(sv));
-    st |= lit(out, "\",\"variant\":\"") | lit(out, variant_name(sv));
-    st |= lit(out, sv->events == DP_EVENTS_LOCATE ? "\",\"events_mode\":\"locate" : "\",\"events_mode\":\"none");
-    st |= lit(out, sv->branch == DP_BRANCH_MOTION ? "\",\"branch\":\"motion\"" : "\",\"branch\":\"rest\"");
-    st |= num(out, "theta", sv->theta) | num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
+    if (sv->kind == DP_SOLVER_REGULARIZED)
+        st |= regularized_fields(sv, out);
+    else {
+        st |= lit(out, "\",\"variant\":\"") | lit(out, variant_name(sv));
+        st |= lit(out, sv->events == DP_EVENTS_LOCATE ? "\",\"events_mode\":\"locate" : "\",\"events_mode\":\"none");
+        st |= lit(out, sv->branch == DP_BRANCH_MOTION ? "\",\"branch\":\"motion\"" : "\",\"branch\":\"rest\"");
+        st |= num(out, "theta", sv->theta);
+    }
+    st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
     st |= num(out, "steps", dp_spec_steps(s));
     st |= lit(out, ",\"every\":") | whole(out, s->output.every);
     st |= lit(out, ",\"spring\":\"") | lit(out, dp_spring_law_name(s->model.spring.law));

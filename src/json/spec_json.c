@@ -556,8 +556,18 @@ static void parse_terms(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, in
     }
 }
 
+static void parse_forcing_with(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, int depth,
+                               const char *const *common);
+
 /* A forcing at nesting `depth` (the model's own is 1). */
 static void parse_forcing(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, int depth)
+{
+    parse_forcing_with(c, o, ptr, f, depth, NULL);
+}
+
+/* A forcing whose object may also hold the members `common` (a network load's "node"), read by its caller. */
+static void parse_forcing_with(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, int depth,
+                               const char *const *common)
 {
     static const variant kinds[] = {
         { "constant", DP_FORCING_CONSTANT, { NUM(dp_forcing, value, ANY, 1) }, { NULL } },
@@ -567,7 +577,7 @@ static void parse_forcing(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, 
         { "table", DP_FORCING_TABLE, { { NULL } }, { "points", NULL } },
         { "sum", DP_FORCING_SUM, { { NULL } }, { "terms", NULL } },
     };
-    const variant *v = parse_tagged(c, o, ptr, "kind", -1, kinds, 4, NULL, f);
+    const variant *v = parse_tagged(c, o, ptr, "kind", -1, kinds, 4, common, f);
     if (v == NULL)
         return;
     f->kind = (dp_forcing_kind)v->id;
@@ -695,17 +705,45 @@ static void parse_solver(ctx *c, const cJSON *o, const at *ptr, dp_solver_spec *
         s->Z = (int)z;
 }
 
-static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_output_spec *out)
+/* "max_samples": N, a sample budget for clients that draw rather than store (the browser page asks for about
+ * its canvas width): every = ceil(steps / (N - 1)), so floor(steps/every) + 1 samples plus the final one when
+ * every does not divide steps come to at most N. Needs the solver parsed first (dt, t_end). */
+static const range MAX_SAMPLES = { 2, 9007199254740992.0, 0, " >= 2 (at most 2^53)" };
+
+static void sample_budget(ctx *c, const cJSON *o, const at *ptr, const dp_spec *s, dp_output_spec *out)
 {
-    static const char *const keys[] = { "every", "samples", "events", NULL };
+    double budget;
+    if (!get_num(c, o, ptr, "max_samples", &MAX_SAMPLES, 0, 1, &budget))
+        return;
+    if (cJSON_GetObjectItemCaseSensitive(o, "every") != NULL) {
+        at p = { ptr, "max_samples", 0 };
+        fail(c, &p, "give either every or max_samples, not both");
+        return;
+    }
+    if (s->solver.dt > 0 && isfinite(s->solver.t_end) && s->solver.t_end > 0) {
+        double every = ceil(dp_spec_steps(s) / (budget - 1));
+        out->every = every < 1 ? 1 : every > 9007199254740992.0 ? 9007199254740992L : (long)every;
+    }
+}
+
+#include "network_json.inc"
+
+static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+{
+    static const char *const keys[] = { "every", "max_samples", "samples", "events", "nodes", "elements", NULL };
+    dp_output_spec *out = &s->output;
     if (!want_object(c, o, ptr))
         return;
     check_keys(c, o, ptr, keys, NULL, NULL);
     double every;
     if (get_num(c, o, ptr, "every", &EVERY, 0, 1, &every))
         out->every = (long)every;
+    sample_budget(c, o, ptr, s, out);
     get_bool(c, o, ptr, "samples", &out->samples);
     get_bool(c, o, ptr, "events", &out->events);
+    parse_columns(c, o, ptr, "nodes", "a node", s, s->net ? s->net->n : 0, &out->nodes, &out->nnodes);
+    parse_columns(c, o, ptr, "elements", "an element", s, s->net ? s->net->nel : 0, &out->elements,
+                  &out->nelements);
 }
 
 static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
@@ -716,14 +754,18 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
         return;
     check_keys(c, o, NULL, keys, NULL, NULL);
     const cJSON *v = member(c, o, NULL, "model", "an object with mass, spring and damper", &p);
-    if (v != NULL)
+    if (v != NULL && is_network(v))
+        parse_network(c, v, &p, s);
+    else if (v != NULL)
         parse_model(c, v, &p, &s->model);
-    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL)
+    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL && s->net == NULL)
         parse_initial(c, v, &p, s);
+    else if (v != NULL && s->net->n > 0)
+        parse_network_initial(c, v, &p, s);
     if ((v = member(c, o, NULL, "solver", NULL, &p)) != NULL)
         parse_solver(c, v, &p, &s->solver);
     if ((v = member(c, o, NULL, "output", NULL, &p)) != NULL)
-        parse_output(c, v, &p, &s->output);
+        parse_output(c, v, &p, s);
 }
 
 /* ---- syntax ----------------------------------------------------------------------------------------- */
@@ -813,7 +855,7 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
         return DP_ENOMEM;
     if (c.nerr > 0)
         return DP_EINVAL;
-    int s = dp_model_prepare(&spec->model);
+    int s = spec->net ? dp_network_prepare(spec->net) : dp_model_prepare(&spec->model);
     if (s == DP_ENOMEM)
         return s;
     if (s != DP_OK) {
@@ -849,4 +891,44 @@ int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_err
     if (c.nerr > 0)
         return DP_EINVAL;
     return dp_model_prepare(model);
+}
+
+int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_errors *errs)
+{
+    static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
+    ctx c = { errs, 0, 0, 1 };
+    at p;
+    cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
+    if (root == NULL)
+        return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
+    const cJSON *v = NULL;
+    if (want_object(&c, root, NULL)) {
+        check_keys(&c, root, NULL, keys, NULL, NULL);
+        v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
+    }
+    if (v == NULL || !is_network(v)) {
+        cJSON_Delete(root);
+        dp_model m = { 0 };
+        int s = c.nerr ? DP_EINVAL : dp_model_parse_lenient(text, len, &m, errs);
+        if (s == DP_OK)
+            dp_wellposedness(&m, rep);
+        dp_model_clear(&m);
+        return s;
+    }
+    /* A network: parsed as strictly as a run's (its laws are graphs the solver could take), then checked. */
+    dp_spec spec;
+    dp_spec_init(&spec);
+    c.lenient = 0;
+    parse_network(&c, v, &p, &spec);
+    cJSON_Delete(root);
+    int s = c.nomem ? DP_ENOMEM : c.nerr ? DP_EINVAL : dp_network_prepare(spec.net);
+    if (s == DP_OK) {
+        size_t before = errs->n + errs->dropped;
+        dp_network_check(&spec, errs);
+        s = errs->n + errs->dropped > before ? DP_EINVAL : DP_OK;
+    }
+    if (s == DP_OK)
+        dp_network_wellposedness(spec.net, rep);
+    dp_spec_clear(&spec);
+    return s;
 }

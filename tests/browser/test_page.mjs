@@ -106,7 +106,8 @@ function unexpected(from, allowed) {
 
 const state = (page, panel) => page.evaluate((id) => {
   const d = document.getElementById(id).dataset;
-  return { ...d, canvases: [...document.querySelectorAll(`#${id} canvas`)].map((c) => +c.dataset.points) };
+  // the plots on screen: a network run hides the one-mass plots and shows its own (web/network.js)
+  return { ...d, canvases: [...document.querySelectorAll(`#${id} canvas`)].filter((c) => c.offsetParent !== null).map((c) => +c.dataset.points) };
 }, panel);
 
 async function waitRun(page, panel, after) {
@@ -124,7 +125,7 @@ async function press(page, panel) {
 }
 
 // Pixels of saturated colour (curves and markers, not the grey grid, frame and labels) per canvas.
-const inked = (page) => page.evaluate(() => [...document.querySelectorAll('#panel-simulate canvas')].map((c) => {
+const inked = (page) => page.evaluate(() => [...document.querySelectorAll('#panel-simulate canvas')].filter((c) => c.offsetParent !== null).map((c) => {
   const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
   let n = 0;
   for (let i = 0; i < d.length; i += 4)
@@ -146,8 +147,25 @@ async function runPreset(page, name, id, origin) {
   await page.selectOption('#preset', id);
   const d = await press(page, 'panel-simulate');
   const spec = await page.inputValue('#spec');
-  const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: spec, headers: { Accept: 'application/x-ndjson' } });
-  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  // The page sends a request without "output" with output.max_samples = its sample budget (data-budget).
+  const budget = +d.budget || 0;
+  const stream = async (body) => (await (await fetch(origin + 'v1/simulate', { method: 'POST', body,
+    headers: { Accept: 'application/x-ndjson' } })).text()).trim().split('\n').map((l) => JSON.parse(l));
+  const full = await stream(spec);
+  const lines = budget ? await stream(JSON.stringify({ ...JSON.parse(spec), output: { max_samples: budget } })) : full;
+  check(budget > 0 === !('output' in JSON.parse(spec)), `${name}: ${id}: a sample budget (${budget}) is asked for exactly when the request has no output`);
+  if (budget) {
+    const fullSamples = full.filter((o) => o.type === 'sample').length, every = Math.ceil(full[0].steps / (budget - 1));
+    const got = lines.filter((o) => o.type === 'sample').length;
+    const width = await page.evaluate(() => document.getElementById('plot-xv').clientWidth * devicePixelRatio);
+    check(budget >= Math.min(200, width) && budget <= Math.max(200, 1.01 * width) && +d.every === every && lines[0].every === every &&
+      got <= budget && got >= Math.min(budget, fullSamples) / 2,
+      `${name}: ${id}: about the plot's width (${width} px) in samples: budget ${budget}, every ${every}, ${got} of ${fullSamples}`,
+      JSON.stringify({ budget, every: d.every, got, fullSamples }));
+  }
+  const chip = await page.evaluate(() => document.getElementById('decimated')?.textContent || '');
+  check((+d.every > 1) === /^decimated: 1 sample per/.test(chip) && (!budget || +d.every === 1 || chip.includes('about the plot width')),
+    `${name}: ${id}: the page says when the curve is decimated (every ${d.every})`, chip);
   const samples = lines.filter((o) => o.type === 'sample').length;
   const events = lines.filter((o) => o.type === 'event').length;
   const summary = lines[lines.length - 1];
@@ -163,12 +181,63 @@ async function runPreset(page, name, id, origin) {
   const shown = await page.textContent('#wp-body');
   check(shown.includes(wp.existence.guaranteed ? wp.existence.theorem : wp.existence.reason) &&
     shown.includes(wp.uniqueness.guaranteed ? wp.uniqueness.theorem : wp.uniqueness.reason) &&
-    wp.checks.every((c) => shown.includes(c.hypothesis)), `${name}: ${id}: the meta line's well-posedness report is shown`);
+    wp.checks.every((c) => shown.includes(`${c.hypothesis}: ${c.detail}`)) && !/Lipschitz\s+Lipschitz/.test(shown),
+    `${name}: ${id}: the meta line's well-posedness report is shown, each check as "hypothesis: detail"`);
   const ink = await inked(page);
   check(ink.every((n) => n > 300), `${name}: ${id}: every canvas carries curves`, `saturated pixels per canvas: ${ink}`);
   const bad = unexpected(from);
   check(bad.length === 0, `${name}: ${id}: no console error, page error or failed request`, bad.join('\n    '));
-  return { d, lines };
+  return { d, lines, full };
+}
+
+// Runs a network preset (web/network.js) and checks what the page shows against the daemon's own stream:
+// the samples held and drawn, the per-node curves and their legend, the events, and the space-time picture:
+// the share of its pixels in the colour of the slowest velocity (a stuck block on the belt, v = -V) against
+// the share of (sample, node) pairs stuck in the stream. Returns what it found for the caller's own checks.
+async function runNetworkPreset(page, name, id, origin) {
+  const from = problems.length;
+  await page.selectOption('#preset', id);
+  const d = await press(page, 'panel-simulate');
+  const spec = await page.inputValue('#spec');
+  const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: spec, headers: { Accept: 'application/x-ndjson' } });
+  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  const meta = lines[0], samples = lines.filter((o) => o.type === 'sample'), events = lines.filter((o) => o.type === 'event');
+  const nodes = meta.columns.nodes.length, curves = Math.min(8, nodes);
+  check(d.state === 'done' && meta.model === 'network', `${name}: network preset ${id} streams to its end`, JSON.stringify(d));
+  check(+d.samples === samples.length && +d.points === samples.length && +d.summarySamples === samples.length,
+    `${name}: ${id}: ${samples.length} samples streamed and held for plotting`, JSON.stringify(d));
+  check(d.canvases.length === 3 && d.canvases.every((n) => n === samples.length),
+    `${name}: ${id}: the space-time picture and both per-node plots drew ${samples.length} samples (one-mass plots hidden)`,
+    JSON.stringify(d.canvases));
+  check(+d.events === events.length && events.every((e) => Number.isInteger(e.element) && e.element < meta.elements),
+    `${name}: ${id}: ${events.length} events, each naming an element`, `page: ${d.events}`);
+  const view = await page.evaluate(() => {
+    const box = document.getElementById('network-plots'), c = document.getElementById('plot-spacetime');
+    const [l, t, w, h] = c.dataset.area.split(',').map(Number), k = c.width / c.clientWidth;
+    const px = c.getContext('2d').getImageData(Math.ceil(l * k), Math.ceil(t * k), Math.floor(w * k) - 1, Math.floor(h * k) - 1).data;
+    let dark = 0, all = 0;
+    const colours = new Set();
+    for (let i = 0; i < px.length; i += 4) {
+      if (px[i + 3] === 0) continue; // columns not reached (none once the run is done)
+      all++;
+      colours.add((px[i] << 16) | (px[i + 1] << 8) | px[i + 2]);
+      if (Math.abs(px[i] - 68) + Math.abs(px[i + 1] - 1) + Math.abs(px[i + 2] - 84) < 6) dark++;
+    }
+    return { nodes: +box.dataset.nodes, curves: +box.dataset.curves, legend: document.getElementById('legend-nodes-x').children.length,
+      oneHidden: document.getElementById('plots-one').hidden, dark: dark / Math.max(1, all), all, area: w * h * k * k, colours: colours.size };
+  });
+  check(view.nodes === nodes && view.curves === curves && view.legend === curves && view.oneHidden,
+    `${name}: ${id}: ${nodes} nodes in the picture, ${curves} per-node curves with their legend`, JSON.stringify(view));
+  const vmin = Math.min(...samples.map((s) => Math.min(...s.v)));
+  const stuck = samples.reduce((a, s) => a + s.v.filter((v) => v === vmin).length, 0) / (samples.length * nodes);
+  check(view.all > 0.95 * view.area && Math.abs(view.dark - stuck) < 0.03,
+    `${name}: ${id}: the picture is filled and ${(100 * view.dark).toFixed(1)}% of it has the colour of v = ${vmin} ` +
+    `(the stream: ${(100 * stuck).toFixed(1)}% of node-samples)`, JSON.stringify(view));
+  const ink = await inked(page);
+  check(ink.every((n) => n > 300), `${name}: ${id}: every network canvas carries curves or colour`, `saturated pixels: ${ink}`);
+  const bad = unexpected(from);
+  check(bad.length === 0, `${name}: ${id}: no console error, page error or failed request`, bad.join('\n    '));
+  return { d, view, events, stuck, samples, meta };
 }
 
 const out = base.endsWith('/') ? base : base + '/';
@@ -182,12 +251,36 @@ try {
   check((await page.title()).startsWith('dashpot'), 'the page has its title');
 
   const thesis = await runPreset(page, 'page', 'thesis-4-gamma', out);
-  check(thesis.lines.length > 10000, 'thesis x0 = 4 with gamma: 10001 samples of dt = 1e-3 over T = 10');
+  check(thesis.full.length > 10000 && thesis.lines.length < 1200, 'thesis x0 = 4 with gamma: 10001 samples of dt = 1e-3 over T = 10, ' +
+    `the page fetched ${thesis.lines.length - 2}`);
   await screenshot(page, 'page-thesis');
   const belt = await runPreset(page, 'page', 'belt', out);
   check(+belt.d.bands >= 4, `belt: the stick phases are shaded (${belt.d.bands} intervals)`);
   await screenshot(page, 'page-belt');
   await runPreset(page, 'page', 'counter-gc-motion', out);
+
+  // ---- networks (web/network.js) ----
+  const chain = await runNetworkPreset(page, 'page', 'chain-3', out);
+  check(chain.meta.nodes === 3 && chain.events.every((e) => e.element === 0) && chain.events.some((e) => e.kind === 'stick'),
+    'chain-3: the Coulomb element 0 sticks and slips (events name it)', JSON.stringify(chain.events.slice(0, 3)));
+  await screenshot(page, 'page-chain-3');
+  const bk = await runNetworkPreset(page, 'page', 'burridge-knopoff', out);
+  const kinds = (k) => bk.events.filter((e) => e.kind === k).length;
+  check(bk.meta.nodes >= 50 && kinds('stick') >= 30 && kinds('slip') >= 30 && bk.stuck > 0.05 && bk.stuck < 0.95 && bk.view.colours >= 32,
+    `burridge-knopoff: ${bk.meta.nodes} blocks stick-slip visibly (${kinds('stick')} sticks, ${kinds('slip')} slips, ` +
+    `${(100 * bk.stuck).toFixed(1)}% stuck, ${bk.view.colours} colours in the picture)`);
+  // Velocity weakening (rational relaxation on every block) sustains the cycles: the last third of the run
+  // has at least half the sticks of the first third and 60 or more (169, 177, 197 per third; the same chain
+  // with constant friction settles into steady sliding: 61, 25, 20).
+  const T = bk.meta.t_end, third = (a, b) => bk.events.filter((e) => e.kind === 'stick' && e.t >= a * T / 3 && e.t < b * T / 3).length;
+  const relaxed = JSON.parse(await page.inputValue('#spec')).model.elements.filter((e) => e.damper && e.damper.relaxation).length;
+  check(relaxed === 60 && bk.meta.events_mode === 'step' && third(2, 3.01) >= 0.5 * third(0, 1) && third(2, 3.01) >= 60,
+    `burridge-knopoff: velocity weakening on ${relaxed} blocks sustains the stick-slip (sticks per third of the run: ` +
+    `${third(0, 1)}, ${third(1, 2)}, ${third(2, 3.01)})`);
+  await screenshot(page, 'page-burridge-knopoff');
+  // back to one mass: the one-mass plots return, with the samples of the new run
+  const belt2 = await runPreset(page, 'page', 'belt', out);
+  check(belt2.d.canvases.length === 4, 'after a network run a one-mass preset shows its four plots again');
 
   // ---- an invalid spec: the error at the member its pointer names ----
   let from = problems.length;
@@ -212,6 +305,20 @@ try {
     'the problem document is listed under the editor (status, pointer, line)', shown.title + ' | ' + shown.list);
   let extra = unexpected(from, /status of 422/);
   check(extra.length === 0, 'the invalid spec causes no other console error', extra.join('\n    '));
+  // The plots of the previous run stay, marked stale, and the preset menu no longer names its preset.
+  const stale = () => page.evaluate(() => {
+    const panel = document.getElementById('panel-simulate'), note = document.getElementById('stale-note');
+    return { stale: panel.dataset.stale, note: note.hidden ? '' : note.textContent, menu: document.getElementById('preset').value,
+      menuText: document.getElementById('preset').selectedOptions[0]?.textContent,
+      opacity: +getComputedStyle(panel.querySelector('.plots')).opacity,
+      previous: document.querySelector('#preset option[value="belt"]').textContent }; // the last run: belt2 above
+  });
+  let st = await stale();
+  check(st.stale === 'true' && st.note.startsWith('Stale:') && st.note.includes(st.previous) && st.note.includes('(422)') && st.opacity < 1,
+    'after a 422 the previous plots are marked stale, naming the run they are from', JSON.stringify(st));
+  check(st.menu === '' && st.menuText === '(edited request)', 'after a 422 of an edited request the preset menu says "(edited request)"',
+    JSON.stringify(st));
+  check(d.canvases.every((n) => n > 0), 'the stale plots are still drawn', JSON.stringify(d.canvases));
   await screenshot(page, 'page-invalid');
 
   from = problems.length;
@@ -223,6 +330,16 @@ try {
     'malformed JSON: the 400 marks the byte where the daemon stopped reading', JSON.stringify(malformed));
   extra = unexpected(from, /status of 400/);
   check(extra.length === 0, 'the malformed spec causes no other console error', extra.join('\n    '));
+  st = await stale();
+  check(st.stale === 'true' && st.note.includes('(400)'), 'after a 400 the plots stay marked stale', JSON.stringify(st));
+  // A new preset: the menu names it, the old plots say they are old until Run; a run clears the mark.
+  await page.selectOption('#preset', 'forced');
+  st = await stale();
+  check(st.stale === 'true' && st.menu === 'forced' && st.note.includes('press Run'), 'a new preset keeps the old plots marked stale until Run',
+    JSON.stringify(st));
+  d = await press(page, 'panel-simulate');
+  st = await stale();
+  check(d.state === 'done' && st.stale === 'false' && st.note === '' && st.opacity === 1, 'a successful run clears the stale mark', JSON.stringify(st));
 
   // ---- the stability tab ----
   from = problems.length;
@@ -236,6 +353,11 @@ try {
   check(d.state === 'done' && map.complete && map.w > 500 && map.h > 400 && map.src.startsWith('blob:'),
     'the stability map (image/svg+xml) is drawn', JSON.stringify(map));
   check(/asymptotically stable/.test(map.info) && /unstable/.test(map.info), 'the map\'s verdict counts are shown (JSON)', map.info);
+  await page.selectOption('#preset', 'stability-one');
+  d = await press(page, 'panel-stability');
+  const model = await page.textContent('#stab-model');
+  check(d.state === 'done' && model.includes('stable iff (1.10) mu2 - lambda*mu1 > 0; here mu2 - lambda*mu1 = 0.5') && !/> 0 =/.test(model),
+    'one law: the thesis condition and the value of its left side, not "> 0 = 0.5"', model);
   extra = unexpected(from);
   check(extra.length === 0, 'the stability map: no console error', extra.join('\n    '));
   await screenshot(page, 'page-stability');

@@ -1,0 +1,141 @@
+/* src/core/network_check.c - the rules a network document must meet before it is stepped (systems.md §1).
+ *
+ * The step's matrix W = M + h theta C + h^2 theta^2 K must be positive definite and the element laws
+ * maximal monotone for the step to be one strictly convex problem: so M must be positive definite, K and C
+ * positive semidefinite (checked with GSL's Cholesky and symmetric eigensolver), every initial state inside
+ * its graphs' domains. What the network stepping does not do yet is refused by name, never run wrongly.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_linalg.h>
+
+#include "dashpot/spec.h"
+
+/* Whether the n x n matrix A is symmetric to rounding; the first asymmetric pair in *i, *j. */
+static int symmetric(const double *A, size_t n, size_t *i, size_t *j)
+{
+    for (*i = 0; *i < n; (*i)++)
+        for (*j = *i + 1; *j < n; (*j)++) {
+            double a = A[*i * n + *j], b = A[*j * n + *i];
+            if (fabs(a - b) > 1e-12 * (fabs(a) + fabs(b)))
+                return 0;
+        }
+    return 1;
+}
+
+/* The smallest eigenvalue of the symmetric matrix A (NAN when out of memory), and its largest magnitude. */
+static double min_eigenvalue(const double *A, size_t n, double *scale)
+{
+    gsl_matrix *m = gsl_matrix_alloc(n, n);
+    gsl_vector *ev = gsl_vector_alloc(n);
+    gsl_eigen_symm_workspace *ws = gsl_eigen_symm_alloc(n);
+    double lo = NAN;
+    *scale = 0;
+    if (m && ev && ws) {
+        memcpy(m->data, A, n * n * sizeof *A);
+        if (gsl_eigen_symm(m, ev, ws) == 0) {
+            lo = gsl_vector_min(ev);
+            *scale = fmax(fabs(lo), fabs(gsl_vector_max(ev)));
+        }
+    }
+    gsl_eigen_symm_free(ws);
+    gsl_vector_free(ev);
+    gsl_matrix_free(m);
+    return lo;
+}
+
+static void check_matrix(const double *A, size_t n, const char *ptr, int definite, dp_errors *e)
+{
+    size_t i, j;
+    if (A == NULL)
+        return;
+    if (!symmetric(A, n, &i, &j)) {
+        dp_errors_add(e, ptr, "must be symmetric: entry [%zu][%zu] = %g but [%zu][%zu] = %g", i, j, A[i * n + j],
+                      j, i, A[j * n + i]);
+        return;
+    }
+    double scale, lo = min_eigenvalue(A, n, &scale);
+    if (definite && !(lo > 1e-14 * scale))
+        dp_errors_add(e, ptr, "must be positive definite: its smallest eigenvalue is %.6g", lo);
+    else if (!definite && !(lo >= -1e-12 * scale))
+        dp_errors_add(e, ptr, "must be positive semidefinite: its smallest eigenvalue is %.6g", lo);
+}
+
+static void check_element(const dp_spec *s, size_t i, dp_errors *e)
+{
+    const dp_element *el = &s->net->el[i];
+    char p[DP_POINTER_MAX];
+    if (el->a == el->b) {
+        snprintf(p, sizeof p, "/model/elements/%zu/between", i);
+        dp_errors_add(e, p, "an element must join two different ends");
+    }
+    double u = (el->b >= 0 ? s->x0v[el->b] : 0) - (el->a >= 0 ? s->x0v[el->a] : 0);
+    double z = (el->b >= 0 ? s->v0v[el->b] : 0) - (el->a >= 0 ? s->v0v[el->a] : 0), lo, hi;
+    if (el->has_spring && el->spring.graph.n) {
+        dp_graph_force(&el->spring.graph, u, &lo, &hi);
+        if (lo == hi && !isfinite(lo)) {
+            snprintf(p, sizeof p, "/model/elements/%zu/spring", i);
+            dp_errors_add(e, p, "the initial elongation %g is outside the spring's domain (a rope's length, a "
+                          "vertical end piece)", u);
+        }
+    }
+    if (el->has_damper && el->damper.graph.n) {
+        dp_graph_force(&el->damper.graph, z - el->damper.belt_velocity, &lo, &hi);
+        if (lo == hi && !isfinite(lo)) {
+            snprintf(p, sizeof p, "/model/elements/%zu/damper", i);
+            dp_errors_add(e, p, "the initial relative velocity %g is outside the damper graph's domain", z);
+        }
+    }
+    if (el->has_spring && el->spring.law != DP_SPRING_LINEAR && s->solver.theta != 1) {
+        snprintf(p, sizeof p, "/model/elements/%zu/spring", i);
+        dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler): use "
+                      "theta = 1", dp_spring_law_name(el->spring.law));
+    }
+    if (el->has_damper && el->damper.relaxation.kind == DP_RELAX_POWER) {
+        snprintf(p, sizeof p, "/model/elements/%zu/damper/relaxation", i);
+        dp_errors_add(e, p, "the power relaxation is not Lipschitz at rest, so a network step need not have one "
+                      "solution (one mass only, with its branches)");
+    }
+}
+
+/* The regularized scheme on networks (network_regularized.c): (PCn), one n, a dense Jacobian. */
+static void check_regularized(const dp_spec *s, dp_errors *e)
+{
+    const dp_solver_spec *sv = &s->solver;
+    if (sv->scheme != DP_SCHEME_PC)
+        dp_errors_add(e, "/solver/scheme", "networks take scheme PC (Yosida dampers); PI is for one mass");
+    if (sv->n_count != 1)
+        dp_errors_add(e, "/solver/n", "networks take one n per run (a convergence study is for one mass)");
+    if (s->net->n > DP_NETWORK_MAX_MATRIX_NODES)
+        dp_errors_add(e, "/model/masses", "the regularized scheme integrates a dense Jacobian: at most %d nodes, "
+                      "got %zu (the stick-slip solver takes up to %d)", DP_NETWORK_MAX_MATRIX_NODES, s->net->n,
+                      DP_NETWORK_MAX_NODES);
+    if (!(sv->rtol >= 0 && sv->atol >= 0 && sv->rtol + sv->atol > 0) || !isfinite(sv->rtol + sv->atol))
+        dp_errors_add(e, "/solver/rtol", "rtol and atol must be finite, >= 0 and not both 0");
+}
+
+void dp_network_check(const dp_spec *s, dp_errors *e)
+{
+    const dp_network *net = s->net;
+    size_t n = net->n;
+    if (net->M)
+        check_matrix(net->M, n, "/model/mass_matrix", 1, e);
+    check_matrix(net->K, n, "/model/stiffness_matrix", 0, e);
+    check_matrix(net->C, n, "/model/damping_matrix", 0, e);
+    for (size_t i = 0; i < net->nel; i++)
+        check_element(s, i, e);
+    if (s->solver.kind == DP_SOLVER_REGULARIZED)
+        check_regularized(s, e);
+    else if (s->solver.kind != DP_SOLVER_STICK_SLIP)
+        dp_errors_add(e, "/solver/kind", "networks take the stick-slip or the regularized solver (the analytic "
+                      "closed form is for one mass)");
+    else if (s->solver.variant != DP_VARIANT_EXACT)
+        dp_errors_add(e, "/solver/variant", "networks take the exact variant only (the thesis' algorithm is for "
+                      "one mass)");
+    else if (s->solver.branch != DP_BRANCH_REST)
+        dp_errors_add(e, "/solver/branch", "networks follow the rest branch only");
+}

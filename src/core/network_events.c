@@ -1,0 +1,213 @@
+/* src/core/network_events.c - located events on networks: a step whose exact solution changes some
+ * element's assignment is split at the earliest instant where the step's starting assignment, held over a
+ * shorter step, stops being consistent (a bracketed root of the candidates' smallest margin); the elements
+ * that fail there switch (a stick, a release, or a reversal through the belt speed without a stick) and the
+ * rest of the step goes on from that instant. So theta = 1/2 stays second order through stick-slip, as the
+ * one-mass solver's event location keeps it. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_run.h"
+#include "root.h"
+
+typedef struct held_ctx {
+    dp_run *r;
+    double t;
+    const unsigned char *cand;   /* the elements whose held assignment fails by the step's end */
+} held_ctx;
+
+/* The smallest margin among the candidates after a step of length s with the sub-step's starting
+ * assignment held (nr->margin gets every element's). */
+static double held_margin(void *vctx, double s)
+{
+    held_ctx *c = vctx;
+    struct dp_net_run *nr = c->r->net;
+    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+    nr_step_rhs(nr, c->t, s);
+    if (dp_net_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
+        return NAN;
+    double m = INFINITY;
+    for (size_t k = 0; k < nr->nact; k++)
+        if (c->cand == NULL || c->cand[k])
+            m = fmin(m, nr->margin[k]);
+    return m;
+}
+
+/* The root in (s0, s1] of the smallest margin among the candidates `cand`, the margins there in nr->margin. */
+static double held_root(dp_run *r, double t, double s0, double s1, const unsigned char *cand)
+{
+    held_ctx c = { r, t, cand };
+    double g0 = held_margin(&c, s0), g1 = held_margin(&c, s1);
+    double at = dp_root_bracket(held_margin, &c, s0, s1, g0, g1, 1e-15 * s1, &r->sum.iterations);
+    held_margin(&c, at);
+    return at;
+}
+
+/* The earliest instant in (0, h] where the starting assignment stops being consistent, in `fails` the
+ * elements that fail there (identical blocks fail together). A free element fails where its relative
+ * velocity at the held step's end reaches a vertex: at t + s. A fixed one fails where its force leaves its
+ * interval; a held step of length s measures the force at t + theta s (the theta-point), so its failure is
+ * sought over s in (0, h / theta] and happens at t + theta s*, as the one-mass solver's holding test, which
+ * reads the force at the instant itself. Returns h when nothing fails in the step, 0 when something fails at
+ * once. */
+static double earliest_event(dp_run *r, double t, double h, unsigned char *fails)
+{
+    struct dp_net_run *nr = r->net;
+    size_t m = nr->nact;
+    held_ctx c = { r, t, NULL };
+    double th = nr->theta, s0 = 1e-9 * h, *start = nr->roots, *scale = nr->scale;
+    unsigned char *fixed = nr->fixed, *cand = nr->cand;
+    memset(fails, 0, m ? m : 1);
+    held_margin(&c, s0);             /* just after the start: the assignment holds there, or fails at once */
+    memcpy(start, nr->margin, m * sizeof *start);
+    int any_fixed = 0, any_free = 0;
+    for (size_t k = 0; k < m; k++)
+        fixed[k] = (unsigned char)dp_net_ws_fixed(nr->ws, k);
+    for (int pass = 0; pass < 2; pass++) {   /* free elements over h, fixed ones over h / theta */
+        if (!(held_margin(&c, pass ? h / th : h) == held_margin(&c, pass ? h / th : h)))
+            return h;
+        for (size_t k = 0; k < m; k++) {
+            if (fixed[k] != pass || !(nr->margin[k] < 0))
+                continue;
+            if (!(start[k] >= 0)) {
+                fails[k] = 1;
+                return 0;
+            }
+            cand[k] = (unsigned char)(pass + 1);
+            scale[k] = fabs(start[k]) + fabs(nr->margin[k]);
+            pass ? (any_fixed = 1) : (any_free = 1);
+        }
+    }
+    double best = h;
+    int found = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        if (!(pass ? any_fixed : any_free))
+            continue;
+        for (size_t k = 0; k < m; k++)
+            fails[k] = cand[k] == pass + 1;
+        double s = held_root(r, t, s0, pass ? h / th : h, fails), at = pass ? th * s : s;
+        if (found && at >= best)
+            continue;
+        /* the ones failing at this instant: the smallest margin whatever its last digits, and any other
+         * within the root's tolerance of zero */
+        size_t first = (size_t)-1;
+        for (size_t k = 0; k < m; k++)
+            if (fails[k] && (first == (size_t)-1 || nr->margin[k] < nr->margin[first]))
+                first = k;
+        for (size_t k = 0; k < m; k++)
+            nr->fails_at[k] = fails[k] && (k == first || nr->margin[k] <= 1e-9 * scale[k]);
+        best = at, found = 1;
+    }
+    for (size_t k = 0; k < m; k++)
+        fails[k] = found ? nr->fails_at[k] : 0, cand[k] = 0;
+    return best;
+}
+
+/* Element k's assignment failed at time t (the state is there, the held assignment in the workspace): a
+ * fixed element is freed towards its force; a free one that reached a vertex is fixed there if the vertex's
+ * interval holds it just after (a stick), else freed beyond it (a reversal through the belt speed, a kink:
+ * no stick, as for one mass). Returns the element's phase after. */
+static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
+{
+    struct dp_net_run *nr = r->net;
+    double s0 = 1e-9 * (left > 0 ? left : 1);
+    if (dp_net_ws_fixed(nr->ws, k)) {
+        int dir = dp_net_ws_violation(nr->ws, k, s0, nr->u);
+        dp_net_ws_slip(nr->ws, k, s0, nr->u, dir >= 0 ? 1 : -1);
+    } else {
+        dp_net_ws_fix_end(nr->ws, k, nr->v);
+        dp_net_ws_pattern_save(nr->ws, nr->pattern);
+        unsigned char *only = calloc(nr->nact, 1);
+        if (only == NULL)
+            return nr->phase[nr->act_el[k]];
+        only[k] = 1;
+        double m = left > 0 ? held_margin(&(held_ctx){ r, t, only }, s0) : 0;
+        free(only);
+        if (m < 0)
+            dp_net_ws_slip(nr->ws, k, s0, nr->u, dp_net_ws_violation(nr->ws, k, s0, nr->u) >= 0 ? 1 : -1);
+    }
+    if (!nr->can_stick[nr->act_el[k]])
+        return DP_PHASE_NONE;
+    return dp_net_ws_at_rest(nr->ws, k) ? DP_PHASE_STICK : DP_PHASE_SLIP;
+}
+
+/* Whether a fixed element's force leaves its interval inside a step that the exact solution keeps it
+ * fixed over: the step's multiplier is the force at its theta-point, so below theta = 1 the held step is
+ * looked at up to h / theta to see the force at the step's end. (One held solve per step with something
+ * fixed; the assignment is left as it was.) */
+static int breaks_away(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    if (nr->theta == 1)
+        return 0;
+    int any = 0;
+    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+    for (size_t k = 0; k < nr->nact && !any; k++)
+        any = dp_net_ws_fixed(nr->ws, k);
+    if (!any)
+        return 0;
+    held_margin(&(held_ctx){ r, t, NULL }, h / nr->theta);
+    for (size_t k = 0; k < nr->nact; k++)
+        if (dp_net_ws_fixed(nr->ws, k) && nr->margin[k] < 0)
+            return 1;
+    return 0;
+}
+
+/* A step split at its phase changes: while the exact step over what is left changes some element's phase,
+ * the starting assignment is held up to the earliest instant where it fails, the step is taken to there,
+ * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
+ * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. */
+int nr_located_step(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    double left = h;
+    for (size_t sub = 0; left > 0; sub++) {
+        memcpy(nr->phase_prev, nr->phase, nr->nel);
+        dp_net_ws_pattern_save(nr->ws, nr->pattern);
+        int s = nr_net_step_keep(r, t, left);
+        if (s != DP_OK)
+            return s;
+        nr_element_forces(nr, 1);
+        int same = dp_net_ws_pattern_same(nr->ws, nr->pattern);
+        if (same && nr->theta < 1) {      /* keep the step's solution while the held step looks further */
+            memcpy(nr->v1_keep, nr->v1, nr->n * sizeof *nr->v1);
+            memcpy(nr->force_keep, nr->force, nr->nact * sizeof *nr->force);
+            same = !breaks_away(r, t, left);
+            memcpy(nr->v1, nr->v1_keep, nr->n * sizeof *nr->v1);
+            memcpy(nr->force, nr->force_keep, nr->nact * sizeof *nr->force);
+        }
+        if (same || sub > 2 * nr->nact + 4) {
+            nr_take_velocity(nr, left);
+            nr_element_forces(nr, 1);
+            nr_step_events(r, nr->phase_prev, t + left);
+            nr_stick_time(r, nr->phase, left);
+            return DP_OK;
+        }
+        double at = earliest_event(r, t, left, nr->fails);
+        if (!(at > 1e-9 * left) || at >= left) {
+            /* no instant to split at (a change at the very start, or none the held assignment sees) */
+            dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+            if ((s = nr_net_step_keep(r, t, left)) != DP_OK)
+                return s;
+            nr_take_velocity(nr, left);
+            nr_element_forces(nr, 1);
+            nr_step_events(r, nr->phase_prev, t + left);
+            nr_stick_time(r, nr->phase, left);
+            return DP_OK;
+        }
+        held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
+        nr_take_velocity(nr, at);
+        nr_element_forces(nr, 1);
+        /* every element whose assignment fails at this instant (to the root's tolerance) switches here:
+         * identical blocks stick together */
+        for (size_t j = 0; j < nr->nact; j++)
+            if (nr->fails[j])
+                nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
+        nr_stick_time(r, nr->phase_prev, at);
+        nr_step_events(r, nr->phase_prev, t + at);
+        t += at, left -= at;
+    }
+    return DP_OK;
+}
+

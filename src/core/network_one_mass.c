@@ -1,0 +1,94 @@
+/* src/core/network_one_mass.c - a network that is one mass on one element [ground, 0] is the one-mass model
+ * (systems.md §1), so it is stepped by the one-mass solver: the same answers, bit for bit, at the same speed
+ * (a general network step costs some 20 times the soft threshold's few nanoseconds). Its samples and events
+ * are rewritten as the network's rows and element events on their way out.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_run.h"
+
+int dp_network_is_one_mass(const dp_spec *s)
+{
+    const dp_network *n = s->net;
+    if (n == NULL || n->n != 1 || n->nel != 1 || n->mass == NULL || n->M || n->K || n->C)
+        return 0;
+    if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS)
+        return 0;
+    return s->solver.kind == DP_SOLVER_STICK_SLIP;
+}
+
+/* The network's laws and loads as the run's one-mass model (deep copies: the run owns them). */
+static int as_model(dp_run *r)
+{
+    const dp_network *n = r->spec.net;
+    const dp_element *e = &n->el[0];
+    dp_model m = { .mass = n->mass[0] };
+    m.spring = e->has_spring ? e->spring : (dp_spring){ .law = DP_SPRING_LINEAR, .k = 0 };
+    m.damper = e->has_damper ? e->damper : (dp_damper){ .law = DP_DAMPER_NONE };
+    if (!e->has_spring)
+        memset(&m.spring.graph, 0, sizeof m.spring.graph);
+    if (!e->has_damper)
+        memset(&m.damper.graph, 0, sizeof m.damper.graph);
+    dp_forcing sum = { .kind = DP_FORCING_SUM, .nterms = n->nforce };
+    dp_forcing *terms = n->nforce > 1 ? calloc(n->nforce, sizeof *terms) : NULL;
+    if (n->nforce > 1 && terms == NULL)
+        return DP_ENOMEM;
+    for (size_t i = 0; n->nforce > 1 && i < n->nforce; i++)
+        terms[i] = n->force[i].f;          /* shallow: dp_model_copy below copies them */
+    sum.terms = terms;
+    m.forcing = n->nforce == 1 ? n->force[0].f : n->nforce > 1 ? sum : (dp_forcing){ .kind = DP_FORCING_NONE };
+    dp_model copy;
+    int s = dp_model_copy(&copy, &m);
+    free(terms);
+    if (s != DP_OK)
+        return s;
+    dp_model_clear(&r->spec.model);
+    r->spec.model = copy;
+    r->spec.x0 = r->spec.x0v[0];
+    r->spec.v0 = r->spec.v0v[0];
+    return dp_model_prepare(&r->spec.model);
+}
+
+int dp_network_one_mass_init(dp_run *r)
+{
+    int s = as_model(r);
+    if (s != DP_OK)
+        return s;
+    r->net->one_mass = 1;
+    return dp_stick_slip_init(r);
+}
+
+/* The network's state from the one-mass sample s: what rows and the summary are made of. */
+static void take_sample(struct dp_net_run *nr, const dp_sample *s)
+{
+    nr->x[0] = s->x, nr->v[0] = s->v;
+    nr->Fs[0] = s->Fs, nr->Fd[0] = s->Fd;
+    nr->phase[0] = (unsigned char)s->phase;
+}
+
+/* Rewrites the block's one-mass records as network records: samples as rows in the run's row slots,
+ * events with their element (0; u = x, du = v on [ground, 0]). */
+int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n)
+{
+    struct dp_net_run *nr = r->net;
+    r->out_cap = n;
+    if (nr_reserve_rows(r) != DP_OK)
+        return DP_ENOMEM;
+    for (size_t i = 0; i < n; i++) {
+        if (buf[i].type == DP_RECORD_EVENT) {
+            buf[i].u.event.element = 0;
+            continue;
+        }
+        if (buf[i].type != DP_RECORD_SAMPLE || nr->rows_used == nr->rows_cap)
+            continue;
+        double t = buf[i].u.sample.t;
+        take_sample(nr, &buf[i].u.sample);
+        size_t k = nr->rows_used++;
+        buf[i].type = DP_RECORD_ROW;
+        buf[i].u.row = nr_fill_row(nr, t, nr->rows + k * nr->row_len);
+    }
+    take_sample(nr, &r->sum.final);
+    r->sum.final_row = nr_fill_row(nr, r->sum.final.t, nr->final_row);
+    return DP_OK;
+}

@@ -1,0 +1,151 @@
+/* src/core/network_output.c - what a network run hands out: rows over its columns, element events, the
+ * summary's final row, and the queue that holds what did not fit the caller's block (it grows, it never
+ * drops: one step can change the phase of every element). Shared by the exact stepping and the regularized
+ * scheme. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_run.h"
+
+/* Row storage per block: the block holds at most this many numbers of rows. */
+#define ROW_BUDGET (1u << 20)
+
+dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data)
+{
+    size_t nn = nr->cols.nodes, ne = nr->cols.elements;
+    for (size_t j = 0; j < nn; j++) {
+        size_t i = nr->cols.node[j];
+        data[j] = nr->x[i], data[nn + j] = nr->v[i];
+    }
+    for (size_t j = 0; j < ne; j++) {
+        size_t i = nr->cols.element[j];
+        data[2 * nn + j] = nr->Fs[i], data[2 * nn + ne + j] = nr->Fd[i], data[2 * nn + 2 * ne + j] = nr->phase[i];
+    }
+    return (dp_row){ .t = t, .val = data };
+}
+
+/* Queues a record for the caller: into its block while it has room and nothing waits, else the queue. */
+void nr_put(dp_run *r, const dp_record *rec)
+{
+    struct dp_net_run *nr = r->net;
+    if (nr->nq == 0 && r->out && r->out_n < r->out_cap) {
+        r->out[r->out_n++] = *rec;
+        return;
+    }
+    if (nr->nq == nr->qcap) {   /* a step with more changes than the queue held: grow it, never drop */
+        dp_record *q = realloc(nr->queue, 2 * nr->qcap * sizeof *q);
+        if (q == NULL) {
+            dp_run_fail(r, DP_ENOMEM, "out of memory for the events of one step");
+            return;
+        }
+        nr->queue = q, nr->qcap *= 2;
+    }
+    nr->queue[nr->nq++] = *rec;
+}
+
+void nr_emit_row(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    r->countdown = r->spec.output.every;
+    if (!r->spec.output.samples)
+        return;
+    dp_record rec = { .type = DP_RECORD_ROW };
+    if (nr->nq == 0 && r->out && r->out_n < r->out_cap && nr->rows_used < nr->rows_cap) {
+        size_t s = nr->rows_used++;
+        rec.u.row = nr_fill_row(nr, r->cur.t, nr->rows + s * nr->row_len);
+    } else {
+        rec.u.row = nr_fill_row(nr, r->cur.t, nr->pending_row);
+    }
+    nr_put(r, &rec);
+    r->sum.samples++;
+}
+
+void nr_finalize_summary(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    r->sum.final_row = nr_fill_row(nr, r->cur.t, nr->final_row);
+}
+
+
+/* Events at time t for the elements whose phase differs from `before`. */
+void nr_step_events(dp_run *r, const unsigned char *before, double t)
+{
+    struct dp_net_run *nr = r->net;
+    for (size_t i = 0; i < nr->nel; i++) {
+        if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
+            continue;
+        r->sum.events++;
+        if (!r->spec.output.events)
+            continue;
+        const dp_element *e = &nr->net->el[i];
+        dp_record rec = { .type = DP_RECORD_EVENT };
+        rec.u.event = (dp_event){ .kind = nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP,
+                                  .t = t, .x = nr_rel(e->a, e->b, nr->x),
+                                  /* a stick holds the belt's speed exactly; the state carries its rounding */
+                                  .v = nr->phase[i] == DP_PHASE_STICK && e->has_damper ? e->damper.belt_velocity
+                                                                                       : nr_rel(e->a, e->b, nr->v),
+                                  .element = i };
+        nr_put(r, &rec);
+    }
+}
+
+/* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
+void nr_stick_time(dp_run *r, const unsigned char *ph, double h)
+{
+    for (size_t i = 0; i < r->net->nel; i++)
+        if (ph[i] == DP_PHASE_STICK)
+            r->sum.stick_time += h;
+}
+
+
+int nr_state_finite(const struct dp_net_run *nr)
+{
+    for (size_t i = 0; i < nr->n; i++)
+        if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
+            return 0;
+    for (size_t i = 0; i < nr->nel; i++)
+        if (!isfinite(nr->Fs[i]) || !isfinite(nr->Fd[i]))
+            return 0;
+    return 1;
+}
+
+/* Moves queued records into the caller's block (a queued row into a block slot of its own). */
+void nr_flush(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    while (nr->iq < nr->nq && r->out_n < r->out_cap) {
+        dp_record rec = nr->queue[nr->iq];
+        if (rec.type == DP_RECORD_ROW) {
+            if (nr->rows_used == nr->rows_cap)
+                break;
+            size_t s = nr->rows_used++;
+            double *d = nr->rows + s * nr->row_len;
+            memcpy(d, nr->pending_row, nr->row_len * sizeof *d);
+            rec.u.row.val = d;
+        }
+        r->out[r->out_n++] = rec;
+        nr->iq++;
+    }
+    if (nr->iq == nr->nq)
+        nr->iq = nr->nq = 0;
+}
+
+/* Row slots for this block: one per record the caller can take, within ROW_BUDGET numbers. */
+int nr_reserve_rows(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    size_t want = r->out_cap, fit = ROW_BUDGET / (nr->row_len ? nr->row_len : 1);
+    if (want > fit)
+        want = fit ? fit : 1;
+    nr->rows_used = 0;
+    if (want <= nr->rows_cap)
+        return DP_OK;
+    double *rows = realloc(nr->rows, want * (nr->row_len ? nr->row_len : 1) * sizeof *rows);
+    if (rows == NULL)
+        return DP_ENOMEM;
+    nr->rows = rows;
+    nr->rows_cap = want;
+    return DP_OK;
+}

@@ -1,0 +1,520 @@
+/* src/core/network_run.c - the stick-slip solver on a network: theta-steps solved exactly by
+ * network_step.c, samples as rows over the chosen columns, a phase change per element as an event.
+ *
+ * The linear parts are weighted exactly as the one-mass scheme weights them (mathematics.md §4):
+ *     W = M + h theta C + h^2 theta^2 K,
+ *     rhs = M v - h (1-theta) C v - h K (x + h theta (1-theta) v) + h f(t + theta h) + h sum_e c_e v_b,e b_e,
+ * and the graphs at the step's end (springs at u + h z, as the one-mass step takes them), so a network of
+ * one node and one element [ground, 0] is the one-mass model step for step. Events are resolved to the
+ * step: a phase change is reported at the end of the step that made it.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_linalg.h>
+
+#include "network_run.h"
+#include "root.h"
+
+
+
+static size_t bandwidth(const dp_network *net)
+{
+    size_t n = net->n, p = 0;
+    const double *mats[3] = { net->M, net->K, net->C };
+    for (int m = 0; m < 3; m++)
+        if (mats[m])
+            for (size_t i = 0; i < n; i++)
+                for (size_t j = i + p + 1; j < n; j++)
+                    if (mats[m][i * n + j] != 0)
+                        p = j - i;
+    for (size_t e = 0; e < net->nel; e++)
+        if (net->el[e].a >= 0 && net->el[e].b >= 0 && (size_t)labs(net->el[e].a - net->el[e].b) > p)
+            p = (size_t)labs(net->el[e].a - net->el[e].b);
+    return p;
+}
+
+/* Dense row-major n x n into band storage. */
+static void to_band(const double *A, size_t n, size_t p, double *B)
+{
+    for (size_t i = 0; i < n; i++)
+        for (size_t d = 0; d <= p && i + d < n; d++)
+            B[i * (p + 1) + d] = A[(i + d) * n + i];
+}
+
+/* y = A x for symmetric band A (n, p). */
+void nr_band_symv(const double *A, size_t n, size_t p, const double *x, double *y)
+{
+    for (size_t i = 0; i < n; i++)
+        y[i] = A[i * (p + 1)] * x[i];
+    for (size_t i = 0; i < n; i++)
+        for (size_t d = 1; d <= p && i + d < n; d++) {
+            double a = A[i * (p + 1) + d];
+            y[i] += a * x[i + d];
+            y[i + d] += a * x[i];
+        }
+}
+
+double nr_rel(long a, long b, const double *x)
+{
+    return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
+}
+
+static void build_W(struct dp_net_run *nr, double h)
+{
+    size_t len = nr->n * (nr->p + 1);
+    double *W = dp_net_ws_W(nr->ws), th = nr->theta;
+    for (size_t i = 0; i < len; i++)
+        W[i] = nr->M[i] + h * th * nr->C[i] + h * h * th * th * nr->K[i];
+    dp_net_ws_W_changed(nr->ws);
+    nr->h_W = h;
+}
+
+/* ---- allocation ------------------------------------------------------------------------------------- */
+
+static int alloc_all(struct dp_net_run *nr)
+{
+    size_t n = nr->n, ne = nr->nel ? nr->nel : 1, band = n * (nr->p + 1);
+    nr->M = calloc(band, sizeof(double));
+    nr->K = calloc(band, sizeof(double));
+    nr->C = calloc(band, sizeof(double));
+    nr->act = calloc(ne, sizeof *nr->act);
+    nr->act_of = calloc(ne, sizeof *nr->act_of);
+    nr->act_el = calloc(ne, sizeof *nr->act_el);
+    nr->gamma = calloc(ne, sizeof *nr->gamma);
+    nr->static_A = calloc(ne, sizeof *nr->static_A);
+    nr->held = calloc(ne, 1);
+    nr->broke = calloc(ne, 1);
+    nr->k = calloc(ne, sizeof(double));
+    nr->c = calloc(ne, sizeof(double));
+    nr->x = calloc(n, sizeof(double));
+    nr->v = calloc(n, sizeof(double));
+    nr->v1 = calloc(n, sizeof(double));
+    nr->rhs = calloc(n, sizeof(double));
+    nr->tmp = calloc(n, sizeof(double));
+    nr->u = calloc(ne, sizeof(double));
+    nr->force = calloc(ne, sizeof *nr->force);
+    nr->Fs = calloc(ne, sizeof(double));
+    nr->Fd = calloc(ne, sizeof(double));
+    nr->phase = calloc(ne, 1);
+    nr->phase_prev = calloc(ne, 1);
+    nr->can_stick = calloc(ne, 1);
+    nr->all_nodes = calloc(n, sizeof(size_t));
+    nr->all_elements = calloc(ne, sizeof(size_t));
+    nr->qcap = ne + 2;
+    nr->queue = calloc(nr->qcap, sizeof *nr->queue);
+    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->act_el && nr->gamma && nr->static_A && nr->held && nr->broke && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
+           nr->rhs && nr->tmp && nr->u && nr->force && nr->Fs && nr->Fd && nr->phase && nr->phase_prev && nr->can_stick &&
+           nr->all_nodes && nr->all_elements && nr->queue ? DP_OK : DP_ENOMEM;
+}
+
+/* B += w b b^T in band storage for an element's incidence vector b. */
+static void band_add_incidence(double *B, size_t p, long a, long b, double w)
+{
+    if (w == 0)
+        return;
+    if (a >= 0)
+        B[(size_t)a * (p + 1)] += w;
+    if (b >= 0)
+        B[(size_t)b * (p + 1)] += w;
+    if (a >= 0 && b >= 0) {
+        size_t lo = (size_t)(a < b ? a : b), d = (size_t)labs(a - b);
+        B[lo * (p + 1) + d] -= w;
+    }
+}
+
+/* The linear parts straight into band storage (a dense n x n copy would not fit a chain of 10^4 blocks);
+ * the elements' nonlinear laws into the convex problem's list. */
+static int setup_laws(struct dp_net_run *nr)
+{
+    const dp_network *net = nr->net;
+    size_t n = nr->n, p = nr->p;
+    if (net->M)
+        to_band(net->M, n, p, nr->M);
+    else
+        for (size_t i = 0; i < n; i++)
+            nr->M[i * (p + 1)] = net->mass[i];
+    if (net->K)
+        to_band(net->K, n, p, nr->K);
+    if (net->C)
+        to_band(net->C, n, p, nr->C);
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        int lin_spring = !e->has_spring || e->spring.law == DP_SPRING_LINEAR;
+        nr->k[i] = e->has_spring && lin_spring ? e->spring.k : 0;
+        nr->c[i] = e->has_damper && (e->damper.law == DP_DAMPER_LINEAR || e->damper.law == DP_DAMPER_BINGHAM)
+                   ? e->damper.c : 0;
+        int set_damper = e->has_damper && ((e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR)
+                                           || e->damper.relaxation.kind != DP_RELAX_NONE);
+        nr->can_stick[i] = (unsigned char)dp_element_can_stick(e);
+        nr->act_of[i] = -1;
+        band_add_incidence(nr->K, p, e->a, e->b, nr->k[i]);
+        band_add_incidence(nr->C, p, e->a, e->b, nr->c[i]);
+        if (!set_damper && lin_spring)
+            continue;
+        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
+            nr->gamma[nr->nact] = &e->damper.relaxation, nr->relaxed = 1;
+        if (e->has_damper && e->damper.law == DP_DAMPER_GENERALIZED_COULOMB && e->damper.phi1 > e->damper.phi0) {
+            dp_model m = { .mass = 1, .damper = { .law = DP_DAMPER_COULOMB, .phi0 = e->damper.phi1 } };
+            if (dp_model_prepare(&m) != DP_OK)
+                return DP_ENOMEM;
+            nr->static_A[nr->nact] = m.damper.graph;   /* the spring's line graph of m is empty (k = 0 line) */
+            dp_graph_clear(&m.spring.graph);
+            nr->has_static = 1;
+        }
+        nr->act_of[i] = (long)nr->nact;
+        nr->act_el[nr->nact] = i;
+        nr->act[nr->nact++] = (dp_net_elem){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
+                                             .S = lin_spring ? NULL : &e->spring.graph,
+                                             .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+    }
+    return DP_OK;
+}
+
+static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
+{
+    for (size_t i = 0; i < nr->n; i++)
+        nr->all_nodes[i] = i;
+    for (size_t i = 0; i < nr->nel; i++)
+        nr->all_elements[i] = i;
+    nr->cols.nodes = o->nodes ? o->nnodes : nr->n;
+    nr->cols.node = o->nodes ? o->nodes : nr->all_nodes;
+    nr->cols.elements = o->elements ? o->nelements : nr->nel;
+    nr->cols.element = o->elements ? o->elements : nr->all_elements;
+    size_t nn = nr->cols.nodes, ne = nr->cols.elements;
+    static const char *const names[] = { "x", "v", "Fs", "Fd", "phase" };
+    nr->cols.ngroups = 5;
+    for (size_t g = 0; g < 5; g++)
+        nr->cols.group[g] = (dp_column_group){ .name = names[g], .n = g < 2 ? nn : ne,
+                                               .index = g < 2 ? nr->cols.node : nr->cols.element, .phase = g == 4 };
+    nr->row_len = nr->cols.width = 2 * nn + 3 * ne;
+    size_t rl = nr->row_len ? nr->row_len : 1;
+    nr->final_row = calloc(rl, sizeof(double));
+    nr->pending_row = calloc(rl, sizeof(double));
+    return nr->final_row && nr->pending_row ? DP_OK : DP_ENOMEM;
+}
+
+void dp_network_run_free(struct dp_net_run *nr)
+{
+    if (nr == NULL)
+        return;
+    dp_net_ws_free(nr->ws);
+    dp_network_regularized_free(nr->reg);
+    for (size_t i = 0; nr->static_A && i < nr->nact; i++)
+        dp_graph_clear(&nr->static_A[i]);
+    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+                  nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
+                  nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
+    for (size_t i = 0; i < sizeof p / sizeof *p; i++)
+        free(p[i]);
+    free(nr);
+}
+
+/* ---- the state's forces and rows ------------------------------------------------------------------- */
+
+/* Each element's forces and phase at the current state; `stepped`: after a step (forces from its
+ * solution), else the initial state (set-valued forces taken closest to zero). */
+void nr_element_forces(struct dp_net_run *nr, int stepped)
+{
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        double u = nr_rel(e->a, e->b, nr->x), z = nr_rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
+        double fs = nr->k[i] * u, fd = nr->c[i] * (z - vb), lo, hi;
+        long k = nr->act_of[i];
+        int rest = z == vb;
+        if (k >= 0 && stepped) {
+            const dp_net_force *f = &nr->force[k];
+            fs += f->s, fd += f->a, rest = f->at_rest;
+        } else if (k >= 0) {
+            if (nr->act[k].S) {
+                dp_graph_force(nr->act[k].S, u, &lo, &hi);
+                fs += fmin(fmax(0.0, lo), hi);
+            }
+            if (nr->act[k].A) {
+                dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
+                fd += fmin(fmax(0.0, lo), hi);
+            }
+        }
+        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
+            fd -= dp_relaxation_eval(&e->damper.relaxation, z - vb);
+        nr->Fs[i] = fs, nr->Fd[i] = fd;
+        nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
+    }
+}
+
+/* ---- stepping --------------------------------------------------------------------------------------- */
+
+/* Generalized Coulomb (the rest branch, as one mass takes it): an element at rest at the step's start, or
+ * one whose kinetic solution reverses, is held by its static interval [-phi1, phi1] if that holds it; one
+ * that slips under the static graph has broken away and steps on its kinetic graph (phi0). Each pass
+ * moves at least one element for good, so this ends after at most 2 x elements solves. */
+static int static_solve(dp_run *r, double h)
+{
+    struct dp_net_run *nr = r->net;
+    for (size_t k = 0; k < nr->nact; k++) {
+        nr->held[k] = nr->static_A[k].n > 0 && nr->phase[nr->act_el[k]] == DP_PHASE_STICK;
+        nr->broke[k] = 0;
+    }
+    for (size_t pass = 0; pass <= 2 * nr->nact; pass++) {
+        for (size_t k = 0; k < nr->nact; k++)
+            if (nr->static_A[k].n > 0)
+                nr->act[k].A = nr->held[k] ? &nr->static_A[k] : &nr->net->el[nr->act_el[k]].damper.graph;
+        dp_net_ws_W_changed(nr->ws);
+        int s = dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+        if (s != DP_OK)
+            return s;
+        int changed = 0;
+        for (size_t k = 0; k < nr->nact; k++) {
+            if (nr->static_A[k].n == 0)
+                continue;
+            double vb = nr->act[k].vb, z0 = nr_rel(nr->act[k].a, nr->act[k].b, nr->v) - vb, z1 = nr->force[k].z - vb;
+            if (nr->held[k] && !nr->force[k].at_rest) {
+                nr->held[k] = 0, nr->broke[k] = 1, changed = 1;
+            } else if (!nr->held[k] && !nr->broke[k] && z0 != 0 && z1 != 0 && (z0 > 0) != (z1 > 0)) {
+                nr->held[k] = 1, changed = 1;
+            }
+        }
+        if (!changed)
+            return DP_OK;
+    }
+    return DP_ESOLVE;
+}
+
+/* The right side of a step of length h from the current state at time t, W for h, and the elongations the
+ * spring graphs see (network_step.h for the problem they define). */
+void nr_step_rhs(struct dp_net_run *nr, double t, double h)
+{
+    size_t n = nr->n, p = nr->p;
+    double th = nr->theta;
+    if (h != nr->h_W)
+        build_W(nr, h);
+    nr_band_symv(nr->M, n, p, nr->v, nr->rhs);
+    nr_band_symv(nr->C, n, p, nr->v, nr->tmp);
+    for (size_t i = 0; i < n; i++) {
+        nr->rhs[i] -= h * (1 - th) * nr->tmp[i];
+        nr->v1[i] = nr->x[i] + h * th * (1 - th) * nr->v[i];
+    }
+    nr_band_symv(nr->K, n, p, nr->v1, nr->tmp);
+    for (size_t i = 0; i < n; i++)
+        nr->rhs[i] -= h * nr->tmp[i];
+    for (size_t i = 0; i < nr->net->nforce; i++)
+        nr->rhs[nr->net->force[i].node] += h * dp_forcing_eval(&nr->net->force[i].f, t + th * h);
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        double g = e->has_damper ? h * nr->c[i] * e->damper.belt_velocity : 0;
+        if (g != 0 && e->b >= 0)
+            nr->rhs[e->b] += g;
+        if (g != 0 && e->a >= 0)
+            nr->rhs[e->a] -= g;
+    }
+    for (size_t k = 0; k < nr->nact; k++)
+        nr->u[k] = nr_rel(nr->act[k].a, nr->act[k].b, nr->x);
+}
+
+/* x+ = x + h ((1-theta) v + theta v+), v = v+. */
+void nr_take_velocity(struct dp_net_run *nr, double h)
+{
+    for (size_t i = 0; i < nr->n; i++) {
+        nr->x[i] += h * ((1 - nr->theta) * nr->v[i] + nr->theta * nr->v1[i]);
+        nr->v[i] = nr->v1[i];
+    }
+}
+
+/* The exact solution of a step of length h from time t into v1 and the forces; the state is not moved. */
+int nr_net_step_keep(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    nr_step_rhs(nr, t, h);
+    int s = nr->has_static ? static_solve(r, h)
+                           : dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+    nr->solved = s == DP_OK;
+    return s;
+}
+
+/* One theta-step of length h from time t, solved exactly. */
+static int net_step(dp_run *r, double t, double h)
+{
+    int s = nr_net_step_keep(r, t, h);
+    if (s == DP_OK)
+        nr_take_velocity(r->net, h);
+    return s;
+}
+
+/* sup gamma' over the line: the slope that can eat into W's definiteness. */
+static double relaxation_rise(const dp_relaxation *g)
+{
+    if (g->kind == DP_RELAX_LINEAR)
+        return g->L > 0 ? g->L : 0;
+    return dp_relaxation_lipschitz(g);
+}
+
+/* With relaxation the step's problem is strongly monotone while W - h theta sum_e L_e b_e b_e^T is positive
+ * definite (the n-DOF form of thesis (4.10), m + h theta c + h^2 theta^2 k > h theta L_gamma for one mass);
+ * checked for the nominal and the last step by GSL's band Cholesky. */
+static int check_step_bound(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    if (!nr->relaxed)
+        return DP_OK;
+    size_t len = nr->n * (nr->p + 1);
+    double *B = malloc(len * sizeof *B), th = nr->theta;
+    if (B == NULL)
+        return DP_ENOMEM;
+    double hs[2] = { r->h, r->spec.solver.t_end - (double)(r->nsteps - 1) * r->h };
+    int ok = 1;
+    for (int k = 0; k < 2 && ok; k++) {
+        double h = hs[k];
+        for (size_t i = 0; i < len; i++)
+            B[i] = nr->M[i] + h * th * nr->C[i] + h * h * th * th * nr->K[i];
+        for (size_t a = 0; a < nr->nact; a++)
+            if (nr->gamma[a])
+                band_add_incidence(B, nr->p, nr->act[a].a, nr->act[a].b, -h * th * relaxation_rise(nr->gamma[a]));
+        gsl_matrix_view v = gsl_matrix_view_array(B, nr->n, nr->p + 1);
+        ok = gsl_linalg_cholesky_band_decomp(&v.matrix) == 0;
+    }
+    free(B);
+    if (ok)
+        return DP_OK;
+    snprintf(r->error_pointer, sizeof r->error_pointer, "/solver/dt");
+    return dp_run_fail(r, DP_EINVAL, "with relaxation a step has one solution only while W - h theta sum_e L_e b_e "
+                       "b_e^T is positive definite (thesis (4.10) for n masses); at dt = %g it is not: take a "
+                       "smaller dt", r->h);
+}
+
+int dp_network_run_init(dp_run *r)
+{
+    struct dp_net_run *nr = calloc(1, sizeof *nr);
+    if (nr == NULL)
+        return DP_ENOMEM;
+    r->net = nr;
+    nr->net = r->spec.net;
+    r->cols = &nr->cols;
+    nr->n = nr->net->n, nr->nel = nr->net->nel, nr->theta = r->spec.solver.theta;
+    nr->p = bandwidth(nr->net);
+    int s = alloc_all(nr);
+    s = s ? s : setup_laws(nr);
+    s = s ? s : setup_columns(nr, &r->spec.output);
+    if (s == DP_OK && (nr->ws = dp_net_ws_alloc(nr->n, nr->p, nr->nact, nr->act)) == NULL)
+        s = DP_ENOMEM;
+    if (s != DP_OK)
+        return s;
+    if (nr->relaxed)
+        dp_net_ws_relaxation(nr->ws, nr->gamma, nr->theta);
+    nr->pattern = malloc(dp_net_ws_pattern_bytes(nr->ws));
+    nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
+    nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
+    size_t na = nr->nact ? nr->nact : 1;
+    nr->fails = calloc(na, 1);
+    nr->scale = calloc(na, sizeof *nr->scale);
+    nr->fixed = calloc(na, 1), nr->cand = calloc(na, 1), nr->fails_at = calloc(na, 1);
+    nr->v1_keep = calloc(nr->n, sizeof *nr->v1_keep);
+    nr->force_keep = calloc(na, sizeof *nr->force_keep);
+    if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL || nr->fails == NULL || nr->scale == NULL ||
+        nr->fixed == NULL || nr->cand == NULL || nr->fails_at == NULL || nr->v1_keep == NULL ||
+        nr->force_keep == NULL)
+        return DP_ENOMEM;
+    nr->locate = dp_network_locates(&r->spec);
+    if ((s = check_step_bound(r)) != DP_OK)
+        return s;
+    if (dp_network_is_one_mass(&r->spec))
+        return dp_network_one_mass_init(r);
+    memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
+    memcpy(nr->v, r->spec.v0v, nr->n * sizeof *nr->v);
+    if (r->spec.solver.kind == DP_SOLVER_REGULARIZED) {
+        if ((s = dp_network_regularized_init(r)) != DP_OK)
+            return s;
+        r->countdown = 1;
+        nr_finalize_summary(r);
+        nr_emit_row(r);
+        return DP_OK;
+    }
+    build_W(nr, r->h);
+    /* The initial forces and phases: an exact step of a billionth of dt from the initial state says which
+     * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
+     * leaves its assignment for the first located step. */
+    double h0 = 1e-9 * r->h;
+    if (nr_net_step_keep(r, 0, h0) == DP_OK)
+        nr_element_forces(nr, 1);
+    else
+        nr_element_forces(nr, 0);
+    r->countdown = 1;
+    nr_finalize_summary(r);
+    nr_emit_row(r);     /* the initial state: queued, no block yet */
+    return DP_OK;
+}
+
+int dp_network_run_advance(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    if (nr->reg)
+        return dp_network_regularized_advance(r);
+    if (nr_reserve_rows(r) != DP_OK)
+        return DP_ENOMEM;
+    nr_flush(r);
+    while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
+        if (dp_run_stopped(r, dp_run_work(r)))
+            return r->status;
+        double h = dp_run_step_length(r), t = r->cur.t;
+        int s;
+        if (nr->locate && nr->solved) {
+            s = nr_located_step(r, t, h);
+        } else {
+            memcpy(nr->phase_prev, nr->phase, nr->nel);
+            if ((s = net_step(r, t, h)) == DP_OK) {
+                nr_element_forces(nr, 1);
+                nr_step_events(r, nr->phase_prev, t + h);
+                nr_stick_time(r, nr->phase, h);
+            }
+        }
+        if (s != DP_OK)
+            return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
+        r->n++;
+        r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
+        if (!nr_state_finite(nr))
+            return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
+        r->sum.steps = r->n;
+        if (r->n >= r->nsteps) {
+            r->finished = 1;
+            nr_finalize_summary(r);
+        }
+        if (--r->countdown <= 0 || r->n >= r->nsteps)
+            nr_emit_row(r);
+    }
+    return DP_OK;
+}
+
+/* Location holds an assignment over shorter steps: its pieces must not move with the step's length, so
+ * graph springs (vertices at (y - u)/h), relaxation and static thresholds are stepped without it. */
+int dp_network_locates(const dp_spec *s)
+{
+    if (dp_network_is_one_mass(s))   /* the one-mass solver locates every damper that can stick */
+        return s->solver.events == DP_EVENTS_LOCATE && dp_element_can_stick(&s->net->el[0]);
+    int sticky = 0;
+    for (size_t i = 0; i < s->net->nel; i++) {
+        const dp_element *e = &s->net->el[i];
+        if (e->has_spring && e->spring.law != DP_SPRING_LINEAR)
+            return 0;
+        if (e->has_damper && (e->damper.relaxation.kind != DP_RELAX_NONE ||
+                              (e->damper.law == DP_DAMPER_GENERALIZED_COULOMB && e->damper.phi1 > e->damper.phi0)))
+            return 0;
+        sticky |= dp_element_can_stick(e);
+    }
+    return sticky && s->solver.events == DP_EVENTS_LOCATE;
+}
+
+const dp_columns *dp_run_columns(const dp_run *r)
+{
+    return r->cols;
+}
+
+int dp_network_run_pending(const dp_run *r)
+{
+    return r->net->nq > r->net->iq;
+}
+
+int dp_network_run_is_one_mass(const dp_run *r)
+{
+    return r->net != NULL && r->net->one_mass;
+}

@@ -1,0 +1,95 @@
+/* src/core/network_run.h - internal: a network run's state, shared by the exact stepping (network_run.c)
+ * and the regularized scheme (network_regularized.c), which write the same rows and events. */
+#ifndef DASHPOT_CORE_NETWORK_RUN_H
+#define DASHPOT_CORE_NETWORK_RUN_H
+
+#include "network_step.h"
+#include "run_internal.h"
+
+struct dp_net_reg;
+
+struct dp_net_run {
+    size_t n, nel, p, nact;
+    int relaxed;                /* some element has a relaxation gamma */
+    double theta;
+    const dp_network *net;
+    double *M, *K, *C;          /* band storage n x (p+1) */
+    dp_net_elem *act;           /* the elements of the convex problem */
+    const dp_relaxation **gamma; /* per active element, NULL without relaxation */
+    dp_graph *static_A;         /* per active element: generalized Coulomb's static graph (phi1), else empty */
+    unsigned char *held, *broke; /* per active element in a step: on its static graph; broke away this step */
+    int has_static;
+    int locate;                 /* events located inside the step (located_step) */
+    int solved;                 /* the workspace holds the assignment of the last step */
+    void *pattern;              /* the assignment at a sub-step's start */
+    double *margin;             /* per active element, of the assignment held over a shorter step */
+    double *roots;              /* per active element: its margin just after a sub-step's start */
+    unsigned char *fails;       /* per active element: its held assignment fails at the located instant */
+    double *scale;              /* per active element: the size of its margin over a step */
+    unsigned char *fixed, *cand, *fails_at;   /* per active element: location's scratch */
+    double *v1_keep;            /* n: a step's solution kept while location looks further */
+    dp_net_force *force_keep;   /* per active element, likewise */
+    struct dp_net_reg *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
+    int one_mass;               /* stepped by the one-mass solver (network_one_mass.c) */
+    long *act_of;               /* element -> its index in act, or -1 */
+    size_t *act_el;             /* index in act -> element */
+    double *k, *c;              /* per element: linear stiffness and viscosity */
+    dp_net_ws *ws;
+    double h_W;                 /* the step W was built for */
+    double *x, *v, *v1, *rhs, *tmp, *u;
+    dp_net_force *force;
+    double *Fs, *Fd;            /* per element, at the current state */
+    unsigned char *phase, *phase_prev, *can_stick;
+    dp_columns cols;
+    size_t *all_nodes, *all_elements;
+    size_t row_len, rows_cap, rows_used;
+    double *rows;               /* rows_cap rows of row_len (= cols.width) numbers */
+    double *final_row;          /* the summary's row */
+    dp_record *queue;           /* records that did not fit the caller's block */
+    size_t nq, iq, qcap;
+    double *pending_row;        /* the data of a queued row */
+};
+
+/* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */
+void nr_put(dp_run *r, const dp_record *rec);
+/* A row of the current state at r->cur.t, if samples are wanted; restarts the decimation. */
+void nr_emit_row(dp_run *r);
+/* Events at time t for the elements whose phase differs from `before`. */
+void nr_step_events(dp_run *r, const unsigned char *before, double t);
+/* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
+void nr_stick_time(dp_run *r, const unsigned char *ph, double h);
+/* Moves queued records into the caller's block; row slots for this block. */
+void nr_flush(dp_run *r);
+int nr_reserve_rows(dp_run *r);
+/* The summary's final row from the current state. */
+void nr_finalize_summary(dp_run *r);
+/* Every position, velocity and force finite (and not absurdly large). */
+int nr_state_finite(const struct dp_net_run *nr);
+/* x_b - x_a with the ground at 0. */
+double nr_rel(long a, long b, const double *x);
+/* y = A x for a symmetric band matrix A (n, bandwidth p) in GSL's storage. */
+void nr_band_symv(const double *A, size_t n, size_t p, const double *x, double *y);
+
+/* The stepping pieces located events are made of (network_run.c): the right side of a step of length h
+ * from time t, its exact solution into v1 and the forces (state unmoved), moving the state by it, and the
+ * elements' forces and phases (`stepped`: from the last solution; else the initial state). */
+void nr_step_rhs(struct dp_net_run *nr, double t, double h);
+int nr_net_step_keep(dp_run *r, double t, double h);
+void nr_take_velocity(struct dp_net_run *nr, double h);
+void nr_element_forces(struct dp_net_run *nr, int stepped);
+/* One step of length h from t split at its phase changes (network_events.c). */
+int nr_located_step(dp_run *r, double t, double h);
+
+/* A row over the columns from the current state, its numbers written to data and ph. */
+dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data);
+
+/* One mass on one element [ground, 0] (network_one_mass.c): stepped by the one-mass solver, its records
+ * rewritten as rows and element events. */
+int dp_network_one_mass_init(dp_run *r);
+
+/* The regularized scheme on networks (network_regularized.c). */
+int dp_network_regularized_init(dp_run *r);
+int dp_network_regularized_advance(dp_run *r);
+void dp_network_regularized_free(struct dp_net_reg *g);
+
+#endif

@@ -1,0 +1,948 @@
+/* src/core/network_step.c - the network's theta-step solved exactly: a primal active-set method over the
+ * pieces of the element graphs (network_step.h).
+ *
+ * Every element is either *fixed* at a vertex of its graph Sigma_e (z_e held, its force a multiplier in the
+ * vertex's interval: a sticking friction element, a taut rope) or *free* on one affine piece
+ * lambda = lam0 + slope (z - zref) between two vertices. For a given assignment the optimality conditions
+ * are linear; the fixed constraints z_e = b_e^T v = const join nodes into a forest (incidence vectors are
+ * independent exactly when they form no cycle), so they are eliminated by contracting the forest: each tree
+ * becomes one unknown (or none, if it holds the ground), and the reduced matrix keeps the band of W.
+ *
+ * One iteration: solve for the assignment's minimizer, walk towards it and stop at the first vertex a free
+ * element meets (it becomes fixed); at the minimizer, release one fixed element whose multiplier left its
+ * interval. The objective falls strictly between minimizers, so no assignment repeats and the method ends
+ * after finitely many iterations with the exact minimizer: a sticking element sticks to rounding, no creep.
+ * Degenerate ties are broken by the lowest index; an iteration cap turns a cycle into DP_ESOLVE, never into
+ * a silent wrong answer.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_linalg.h>
+
+#include "dashpot/status.h"
+#include "network_step.h"
+
+enum { FREE = 0, FIXED = 1 };
+enum { SRC_NONE = 0, SRC_A = 1, SRC_S = 2 };
+
+/* A vertex of Sigma_e in z, remembered with the graph vertex it comes from so that the force interval is
+ * read at that vertex exactly (u + h z need not round back to it). */
+typedef struct vertex {
+    double z;
+    int src;
+    double y;
+} vertex;
+
+typedef struct elem_state {
+    int st;
+    vertex fix;           /* FIXED: where */
+    vertex lo, hi;        /* FREE: the piece's ends (z = -/+INFINITY on an end ray) */
+    double zref, lam0, slope;
+    double lam;           /* FIXED: the multiplier of the last solve */
+} elem_state;
+
+struct dp_net_ws {
+    size_t n, p, ne;
+    const dp_net_elem *el;
+    double *W, *H;        /* band storage n x (p+1) */
+    double *R;            /* reduced band storage, capacity n x (p+1) grown on demand */
+    size_t R_cap, nr, pr;
+    int factored;         /* R holds the factor of the structure in fac_st, fac_slope, for h_factored */
+    double h_factored;
+    unsigned char *fac_st;
+    double *fac_slope;
+    elem_state *es;
+    long *parent;         /* union-find over nodes and the ground (index n), with potentials */
+    double *pot;
+    long *kidx;           /* reduced unknown of each node's tree, -1 when the tree holds the ground */
+    double *c;            /* v_i = y[kidx] + c_i */
+    double *rhs_eff, *y, *vs, *d, *res;
+    long *head, *next_edge, *deg; /* the fixed forest's adjacency, for the multipliers */
+    size_t *queue;
+    /* relaxation: gamma per element (NULL: none), linearized at zk as g0 + g1 (z - zk) */
+    const dp_relaxation *const *gamma;
+    double theta;
+    double *zk, *g0, *g1, *gshift, *zprev;
+};
+
+dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
+{
+    dp_net_ws *w = calloc(1, sizeof *w);
+    if (w == NULL)
+        return NULL;
+    w->n = n, w->p = p, w->ne = ne, w->el = el;
+    size_t band = n * (p + 1), m = ne ? ne : 1;
+    w->W = calloc(band, sizeof *w->W);
+    w->H = calloc(band, sizeof *w->H);
+    w->R = calloc(band, sizeof *w->R);
+    w->R_cap = band;
+    w->es = calloc(m, sizeof *w->es);
+    w->parent = calloc(n + 1, sizeof *w->parent);
+    w->pot = calloc(n + 1, sizeof *w->pot);
+    w->kidx = calloc(n + 1, sizeof *w->kidx);
+    w->c = calloc(n + 1, sizeof *w->c);
+    w->rhs_eff = calloc(n, sizeof *w->rhs_eff);
+    w->y = calloc(n, sizeof *w->y);
+    w->vs = calloc(n, sizeof *w->vs);
+    w->d = calloc(n, sizeof *w->d);
+    w->res = calloc(n + 1, sizeof *w->res);
+    w->head = calloc(n + 1, sizeof *w->head);
+    w->next_edge = calloc(2 * m, sizeof *w->next_edge);
+    w->deg = calloc(n + 1, sizeof *w->deg);
+    w->queue = calloc(n + 1, sizeof *w->queue);
+    w->zk = calloc(m, sizeof *w->zk);
+    w->g0 = calloc(m, sizeof *w->g0);
+    w->g1 = calloc(m, sizeof *w->g1);
+    w->gshift = calloc(m, sizeof *w->gshift);
+    w->zprev = calloc(m, sizeof *w->zprev);
+    w->fac_st = calloc(m, 1);
+    w->fac_slope = calloc(m, sizeof *w->fac_slope);
+    if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->zprev || !w->fac_st || !w->fac_slope ||!w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
+        !w->y || !w->vs || !w->d || !w->res || !w->head || !w->next_edge || !w->deg || !w->queue) {
+        dp_net_ws_free(w);
+        return NULL;
+    }
+    return w;
+}
+
+void dp_net_ws_free(dp_net_ws *w)
+{
+    if (w == NULL)
+        return;
+    free(w->W), free(w->H), free(w->R), free(w->es), free(w->parent), free(w->pot), free(w->kidx);
+    free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->head);
+    free(w->next_edge), free(w->deg), free(w->queue);
+    free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->zprev), free(w->fac_st), free(w->fac_slope);
+    free(w);
+}
+
+void dp_net_ws_relaxation(dp_net_ws *w, const dp_relaxation *const *gamma, double theta)
+{
+    w->gamma = gamma;
+    w->theta = theta;
+}
+
+double *dp_net_ws_W(dp_net_ws *w)
+{
+    return w->W;
+}
+
+void dp_net_ws_W_changed(dp_net_ws *w)
+{
+    w->factored = 0;
+}
+
+/* ---- the graphs Sigma_e ------------------------------------------------------------------------------ */
+
+/* End index of an element in the union-find (the ground is n). */
+static size_t end_index(const dp_net_ws *w, long e)
+{
+    return e < 0 ? w->n : (size_t)e;
+}
+
+static double rel_velocity(const dp_net_elem *e, const double *v)
+{
+    return (e->b >= 0 ? v[e->b] : 0) - (e->a >= 0 ? v[e->a] : 0);
+}
+
+/* The argument of A and S at z, each read exactly at a remembered vertex. */
+static double arg_A(const dp_net_elem *e, const vertex *at)
+{
+    return at->src == SRC_A ? at->y : at->z - e->vb;
+}
+
+static double arg_S(double u, double h, const vertex *at)
+{
+    return at->src == SRC_S ? at->y : u + h * at->z;
+}
+
+/* The piece of Sigma_e leaving `at` towards dir: slope in z, force there, the next vertex. */
+static int sigma_piece(const dp_net_ws *w, size_t i, double u, double h, const vertex *at, int dir,
+                       double *slope, double *f, vertex *next)
+{
+    const dp_net_elem *e = &w->el[i];
+    dp_graph_piece_t pc;
+    *slope = 0, *f = 0;
+    next->z = dir * INFINITY, next->src = SRC_NONE, next->y = 0;
+    if (e->A) {
+        dp_graph_piece(e->A, arg_A(e, at), dir, &pc);
+        if (pc.blocked)
+            return 0;
+        *slope += pc.slope, *f += pc.f;
+        if (isfinite(pc.next))
+            *next = (vertex){ pc.next + e->vb, SRC_A, pc.next };
+    }
+    if (e->S) {
+        dp_graph_piece(e->S, arg_S(u, h, at), dir, &pc);
+        if (pc.blocked)
+            return 0;
+        *slope += h * pc.slope, *f += pc.f;
+        double z = (pc.next - u) / h;
+        if (isfinite(pc.next) && (dir > 0 ? z < next->z : z > next->z))
+            *next = (vertex){ z, SRC_S, pc.next };
+    }
+    *slope -= w->g1[i];                                  /* the relaxation, linearized */
+    *f -= w->g0[i] + w->g1[i] * (at->z - w->zk[i]);
+    return 1;
+}
+
+/* The force interval of Sigma_e at a vertex. */
+static void sigma_interval(const dp_net_ws *w, size_t i, double u, double h, const vertex *at, double *lo,
+                           double *hi)
+{
+    const dp_net_elem *e = &w->el[i];
+    double l, r, g = w->g0[i] + w->g1[i] * (at->z - w->zk[i]);
+    *lo = *hi = -g;
+    if (e->A) {
+        dp_graph_force(e->A, arg_A(e, at), &l, &r);
+        *lo += l, *hi += r;
+    }
+    if (e->S) {
+        dp_graph_force(e->S, arg_S(u, h, at), &l, &r);
+        *lo += l, *hi += r;
+    }
+}
+
+/* Puts element i free on the piece leaving `at` towards dir; 0 if the domain ends there. */
+static int set_free(dp_net_ws *w, size_t i, double u, double h, const vertex *at, int dir)
+{
+    elem_state *s = &w->es[i];
+    double slope, f;
+    vertex nx;
+    if (!sigma_piece(w, i, u, h, at, dir, &slope, &f, &nx))
+        return 0;
+    s->st = FREE;
+    s->zref = at->z, s->lam0 = f, s->slope = slope;
+    if (dir > 0)
+        s->lo = *at, s->hi = nx;
+    else
+        s->lo = nx, s->hi = *at;
+    return 1;
+}
+
+/* ---- the fixed forest -------------------------------------------------------------------------------- */
+
+/* Root of i with path compression; pot[i] becomes v_i - v_root. */
+static long find(dp_net_ws *w, long i)
+{
+    long r = i;
+    double acc = 0;
+    while (w->parent[r] != r)
+        acc += w->pot[r], r = w->parent[r];
+    /* second pass: point every node on the path at the root with its full potential */
+    while (w->parent[i] != i) {
+        long up = w->parent[i];
+        double pi = w->pot[i];
+        w->parent[i] = r, w->pot[i] = acc;
+        acc -= pi;
+        i = up;
+    }
+    return r;
+}
+
+/* Adds the constraint v_b - v_a = z; 0 when it closes a cycle (dependent on those already in). */
+static int join(dp_net_ws *w, const dp_net_elem *e, double z)
+{
+    long a = (long)end_index(w, e->a), b = (long)end_index(w, e->b);
+    long ra = find(w, a), rb = find(w, b);
+    if (ra == rb)
+        return 0;
+    double pa = w->pot[a], pb = w->pot[b];
+    /* v_rb + pb - v_ra - pa = z; the ground stays a root */
+    if (ra == (long)w->n) {
+        w->parent[rb] = ra, w->pot[rb] = z + pa - pb;
+    } else {
+        w->parent[ra] = rb, w->pot[ra] = pb - pa - z;
+    }
+    return 1;
+}
+
+static void forest_reset(dp_net_ws *w)
+{
+    for (size_t i = 0; i <= w->n; i++)
+        w->parent[i] = (long)i, w->pot[i] = 0;
+}
+
+/* Builds the forest of the fixed elements and the map node -> reduced unknown. */
+static void build_forest(dp_net_ws *w)
+{
+    forest_reset(w);
+    for (size_t i = 0; i < w->ne; i++)
+        if (w->es[i].st == FIXED)
+            join(w, &w->el[i], w->es[i].fix.z);
+    long ground = find(w, (long)w->n);
+    size_t nr = 0;
+    for (size_t i = 0; i <= w->n; i++)
+        w->kidx[i] = -2;
+    for (size_t i = 0; i < w->n; i++) {
+        long r = find(w, (long)i);
+        w->c[i] = w->pot[i];
+        if (r == ground) {
+            w->kidx[i] = -1;
+            w->c[i] -= w->pot[w->n]; /* v_ground = 0 */
+        } else {
+            if (w->kidx[r] == -2)
+                w->kidx[r] = (long)nr++;
+            w->kidx[i] = w->kidx[r];
+        }
+    }
+    w->nr = nr;
+}
+
+/* ---- the reduced system ------------------------------------------------------------------------------ */
+
+/* rhs_eff = rhs - h sum_free (lam0 - slope zref) b. */
+static void effective_rhs(dp_net_ws *w, double h, const double *rhs)
+{
+    memcpy(w->rhs_eff, rhs, w->n * sizeof *rhs);
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *s = &w->es[i];
+        const dp_net_elem *e = &w->el[i];
+        if (s->st != FREE)
+            continue;
+        double g = h * (s->lam0 - s->slope * s->zref);
+        if (e->a >= 0)
+            w->rhs_eff[e->a] += g;
+        if (e->b >= 0)
+            w->rhs_eff[e->b] -= g;
+    }
+}
+
+/* H = W + h sum_free slope b b^T. */
+static void assemble_H(dp_net_ws *w, double h)
+{
+    size_t p1 = w->p + 1;
+    memcpy(w->H, w->W, w->n * p1 * sizeof *w->H);
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *s = &w->es[i];
+        const dp_net_elem *e = &w->el[i];
+        double k = h * s->slope;
+        if (s->st != FREE || k == 0)
+            continue;
+        if (e->a >= 0)
+            w->H[(size_t)e->a * p1] += k;
+        if (e->b >= 0)
+            w->H[(size_t)e->b * p1] += k;
+        if (e->a >= 0 && e->b >= 0) {
+            size_t lo = (size_t)(e->a < e->b ? e->a : e->b), d = (size_t)labs(e->b - e->a);
+            w->H[lo * p1 + d] -= k;
+        }
+    }
+}
+
+static int reduced_storage(dp_net_ws *w)
+{
+    size_t need = w->nr * (w->pr + 1);
+    if (need > w->R_cap) {
+        double *R = realloc(w->R, need * sizeof *R);
+        if (R == NULL)
+            return DP_ENOMEM;
+        w->R = R, w->R_cap = need;
+    }
+    memset(w->R, 0, need * sizeof *w->R);
+    return DP_OK;
+}
+
+/* Whether the assignment's structure (which elements are fixed, the free ones' slopes) is the factored one:
+ * H and R depend on nothing else, so a quiet step reuses them. */
+static int same_structure(const dp_net_ws *w)
+{
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *s = &w->es[i];
+        if (w->fac_st[i] != s->st || (s->st == FREE && w->fac_slope[i] != s->slope))
+            return 0;
+    }
+    return 1;
+}
+
+static int factor_reduced(dp_net_ws *w);
+
+/* rhs_eff for the current assignment; H and R's factor only where the structure changed (build_forest must
+ * have run: R is over its trees). */
+static int prepare(dp_net_ws *w, double h, const double *rhs)
+{
+    effective_rhs(w, h, rhs);
+    if (w->factored && h == w->h_factored && same_structure(w))
+        return DP_OK;
+    assemble_H(w, h);
+    int s = factor_reduced(w);
+    w->factored = s == DP_OK;
+    w->h_factored = h;
+    for (size_t i = 0; s == DP_OK && i < w->ne; i++)
+        w->fac_st[i] = (unsigned char)w->es[i].st, w->fac_slope[i] = w->es[i].slope;
+    return s;
+}
+
+/* R = T^T H T in band storage, factored (Cholesky). */
+static int factor_reduced(dp_net_ws *w)
+{
+    size_t n = w->n, p1 = w->p + 1, pr = 0;
+    for (size_t i = 0; i < n; i++)
+        for (size_t d = 1; d < p1 && i + d < n; d++) {
+            long ki = w->kidx[i], kj = w->kidx[i + d];
+            if (w->H[i * p1 + d] != 0 && ki >= 0 && kj >= 0 && (size_t)labs(ki - kj) > pr)
+                pr = (size_t)labs(ki - kj);
+        }
+    w->pr = pr;
+    if (w->nr == 0)
+        return DP_OK;
+    if (reduced_storage(w) != DP_OK)
+        return DP_ENOMEM;
+    size_t q = pr + 1;
+    for (size_t i = 0; i < n; i++) {
+        long ki = w->kidx[i];
+        if (ki < 0)
+            continue;
+        w->R[(size_t)ki * q] += w->H[i * p1];
+        for (size_t d = 1; d < p1 && i + d < n; d++) {
+            long kj = w->kidx[i + d];
+            double h = w->H[i * p1 + d];
+            if (kj < 0 || h == 0)
+                continue;
+            if (kj == ki)
+                w->R[(size_t)ki * q] += 2 * h;
+            else if (kj > ki)
+                w->R[(size_t)ki * q + (size_t)(kj - ki)] += h;
+            else
+                w->R[(size_t)kj * q + (size_t)(ki - kj)] += h;
+        }
+    }
+    gsl_matrix_view Rv = gsl_matrix_view_array(w->R, w->nr, q);
+    return gsl_linalg_cholesky_band_decomp(&Rv.matrix) == 0 ? DP_OK : DP_ESOLVE;
+}
+
+/* y = H x for the symmetric band H. */
+static void band_mul(const dp_net_ws *w, const double *x, double *y)
+{
+    size_t n = w->n, p1 = w->p + 1;
+    for (size_t i = 0; i < n; i++)
+        y[i] = w->H[i * p1] * x[i];
+    for (size_t i = 0; i < n; i++)
+        for (size_t d = 1; d < p1 && i + d < n; d++) {
+            double h = w->H[i * p1 + d];
+            y[i] += h * x[i + d];
+            y[i + d] += h * x[i];
+        }
+}
+
+/* The minimizer of the current assignment into vs: v = T y + c with R y = T^T (rhs_eff - H c). */
+static int solve_assignment(dp_net_ws *w)
+{
+    size_t n = w->n;
+    band_mul(w, w->c, w->res);
+    memset(w->y, 0, w->nr * sizeof *w->y);
+    for (size_t i = 0; i < n; i++)
+        if (w->kidx[i] >= 0)
+            w->y[w->kidx[i]] += w->rhs_eff[i] - w->res[i];
+    if (w->nr) {
+        gsl_matrix_view Rv = gsl_matrix_view_array(w->R, w->nr, w->pr + 1);
+        gsl_vector_view yv = gsl_vector_view_array(w->y, w->nr);
+        if (gsl_linalg_cholesky_band_svx(&Rv.matrix, &yv.vector) != 0)
+            return DP_ESOLVE;
+    }
+    for (size_t i = 0; i < n; i++)
+        w->vs[i] = (w->kidx[i] >= 0 ? w->y[w->kidx[i]] : 0) + w->c[i];
+    return DP_OK;
+}
+
+/* The fixed elements' multipliers from the residual h sum_F b_e lambda_e = rhs_eff - H v, peeled off the
+ * forest leaf by leaf (each leaf's residual belongs to its one remaining edge). */
+static void multipliers(dp_net_ws *w, double h)
+{
+    size_t n = w->n, nq = 0;
+    band_mul(w, w->vs, w->res);
+    for (size_t i = 0; i < n; i++)
+        w->res[i] = w->rhs_eff[i] - w->res[i];
+    for (size_t i = 0; i <= n; i++)
+        w->head[i] = -1, w->deg[i] = 0;
+    for (size_t k = 0; k < w->ne; k++) {
+        if (w->es[k].st != FIXED)
+            continue;
+        size_t a = end_index(w, w->el[k].a), b = end_index(w, w->el[k].b);
+        w->next_edge[2 * k] = w->head[a], w->head[a] = (long)(2 * k);
+        w->next_edge[2 * k + 1] = w->head[b], w->head[b] = (long)(2 * k + 1);
+        w->deg[a]++, w->deg[b]++;
+        w->es[k].lam = NAN;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (w->deg[i] == 1)
+            w->queue[nq++] = i;
+    for (size_t qi = 0; qi < nq; qi++) {
+        size_t i = w->queue[qi];
+        if (w->deg[i] != 1)
+            continue;
+        long slot = w->head[i];
+        while (slot >= 0 && !isnan(w->es[slot / 2].lam) )
+            slot = w->next_edge[slot];
+        if (slot < 0)
+            continue;
+        size_t k = (size_t)slot / 2;
+        const dp_net_elem *e = &w->el[k];
+        double sign_i = (long)i == e->b ? 1 : -1;   /* b_e's entry at node i */
+        double lam = w->res[i] / (h * sign_i);
+        w->es[k].lam = lam;
+        size_t j = end_index(w, (long)i == e->b ? e->a : e->b);
+        w->res[j] -= h * -sign_i * lam;
+        w->deg[i]--, w->deg[j]--;
+        if (j < n && w->deg[j] == 1)
+            w->queue[nq++] = j;
+    }
+}
+
+/* ---- the active-set iteration ---------------------------------------------------------------------- */
+
+/* Whether lam lies in [lo, hi] up to rounding of the forces involved. */
+static int inside(double lam, double lo, double hi)
+{
+    double tol = 1e-12 * (1 + fabs(lam) + (isfinite(lo) ? fabs(lo) : 0) + (isfinite(hi) ? fabs(hi) : 0));
+    return lam >= lo - tol && lam <= hi + tol;
+}
+
+/* The assignment at a start point v: elements on a vertex of A are fixed there (while independent),
+ * others free on the piece holding z. 0 when some z lies outside its graph's domain. */
+static int assign_start(dp_net_ws *w, double h, const double *u, const double *v)
+{
+    forest_reset(w);
+    for (size_t i = 0; i < w->ne; i++) {
+        const dp_net_elem *e = &w->el[i];
+        double z = rel_velocity(e, v), lo, hi, slope, f;
+        vertex at = { z, SRC_NONE, 0 }, below;
+        if (e->A && dp_graph_has_vertex(e->A, z - e->vb))
+            at.src = SRC_A, at.y = z - e->vb;
+        else if (e->S && dp_graph_has_vertex(e->S, u[i] + h * z))
+            at.src = SRC_S, at.y = u[i] + h * z;
+        sigma_interval(w, i, u[i], h, &at, &lo, &hi);
+        if (lo == hi && !isfinite(lo))
+            return 0;                    /* outside the domain */
+        if (lo < hi && join(w, e, z)) {  /* a vertex with a force interval */
+            w->es[i].st = FIXED, w->es[i].fix = at;
+            continue;
+        }
+        if (!set_free(w, i, u[i], h, &at, +1) && !set_free(w, i, u[i], h, &at, -1))
+            return 0;
+        /* inside a piece (not at a vertex): the piece reaches back to the previous vertex */
+        if (at.src == SRC_NONE && sigma_piece(w, i, u[i], h, &at, -1, &slope, &f, &below))
+            w->es[i].lo = below;
+    }
+    return 1;
+}
+
+/* The first free element that meets a vertex on the way from v along d, and the fraction t of the way;
+ * t = 1 when none does. Elements whose ends the fixed forest already joins cannot move. */
+static double blocking(dp_net_ws *w, const double *v, long *which, int *side)
+{
+    double t = 1;
+    *which = -1;
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *s = &w->es[i];
+        const dp_net_elem *e = &w->el[i];
+        if (s->st != FREE)
+            continue;
+        if (find(w, (long)end_index(w, e->a)) == find(w, (long)end_index(w, e->b)))
+            continue;
+        double z = rel_velocity(e, v), dz = rel_velocity(e, w->d), ti;
+        if (dz > 0 && isfinite(s->hi.z))
+            ti = (s->hi.z - z) / dz;
+        else if (dz < 0 && isfinite(s->lo.z))
+            ti = (s->lo.z - z) / dz;
+        else
+            continue;
+        if (ti < 0)
+            ti = 0;
+        if (ti < t) {
+            t = ti, *which = (long)i, *side = dz > 0 ? 1 : -1;
+        }
+    }
+    return t;
+}
+
+/* Releases the lowest-index fixed element whose multiplier left its interval; 0 when none did. */
+static int release(dp_net_ws *w, double h, const double *u)
+{
+    for (size_t i = 0; i < w->ne; i++) {
+        elem_state *s = &w->es[i];
+        if (s->st != FIXED)
+            continue;
+        double lo, hi;
+        sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
+        if (inside(s->lam, lo, hi))
+            continue;
+        vertex at = s->fix;
+        if (set_free(w, i, u[i], h, &at, s->lam > hi ? 1 : -1))
+            return 1;
+    }
+    return 0;
+}
+
+/* Whether free element i sits exactly at rest (z = v_b, inside A's interval there) between two ends the
+ * fixed forest already joins: a stick interval in parallel with a fixed one, which could not be fixed itself
+ * (its constraint depends on the others). */
+static int parallel_at_rest(dp_net_ws *w, size_t i, const dp_net_force *o)
+{
+    const dp_net_elem *e = &w->el[i];
+    double lo, hi;
+    if (w->es[i].st != FREE || e->A == NULL || e->S != NULL || o->z != e->vb || w->g1[i] != 0 || w->g0[i] != 0)
+        return 0;
+    dp_graph_force(e->A, 0, &lo, &hi);
+    return hi > lo && find(w, (long)end_index(w, e->a)) == find(w, (long)end_index(w, e->b));
+}
+
+/* A fixed element at rest with the same ends as free element i (either way round), or -1; *sign is +1 when
+ * it has i's orientation. */
+static long parallel_partner(const dp_net_ws *w, size_t i, double *sign)
+{
+    const dp_net_elem *e = &w->el[i];
+    for (long slot = w->head[end_index(w, e->a)]; slot >= 0; slot = w->next_edge[slot]) {
+        size_t j = (size_t)slot / 2;
+        const dp_net_elem *p = &w->el[j];
+        if (j == i || p->A == NULL || p->S != NULL || w->es[j].fix.src != SRC_A || w->es[j].fix.y != 0)
+            continue;
+        if (p->a == e->a && p->b == e->b)
+            return *sign = 1, (long)j;
+        if (p->a == e->b && p->b == e->a)
+            return *sign = -1, (long)j;
+    }
+    return -1;
+}
+
+/* Parallel stick intervals hold their common force together, but how they split it is not determined by
+ * the motion: the split reported gives each its lower bound plus a share of the rest in proportion to its
+ * interval's width (so each stays inside its own interval), and all of them stick. */
+static void share_parallel(dp_net_ws *w, dp_net_force *f)
+{
+    for (size_t i = 0; i < w->ne; i++) {
+        double sign_i;
+        long j;
+        if (!parallel_at_rest(w, i, &f[i]) || (j = parallel_partner(w, i, &sign_i)) < 0)
+            continue;
+        /* the group: j and every free element at rest parallel to it (in j's orientation) */
+        double total = f[j].lambda, lo_sum, hi_sum, lo, hi;
+        dp_graph_force(w->el[j].A, 0, &lo_sum, &hi_sum);
+        for (size_t k = i; k < w->ne; k++) {
+            double sg;
+            if (parallel_at_rest(w, k, &f[k]) && parallel_partner(w, k, &sg) == j) {
+                dp_graph_force(w->el[k].A, 0, &lo, &hi);
+                total += sg * f[k].lambda;
+                lo_sum += sg > 0 ? lo : -hi, hi_sum += sg > 0 ? hi : -lo;
+                f[k].at_rest = 2;   /* mark: in this group */
+            }
+        }
+        double spare = total - lo_sum, width = hi_sum - lo_sum;
+        for (size_t k = 0; k < w->ne; k++) {
+            double sg = 1;
+            if (k != (size_t)j && !(f[k].at_rest == 2 && parallel_partner(w, k, &sg) == j))
+                continue;
+            dp_graph_force(w->el[k].A, 0, &lo, &hi);
+            double klo = sg > 0 ? lo : -hi, khi = sg > 0 ? hi : -lo;
+            double share = klo + spare * (khi - klo) / width;
+            f[k].lambda = f[k].a = sg * share;
+            f[k].at_rest = 1;
+        }
+    }
+}
+
+static void report(dp_net_ws *w, double h, const double *u, const double *v, dp_net_force *f)
+{
+    for (size_t i = 0; i < w->ne; i++) {
+        const dp_net_elem *e = &w->el[i];
+        const elem_state *s = &w->es[i];
+        dp_net_force *o = &f[i];
+        double alo = 0, ahi = 0, slo = 0, shi = 0;
+        o->z = rel_velocity(e, v);
+        vertex at = s->st == FIXED ? s->fix : (vertex){ o->z, SRC_NONE, 0 };
+        o->lambda = s->st == FIXED ? s->lam : s->lam0 + s->slope * (o->z - s->zref);
+        o->lambda += w->g0[i] + w->g1[i] * (at.z - w->zk[i]);   /* the graphs' part, without gamma */
+        if (e->A)
+            dp_graph_force(e->A, arg_A(e, &at), &alo, &ahi);
+        if (e->S)
+            dp_graph_force(e->S, arg_S(u[i], h, &at), &slo, &shi);
+        /* Where both parts are set-valued the split is not unique: the damper takes what it can. */
+        if (slo == shi)
+            o->s = slo, o->a = o->lambda - slo;
+        else if (alo == ahi)
+            o->a = alo, o->s = o->lambda - alo;
+        else {
+            o->a = fmin(fmax(o->lambda - slo, alo), ahi);
+            o->s = o->lambda - o->a;
+        }
+        o->at_rest = s->st == FIXED && e->A && arg_A(e, &at) == 0 && ahi > alo;
+        if (o->at_rest)
+            o->z = e->vb;
+    }
+    share_parallel(w, f);
+}
+
+/* The piecewise-linear problem (the relaxation frozen in its linearization) from the start point v. */
+/* Moves free element i, whose relative velocity z left its piece, to where z lies: fixed at the first
+ * vertex with a force interval on the way (or the domain's end), else on the piece holding z. */
+static void follow(dp_net_ws *w, size_t i, double h, const double *u, double z)
+{
+    elem_state *s = &w->es[i];
+    int dir = z > s->hi.z ? 1 : -1;
+    for (int guard = 0; guard < 64; guard++) {
+        vertex at = dir > 0 ? s->hi : s->lo;
+        double lo, hi;
+        sigma_interval(w, i, u[i], h, &at, &lo, &hi);
+        if (lo < hi || !set_free(w, i, u[i], h, &at, dir)) {
+            s->st = FIXED, s->fix = at;
+            return;
+        }
+        if (dir > 0 ? z <= s->hi.z : z >= s->lo.z)
+            return;
+    }
+}
+
+/* One update of the primal-dual active-set method: every free element whose z left its piece and every
+ * fixed one whose multiplier left its interval changes at once (a semismooth Newton step on the
+ * piecewise-linear optimality conditions). Returns how many changed: 0 means vs is the exact minimizer. */
+static size_t bulk_update(dp_net_ws *w, double h, const double *u)
+{
+    size_t changed = 0;
+    for (size_t i = 0; i < w->ne; i++) {
+        elem_state *s = &w->es[i];
+        if (s->st == FREE) {
+            double z = rel_velocity(&w->el[i], w->vs);
+            if (z > s->hi.z || z < s->lo.z)
+                follow(w, i, h, u, z), changed++;
+        } else {
+            double lo, hi;
+            sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
+            if (!inside(s->lam, lo, hi)) {
+                vertex at = s->fix;
+                if (set_free(w, i, u[i], h, &at, s->lam > hi ? 1 : -1))
+                    changed++;
+            }
+        }
+    }
+    return changed;
+}
+
+/* Whether the fixed elements still form a forest (bulk updates may close a cycle). */
+static int fixed_forest(dp_net_ws *w)
+{
+    forest_reset(w);
+    for (size_t i = 0; i < w->ne; i++)
+        if (w->es[i].st == FIXED && !join(w, &w->el[i], w->es[i].fix.z))
+            return 0;
+    return 1;
+}
+
+/* The primal-dual active-set method from the warm start: usually the answer in one to three solves, with no
+ * guarantee of termination outside M-matrix structure; DP_OK with v the minimizer, or DP_EAGAIN-like 1 when
+ * it did not settle (the caller then runs the primal method, which always ends). */
+static int pdas(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, unsigned long long *iters)
+{
+    for (int it = 0; it < 12; it++) {
+        if (!fixed_forest(w))
+            return 1;
+        (*iters)++;
+        build_forest(w);
+        if (prepare(w, h, rhs) != DP_OK || solve_assignment(w) != DP_OK)
+            return 1;
+        multipliers(w, h);
+        if (bulk_update(w, h, u) == 0) {
+            memcpy(v, w->vs, w->n * sizeof *v);
+            return DP_OK;
+        }
+    }
+    return 1;
+}
+
+static int solve_pl(dp_net_ws *w, double h, const double *rhs, const double *u, double *v,
+                    unsigned long long *iters)
+{
+    size_t n = w->n;
+    if (!assign_start(w, h, u, v)) {
+        memset(v, 0, n * sizeof *v);
+        if (!assign_start(w, h, u, v))
+            return DP_ESOLVE;
+    }
+    if (pdas(w, h, rhs, u, v, iters) == DP_OK)
+        return DP_OK;
+    /* the primal active-set method: from a point of the domain, the objective falls strictly between
+     * minimizers of assignments, so it ends; this is the guarantee behind the fast path above */
+    if (!assign_start(w, h, u, v)) {
+        memset(v, 0, n * sizeof *v);
+        if (!assign_start(w, h, u, v))
+            return DP_ESOLVE;
+    }
+    size_t cap = 64 + 8 * w->ne;
+    for (size_t it = 0; it < cap; it++) {
+        (*iters)++;
+        build_forest(w);
+        int s = prepare(w, h, rhs);
+        s = s ? s : solve_assignment(w);
+        if (s != DP_OK)
+            return s;
+        for (size_t i = 0; i < n; i++)
+            w->d[i] = w->vs[i] - v[i];
+        long which;
+        int side = 0;
+        double t = blocking(w, v, &which, &side);
+        if (which < 0) {
+            memcpy(v, w->vs, n * sizeof *v);
+            multipliers(w, h);
+            if (!release(w, h, u))
+                return DP_OK;
+            continue;
+        }
+        for (size_t i = 0; i < n; i++)
+            v[i] += t * w->d[i];
+        elem_state *b = &w->es[which];
+        b->st = FIXED;
+        b->fix = side > 0 ? b->hi : b->lo;
+    }
+    return DP_ESOLVE;
+}
+
+static double zmax_change(const dp_net_ws *w, const double *v)
+{
+    double worst = 0;
+    for (size_t i = 0; i < w->ne; i++)
+        if (w->gamma[i]) {
+            double z = rel_velocity(&w->el[i], v);
+            worst = fmax(worst, fabs(z - w->zk[i]) / (1 + fabs(z)));
+        }
+    return worst;
+}
+
+int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, const double *v_guess,
+                 double *v, dp_net_force *f, unsigned long long *iters)
+{
+    memcpy(v, v_guess, w->n * sizeof *v);
+    if (w->gamma == NULL) {
+        int s = solve_pl(w, h, rhs, u, v, iters);
+        if (s == DP_OK)
+            report(w, h, u, v, f);
+        return s;
+    }
+    double th = w->theta;
+    for (size_t i = 0; i < w->ne; i++) {
+        w->zk[i] = rel_velocity(&w->el[i], v_guess);
+        w->gshift[i] = (1 - th) * w->zk[i] - w->el[i].vb;
+    }
+    /* Newton-Josephy: gamma linearized at the last iterate, each linearized step solved exactly; the
+     * iterates settle on the active set and then converge quadratically to rounding. */
+    for (int it = 0; it < 100; it++) {
+        for (size_t i = 0; i < w->ne; i++) {
+            if (w->gamma[i] == NULL)
+                continue;
+            double arg = th * w->zk[i] + w->gshift[i];
+            w->g0[i] = dp_relaxation_eval(w->gamma[i], arg);
+            w->g1[i] = th * dp_relaxation_slope(w->gamma[i], arg);
+        }
+        int s = solve_pl(w, h, rhs, u, v, iters);
+        if (s != DP_OK)
+            return s;
+        double change = zmax_change(w, v);
+        for (size_t i = 0; i < w->ne; i++)
+            w->zk[i] = rel_velocity(&w->el[i], v);
+        if (change <= 1e-14) {
+            report(w, h, u, v, f);
+            return DP_OK;
+        }
+    }
+    return DP_ESOLVE;
+}
+
+/* ---- the assignment held: event location ------------------------------------------------------------- */
+
+size_t dp_net_ws_pattern_bytes(const dp_net_ws *w)
+{
+    return (w->ne ? w->ne : 1) * sizeof *w->es;
+}
+
+void dp_net_ws_pattern_save(const dp_net_ws *w, void *buf)
+{
+    memcpy(buf, w->es, w->ne * sizeof *w->es);
+}
+
+void dp_net_ws_pattern_restore(dp_net_ws *w, const void *buf)
+{
+    memcpy(w->es, buf, w->ne * sizeof *w->es);
+}
+
+int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, dp_net_force *f,
+                        double *margin)
+{
+    build_forest(w);
+    int s = prepare(w, h, rhs);
+    s = s ? s : solve_assignment(w);
+    if (s != DP_OK)
+        return s;
+    memcpy(v, w->vs, w->n * sizeof *v);
+    multipliers(w, h);
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *e = &w->es[i];
+        if (e->st == FREE) {
+            double z = rel_velocity(&w->el[i], v);
+            margin[i] = fmin(z - e->lo.z, e->hi.z - z);     /* -inf + x stays finite-safe: fmin */
+        } else {
+            double lo, hi;
+            sigma_interval(w, i, u[i], h, &e->fix, &lo, &hi);
+            margin[i] = fmin(e->lam - lo, hi - e->lam);
+        }
+    }
+    report(w, h, u, v, f);
+    return DP_OK;
+}
+
+int dp_net_ws_pattern_same(const dp_net_ws *w, const void *buf)
+{
+    const elem_state *old = buf;
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *a = &w->es[i], *b = &old[i];
+        if (a->st != b->st)
+            return 0;
+        if (a->st == FIXED ? a->fix.z != b->fix.z : a->lo.z != b->lo.z || a->hi.z != b->hi.z)
+            return 0;
+    }
+    return 1;
+}
+
+void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v)
+{
+    elem_state *s = &w->es[i];
+    if (s->st == FIXED)
+        return;
+    double z = rel_velocity(&w->el[i], v);
+    s->fix = fabs(z - s->lo.z) <= fabs(s->hi.z - z) ? s->lo : s->hi;
+    s->st = FIXED;
+}
+
+int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u)
+{
+    const elem_state *s = &w->es[i];
+    double lo, hi;
+    if (s->st != FIXED)
+        return 0;
+    sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
+    if (s->lam > hi || s->lam < lo)
+        return s->lam > hi ? 1 : -1;
+    /* at a located release the force is at a bound to rounding: the nearer one (an end ray's is infinite) */
+    return !isfinite(hi) ? -1 : !isfinite(lo) ? 1 : s->lam - lo > hi - s->lam ? 1 : -1;
+}
+
+int dp_net_ws_fixed(const dp_net_ws *w, size_t i)
+{
+    return w->es[i].st == FIXED;
+}
+
+int dp_net_ws_at_rest(const dp_net_ws *w, size_t i)
+{
+    const elem_state *s = &w->es[i];
+    const dp_net_elem *e = &w->el[i];
+    double lo, hi;
+    if (s->st != FIXED || e->A == NULL || arg_A(e, &s->fix) != 0)
+        return 0;
+    dp_graph_force(e->A, 0, &lo, &hi);
+    return hi > lo;
+}
+
+void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir)
+{
+    vertex at = w->es[i].fix;
+    set_free(w, i, u[i], h, &at, dir);
+}

@@ -1,0 +1,216 @@
+/* tests/test_network_step.c - the network's exact theta-step (src/core/network_step.c) against brute force:
+ * on random small networks of Coulomb elements (between the ground and a mass, between two masses, on
+ * belts), every stick/slip pattern is tried as a linear system and the one that satisfies its own sign and
+ * interval conditions is the minimizer; the active-set solution must be it, to rounding, with the sticking
+ * elements exactly at their belt speed. Then graph laws (a rope, a multi-vertex damper) against a fine
+ * scan of the convex objective. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+
+#include "dashpot/model.h"
+#include "dashpot/status.h"
+#include "../src/core/network_step.h"
+
+#define NMAX 4
+#define EMAX 5
+
+typedef struct problem {
+    size_t n, ne;
+    double W[NMAX * NMAX], r[NMAX], h;
+    long a[EMAX], b[EMAX];
+    double phi[EMAX], vb[EMAX];
+} problem;
+
+static uint64_t rng = 88172645463325252ull;
+static double urand(void)
+{
+    rng ^= rng << 13, rng ^= rng >> 7, rng ^= rng << 17;
+    return (double)(rng >> 11) / 9007199254740992.0;
+}
+
+/* A random SPD W = A A^T + n I / 4, a right side, elements with random ends, thresholds and belts. */
+static void random_problem(problem *p)
+{
+    memset(p, 0, sizeof *p);
+    p->n = 1 + (size_t)(urand() * NMAX);
+    p->ne = 1 + (size_t)(urand() * EMAX);
+    p->h = 0.01 + urand();
+    double A[NMAX * NMAX];
+    for (size_t i = 0; i < p->n * p->n; i++)
+        A[i] = urand() - 0.5;
+    for (size_t i = 0; i < p->n; i++)
+        for (size_t j = 0; j < p->n; j++) {
+            double s = i == j ? 0.25 * (double)p->n : 0;
+            for (size_t k = 0; k < p->n; k++)
+                s += A[i * p->n + k] * A[j * p->n + k];
+            p->W[i * p->n + j] = s;
+        }
+    for (size_t i = 0; i < p->n; i++)
+        p->r[i] = 4 * (urand() - 0.5);
+    int ground_zero[NMAX] = { 0 };
+    for (size_t e = 0; e < p->ne; e++) {
+        long a = (long)(urand() * (double)(p->n + 1)) - 1, b;
+        do
+            b = (long)(urand() * (double)(p->n + 1)) - 1;
+        while (b == a || (a < 0 && b < 0));
+        p->a[e] = a, p->b[e] = b;
+        p->phi[e] = 0.05 + urand();
+        /* a belt at rest only once per node: two stuck ground elements at one speed would make the split of
+         * force between them (not the motion) ambiguous, which the brute force cannot settle */
+        long node = a < 0 ? b : b < 0 ? a : -1;
+        if (node >= 0 && !ground_zero[node] && urand() < 0.4)
+            p->vb[e] = 0, ground_zero[node] = 1;
+        else
+            p->vb[e] = urand() - 0.5;
+    }
+}
+
+static double zrel(const problem *p, size_t e, const double *v)
+{
+    return (p->b[e] >= 0 ? v[p->b[e]] : 0) - (p->a[e] >= 0 ? v[p->a[e]] : 0);
+}
+
+/* Tries pattern s (per element -1, 0 stick, +1); 1 and the velocity when it is consistent. */
+static int try_pattern(const problem *p, const int *s, double *v)
+{
+    size_t n = p->n, m = 0, idx[EMAX];
+    for (size_t e = 0; e < p->ne; e++)
+        if (s[e] == 0)
+            idx[m++] = e;
+    size_t N = n + m;
+    gsl_matrix *K = gsl_matrix_calloc(N, N);
+    gsl_vector *rhs = gsl_vector_calloc(N), *x = gsl_vector_alloc(N);
+    gsl_permutation *perm = gsl_permutation_alloc(N);
+    for (size_t i = 0; i < n; i++) {
+        for (size_t j = 0; j < n; j++)
+            gsl_matrix_set(K, i, j, p->W[i * n + j]);
+        gsl_vector_set(rhs, i, p->r[i]);
+    }
+    for (size_t e = 0; e < p->ne; e++) {
+        if (s[e] == 0)
+            continue;
+        double f = p->h * p->phi[e] * s[e];
+        if (p->b[e] >= 0)
+            *gsl_vector_ptr(rhs, (size_t)p->b[e]) -= f;
+        if (p->a[e] >= 0)
+            *gsl_vector_ptr(rhs, (size_t)p->a[e]) += f;
+    }
+    for (size_t k = 0; k < m; k++) {
+        size_t e = idx[k];
+        if (p->b[e] >= 0)
+            gsl_matrix_set(K, (size_t)p->b[e], n + k, p->h), gsl_matrix_set(K, n + k, (size_t)p->b[e], 1);
+        if (p->a[e] >= 0)
+            gsl_matrix_set(K, (size_t)p->a[e], n + k, -p->h), gsl_matrix_set(K, n + k, (size_t)p->a[e], -1);
+        gsl_vector_set(rhs, n + k, p->vb[e]);
+    }
+    int sg, ok = 0;
+    gsl_linalg_LU_decomp(K, perm, &sg);
+    double det = fabs(gsl_linalg_LU_det(K, sg));
+    if (det > 1e-12 && gsl_linalg_LU_solve(K, perm, rhs, x) == 0) {
+        ok = 1;
+        for (size_t i = 0; i < n; i++)
+            v[i] = gsl_vector_get(x, i);
+        for (size_t e = 0; e < p->ne && ok; e++)
+            if (s[e] != 0 && !((zrel(p, e, v) - p->vb[e]) * s[e] > -1e-12))
+                ok = 0;
+        for (size_t k = 0; k < m && ok; k++)
+            if (fabs(gsl_vector_get(x, n + k)) > p->phi[idx[k]] * (1 + 1e-12))
+                ok = 0;
+    }
+    gsl_permutation_free(perm);
+    gsl_vector_free(x);
+    gsl_vector_free(rhs);
+    gsl_matrix_free(K);
+    return ok;
+}
+
+/* The consistent pattern with the least objective (ties only in degenerate cases). */
+static int brute_force(const problem *p, double *best)
+{
+    int s[EMAX], found = 0;
+    size_t combos = 1;
+    for (size_t e = 0; e < p->ne; e++)
+        combos *= 3;
+    for (size_t c = 0; c < combos; c++) {
+        size_t k = c;
+        for (size_t e = 0; e < p->ne; e++, k /= 3)
+            s[e] = (int)(k % 3) - 1;
+        double v[NMAX];
+        if (try_pattern(p, s, v)) {
+            memcpy(best, v, sizeof v);
+            found = 1;
+        }
+    }
+    return found;
+}
+
+static void coulomb_graph(dp_graph *g, double phi)
+{
+    dp_model m = { .mass = 1, .damper = { .law = DP_DAMPER_COULOMB, .phi0 = phi } };
+    assert_int_equal(dp_model_prepare(&m), DP_OK);
+    *g = m.damper.graph;
+    dp_graph_clear(&m.spring.graph);
+}
+
+static void test_coulomb_step_against_brute_force(void **state)
+{
+    (void)state;
+    size_t agree = 0, stuck = 0;
+    for (int trial = 0; trial < 12000; trial++) {
+        problem p;
+        random_problem(&p);
+        dp_graph g[EMAX];
+        dp_net_elem el[EMAX];
+        for (size_t e = 0; e < p.ne; e++) {
+            coulomb_graph(&g[e], p.phi[e]);
+            el[e] = (dp_net_elem){ .a = p.a[e], .b = p.b[e], .A = &g[e], .S = NULL, .vb = p.vb[e] };
+        }
+        dp_net_ws *w = dp_net_ws_alloc(p.n, p.n - 1, p.ne, el);
+        assert_non_null(w);
+        double *W = dp_net_ws_W(w), u[EMAX] = { 0 }, guess[NMAX], v[NMAX], ref[NMAX];
+        for (size_t i = 0; i < p.n; i++)
+            for (size_t d = 0; i + d < p.n; d++)
+                W[i * p.n + d] = p.W[(i + d) * p.n + i];
+        dp_net_ws_W_changed(w);
+        for (size_t i = 0; i < p.n; i++)
+            guess[i] = urand() < 0.5 ? 0 : urand() - 0.5;
+        dp_net_force f[EMAX];
+        unsigned long long it = 0;
+        assert_int_equal(dp_net_solve(w, p.h, p.r, u, guess, v, f, &it), DP_OK);
+        assert_true(brute_force(&p, ref));
+        for (size_t i = 0; i < p.n; i++)
+            assert_true(fabs(v[i] - ref[i]) < 1e-9 * (1 + fabs(ref[i])));
+        for (size_t e = 0; e < p.ne; e++) {
+            if (f[e].at_rest) {
+                stuck++;
+                assert_true(fabs(zrel(&p, e, v) - p.vb[e]) <= 1e-15 * (1 + fabs(p.vb[e])) * 4);
+                assert_true(fabs(f[e].lambda) <= p.phi[e] * (1 + 1e-12));
+            } else {
+                assert_true(fabs(f[e].lambda) == p.phi[e]);
+            }
+        }
+        agree++;
+        dp_net_ws_free(w);
+        for (size_t e = 0; e < p.ne; e++)
+            dp_graph_clear(&g[e]);
+    }
+    assert_int_equal(agree, 12000);
+    assert_true(stuck > 1000);   /* the sample exercises sticking, not only slip */
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_coulomb_step_against_brute_force),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
