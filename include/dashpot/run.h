@@ -89,7 +89,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
 
 /* Produces up to `cap` records (cap >= 1) into buf, *n of them. Returns DP_MORE while records remain,
  * DP_DONE once the run is complete (possibly with *n > 0 final records), or an error (DP_ENONFINITE when
- * the solution diverged, DP_ESOLVE) after which the run is finished; no record with a non-finite number
+ * the solution diverged, DP_ESOLVE, DP_ECANCEL when the stop hook said so) after which the run is finished; no record with a non-finite number
  * is ever produced. */
 int dp_run_next(dp_run *run, dp_record *buf, size_t cap, size_t *n);
 
@@ -104,6 +104,19 @@ double dp_run_progress(const dp_run *run);
 
 /* A description of the last error of dp_run_next, "" if none. */
 const char *dp_run_error(const dp_run *run);
+
+/* A stop hook: returns > 0 when the run must end now (a deadline passed, the client left, shutdown), 0 to
+ * go on, < 0 to yield: dp_run_next then returns DP_MORE at once with the records made so far (maybe none),
+ * and the run goes on at the next call (a server's thread serves its other connections meanwhile).
+ * The solvers poll it every DP_RUN_POLL_WORK units of work (a unit is one time step, one evaluation of a
+ * step's implicit equation, one fixed-point iteration, one right-hand side evaluation or one sample), never
+ * between records only, so a run stops within a bounded amount of work whatever its output decimation
+ * (docs/operations.md, "Stopping a run"). Once it said stop, dp_run_next returns DP_ECANCEL and
+ * dp_run_error says when the run stopped. A yield inside a step (a thesis step of up to 10^6 iterations)
+ * is honoured after that step. The hook runs on the thread calling dp_run_next; NULL removes it. */
+typedef int (*dp_stop_fn)(void *ctx);
+#define DP_RUN_POLL_WORK 4096
+void dp_run_set_stop(dp_run *run, dp_stop_fn stop, void *ctx);
 
 /* Accepts NULL. */
 void dp_run_free(dp_run *run);

@@ -91,6 +91,8 @@ int dp_analytic_advance(dp_run *r)
 {
     dp_coulomb_problem p = problem_of(r);
     while (dp_run_room(r)) {
+        if (dp_run_stopped(r, dp_run_work(r)))
+            return r->status;
         r->n++;
         double t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
         while (r->an_arc.dir != 0 && r->an_arc.t1 <= t) { /* pass the turning points up to t */

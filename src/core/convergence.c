@@ -224,8 +224,11 @@ int dp_convergence_study_until(const dp_spec *spec, double max_steps, double ref
     stream *st = calloc(k + 1, sizeof *st);
     dp_sample *cur = calloc(k, sizeof *cur);
     s = st && cur ? open_streams(spec, &ref, max_steps, st, k, errs) : DP_ENOMEM;
-    for (size_t i = 0; st && i <= k; i++)
+    for (size_t i = 0; st && i <= k; i++) {
         st[i].stop = stop, st[i].ctx = ctx;
+        if (st[i].run && stop) /* inside a block too: a block of a decimated run may be the whole run */
+            dp_run_set_stop(st[i].run, stop, ctx);
+    }
     if (s == DP_OK)
         s = sweep(out, st, k, cur, errs);
     if (s == DP_OK)

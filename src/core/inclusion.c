@@ -52,11 +52,48 @@ static int side(const dp_inclusion *p, double w, unsigned long long *evals)
     return hi < 0 ? -1 : lo > 0 ? 1 : 0;
 }
 
+/* Narrows [*a, *b) (the first kink whose side is >= 0 lies in it) around the kink the last step ended at,
+ * galloping outwards from it: a step moves the solution by little, so a few evaluations find the kink that
+ * a plain bisection of a 10^4-point graph would take 14 evaluations (each with its own graph searches)
+ * for. Returns 1 if a kink solves (*w). */
+static int gallop(const dp_inclusion *p, const double *y, size_t n, double off, double scale, size_t h,
+                  size_t *a, size_t *b, double *w, unsigned long long *evals)
+{
+    double k = (y[h] - off) / scale;
+    int s = side(p, k, evals), dir = s; /* dir < 0: the kink sought is right of h; > 0: h or left of it */
+    if (s == 0) {
+        *w = k;
+        return 1;
+    }
+    if (dir < 0)
+        *a = h + 1;
+    else
+        *b = h;
+    for (size_t d = 1; dir < 0 ? d < n - h : d <= h; d *= 2) {
+        size_t i = dir < 0 ? h + d : h - d;
+        k = (y[i] - off) / scale;
+        s = side(p, k, evals);
+        if (s == 0) {
+            *w = k;
+            return 1;
+        }
+        if (s < 0)
+            *a = i + 1;
+        else
+            *b = i;
+        if (s != dir) /* passed it: it lies in [a, b) */
+            return 0;
+    }
+    return 0;
+}
+
 /* Narrows (*lo, *hi) with the kinks off + scale * y[i] of one graph; returns 1 if a kink solves. */
 static int search_kinks(const dp_inclusion *p, const double *y, size_t n, double off, double scale,
-                        double *lo, double *hi, double *w, unsigned long long *evals)
+                        double *lo, double *hi, double *w, size_t *hint, unsigned long long *evals)
 {
     size_t a = 0, b = n; /* first kink whose side is >= 0 */
+    if (hint && *hint < n && gallop(p, y, n, off, scale, *hint, &a, &b, w, evals))
+        return 1;
     while (a < b) {
         size_t mid = a + (b - a) / 2;
         double k = (y[mid] - off) / scale;
@@ -70,6 +107,8 @@ static int search_kinks(const dp_inclusion *p, const double *y, size_t n, double
         else
             b = mid;
     }
+    if (hint)
+        *hint = a < n ? a : n - 1;
     if (a > 0)
         *lo = fmax(*lo, (y[a - 1] - off) / scale);
     if (a < n)
@@ -121,9 +160,9 @@ int dp_inclusion_solve(const dp_inclusion *p, double *w, double *a, double *s, u
 {
     unsigned long long ev = 0;
     double lo = -INFINITY, hi = INFINITY, root;
-    int hit = search_kinks(p, p->A->y, p->A->n, -p->a_shift, 1.0, &lo, &hi, &root, &ev);
+    int hit = search_kinks(p, p->A->y, p->A->n, -p->a_shift, 1.0, &lo, &hi, &root, p->hint, &ev);
     if (!hit && p->S)
-        hit = search_kinks(p, p->S->y, p->S->n, p->s_x, p->s_h, &lo, &hi, &root, &ev);
+        hit = search_kinks(p, p->S->y, p->S->n, p->s_x, p->s_h, &lo, &hi, &root, p->hint ? p->hint + 1 : NULL, &ev);
     if (!hit) {
         double glo, ghi, t;
         if (isfinite(lo)) {

@@ -17,6 +17,7 @@ typedef struct dp_inclusion {
     double s_x, s_h;
     const dp_relaxation *gamma;
     double g_theta, g_shift;
+    size_t *hint;      /* NULL, or two slots (A, S) remembering where the last step's kink search ended */
 } dp_inclusion;
 
 /* Solves for *w and splits the set-valued part into the damper force *a in A(w - a_shift) and the spring

@@ -454,6 +454,8 @@ int dp_network_run_advance(dp_run *r)
         return DP_ENOMEM;
     nr_flush(r);
     while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
+        if (dp_run_stopped(r, dp_run_work(r)))
+            return r->status;
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
         if (nr->locate && nr->solved) {

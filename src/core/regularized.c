@@ -384,6 +384,8 @@ static int integrate_past(dp_run *r, double ts, unsigned long long *budget)
         if (*budget == 0)
             return DP_MORE;
         (*budget)--;
+        if (dp_run_stopped(r, r->n + r->reg->fevals + r->reg->jevals))
+            return r->status == DP_OK ? DP_MORE : r->status; /* a yield: as if the budget ran out */
         int s = step(r, ts);
         if (s != DP_OK)
             return s;
@@ -430,6 +432,8 @@ int dp_regularized_advance(dp_run *r)
     unsigned long long budget = REG_STEPS_PER_CALL, every = (unsigned long long)r->spec.output.every;
     double t_end = r->spec.solver.t_end;
     while (dp_run_room(r)) {
+        if (dp_run_stopped(r, r->n + r->reg->fevals + r->reg->jevals)) /* samples count as work too */
+            return r->status;
         /* The next sample that is kept: decimated grid points are never computed. */
         unsigned long long next = r->nsteps - r->n > every ? r->n + every : r->nsteps;
         double ts = next < r->nsteps ? fmin((double)next * r->h, t_end) : t_end;

@@ -130,6 +130,25 @@ int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
     return DP_MORE;
 }
 
+void dp_run_set_stop(dp_run *r, dp_stop_fn stop, void *ctx)
+{
+    r->stop = stop;
+    r->stop_ctx = ctx;
+    r->poll_at = 0; /* asked at the next poll */
+}
+
+int dp_run_poll_stop(dp_run *r, unsigned long long work)
+{
+    r->poll_at = work + DP_RUN_POLL_WORK;
+    int v = r->stop(r->stop_ctx);
+    if (v == 0)
+        return 0;
+    if (v < 0)
+        return 1; /* yield: the solver returns with r->status still DP_OK, dp_run_next says DP_MORE */
+    dp_run_fail(r, DP_ECANCEL, "the run was stopped at t = %.17g", r->cur.t);
+    return 1;
+}
+
 const dp_summary *dp_run_summary(const dp_run *r)
 {
     return &r->sum;

@@ -24,6 +24,7 @@ typedef struct dp_ss_law {
     int locate;          /* split steps at phase changes (events "locate" and a damper that can stick) */
     int motion;          /* branch "motion": leave rest whenever a motion solves the step */
     const dp_graph *A, *S;
+    size_t *kink_hint;   /* where the last step's kink searches ended (the run's kink_hint[2]) */
     const dp_relaxation *gamma;
     const dp_forcing *F;
     int F_const;         /* F is `none` or `constant`: F0 */
@@ -42,6 +43,7 @@ struct dp_run {
     dp_sample cur;              /* state at t = cur.t */
     dp_summary sum;
     dp_ss_law law;
+    size_t kink_hint[2];        /* stick-slip: the damper's and the spring graph's last kink (inclusion.c) */
     int finished, status;
     char error[256];
     char error_pointer[DP_POINTER_MAX]; /* where an allocation-time error is (a spec field), "" if anywhere */
@@ -59,6 +61,10 @@ struct dp_run {
     struct dp_net_run *net;
     /* the columns of a run whose samples are rows (dp_run_columns); NULL for one-mass samples */
     const dp_columns *cols;
+    /* the stop hook (dp_run_set_stop) and the work count at which it is polled next */
+    dp_stop_fn stop;
+    void *stop_ctx;
+    unsigned long long poll_at;
 };
 
 /* Queues one record for the caller. */
@@ -83,6 +89,24 @@ static inline void dp_run_emit_state(dp_run *r)
 void dp_run_emit_event(dp_run *r, dp_event_kind kind, double t, double x, double v);
 /* Marks the run failed with a status and message; returns the status. */
 int dp_run_fail(dp_run *r, int status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+
+/* Work done so far by a time-stepping solver: steps plus the evaluations and iterations inside them. */
+static inline unsigned long long dp_run_work(const dp_run *r)
+{
+    return r->n + r->sum.iterations;
+}
+
+/* Asks the stop hook (run.c); on stop fails the run with DP_ECANCEL and returns 1; on a yield returns 1
+ * with r->status still DP_OK. */
+int dp_run_poll_stop(dp_run *r, unsigned long long work);
+
+/* The solvers' advance loops call this with their work count (monotone): the hook is asked once every
+ * DP_RUN_POLL_WORK units, so the check costs one comparison per step. Returns 1 when the advance loop must
+ * return r->status now: DP_ECANCEL (stopped) or DP_OK (a yield; call it only between steps). */
+static inline int dp_run_stopped(dp_run *r, unsigned long long work)
+{
+    return r->stop != NULL && work >= r->poll_at && dp_run_poll_stop(r, work);
+}
 
 /* Solver entry points: prepare at allocation, then advance until the block is full or the run ends. */
 int dp_stick_slip_init(dp_run *r);

@@ -72,7 +72,7 @@ dp_inclusion dp_ss_step_inclusion(const dp_ss_law *L, const step_state *s, doubl
         .b = L->m * s->v - h * (1 - th) * L->c * s->v + h * L->c * L->vb
            - h * L->k * (s->x + h * th * (1 - th) * s->v) + h * dp_forcing_eval(L->F, s->t + th * h),
         .h = h, .A = L->A, .a_shift = L->vb, .S = L->S, .s_x = s->x, .s_h = h,
-        .gamma = L->gamma, .g_theta = th, .g_shift = (1 - th) * s->v - L->vb,
+        .gamma = L->gamma, .g_theta = th, .g_shift = (1 - th) * s->v - L->vb, .hint = L->kink_hint,
     };
 }
 
@@ -147,6 +147,8 @@ static void phase_event(dp_run *r, dp_phase before)
 static unsigned long long fast_stop(const dp_run *r)
 {
     unsigned long long stop = r->nsteps - 1;
+    if (r->n + DP_RUN_POLL_WORK < stop) /* back to the advance loop's stop poll now and then */
+        stop = r->n + DP_RUN_POLL_WORK;
     if (r->spec.output.samples && r->n + (unsigned long long)r->countdown - 1 < stop)
         stop = r->n + (unsigned long long)r->countdown - 1;
     return stop;
@@ -223,6 +225,8 @@ int dp_stick_slip_advance(dp_run *r)
 {
     const dp_ss_law *L = &r->law;
     while (dp_run_room(r)) {
+        if (dp_run_stopped(r, dp_run_work(r)))
+            return r->status;
         if (L->closed && fast_steps(r) != DP_OK)
             return r->status;
         double h = dp_run_step_length(r), fc = 0, fs = 0;
@@ -309,6 +313,7 @@ int dp_stick_slip_init(dp_run *r)
     L->vb = d->belt_velocity;
     L->theta = r->spec.solver.theta;
     L->A = &d->graph;
+    L->kink_hint = r->kink_hint;
     L->S = linear_spring ? NULL : &m->spring.graph;
     L->gamma = &d->relaxation;
     L->F = &m->forcing;

@@ -19,6 +19,8 @@ int dp_thesis_advance(dp_run *r)
     const dp_solver_spec *sv = &r->spec.solver;
     double phi0 = L->tau;
     while (dp_run_room(r)) {
+        if (dp_run_stopped(r, dp_run_work(r)))
+            return r->status;
         double dt = dp_run_step_length(r);
         double t1 = r->n + 1 < r->nsteps ? (double)(r->n + 1) * r->h : sv->t_end;
         double p1 = L->m / dt, p2 = p1 + L->k * dt;
@@ -31,6 +33,9 @@ int dp_thesis_advance(dp_run *r)
             Fc = phi0 * ((FF > 0) - (FF < 0));
             double vi = r->cur.v, vn = vi;
             for (int i = 1; i <= sv->Z; i++) {
+                /* Z may be 10^6: poll inside the step too, for a stop only (a yield waits for the step) */
+                if (dp_run_stopped(r, dp_run_work(r)) && r->status != DP_OK)
+                    return r->status;
                 vn = (FF - Fc + dp_relaxation_eval(L->gamma, vi)) / p2;
                 r->sum.iterations++;
                 if (fabs(vi - vn) < sv->eps)

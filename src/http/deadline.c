@@ -31,7 +31,31 @@ typedef struct conn {
     atomic_int arrived;       /* the current request has arrived (or was answered early) */
     atomic_int shut;          /* the sweep has shut it down already */
     _Atomic double ready_at;  /* monotonic seconds when it became ready for its current request */
+    int admitted;             /* holds one of the --max-connections places (conn_admit) */
 } conn;
+
+/* A connection takes one of the --max-connections places when it opens, if one is free, and keeps it until
+ * it closes; its requests are refused (503, connection closed) when it got none. Counting the open
+ * connections instead (as before) counts, in a burst, the very connections about to be refused: a burst of
+ * 80 against --max-connections 8 served 3. */
+static int take_place(server *s)
+{
+    long long n = atomic_load(&s->connections_admitted);
+    do {
+        if (n >= (long long)s->cfg.max_connections)
+            return 0;
+    } while (!atomic_compare_exchange_weak(&s->connections_admitted, &n, n + 1));
+    return 1;
+}
+
+int conn_admit(server *s, struct MHD_Connection *c)
+{
+    const union MHD_ConnectionInfo *info = MHD_get_connection_info(c, MHD_CONNECTION_INFO_SOCKET_CONTEXT);
+    const conn *k = info ? info->socket_context : NULL;
+    if (k == NULL) /* not watched (out of memory at open): the open count is all there is */
+        return atomic_load(&s->m.connections_open) <= (long long)s->cfg.max_connections;
+    return k->admitted;
+}
 
 void deadline_open(server *s, struct MHD_Connection *c, void **socket_context)
 {
@@ -44,6 +68,7 @@ void deadline_open(server *s, struct MHD_Connection *c, void **socket_context)
         return;
     }
     k->fd = info->connect_fd;
+    k->admitted = take_place(s);
     atomic_init(&k->ready_at, now_seconds());
     pthread_mutex_lock(&s->conns_lock);
     k->next = s->conns;
@@ -66,6 +91,8 @@ void deadline_close(server *s, void **socket_context)
     if (k->next)
         k->next->prev = k->prev;
     pthread_mutex_unlock(&s->conns_lock);
+    if (k->admitted)
+        atomic_fetch_sub(&s->connections_admitted, 1);
     free(k);
     *socket_context = NULL;
 }

@@ -74,6 +74,7 @@ typedef struct metrics {
     atomic_ullong runs_started, runs_completed, runs_failed, runs_cancelled;
     atomic_llong runs_in_flight, connections_open;
     atomic_llong studies_in_flight;              /* /v1/convergence studies computing now */
+    atomic_uint workers_busy;                    /* solver slots taken (slots.c); written under its lock */
     atomic_ullong connections_rejected;
     atomic_ullong connections_timed_out;         /* closed by the request deadline (deadline.c) */
 } metrics;
@@ -97,20 +98,28 @@ typedef struct server {
     struct web *web;             /* the page's files, read at start-up (page.c) */
     atomic_int draining;         /* SIGTERM seen: /readyz says 503 */
     atomic_int abort_streams;    /* grace period over: streams end with an error line */
+    atomic_llong connections_admitted; /* connections holding a --max-connections place (conn_admit) */
     pthread_mutex_t conns_lock;  /* guards `conns`, the open connections (deadline.c) */
     struct conn *conns;
     _Atomic(dp_stability_ws *) ws_pool[WS_POOL]; /* NULL or an idle workspace, taken by exchange */
+    pthread_mutex_t slots_lock;  /* guards the solver slots and their queue (slots.c) */
+    int slots_open;              /* shutdown: every request goes through */
+    struct request *wait_head, *wait_tail; /* requests parked for a slot, first come first served */
 } server;
 
 typedef struct stream stream;
 
 typedef struct request {
     server *srv;
+    struct request *wait_next;   /* the slot queue (slots.c) */
+    struct MHD_Connection *wait_conn;
+    int slot_held, slot_granted; /* holds a solver slot; one was handed over while it was parked */
     atomic_int refs;             /* 1, or 2 while a streamed response holds it */
     int route;                   /* ROUTE_* */
     const char *allow;           /* wrong method: the methods the path takes (a static string), else NULL */
     int status;                  /* HTTP status queued, 0 until then */
     int too_large;               /* the body passed cfg.body_limit */
+    int close;                   /* the response closes the connection (a framing fault) */
     double t_start;              /* monotonic seconds */
     unsigned long long bytes;    /* body bytes sent (streams count as they go) */
     dp_buf body;                 /* the request body as it arrives */
@@ -180,6 +189,19 @@ int auth_load(config *c);
  * "Authorization: Bearer <token>" (compared in time independent of where it differs). */
 int auth_ok(const server *s, struct MHD_Connection *c, const char *url);
 
+/* ---- solver slots (slots.c) ---- */
+
+/* Takes one of the cfg.threads solver slots for r (1), or parks the connection (suspended, queued) and
+ * returns 0: the caller then returns at once (MHD_YES from the access handler, 0 from a content reader) and
+ * is called again when the slot has been handed to it. Call only from those two places. */
+int slot_take(request *r, struct MHD_Connection *c);
+/* Gives r's slot back (to the first parked request, if any); nothing if r holds none. */
+void slot_give(request *r);
+/* Slots not taken now (0: every worker is computing; /readyz says busy). */
+unsigned slots_free(server *s);
+/* Shutdown: lets every request through from now on and resumes the parked ones. */
+void slots_open(server *s);
+
 /* ---- request deadlines (deadline.c) ---- */
 
 /* A request must arrive whole (head and body) within cfg.timeout seconds of its connection becoming ready
@@ -190,6 +212,8 @@ void deadline_open(server *s, struct MHD_Connection *c, void **socket_context);
 void deadline_close(server *s, void **socket_context);
 /* The request has arrived (1) or its response is done and the next one's clock starts (0). */
 void deadline_mark(struct MHD_Connection *c, int arrived);
+/* Whether connection c may be served: it holds, or now takes, one of the cfg.max_connections places. */
+int conn_admit(server *s, struct MHD_Connection *c);
 /* Shuts down connections past their deadline; returns how many. */
 unsigned deadline_sweep(server *s);
 

@@ -129,6 +129,8 @@ int metrics_render(const metrics *m, dp_buf *b)
     render_one(b, &s, "dashpot_runs_in_flight", "gauge", "Runs streaming now.", LOAD(m->runs_in_flight));
     render_one(b, &s, "dashpot_studies_in_flight", "gauge", "Convergence studies computing now.",
                LOAD(m->studies_in_flight));
+    render_one(b, &s, "dashpot_workers_busy", "gauge", "Solver slots taken (of --threads); all taken: /readyz is 503.",
+               LOAD(m->workers_busy));
     render_one(b, &s, "dashpot_connections_open", "gauge", "Open client connections.",
                LOAD(m->connections_open));
     render_one(b, &s, "dashpot_connections_rejected_total", "counter",

@@ -38,6 +38,8 @@ static enum MHD_Result queue(struct MHD_Connection *c, request *r, int status, s
         MHD_add_response_header(resp, MHD_HTTP_HEADER_ALLOW, allow);
     if (status == 503)
         MHD_add_response_header(resp, MHD_HTTP_HEADER_RETRY_AFTER, "1");
+    if (r->close) /* MHD closes the connection after this response: nothing pipelined behind it is read */
+        MHD_add_response_header(resp, MHD_HTTP_HEADER_CONNECTION, "close");
     if (status == 401)
         MHD_add_response_header(resp, MHD_HTTP_HEADER_WWW_AUTHENTICATE, "Bearer realm=\"dashpot\"");
     r->status = status;

@@ -70,9 +70,17 @@ enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r)
         return respond_problem(c, r, 405, NULL, "this path does not take that method", NULL, r->allow);
     if (r->route == ROUTE_NONE)
         return respond_problem(c, r, 404, NULL, "no such route", NULL, NULL);
-    for (int i = 0; i < NTABLE; i++)
-        if (routes[i].id == r->route)
+    for (int i = 0; i < NTABLE; i++) {
+        if (routes[i].id != r->route)
+            continue;
+        if (!routes[i].body) /* the small routes: never behind solver work */
             return routes[i].h(c, r);
+        if (!slot_take(r, c))
+            return MHD_YES; /* parked until a slot is handed over: called again then */
+        enum MHD_Result res = routes[i].h(c, r);
+        slot_give(r);
+        return res;
+    }
     return respond_problem(c, r, 404, NULL, "no such route", NULL, NULL);
 }
 
@@ -94,6 +102,9 @@ static enum MHD_Result handle_readyz(struct MHD_Connection *c, request *r)
 {
     if (atomic_load(&r->srv->draining))
         return respond_problem(c, r, 503, "/problems/shutting-down", "the server is shutting down", NULL, NULL);
+    if (slots_free(r->srv) == 0) /* a load balancer routes around the replica until a worker is free */
+        return respond_problem(c, r, 503, "/problems/busy", "every worker is computing; retry shortly or elsewhere",
+                               NULL, NULL);
     return respond_text(c, r, 200, "application/json", "{\"status\":\"ready\"}\n");
 }
 

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -75,13 +76,63 @@ static int declared_too_large(struct MHD_Connection *c, size_t limit)
     return end != cl && n > limit;
 }
 
+/* What the framing headers of a request say (RFC 9112 sections 3.2 and 6): counted over every field line,
+ * since MHD's lookup only returns the first of repeated ones. */
+typedef struct framing {
+    unsigned hosts, lengths, encodings;
+    int lengths_differ, not_chunked;
+    const char *length;
+} framing;
+
+static enum MHD_Result count_framing(void *cls, enum MHD_ValueKind kind, const char *key, const char *value)
+{
+    (void)kind;
+    framing *f = cls;
+    if (strcasecmp(key, MHD_HTTP_HEADER_HOST) == 0) {
+        f->hosts++;
+    } else if (strcasecmp(key, MHD_HTTP_HEADER_CONTENT_LENGTH) == 0) {
+        if (f->lengths++ && strcmp(f->length, value) != 0)
+            f->lengths_differ = 1;
+        f->length = value;
+    } else if (strcasecmp(key, MHD_HTTP_HEADER_TRANSFER_ENCODING) == 0) {
+        f->encodings++;
+        f->not_chunked |= strcasecmp(value, "chunked") != 0; /* the only coding the daemon decodes */
+    }
+    return MHD_YES;
+}
+
+/* The framing fault of a request, NULL if none: a body whose length two headers tell differently, a
+ * missing or repeated Host on HTTP/1.1. Answered 400 with the connection closed, since whatever follows
+ * on it cannot be told apart from this request's body (request smuggling). */
+static const char *framing_fault(struct MHD_Connection *c, const char *version)
+{
+    framing f = { 0 };
+    MHD_get_connection_values(c, MHD_HEADER_KIND, count_framing, &f);
+    if (f.lengths_differ)
+        return "two different Content-Length values";
+    if (f.lengths && f.encodings)
+        return "Content-Length together with Transfer-Encoding";
+    if (f.encodings > 1 || f.not_chunked)
+        return "a Transfer-Encoding other than chunked";
+    if (strcmp(version, MHD_HTTP_VERSION_1_0) != 0 && f.hosts != 1)
+        return f.hosts ? "more than one Host header" : "no Host header (HTTP/1.1 requires one)";
+    return NULL;
+}
+
 /* The first call: answers what can be answered without the body, or returns -1 to go on. */
-static int first_call(struct MHD_Connection *c, request *r, const char *method, const char *url)
+static int first_call(struct MHD_Connection *c, request *r, const char *method, const char *url,
+                      const char *version)
 {
     server *s = r->srv;
     r->route = route_find(s, method, url, &r->allow);
-    if (atomic_load(&s->m.connections_open) > (long long)s->cfg.max_connections) {
+    const char *fault = framing_fault(c, version);
+    if (fault) {
+        r->close = 1;
+        return respond_problem(c, r, 400, "/problems/bad-framing", fault, NULL, NULL);
+    }
+    if (!conn_admit(s, c)) {
         atomic_fetch_add(&s->m.connections_rejected, 1);
+        r->close = 1; /* its place in MHD's table goes back at once */
         return respond_problem(c, r, 503, "/problems/overloaded", "too many open connections; retry shortly",
                                NULL, NULL);
     }
@@ -111,13 +162,12 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
                                   const char *version, const char *upload_data, size_t *upload_data_size,
                                   void **con_cls)
 {
-    (void)version;
     request *r = *con_cls;
     if (r == NULL) {
         if ((r = request_new(cls, method, url)) == NULL)
             return MHD_NO;
         *con_cls = r;
-        int answered = first_call(c, r, method, url);
+        int answered = first_call(c, r, method, url, version);
         if (answered >= 0)
             deadline_mark(c, 1);
         return answered < 0 ? MHD_YES : (enum MHD_Result)answered;
@@ -142,6 +192,7 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls, en
     if (r == NULL)
         return;
     *con_cls = NULL;
+    slot_give(r); /* a slot it holds or was handed (a stream gives its own back in stream_free) */
     deadline_mark(c, 0);
     double dt = now_seconds() - r->t_start;
     metrics_request(&s->m, r->route, r->status, dt);
@@ -273,9 +324,9 @@ int server_start(server *s)
     }
     load_openapi(s);
     page_load(s);
-    unsigned flags = embedded ? MHD_USE_NO_LISTEN_SOCKET | MHD_USE_ERROR_LOG
+    unsigned flags = embedded ? MHD_USE_NO_LISTEN_SOCKET | MHD_USE_ERROR_LOG | MHD_ALLOW_SUSPEND_RESUME
                               : MHD_USE_EPOLL_INTERNAL_THREAD | MHD_USE_ITC | MHD_USE_TURBO | MHD_USE_ERROR_LOG |
-                                    (ipv6 ? MHD_USE_IPv6 : 0);
+                                    MHD_ALLOW_SUSPEND_RESUME | (ipv6 ? MHD_USE_IPv6 : 0);
     /* Function pointers travel as intptr_t in MHD_OptionItem.value (MHD's documented convention). */
     struct MHD_OptionItem opts[] = {
         { MHD_OPTION_EXTERNAL_LOGGER, (intptr_t)on_mhd_error, s }, /* first, so that it sees every message */
@@ -286,7 +337,8 @@ int server_start(server *s)
         { MHD_OPTION_NOTIFY_CONNECTION, (intptr_t)on_connection, s },
         { MHD_OPTION_UNESCAPE_CALLBACK, (intptr_t)unescape_keep_nul, NULL },
         { embedded ? MHD_OPTION_END : MHD_OPTION_SOCK_ADDR, 0, &sa },
-        { MHD_OPTION_THREAD_POOL_SIZE, (intptr_t)(s->cfg.threads > 1 ? s->cfg.threads : 0), NULL },
+        /* one thread more than solver slots (slots.c): the small routes never wait behind solver work */
+        { MHD_OPTION_THREAD_POOL_SIZE, (intptr_t)(s->cfg.threads + 1), NULL },
         { MHD_OPTION_END, 0, NULL },
     };
     s->daemon = MHD_start_daemon(flags, (uint16_t)s->cfg.port, NULL, NULL, on_request, s, MHD_OPTION_ARRAY, opts,
@@ -333,8 +385,10 @@ void server_shutdown(server *s)
     if (left > 0) {
         log_line("shutdown: grace period over, ending %lld run(s) with an error line", left);
         atomic_store(&s->abort_streams, 1);
+        slots_open(s);
         left = wait_runs(s, ABORT_WAIT);
     }
+    slots_open(s); /* MHD must not be stopped with connections suspended */
     if (left > 0)
         log_line("shutdown: closing %lld stalled stream(s)", left);
     MHD_stop_daemon(s->daemon);
@@ -345,6 +399,11 @@ server *server_new(void)
 {
     server *s = calloc(1, sizeof *s);
     if (s && pthread_mutex_init(&s->conns_lock, NULL) != 0) {
+        free(s);
+        return NULL;
+    }
+    if (s && pthread_mutex_init(&s->slots_lock, NULL) != 0) {
+        pthread_mutex_destroy(&s->conns_lock);
         free(s);
         return NULL;
     }
@@ -361,5 +420,6 @@ void server_free(server *s)
     page_free(s);
     stability_pool_free(s);
     pthread_mutex_destroy(&s->conns_lock);
+    pthread_mutex_destroy(&s->slots_lock);
     free(s);
 }

@@ -25,6 +25,7 @@
 #include <cjson/cJSON.h>
 
 #include "dashpot/json.h"
+#include "nul_scan.h"
 
 /* The walk's state: where errors go, how many this parse added, whether an allocation failed. */
 typedef struct ctx {
@@ -829,12 +830,25 @@ static cJSON *parse_json(const char *text, size_t len, dp_errors *errs, int *nom
     return root;
 }
 
+/* A NUL inside a string (cJSON would cut the string there, nul_scan.c): one located error; returns 1 if so. */
+static int refuse_nul(dp_errors *errs, const char *text, size_t len)
+{
+    char ptr[DP_POINTER_MAX];
+    int in_key = 0;
+    if (!dp_json_find_nul(text, len, ptr, sizeof ptr, &in_key))
+        return 0;
+    dp_errors_add(errs, ptr, "%s contains a NUL character (\\u0000), which no field may hold",
+                  in_key ? "a key of this object" : "this string");
+    return 1;
+}
+
 int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs)
 {
     ctx c = { errs, 0, 0 };
     cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
+    c.nerr += refuse_nul(errs, text, len);
     parse_root(&c, root, spec);
     cJSON_Delete(root);
     if (c.nomem)
@@ -864,6 +878,7 @@ int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_err
     cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
+    c.nerr += refuse_nul(errs, text, len);
     if (want_object(&c, root, NULL)) {
         check_keys(&c, root, NULL, keys, NULL, NULL);
         const cJSON *v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
