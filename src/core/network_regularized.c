@@ -238,6 +238,26 @@ void dp_network_regularized_free(struct dp_net_reg *g)
     free(g);
 }
 
+/* Integrates from g->t to t1 one accepted step at a time (the driver's evolve, control and step), asking the
+ * run's stop hook between steps with the right-hand side evaluations (n x n work each) as the measure, so a
+ * deadline or a hang-up ends even a long stretch without samples. GSL_CONTINUE when the hook said so. */
+static int integrate_to(dp_run *r, double t1)
+{
+    struct dp_net_reg *g = r->net->reg;
+    gsl_odeiv2_driver *d = g->drv;
+    unsigned long long size = (unsigned long long)(r->net->n * r->net->n + r->net->nel + 1);
+    while (g->t < t1) {
+        if (dp_run_stopped(r, r->n + g->fevals * size))
+            return GSL_CONTINUE;
+        if (d->n++ >= d->nmax)
+            return GSL_EMAXITER;
+        int s = gsl_odeiv2_evolve_apply(d->e, d->c, d->s, d->sys, &g->t, t1, &d->h, g->y);
+        if (s != GSL_SUCCESS)
+            return s;
+    }
+    return GSL_SUCCESS;
+}
+
 /* Integrates to the next output instant (the next sample due, or t_end), one row there. */
 int dp_network_regularized_advance(dp_run *r)
 {
@@ -252,7 +272,9 @@ int dp_network_regularized_advance(dp_run *r)
         if (next > r->nsteps || !r->spec.output.samples)
             next = r->nsteps;
         double t1 = next < r->nsteps ? (double)next * r->h : r->spec.solver.t_end;
-        int s = gsl_odeiv2_driver_apply(g->drv, &g->t, t1, g->y);
+        int s = integrate_to(r, t1);
+        if (s == GSL_CONTINUE)
+            return r->status;       /* stopped (DP_ECANCEL) or asked to yield between steps */
         r->sum.fevals = g->fevals;
         if (s == GSL_EBADFUNC)
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g (non-finite right-hand side)",
