@@ -454,7 +454,9 @@ int dp_network_run_advance(dp_run *r)
         return DP_ENOMEM;
     nr_flush(r);
     while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
-        if (dp_run_stopped(r, dp_run_work(r)))
+        /* a solve costs about a unit per node and element: 10^4 blocks poll every step or so, one mass every
+         * 4096 steps, both about the same work apart */
+        if (dp_run_stopped(r, (r->n + r->sum.iterations) * (nr->n + nr->nel)))
             return r->status;
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
