@@ -19,6 +19,7 @@
 #include "dashpot/json.h"
 #include "dashpot/modes.h"
 #include "dashpot/modes_json.h"
+#include "json_read.h"
 #include "dashpot/network.h"
 
 /* A JSON Pointer into out[DP_POINTER_MAX], cut short if ever longer (ours are not). */
@@ -363,63 +364,6 @@ static void parse_range(const cJSON *doc, request *r, dp_errors *e)
         dp_errors_add(e, "/omega/from", "must be > 0 with \"spacing\": \"log\"");
 }
 
-/* The position past which the document nests deeper than DP_JSON_MAX_DEPTH (len when it does not): cJSON
- * recurses per level, so a hostile document is refused before it is parsed. The same scan and the same
- * messages as spec_json.c's parse_json (both could share one helper). */
-static size_t too_deep(const char *s, size_t len)
-{
-    int depth = 0, in_string = 0;
-    for (size_t i = 0; i < len; i++) {
-        char ch = s[i];
-        if (in_string) {
-            if (ch == '\\')
-                i++;
-            else if (ch == '"')
-                in_string = 0;
-        } else if (ch == '"') {
-            in_string = 1;
-        } else if (ch == '[' || ch == '{') {
-            if (++depth > DP_JSON_MAX_DEPTH)
-                return i;
-        } else if ((ch == ']' || ch == '}') && depth > 0) {
-            depth--;
-        }
-    }
-    return len;
-}
-
-/* The cJSON tree of text[0..len) or NULL with the error ("malformed JSON near byte N"); trailing bytes other
- * than whitespace make the document malformed. cJSON reads a NUL-terminated copy. */
-static cJSON *parse_json(const char *text, size_t len, dp_errors *errs, int *nomem)
-{
-    size_t deep = too_deep(text, len);
-    if (deep < len) {
-        dp_errors_add(errs, "", "malformed JSON near byte %zu: nested deeper than %d levels", deep, DP_JSON_MAX_DEPTH);
-        return NULL;
-    }
-    char *buf = malloc(len + 1);
-    if (buf == NULL) {
-        *nomem = 1;
-        return NULL;
-    }
-    if (len > 0)
-        memcpy(buf, text, len);
-    buf[len] = '\0';
-    const char *end = NULL, *why = len == 0 ? " (empty document)" : "";
-    cJSON *root = cJSON_ParseWithLengthOpts(buf, len, &end, 0);
-    if (root != NULL) {
-        end += strspn(end, " \t\r\n");
-        if (end != buf + len) {
-            cJSON_Delete(root);
-            root = NULL;
-            why = " (data after the document)";
-        }
-    }
-    if (root == NULL)
-        dp_errors_add(errs, "", "malformed JSON near byte %zu%s", end ? (size_t)(end - buf) : 0, why);
-    free(buf);
-    return root;
-}
 
 /* The whole request; M, K, C assembled when there are no field errors. */
 static int parse_request(const char *body, size_t len, int response, request *r, dp_errors *e)
@@ -428,10 +372,11 @@ static int parse_request(const char *body, size_t len, int response, request *r,
                                         "solver", "output", NULL };
     memset(r, 0, sizeof *r);
     int nomem = 0;
-    cJSON *doc = parse_json(body, len, e, &nomem);
+    cJSON *doc = dp_json_read(body, len, e, &nomem);
     if (doc == NULL)
         return nomem ? DP_ENOMEM : DP_ESYNTAX;
     size_t before = e->n + e->dropped;
+    dp_json_refuse_nul(e, body, len);
     if (!cJSON_IsObject(doc))
         dp_errors_add(e, "", "must be an object {\"model\": ...}");
     else {

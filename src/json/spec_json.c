@@ -25,7 +25,7 @@
 #include <cjson/cJSON.h>
 
 #include "dashpot/json.h"
-#include "nul_scan.h"
+#include "json_read.h"
 
 /* The walk's state: where errors go, how many this parse added, whether an allocation failed. */
 typedef struct ctx {
@@ -770,85 +770,16 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
 
 /* ---- syntax ----------------------------------------------------------------------------------------- */
 
-/* Byte offset where the text first nests deeper than DP_JSON_MAX_DEPTH, or len. Brackets inside strings do
- * not count; a stray closer never lowers the depth below 0, so no prefix can buy extra depth for cJSON. */
-static size_t too_deep(const char *s, size_t len)
-{
-    int depth = 0, in_string = 0;
-    for (size_t i = 0; i < len; i++) {
-        char ch = s[i];
-        if (in_string) {
-            if (ch == '\\')
-                i++;
-            else if (ch == '"')
-                in_string = 0;
-        } else if (ch == '"') {
-            in_string = 1;
-        } else if (ch == '[' || ch == '{') {
-            if (++depth > DP_JSON_MAX_DEPTH)
-                return i;
-        } else if ((ch == ']' || ch == '}') && depth > 0) {
-            depth--;
-        }
-    }
-    return len;
-}
 
-/* The cJSON tree of text[0..len), or NULL with the DP_ESYNTAX error added (*nomem set when no copy could be
- * made). cJSON reads a NUL-terminated copy: its BOM check peeks 3 bytes regardless of the length. Trailing
- * bytes other than JSON whitespace (a NUL among them) make the document malformed. */
-static cJSON *parse_json(const char *text, size_t len, dp_errors *errs, int *nomem)
-{
-    size_t deep = too_deep(text, len);
-    if (deep < len) {
-        dp_errors_add(errs, "", "malformed JSON near byte %zu: nested deeper than %d levels", deep,
-                      DP_JSON_MAX_DEPTH);
-        return NULL;
-    }
-    char *buf = len < SIZE_MAX ? malloc(len + 1) : NULL;
-    if (buf == NULL) {
-        *nomem = 1;
-        return NULL;
-    }
-    if (len > 0)
-        memcpy(buf, text, len);
-    buf[len] = '\0';
-    const char *end = NULL;
-    const char *why = len == 0 ? " (empty document)" : "";
-    cJSON *root = cJSON_ParseWithLengthOpts(buf, len, &end, 0);
-    if (root != NULL) {
-        end += strspn(end, " \t\r\n");
-        if (end != buf + len) {
-            cJSON_Delete(root);
-            root = NULL;
-            why = " (data after the document)";
-        }
-    }
-    if (root == NULL)
-        dp_errors_add(errs, "", "malformed JSON near byte %zu%s", end ? (size_t)(end - buf) : 0, why);
-    free(buf);
-    return root;
-}
 
-/* A NUL inside a string (cJSON would cut the string there, nul_scan.c): one located error; returns 1 if so. */
-static int refuse_nul(dp_errors *errs, const char *text, size_t len)
-{
-    char ptr[DP_POINTER_MAX];
-    int in_key = 0;
-    if (!dp_json_find_nul(text, len, ptr, sizeof ptr, &in_key))
-        return 0;
-    dp_errors_add(errs, ptr, "%s contains a NUL character (\\u0000), which no field may hold",
-                  in_key ? "a key of this object" : "this string");
-    return 1;
-}
 
 int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs)
 {
     ctx c = { errs, 0, 0 };
-    cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
+    cJSON *root = dp_json_read(text ? text : "", text ? len : 0, errs, &c.nomem);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
-    c.nerr += refuse_nul(errs, text, len);
+    c.nerr += dp_json_refuse_nul(errs, text, len);
     parse_root(&c, root, spec);
     cJSON_Delete(root);
     if (c.nomem)
@@ -875,10 +806,10 @@ int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_err
     static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
     ctx c = { errs, 0, 0, 1 };
     at p;
-    cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
+    cJSON *root = dp_json_read(text ? text : "", text ? len : 0, errs, &c.nomem);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
-    c.nerr += refuse_nul(errs, text, len);
+    c.nerr += dp_json_refuse_nul(errs, text, len);
     if (want_object(&c, root, NULL)) {
         check_keys(&c, root, NULL, keys, NULL, NULL);
         const cJSON *v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
@@ -898,7 +829,7 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
     static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
     ctx c = { errs, 0, 0, 1 };
     at p;
-    cJSON *root = parse_json(text ? text : "", text ? len : 0, errs, &c.nomem);
+    cJSON *root = dp_json_read(text ? text : "", text ? len : 0, errs, &c.nomem);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
     const cJSON *v = NULL;

@@ -14,6 +14,7 @@
 
 #include "dashpot/stability.h"
 #include "dashpot/stability_json.h"
+#include "json_read.h"
 #include "nul_scan.h"
 #include "stability_out.h"
 
@@ -480,28 +481,6 @@ static void map_csv(stab_out *o, const dp_map *map)
 
 /* ---- the entry point ---- */
 
-static cJSON *parse_text(const char *body, size_t len, dp_errors *errs, int *nomem)
-{
-    char *copy = malloc(len + 1);   /* cJSON peeks past the length for a BOM: hand it a terminated copy */
-    if (copy == NULL) {
-        *nomem = 1;
-        return NULL;
-    }
-    if (len)
-        memcpy(copy, body, len);
-    copy[len] = '\0';
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithLengthOpts(copy, len, &end, 0);
-    if (root != NULL && end + strspn(end, " \t\r\n") != copy + len) {    /* data (or a NUL) after it */
-        cJSON_Delete(root);
-        root = NULL;
-    }
-    if (root == NULL)
-        dp_errors_add(errs, "", "malformed JSON near byte %zu%s", end ? (size_t)(end - copy) : 0,
-                      len == 0 ? " (empty document)" : "");
-    free(copy);
-    return root;
-}
 
 /* Bytes an analysis answer takes for a law of low order (1.3 KB for the thesis models): reserved at once
  * rather than grown through 256, 512, 1024. */
@@ -551,7 +530,7 @@ int dp_stability_respond_ws(dp_stability_ws *w, const char *body, size_t len, in
 {
     pctx c = { errs, DP_OK };
     int nomem = 0;
-    cJSON *root = parse_text(body ? body : "", body ? len : 0, errs, &nomem);
+    cJSON *root = dp_json_read(body ? body : "", body ? len : 0, errs, &nomem);
     if (root == NULL)
         return nomem ? DP_ENOMEM : DP_ESYNTAX;
     char nul_at[DP_POINTER_MAX];
