@@ -800,66 +800,79 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
     return dp_spec_check(spec, max_steps, errs);
 }
 
+/* The "model" member of a document that may be a whole simulation spec: only its model is read. */
+static const cJSON *model_member(ctx *c, const cJSON *root, at *p)
+{
+    static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
+    if (!want_object(c, root, NULL))
+        return NULL;
+    check_keys(c, root, NULL, keys, NULL, NULL);
+    return member(c, root, NULL, "model", "an object with mass, spring and damper", p);
+}
+
+/* A one-mass model read leniently (non-monotone user graphs and gaps kept raw, for analysis only). */
+static int lenient_model(ctx *c, const cJSON *v, const at *p, dp_model *model)
+{
+    if (v != NULL)
+        parse_model(c, v, p, model);
+    if (c->nomem)
+        return DP_ENOMEM;
+    if (c->nerr > 0)
+        return DP_EINVAL;
+    return dp_model_prepare(model);
+}
+
 int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_errors *errs)
 {
-    /* A whole simulation spec is welcome too: only its model is analysed. */
-    static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
     ctx c = { errs, 0, 0, 1 };
     at p;
     cJSON *root = dp_json_read(text ? text : "", text ? len : 0, errs, &c.nomem);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
     c.nerr += dp_json_refuse_nul(errs, text, len);
-    if (want_object(&c, root, NULL)) {
-        check_keys(&c, root, NULL, keys, NULL, NULL);
-        const cJSON *v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
-        if (v != NULL)
-            parse_model(&c, v, &p, model);
-    }
+    int s = lenient_model(&c, model_member(&c, root, &p), &p, model);
     cJSON_Delete(root);
-    if (c.nomem)
-        return DP_ENOMEM;
-    if (c.nerr > 0)
-        return DP_EINVAL;
-    return dp_model_prepare(model);
+    return s;
+}
+
+/* A network's report: parsed as strictly as a run's (its laws are graphs the solver could take), then its
+ * checks (dp_network_check). */
+static int network_report(ctx *c, const cJSON *v, const at *p, dp_wp_report *rep)
+{
+    dp_spec spec;
+    dp_spec_init(&spec);
+    c->lenient = 0;
+    parse_network(c, v, p, &spec);
+    int s = c->nomem ? DP_ENOMEM : c->nerr ? DP_EINVAL : dp_network_prepare(spec.net);
+    if (s == DP_OK) {
+        size_t before = c->errs->n + c->errs->dropped;
+        dp_network_check(&spec, c->errs);
+        s = c->errs->n + c->errs->dropped > before ? DP_EINVAL : DP_OK;
+    }
+    if (s == DP_OK)
+        dp_network_wellposedness(spec.net, rep);
+    dp_spec_clear(&spec);
+    return s;
 }
 
 int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_errors *errs)
 {
-    static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
     ctx c = { errs, 0, 0, 1 };
     at p;
     cJSON *root = dp_json_read(text ? text : "", text ? len : 0, errs, &c.nomem);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
-    const cJSON *v = NULL;
-    if (want_object(&c, root, NULL)) {
-        check_keys(&c, root, NULL, keys, NULL, NULL);
-        v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
-    }
-    if (v == NULL || !is_network(v)) {
-        cJSON_Delete(root);
+    c.nerr += dp_json_refuse_nul(errs, text, len);
+    const cJSON *v = model_member(&c, root, &p);
+    int s;
+    if (v != NULL && is_network(v)) {
+        s = network_report(&c, v, &p, rep);
+    } else {
         dp_model m = { 0 };
-        int s = c.nerr ? DP_EINVAL : dp_model_parse_lenient(text, len, &m, errs);
-        if (s == DP_OK)
+        if ((s = lenient_model(&c, v, &p, &m)) == DP_OK)
             dp_wellposedness(&m, rep);
         dp_model_clear(&m);
-        return s;
     }
-    /* A network: parsed as strictly as a run's (its laws are graphs the solver could take), then checked. */
-    dp_spec spec;
-    dp_spec_init(&spec);
-    c.lenient = 0;
-    parse_network(&c, v, &p, &spec);
     cJSON_Delete(root);
-    int s = c.nomem ? DP_ENOMEM : c.nerr ? DP_EINVAL : dp_network_prepare(spec.net);
-    if (s == DP_OK) {
-        size_t before = errs->n + errs->dropped;
-        dp_network_check(&spec, errs);
-        s = errs->n + errs->dropped > before ? DP_EINVAL : DP_OK;
-    }
-    if (s == DP_OK)
-        dp_network_wellposedness(spec.net, rep);
-    dp_spec_clear(&spec);
     return s;
 }
