@@ -21,6 +21,7 @@ import { Table, Plot } from './plot.js';
 import { Editor, pretty } from './editor.js';
 import { PRESETS } from './presets.js';
 import { NetworkView } from './network.js';
+import { runModes, renderModes } from './modes.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
@@ -30,8 +31,8 @@ const presetText = (p) => pretty(p.spec) + '\n';
 
 const ui = {
   tab: 'simulate',
-  text: { simulate: '', stability: '' },
-  preset: { simulate: '', stability: '' },
+  text: { simulate: '', stability: '', modes: '' },
+  preset: { simulate: '', stability: '', modes: '' },
   controller: null,
   mapUrl: null,
   runs: 0, // runs started, either tab (data-run)
@@ -91,7 +92,7 @@ function showTab(tab, fromPreset = false) {
   if (!fromPreset) ui.text[ui.tab] = editor.text;
   if (ui.tab !== tab) stop();
   ui.tab = tab;
-  for (const t of ['simulate', 'stability']) {
+  for (const t of ['simulate', 'stability', 'modes']) {
     $('tab-' + t).setAttribute('aria-selected', String(t === tab));
     $('panel-' + t).hidden = t !== tab;
   }
@@ -103,7 +104,8 @@ function showTab(tab, fromPreset = false) {
   const p = PRESETS.find((q) => q.id === ui.preset[tab]);
   $('preset').value = p.id;
   $('preset-note').textContent = p.note;
-  $('spec-label').textContent = tab === 'simulate' ? 'Request to v1/simulate (JSON)' : 'Request to v1/stability (JSON)';
+  $('spec-label').textContent = { simulate: 'Request to v1/simulate (JSON)', stability: 'Request to v1/stability (JSON)',
+    modes: 'Request to v1/modes and v1/response (JSON)' }[tab];
   editor.text = ui.text[tab];
   syncPresetMenu();
   showProblem(null);
@@ -417,6 +419,38 @@ function renderStability(d) {
   $('stab-analysis').innerHTML = more;
 }
 
+// ---- modes and frequency response (web/modes.js) ----
+
+async function runModesTab() {
+  const ctl = new AbortController();
+  ui.controller = ctl;
+  const panel = $('panel-modes');
+  const text = editor.text;
+  panel.dataset.run = ++ui.runs;
+  showProblem(null);
+  panel.dataset.state = 'running';
+  setRunning(true);
+  $('status').textContent = 'analysing\u2026';
+  let state = 'error';
+  const post = (route) => fetch(route, { method: 'POST', body: text, signal: ctl.signal, headers: headers('application/json') });
+  try {
+    const t0 = performance.now();
+    const { mr, rr } = await runModes(post, text);
+    if (!mr.ok) { showProblem(await problemOf(mr)); return; }
+    if (rr && !rr.ok) { showProblem(await problemOf(rr)); return; }
+    renderModes(await mr.json(), rr ? await rr.json() : null);
+    $('status').textContent = `done in ${((performance.now() - t0) / 1000).toFixed(2)} s`;
+    state = 'done';
+  } catch (e) {
+    if (e.name === 'AbortError') state = 'stopped';
+    else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
+  } finally {
+    if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
+    panel.dataset.state = state;
+    if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+  }
+}
+
 // ---- run / stop ----
 
 function setRunning(on) {
@@ -435,7 +469,7 @@ function run() {
   if (ui.controller) { stop(); return; }
   ui.text[ui.tab] = editor.text;
   syncPresetMenu();
-  if (ui.tab === 'simulate') runSimulation(); else runStability();
+  if (ui.tab === 'simulate') runSimulation(); else if (ui.tab === 'modes') runModesTab(); else runStability();
 }
 
 $('run').addEventListener('click', run);
@@ -450,7 +484,7 @@ $('format').addEventListener('click', () => {
     showProblem({ title: 'Not valid JSON', detail: 'fix it, or Run to see where the daemon stops reading' });
   }
 });
-for (const t of ['simulate', 'stability']) $('tab-' + t).addEventListener('click', () => { if (ui.tab !== t) showTab(t); });
+for (const t of ['simulate', 'stability', 'modes']) $('tab-' + t).addEventListener('click', () => { if (ui.tab !== t) showTab(t); });
 fillPresets();
 loadPreset(location.hash.slice(1) || 'thesis-5-gamma');
-if (ui.tab === 'simulate') runSimulation(); else runStability();
+if (ui.tab === 'simulate') runSimulation(); else if (ui.tab === 'modes') runModesTab(); else runStability();

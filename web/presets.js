@@ -158,3 +158,19 @@ PRESETS.push({
     'go on for the whole run. dt = 0.01 is far inside the step bound h\u03b8L < m (h\u03b8L = 0.1).',
   spec: burridgeKnopoff(60, 0.1, 1, 0.5, 0.5, 0.05),
 });
+
+// The linear analysis of the 3-mass chain (docs/modes.md): its modes (the Coulomb element left out) and the
+// point receptance of node 0 to a harmonic force there, on a log scale with its resonances and antiresonances.
+PRESETS.push({
+  id: 'modes-chain-3', group: 'Linear analysis (modes)', label: '3-mass chain: modes and response', kind: 'modes',
+  note: 'Natural frequencies, mass-normalized shapes (the Coulomb element is set-valued: left out) and |H(\u03c9)| of ' +
+    'node 0 to a force at node 0 (a point receptance: an antiresonance between each pair of resonances), both ' +
+    'located, not only sampled (resonances red, antiresonances blue).',
+  spec: {
+    model: { masses: [1, 2, 1.5], elements: [
+      { between: ['ground', 0], spring: { law: 'linear', k: 1 }, damper: { law: 'coulomb', phi0: 0.3 } },
+      { between: [0, 1], spring: { law: 'linear', k: 2 } },
+      { between: [1, 2], spring: { law: 'linear', k: 1 }, damper: { law: 'linear', c: 0.1 } }] },
+    force_node: 0, response_node: 0, omega: { from: 0.1, to: 3, points: 400, spacing: 'log' },
+  },
+});

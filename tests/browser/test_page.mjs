@@ -361,6 +361,34 @@ try {
   extra = unexpected(from);
   check(extra.length === 0, 'the stability map: no console error', extra.join('\n    '));
   await screenshot(page, 'page-stability');
+
+  // ---- the modes tab: frequencies as bars, the shapes, the point receptance with its located extrema ----
+  from = problems.length;
+  await page.selectOption('#preset', 'modes-chain-3');
+  check(await page.isVisible('#panel-modes'), 'a modes preset opens the modes tab');
+  d = await press(page, 'panel-modes');
+  const mv = await page.evaluate(() => {
+    const ds = document.getElementById('panel-modes').dataset;
+    const canvases = [...document.querySelectorAll('#panel-modes canvas')];
+    const ink = canvases.map((c) => {
+      const px = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < px.length; i += 4) if (px[i + 3] > 160) n++;
+      return n;
+    });
+    return { state: ds.state, modes: ds.modes, res: ds.resonances, anti: ds.antiresonances,
+      points: canvases.map((c) => c.dataset.points), ink, info: document.getElementById('modes-info').textContent };
+  });
+  // three masses, the Coulomb element left out: 3 modes, 3 resonances, and a point receptance has an
+  // antiresonance between each pair of resonances: 2
+  check(d.state === 'done' && mv.modes === '3' && mv.res === '3' && mv.anti === '2',
+    'the modes tab: 3 modes, 3 resonances and 2 antiresonances of the point receptance', JSON.stringify(mv));
+  check(JSON.stringify(mv.points) === '["3","9","400"]' && mv.ink.every((n) => n > 200),
+    'the modes tab draws 3 bars, 3 shapes of 3 nodes and the 400-point response curve', JSON.stringify(mv));
+  check(/1 set-valued element\(s\) left out/.test(mv.info), 'the modes tab says the Coulomb element is left out', mv.info);
+  extra = unexpected(from);
+  check(extra.length === 0, 'the modes tab: no console error', extra.join('\n    '));
+  await screenshot(page, 'page-modes');
   check(urls.every((u) => u.startsWith(out) || u.startsWith('blob:') || u.startsWith('data:')),
     'every request of the page went to the daemon', urls.filter((u) => !u.startsWith(out)).join(' '));
   await page.close();
