@@ -317,7 +317,7 @@ static void test_random_against_enumeration(void **state)
                 size_t k = 0;
                 while (k < s.n && dist(s.z + k * m, p.z->data, m) > 1e-9 * (1 + fabs(s.z[k * m])))
                     k++;
-                CHECK(k < s.n || s.singular > 0, "kind %d m %zu #%d: Lemke's solution is one of the %zu enumerated",
+                CHECK(k < s.n, "kind %d m %zu #%d: Lemke's solution is one of the %zu enumerated",
                       kind, m, n, s.n);
                 degenerate_solved += kind == 3;
             } else {
