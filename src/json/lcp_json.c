@@ -228,6 +228,8 @@ static void verdict(char *v, size_t cap, const dp_lcp_theory *t, const dp_lcp_so
     else if (!enumerated)
         snprintf(v, cap, "uniqueness not guaranteed (M not known to be a P-matrix); Lemke %s",
                  r->outcome == DP_LCP_SOLVED ? "found a solution" : "ended on a ray (no solution found)");
+    else if (s->n == 0 && r->outcome == DP_LCP_RAY && t->psd)
+        snprintf(v, cap, "no solution: Lemke's ray proves it for a positive semidefinite M");
     else if (s->n == 0)
         snprintf(v, cap, "no solution%s", s->singular ? " at a regular complementary basis (singular ones not searched)" : "");
     else
