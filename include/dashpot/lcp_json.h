@@ -19,4 +19,10 @@
  * JSON Pointer), DP_ELIMIT (Lemke's pivot guard), DP_ENOMEM; on failure `out` is as it was. */
 int dp_lcp_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs);
 
+/* The meta line of an LCS run (dp_spec_meta_json's branch for spec->lcs): solver parameters, sizes, laws,
+ * and the theory of D and of the step's matrix D + hCWB (P-matrix, µ, Lipschitz bound), with what it means
+ * for uniqueness of each step. DP_OK, DP_ENOMEM. */
+struct dp_spec;
+int dp_lcs_meta_json(const struct dp_spec *s, dp_buf *out);
+
 #endif

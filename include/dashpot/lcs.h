@@ -13,6 +13,7 @@
 
 #include <stddef.h>
 #include "dashpot/lcp.h"
+#include "dashpot/spec.h"
 
 typedef enum dp_lcs_law_kind { DP_LCS_COMPLEMENTARITY = 0, DP_LCS_INTERVAL = 1 } dp_lcs_law_kind;
 
@@ -28,10 +29,30 @@ typedef struct dp_lcs {
     const dp_lcs_law *law;
 } dp_lcs;
 
+/* An LCS model as a spec holds it (the document's "model": {"lcs": {...}, "laws": [...]}, "initial"): owned
+ * arrays, D, p, q zero when the document leaves them out, x0 the initial state. */
+typedef struct dp_lcs_model {
+    size_t n, m;
+    double *A, *B, *C, *D, *p, *q, *x0;
+    dp_lcs_law *law;
+} dp_lcs_model;
+
+/* Accepts NULL. */
+void dp_lcs_model_free(dp_lcs_model *lm);
+/* A deep copy, or NULL when out of memory. */
+dp_lcs_model *dp_lcs_model_copy(const dp_lcs_model *lm);
+/* The system view of a model (pointers into it). */
+dp_lcs dp_lcs_model_system(const dp_lcs_model *lm);
+
+/* The spec rules of an LCS run (the stick-slip solver, t_end/dt within max_steps, an initial state the laws
+ * admit: some u with (u, Cx0 + Du + q) in the laws), appended as located errors. DP_OK, DP_EINVAL, DP_ELIMIT. */
+int dp_lcs_check(const dp_spec *s, double max_steps, dp_errors *e);
+
 typedef struct dp_lcs_stepper dp_lcs_stepper;
 
-/* A stepper for step h > 0 and θ in [0, 1]; NULL with *status DP_EINVAL (sizes, non-finite data, an
- * interval with lo > hi, I - hθA singular) or DP_ENOMEM. The system's arrays are copied. */
+/* A stepper for step h >= 0 and θ in [0, 1]; h = 0 is the algebraic part alone (M = D: a step leaves x and
+ * finds u, w at it). NULL with *status DP_EINVAL (sizes, non-finite data, an interval with lo > hi, I - hθA
+ * singular) or DP_ENOMEM. The system's arrays are copied. */
 dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *sys, double h, double theta, int *status);
 void dp_lcs_stepper_free(dp_lcs_stepper *st);
 

@@ -52,7 +52,7 @@ static int finite_all(const double *a, size_t k)
 
 static int valid(const dp_lcs *s, double h, double theta)
 {
-    if (s->n == 0 || s->m == 0 || s->m > DP_LCP_MAX / 2 || s->n > 4096 || !(h > 0) || !isfinite(h) ||
+    if (s->n == 0 || s->m == 0 || s->m > DP_LCP_MAX / 2 || s->n > 4096 || !(h >= 0) || !isfinite(h) ||
         !(theta >= 0 && theta <= 1))
         return 0;
     size_t n = s->n, m = s->m;

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "dashpot/spec.h"
+#include "dashpot/lcs.h"
 
 void dp_spec_init(dp_spec *s)
 {
@@ -40,6 +41,8 @@ void dp_spec_clear(dp_spec *s)
         return;
     dp_model_clear(&s->model);
     dp_network_free(s->net);
+    dp_lcs_model_free(s->lcs);
+    s->lcs = NULL;
     free(s->x0v);
     free(s->v0v);
     free(s->output.nodes);
@@ -68,6 +71,9 @@ int dp_spec_copy(dp_spec *dst, const dp_spec *src)
         return DP_ENOMEM;
     }
     int fail = 0;
+    dst->lcs = NULL;
+    if (src->lcs)
+        fail = (dst->lcs = dp_lcs_model_copy(src->lcs)) == NULL;
     if (src->net) {
         size_t n = src->net->n;
         dst->net = dp_network_copy(src->net);
@@ -185,6 +191,8 @@ static void check_domain(const dp_graph *g, double y, const char *ptr, const cha
 
 int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
 {
+    if (s->lcs)
+        return dp_lcs_check(s, max_steps, e);
     size_t before = e->n + e->dropped;
     const dp_model *m = &s->model;
     if (s->net)

@@ -14,6 +14,7 @@
 #include "dashpot/json.h"
 #include "dashpot/lcp.h"
 #include "dashpot/lcp_json.h"
+#include "dashpot/lcs.h"
 
 static const char *type_name(const cJSON *v)
 {
@@ -300,4 +301,59 @@ int dp_lcp_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
     gsl_matrix_free(M);
     gsl_vector_free(q);
     return s;
+}
+
+/* ---- the meta line of an LCS run ------------------------------------------------------------------------ */
+
+static int put_kv(dp_buf *b, const char *key, double x)
+{
+    return put(b, ",\"") || put(b, key) || put(b, "\":") || put_num(b, x);
+}
+
+/* "theory":{...} of one matrix, with a sentence on the uniqueness of u it gives. */
+static int put_matrix_theory(dp_buf *b, const char *key, const gsl_matrix *M)
+{
+    dp_lcp_theory t;
+    int s = dp_lcp_theory_of(M, &t);
+    if (s != DP_OK)
+        return put(b, ",\"") || put(b, key) || put(b, "\":null");
+    s = put(b, ",\"") || put(b, key) || put(b, "\":{\"matrix\":[");
+    for (size_t i = 0; i < M->size1 && !s; i++)
+        s = (i ? put(b, ",") : DP_OK) || put_vec(b, M->data + i * M->tda, M->size2);
+    s = s || put(b, "]");
+    s = s || put_theory(b, &t, M->size1);
+    const char *u = t.pd_symmetric ? "one u per step: positive definite symmetric part (seed 002 Lemma 2.5, Theorem 2.3)"
+                  : t.p_matrix == 1 ? "one u per step: a P-matrix"
+                  : "uniqueness of u not guaranteed: Lemke's solution is taken when there are several";
+    return s || put(b, ",\"uniqueness\":") || dp_json_quote(b, u) || put(b, "}");
+}
+
+int dp_lcs_meta_json(const struct dp_spec *sp, dp_buf *b)
+{
+    const dp_lcs_model *lm = sp->lcs;
+    const dp_solver_spec *sv = &sp->solver;
+    char head[160];
+    snprintf(head, sizeof head, "{\"type\":\"meta\",\"version\":\"%s\",\"solver\":\"stick-slip\","
+             "\"variant\":\"exact\",\"model\":\"lcs\"", DP_VERSION);
+    int s = put(b, head) || put_kv(b, "theta", sv->theta) || put_kv(b, "dt", sv->dt) || put_kv(b, "t_end", sv->t_end);
+    s = s || put_kv(b, "steps", dp_spec_steps(sp)) || put_kv(b, "every", (double)sp->output.every);
+    s = s || put_kv(b, "states", (double)lm->n) || put_kv(b, "components", (double)lm->m) || put(b, ",\"laws\":[");
+    for (size_t i = 0; i < lm->m && !s; i++) {
+        const dp_lcs_law *l = &lm->law[i];
+        s = put(b, i ? "," : "") || put(b, l->kind == DP_LCS_INTERVAL ? "{\"law\":\"interval\",\"min\":"
+                                                                  : "{\"law\":\"complementarity\"}");
+        if (l->kind == DP_LCS_INTERVAL)
+            s = s || put_num(b, l->lo) || put(b, ",\"max\":") || put_num(b, l->hi) || put(b, "}");
+    }
+    s = s || put(b, "]");
+    gsl_matrix_const_view D = gsl_matrix_const_view_array(lm->D, lm->m, lm->m);
+    s = s || put_matrix_theory(b, "D", &D.matrix);
+    dp_lcs sys = dp_lcs_model_system(lm);
+    int st;
+    dp_lcs_stepper *step = dp_lcs_stepper_alloc(&sys, sv->dt, sv->theta, &st);
+    if (step == NULL)
+        return st == DP_ENOMEM ? DP_ENOMEM : DP_EINVAL;
+    s = s || put_matrix_theory(b, "step", dp_lcs_step_matrix(step));
+    dp_lcs_stepper_free(step);
+    return s ? DP_ENOMEM : put(b, "}");
 }
