@@ -60,6 +60,107 @@ check "lcp: a string entry named" bad entry '{"M": [[1, "x"], [0, 1]], "q": [1, 
 check "lcp: a missing M named" bad missing '{"q": [1]}' /M
 check "lcp: an unknown key" bad key '{"M": [[1]], "q": [1], "r": 1}' '(document)'
 
+# ---- LCS models in `dashpot simulate` (docs/lcs.md) ----
+# Series RLC with an ideal diode (seed 002 Ex. 1.9), R = 0.5, L = 1, C = 0.25, x = (charge, current), no source.
+cat >"$T/rlc.json" <<'JSON'
+{"model": {"lcs": {"A": [[0, 1], [-4, -0.5]], "B": [[0], [1]], "C": [[0, 1]], "D": [[0]]},
+           "laws": [{"law": "complementarity"}]},
+ "initial": {"x": [0, 1]},
+ "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 3, "theta": 0.5}}
+JSON
+"$BIN" simulate "$T/rlc.json" --format ndjson >"$T/rlc.ndjson"
+check "simulate rlc.json: exit 0, 3001 rows" [ $? = 0 -a "$(grep -c '"sample"' "$T/rlc.ndjson")" = 3001 ]
+# Closed form: q = e^{-at} sin(wd t)/wd, i = e^{-at}(cos wd t - (a/wd) sin wd t), a = R/2L, until
+# t* = atan2(wd, a)/wd; then i = 0 for good, q = q*, u = -v_D = q*/C. O(h^2) before t* (u = 0) and after it
+# (the switch lands up to h late, but i is linear there, so q* is missed by O(h^2)); measured 3.8e-7, 2.6e-7.
+cat >"$T/rlc_check.py" <<'PY'
+import json, math, sys
+rows = [json.loads(l) for l in open(sys.argv[1])]
+meta, samples = rows[0], [r for r in rows if r['type'] == 'sample']
+R, L, C = 0.5, 1.0, 0.25
+a = R / (2 * L); wd = math.sqrt(1 / (L * C) - a * a); ts = math.atan2(wd, a) / wd
+q = lambda t: math.exp(-a * t) * math.sin(wd * t) / wd
+i = lambda t: math.exp(-a * t) * (math.cos(wd * t) - a / wd * math.sin(wd * t))
+before = [s for s in samples if s['t'] < ts - 0.002]
+after = [s for s in samples if s['t'] > ts + 0.002]
+e1 = max(max(abs(s['x'][0] - q(s['t'])), abs(s['x'][1] - i(s['t']))) for s in before)
+assert e1 < 2e-6, ('before t*', e1)
+assert all(abs(s['x'][1]) < 1e-12 and abs(s['x'][0] - q(ts)) < 2e-6 and abs(s['u'][0] - q(ts) / C) < 1e-5 for s in after)
+assert all(s['u'][0] >= 0 and s['w'][0] >= 0 and s['u'][0] * s['w'][0] == 0 for s in samples)
+assert meta['model'] == 'lcs' and meta['step']['theory']['p_matrix'] is True and meta['step']['uniqueness'].startswith('one u')
+PY
+check "rlc: the closed form before t*, blocked for good after it, 0 <= u ⊥ w >= 0 at every row" python3 "$T/rlc_check.py" "$T/rlc.ndjson"
+
+# The same with a breakdown diode, V_b = 0.5 < q*/C: u = v_D in [-0.5, 0], B = -b, C = -c. At t* the
+# current reverses: y = q - C V_b, y(s) = y* e^{-as}(cos wd s + (a/wd) sin wd s), i = -y* (w0^2/wd) e^{-as} sin wd s.
+cat >"$T/breakdown.json" <<'JSON'
+{"model": {"lcs": {"A": [[0, 1], [-4, -0.5]], "B": [[0], [-1]], "C": [[0, -1]]},
+           "laws": [{"law": "interval", "min": -0.5, "max": 0}]},
+ "initial": {"x": [0, 1]},
+ "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 2.2, "theta": 0.5}}
+JSON
+"$BIN" simulate "$T/breakdown.json" --format ndjson >"$T/bd.ndjson"
+cat >"$T/bd_check.py" <<'PY'
+import json, math, sys
+samples = [r for r in map(json.loads, open(sys.argv[1])) if r['type'] == 'sample']
+R, L, C, Vb = 0.5, 1.0, 0.25, 0.5
+a = R / (2 * L); w02 = 1 / (L * C); wd = math.sqrt(w02 - a * a); ts = math.atan2(wd, a) / wd
+qs = math.exp(-a * ts) * math.sin(wd * ts) / wd; ys = qs - C * Vb
+rev = [s for s in samples if ts + 0.005 < s['t'] < ts + math.pi / wd - 0.005]
+assert len(rev) > 1000
+err = max(max(abs(s['x'][1] + ys * w02 / wd * math.exp(-a * (s['t'] - ts)) * math.sin(wd * (s['t'] - ts))),
+              abs(s['x'][0] - C * Vb - ys * math.exp(-a * (s['t'] - ts)) * (math.cos(wd * (s['t'] - ts)) +
+                  a / wd * math.sin(wd * (s['t'] - ts))))) for s in rev)
+assert err < 1e-3, err  # O(h): the switch lands on a step boundary (measured 2.2e-4)
+assert all(s['u'][0] == -Vb for s in rev), 'in breakdown v_D = -V_b'
+assert all(-Vb <= s['u'][0] <= 0 for s in samples)
+PY
+check "breakdown diode: reverse current about q = C V_b after t*, v_D = -V_b throughout it" python3 "$T/bd_check.py" "$T/bd.ndjson"
+
+# The four-diode bridge (Ex. 1.10) with the seed's matrices, R = 1, L = 1, C = 0.5, x = (v_C, i_L): a parallel
+# RLC, v_C = -(i0/(C wd)) e^{-at} sin wd t, a = 1/(2RC), and the load current i_DF1 + i_DR1 = |v_C|/R.
+cat >"$T/bridge.json" <<'JSON'
+{"model": {"lcs": {"A": [[0, -2], [1, 0]],
+                   "B": [[0, 0, -2, 2], [0, 0, 0, 0]],
+                   "C": [[0, 0], [0, 0], [-1, 0], [1, 0]],
+                   "D": [[1, 1, -1, 0], [1, 1, 0, -1], [1, 0, 0, 0], [0, 1, 0, 0]]},
+           "laws": [{"law": "complementarity"}, {"law": "complementarity"},
+                    {"law": "complementarity"}, {"law": "complementarity"}]},
+ "initial": {"x": [0, 1]},
+ "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 8, "theta": 0.5}}
+JSON
+"$BIN" simulate "$T/bridge.json" --format ndjson >"$T/bridge.ndjson"
+cat >"$T/bridge_check.py" <<'PY'
+import json, math, sys
+rows = [json.loads(l) for l in open(sys.argv[1])]
+samples = [r for r in rows if r['type'] == 'sample']
+a, wd = 1.0, 1.0
+vc = lambda t: -(1 / (0.5 * wd)) * math.exp(-a * t) * math.sin(wd * t)
+err = max(abs(s['x'][0] - vc(s['t'])) for s in samples)
+assert err < 5e-4, err  # O(h): u is taken at the step's end (measured 3.1e-4)
+assert max(abs(s['u'][2] + s['w'][0] - abs(s['x'][0])) for s in samples) < 1e-9
+assert any(s['x'][0] > 1e-3 for s in samples) and any(s['x'][0] < -1e-3 for s in samples)
+assert rows[0]['step']['theory']['p_matrix'] is False and rows[0]['step']['theory']['positive_semidefinite'] is True
+PY
+check "bridge: a parallel RLC, the load current |v_C|/R both ways (rectified), the step matrix PSD not P" \
+    python3 "$T/bridge_check.py" "$T/bridge.ndjson"
+
+simbad() { # simbad NAME DOC POINTER: dashpot simulate exits 2 naming the pointer
+    echo "$2" | "$BIN" simulate - >/dev/null 2>"$T/err"
+    local rc=$?
+    [ $rc = 2 ] && grep -q -- "-: $3: " "$T/err" || { echo "    exit $rc: $(cat "$T/err")"; return 1; }
+}
+LCSM='"A": [[0, 1], [-4, -0.5]], "B": [[0], [1]], "C": [[0, 1]]'
+check "simulate lcs: B of another size named" simbad B '{"model": {"lcs": {"A": [[0, 1], [-4, -0.5]], "B": [[0, 1]], "C": [[0, 1]]}, "laws": [{"law": "complementarity"}]}}' /model/lcs/B
+check "simulate lcs: a law list of the wrong length shows at C" simbad laws "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}, {\"law\": \"complementarity\"}]}}" /model/lcs/C
+check "simulate lcs: an unknown law named" simbad law "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\"}]}}" /model/laws/0/law
+check "simulate lcs: an interval with min > max named" simbad interval "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"interval\", \"min\": 1, \"max\": 0}]}}" /model/laws/0/max
+check "simulate lcs: a backward current through an ideal diode is outside the laws" simbad domain "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0, -1]}}" /initial/x
+check "simulate lcs: initial x of another length named" simbad x0 "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0]}}" /initial/x
+check "simulate lcs: another solver named" simbad kind "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}]}, \"solver\": {\"kind\": \"analytic\"}}" /solver/kind
+# A step without solution: D = -1, q = -1 at x = (0, 0.5)... w = x2 - 1 - u: the initial state already fails.
+check "simulate lcs: no u at the initial state (w = x2 - 1 - u < 0 for all u >= 0)" simbad nosol "{\"model\": {\"lcs\": {$LCSM, \"D\": [[-1]], \"q\": [-1]}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0, 0.5]}}" /initial/x
+
 start_daemon lcp || finish
 U=$URL_lcp
 post() { # post PATH FILE -> status and content type in $T/ct, body in $T/body
@@ -76,6 +177,8 @@ printf '{"M": ' >"$T/trunc.json"
 post /v1/lcp "$T/trunc.json"
 check "POST /v1/lcp, malformed JSON: 400" [ "$(cut -d' ' -f1 "$T/ct")" = 400 ]
 check "/metrics counts /v1/lcp" bash -c "curl -s '$U/metrics' | grep -q 'route=\"/v1/lcp\"'"
+hcurl -X POST -H 'Accept: application/x-ndjson' --data-binary @"$T/rlc.json" -o "$T/body" "$U/v1/simulate"
+check "POST /v1/simulate with an LCS model: the CLI's NDJSON byte for byte" cmp -s "$T/body" "$T/rlc.ndjson"
 stop_daemon lcp
 check "SIGTERM: exit 0" [ "$RC_lcp" = 0 ]
 finish
