@@ -66,12 +66,12 @@ int dp_spec_copy(dp_spec *dst, const dp_spec *src)
 {
     *dst = *src;
     dst->net = NULL, dst->x0v = dst->v0v = NULL, dst->output.nodes = dst->output.elements = NULL;
+    dst->lcs = NULL;
     if (dp_model_copy(&dst->model, &src->model) != DP_OK) {
         memset(&dst->model, 0, sizeof dst->model);
         return DP_ENOMEM;
     }
     int fail = 0;
-    dst->lcs = NULL;
     if (src->lcs)
         fail = (dst->lcs = dp_lcs_model_copy(src->lcs)) == NULL;
     if (src->net) {
