@@ -7,14 +7,12 @@
  * problem cannot cycle. The problem is scaled by 1/max|M_ij| first (z is unchanged, w scales), so the pivot
  * tolerances below are relative. The solution is read from the final basis and recomputed from its linear
  * system M_aa z_a = -q_a by LU with one step of refinement, so it is exact to rounding whatever the pivots did.
+ * The problem is copied once into plain arrays: the loops read contiguous memory, not GSL accessors.
  */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <gsl/gsl_linalg.h>
-#include <gsl/gsl_permutation.h>
 
 #include "dashpot/lcp.h"
 #include "dashpot/status.h"
@@ -32,6 +30,11 @@ struct dp_lcp {
     size_t *basis;       /* basis[r] = the column basic in row r */
     double *a, *b, *x, *res; /* m x m LU scratch, rhs, solution, residual */
     double *z1, *w1;     /* the refined candidate */
+    double *M, *q;       /* the problem, row-major */
+    size_t *idx;         /* the basic z's */
+    char *isbasic;       /* per column of w, z, z0 */
+    char *zbasic;        /* per z: basic at the end */
+    size_t *cols_live;   /* the columns a pivot changes */
     size_t *perm;
 };
 
@@ -53,7 +56,15 @@ dp_lcp *dp_lcp_alloc(size_t m)
     w->perm = malloc(m * sizeof *w->perm);
     w->z1 = malloc(m * sizeof *w->z1);
     w->w1 = malloc(m * sizeof *w->w1);
-    if (!w->T || !w->basis || !w->a || !w->b || !w->x || !w->res || !w->perm || !w->z1 || !w->w1) {
+    w->M = malloc(m * m * sizeof *w->M);
+    w->q = malloc(m * sizeof *w->q);
+    w->idx = malloc(m * sizeof *w->idx);
+    w->isbasic = malloc(2 * m + 1);
+    w->zbasic = malloc(m);
+    w->cols_live = malloc((2 * m + 2) * sizeof *w->cols_live);
+    if (!w->isbasic || !w->zbasic || !w->cols_live ||
+        !w->T || !w->basis || !w->a || !w->b || !w->x || !w->res || !w->perm || !w->z1 || !w->w1 || !w->M || !w->q ||
+        !w->idx) {
         dp_lcp_free(w);
         return NULL;
     }
@@ -73,48 +84,60 @@ void dp_lcp_free(dp_lcp *w)
     free(w->perm);
     free(w->z1);
     free(w->w1);
+    free(w->M);
+    free(w->q);
+    free(w->idx);
+    free(w->isbasic);
+    free(w->zbasic);
+    free(w->cols_live);
     free(w);
 }
 
-static double max_abs_matrix(const gsl_matrix *M)
+/* The problem as plain row-major arrays (M may be a view with a row stride): one copy, O(m^2), then every
+ * loop below reads contiguous memory. 0 when an entry is not finite. */
+static int load(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q)
 {
-    double s = 0;
-    for (size_t i = 0; i < M->size1; i++)
-        for (size_t j = 0; j < M->size2; j++)
-            s = fmax(s, fabs(gsl_matrix_get(M, i, j)));
-    return s;
-}
-
-static int finite_data(const gsl_matrix *M, const gsl_vector *q)
-{
-    for (size_t i = 0; i < q->size; i++) {
-        if (!isfinite(gsl_vector_get(q, i)))
-            return 0;
-        for (size_t j = 0; j < q->size; j++)
-            if (!isfinite(gsl_matrix_get(M, i, j)))
+    size_t m = w->m;
+    for (size_t i = 0; i < m; i++) {
+        const double *row = M->data + i * M->tda;
+        double *dst = w->M + i * m;
+        for (size_t j = 0; j < m; j++) {
+            if (!isfinite(row[j]))
                 return 0;
+            dst[j] = row[j];
+        }
+        w->q[i] = q->data[i * q->stride];
+        if (!isfinite(w->q[i]))
+            return 0;
     }
     return 1;
 }
 
-/* Gauss-Jordan pivot on (r, e): column e becomes the unit vector e_r. */
+/* Gauss-Jordan pivot on (r, e): column e becomes the unit vector e_r. Only the columns that change are
+ * touched: the non-basic ones, the leaving variable's (a unit vector until now) and the right-hand side; the
+ * other basic columns are unit vectors with a zero in row r, which the pivot leaves as they are. That is
+ * m + 3 columns of the 2m + 2, half the work of a full tableau pivot. */
 static void pivot(dp_lcp *w, size_t r, size_t e)
 {
-    size_t m = w->m, c = w->cols;
+    size_t m = w->m, c = w->cols, n = 0, leave = w->basis[r], *J = w->cols_live;
+    for (size_t j = 0; j <= 2 * m; j++)
+        if ((!w->isbasic[j] || j == leave) && j != e)
+            J[n++] = j;
+    J[n++] = c - 1;
     double *pr = w->T + r * c, inv = 1.0 / pr[e];
-    for (size_t j = 0; j < c; j++)
-        pr[j] *= inv;
-    pr[e] = 1.0;
+    for (size_t k = 0; k < n; k++)
+        pr[J[k]] *= inv;
     for (size_t i = 0; i < m; i++) {
-        if (i == r)
-            continue;
         double *pi = w->T + i * c, f = pi[e];
-        if (f == 0.0)
+        if (i == r || f == 0.0)
             continue;
-        for (size_t j = 0; j < c; j++)
-            pi[j] -= f * pr[j];
+        for (size_t k = 0; k < n; k++)
+            pi[J[k]] -= f * pr[J[k]];
         pi[e] = 0.0;
     }
+    pr[e] = 1.0;
+    w->isbasic[leave] = 0;
+    w->isbasic[e] = 1;
     w->basis[r] = e;
 }
 
@@ -145,8 +168,9 @@ static size_t ratio_test(const dp_lcp *w, size_t e)
     size_t m = w->m, c = w->cols, best = m;
     double colmax = 0;
     for (size_t i = 0; i < m; i++)
-        colmax = fmax(colmax, w->T[i * c + e]);
-    double tol = fmax(PIVOT_REL * colmax, PIVOT_ABS);
+        if (w->T[i * c + e] > colmax)
+            colmax = w->T[i * c + e];
+    double tol = PIVOT_REL * colmax > PIVOT_ABS ? PIVOT_REL * colmax : PIVOT_ABS;
     for (size_t i = 0; i < m; i++) {
         double a = w->T[i * c + e];
         if (a > tol && (best == m || lex_less(w, i, a, best, w->T[best * c + e])))
@@ -155,138 +179,189 @@ static size_t ratio_test(const dp_lcp *w, size_t e)
     return best;
 }
 
-static void fill_tableau(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, double scale)
+static void fill_tableau(dp_lcp *w, double scale)
 {
     size_t m = w->m, c = w->cols;
     memset(w->T, 0, m * c * sizeof *w->T);
     for (size_t i = 0; i < m; i++) {
         double *p = w->T + i * c;
+        const double *Mi = w->M + i * m;
         p[i] = 1.0;
         for (size_t j = 0; j < m; j++)
-            p[m + j] = -gsl_matrix_get(M, i, j) / scale;
+            p[m + j] = -Mi[j] / scale;
         p[2 * m] = -1.0;
-        p[c - 1] = gsl_vector_get(q, i) / scale;
+        p[c - 1] = w->q[i] / scale;
         w->basis[i] = i;
     }
+    for (size_t j = 0; j <= 2 * m; j++)
+        w->isbasic[j] = j < m;
 }
 
 /* The residual of (z, wv) as a solution, in the units of the problem. */
-static double residual(const gsl_matrix *M, const gsl_vector *q, const gsl_vector *z, const gsl_vector *wv)
+static double residual(const dp_lcp *w, const double *z, const double *wv)
 {
-    size_t m = q->size;
+    size_t m = w->m;
     double r = 0;
     for (size_t i = 0; i < m; i++) {
-        double s = gsl_vector_get(q, i), zi = gsl_vector_get(z, i), wi = gsl_vector_get(wv, i);
+        const double *Mi = w->M + i * m;
+        double s = w->q[i];
         for (size_t j = 0; j < m; j++)
-            s += gsl_matrix_get(M, i, j) * gsl_vector_get(z, j);
-        r = fmax(r, fabs(s - wi));
-        r = fmax(r, fmax(-zi, -wi));
-        r = fmax(r, fabs(fmin(zi, wi)));
+            s += Mi[j] * z[j];
+        r = fmax(r, fabs(s - wv[i]));
+        r = fmax(r, fmax(-z[i], -wv[i]));
+        r = fmax(r, fabs(fmin(z[i], wv[i])));
     }
     return r;
 }
 
-/* z from the final basis: z_a solves M_aa z_a = -q_a (a = the z's that are basic), w = M z + q, w_a = 0.
- * Returns 0 when M_aa is singular to working precision (the caller keeps the tableau's values). */
-static int basis_solve(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, const char *zbasic, gsl_vector *z,
-                       gsl_vector *wv)
+/* x = A^-1 b for the k x k matrix in w->a (overwritten by its LU factors, partial pivoting), b in w->b.
+ * 0 when a pivot is below 1e-13 of the largest: singular to working precision. */
+static int lu_solve(dp_lcp *w, size_t k)
 {
-    size_t m = w->m, k = 0, idx[DP_LCP_MAX];
+    double *A = w->a, *x = w->x, amax = 0;
+    memcpy(x, w->b, k * sizeof *x);
+    for (size_t i = 0; i < k * k; i++)
+        amax = fmax(amax, fabs(A[i]));
+    for (size_t c = 0; c < k; c++) {
+        size_t p = c;
+        for (size_t i = c + 1; i < k; i++)
+            if (fabs(A[i * k + c]) > fabs(A[p * k + c]))
+                p = i;
+        if (!(fabs(A[p * k + c]) > 1e-13 * amax))
+            return 0;
+        w->perm[c] = p;
+        if (p != c) {
+            for (size_t j = 0; j < k; j++) {
+                double t = A[c * k + j];
+                A[c * k + j] = A[p * k + j], A[p * k + j] = t;
+            }
+        }
+        for (size_t i = c + 1; i < k; i++) {
+            double f = A[i * k + c] /= A[c * k + c];
+            for (size_t j = c + 1; j < k; j++)
+                A[i * k + j] -= f * A[c * k + j];
+        }
+    }
+    return 1;
+}
+
+/* Solves with the factors of lu_solve: v = A^-1 v in place. */
+static void lu_apply(const dp_lcp *w, size_t k, double *v)
+{
+    const double *A = w->a;
+    for (size_t c = 0; c < k; c++) {
+        size_t p = w->perm[c];
+        if (p != c) {
+            double t = v[c];
+            v[c] = v[p], v[p] = t;
+        }
+        for (size_t i = c + 1; i < k; i++)
+            v[i] -= A[i * k + c] * v[c];
+    }
+    for (size_t c = k; c-- > 0;) {
+        for (size_t j = c + 1; j < k; j++)
+            v[c] -= A[c * k + j] * v[j];
+        v[c] /= A[c * k + c];
+    }
+}
+
+/* z from the final basis: z_a solves M_aa z_a = -q_a (a = the z's that are basic), with one refinement step
+ * against the original entries; w = M z + q, w_a = 0. 0 when M_aa is singular to working precision. */
+static int basis_solve(dp_lcp *w, const char *zbasic, double *z, double *wv)
+{
+    size_t m = w->m, k = 0, *idx = w->idx;
     for (size_t i = 0; i < m; i++)
         if (zbasic[i])
             idx[k++] = i;
-    gsl_vector_set_zero(z);
+    memset(z, 0, m * sizeof *z);
     if (k > 0) {
-        gsl_matrix_view A = gsl_matrix_view_array(w->a, k, k);
-        gsl_vector_view b = gsl_vector_view_array(w->b, k), x = gsl_vector_view_array(w->x, k),
-                        r = gsl_vector_view_array(w->res, k);
         for (size_t i = 0; i < k; i++) {
-            w->b[i] = -gsl_vector_get(q, idx[i]);
+            w->b[i] = -w->q[idx[i]];
             for (size_t j = 0; j < k; j++)
-                gsl_matrix_set(&A.matrix, i, j, gsl_matrix_get(M, idx[i], idx[j]));
+                w->a[i * k + j] = w->M[idx[i] * m + idx[j]];
         }
-        gsl_permutation p = { k, w->perm };
-        int sign;
-        if (gsl_linalg_LU_decomp(&A.matrix, &p, &sign) != GSL_SUCCESS)
+        if (!lu_solve(w, k))
             return 0;
-        double umax = 0, umin = INFINITY;
-        for (size_t i = 0; i < k; i++) {
-            umax = fmax(umax, fabs(w->a[i * k + i]));
-            umin = fmin(umin, fabs(w->a[i * k + i]));
-        }
-        if (!(umin > 1e-13 * umax))
-            return 0;
-        if (gsl_linalg_LU_solve(&A.matrix, &p, &b.vector, &x.vector) != GSL_SUCCESS)
-            return 0;
-        /* One refinement step against the original entries: r = M_aa x - b, x -= LU \ r. */
+        lu_apply(w, k, w->x);
         for (size_t i = 0; i < k; i++) {
             double s = -w->b[i];
             for (size_t j = 0; j < k; j++)
-                s += gsl_matrix_get(M, idx[i], idx[j]) * w->x[j];
+                s += w->M[idx[i] * m + idx[j]] * w->x[j];
             w->res[i] = s;
         }
-        gsl_linalg_LU_svx(&A.matrix, &p, &r.vector);
+        lu_apply(w, k, w->res);
         for (size_t i = 0; i < k; i++)
-            gsl_vector_set(z, idx[i], w->x[i] - w->res[i]);
+            z[idx[i]] = w->x[i] - w->res[i];
     }
     for (size_t i = 0; i < m; i++) {
-        double s = gsl_vector_get(q, i);
+        const double *Mi = w->M + i * m;
+        double s = w->q[i];
         for (size_t j = 0; j < m; j++)
-            s += gsl_matrix_get(M, i, j) * gsl_vector_get(z, j);
-        gsl_vector_set(wv, i, zbasic[i] ? 0.0 : s);
+            s += Mi[j] * z[j];
+        wv[i] = zbasic[i] ? 0.0 : s;
     }
     return 1;
 }
 
 /* The tableau's own values of z and w (used when the basis system is singular). */
-static void tableau_values(const dp_lcp *w, double scale, gsl_vector *z, gsl_vector *wv)
+static void tableau_values(const dp_lcp *w, double scale, double *z, double *wv)
 {
     size_t m = w->m, c = w->cols;
-    gsl_vector_set_zero(z);
-    gsl_vector_set_zero(wv);
+    memset(z, 0, m * sizeof *z);
+    memset(wv, 0, m * sizeof *wv);
     for (size_t r = 0; r < m; r++) {
         double v = fmax(w->T[r * c + c - 1], 0.0);
         if (w->basis[r] < m)
-            gsl_vector_set(wv, w->basis[r], v * scale);
+            wv[w->basis[r]] = v * scale;
         else if (w->basis[r] < 2 * m)
-            gsl_vector_set(z, w->basis[r] - m, v);
+            z[w->basis[r] - m] = v;
     }
 }
 
+static void store(const double *src, gsl_vector *dst)
+{
+    for (size_t i = 0; i < dst->size; i++)
+        dst->data[i * dst->stride] = src[i];
+}
+
 /* Reads the solution from the final basis, refines it and clears rounding-size negatives. */
-static void finish(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, double scale, gsl_vector *z,
-                   gsl_vector *wv, dp_lcp_result *res)
+static void finish(dp_lcp *w, double scale, gsl_vector *z, gsl_vector *wv, dp_lcp_result *res)
 {
     size_t m = w->m;
-    char zbasic[DP_LCP_MAX] = { 0 };
+    char *zbasic = w->zbasic;
+    memset(zbasic, 0, m);
     for (size_t r = 0; r < m; r++)
         if (w->basis[r] >= m && w->basis[r] < 2 * m)
             zbasic[w->basis[r] - m] = 1;
-    tableau_values(w, scale, z, wv);
-    double r0 = residual(M, q, z, wv);
-    gsl_vector_view zv = gsl_vector_view_array(w->z1, m), wvv = gsl_vector_view_array(w->w1, m);
-    gsl_vector *z1 = &zv.vector, *w1 = &wvv.vector;
-    if (basis_solve(w, M, q, zbasic, z1, w1)) {
-        /* Degenerate bases give basic variables at zero: their rounding noise of either sign is cleared. */
-        double qmax = 0;
+    double *z1 = w->z1, *w1 = w->w1;
+    if (basis_solve(w, zbasic, z1, w1)) {
+        /* Degenerate bases give basic variables at zero: their rounding noise below zero is cleared. */
+        double qmax = 0, zmax = 0;
         for (size_t i = 0; i < m; i++)
-            qmax = fmax(qmax, fabs(gsl_vector_get(q, i)));
-        double zmax = gsl_vector_max(z1) > 0 ? gsl_vector_max(z1) : 0;
+            qmax = fmax(qmax, fabs(w->q[i])), zmax = fmax(zmax, z1[i]);
         double tol = 64 * DBL_EPSILON * (qmax + scale * zmax);
         for (size_t i = 0; i < m; i++) {
-            if (fabs(gsl_vector_get(z1, i)) <= tol && gsl_vector_get(z1, i) < 0)
-                gsl_vector_set(z1, i, 0.0);
-            if (fabs(gsl_vector_get(w1, i)) <= tol && gsl_vector_get(w1, i) < 0)
-                gsl_vector_set(w1, i, 0.0);
+            if (z1[i] < 0 && z1[i] >= -tol)
+                z1[i] = 0.0;
+            if (w1[i] < 0 && w1[i] >= -tol)
+                w1[i] = 0.0;
         }
-        double r1 = residual(M, q, z1, w1);
-        if (r1 <= r0) {
-            gsl_vector_memcpy(z, z1);
-            gsl_vector_memcpy(wv, w1);
-            r0 = r1;
+        res->residual = residual(w, z1, w1);
+        /* The basis' own solution is exact to rounding unless M_aa is badly conditioned: then the
+         * tableau's values may be better, and the better of the two is kept. */
+        if (res->residual > 1e-12 * (qmax + scale * zmax + 1)) {
+            double *z0 = w->b, *w0 = w->res; /* free again after basis_solve */
+            tableau_values(w, scale, z0, w0);
+            double r0 = residual(w, z0, w0);
+            if (r0 < res->residual)
+                z1 = z0, w1 = w0, res->residual = r0;
         }
+    } else {
+        tableau_values(w, scale, z1, w1);
+        res->residual = residual(w, z1, w1);
     }
-    res->residual = r0;
+    store(z1, z);
+    store(w1, wv);
 }
 
 int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector *z, gsl_vector *wv,
@@ -295,22 +370,25 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
     size_t m = w->m;
     if (M->size1 != m || M->size2 != m || q->size != m || z->size != m || wv->size != m)
         return DP_EINVAL;
-    if (!finite_data(M, q))
+    if (!load(w, M, q))
         return DP_EINVAL;
     *res = (dp_lcp_result){ DP_LCP_SOLVED, 0, 0.0 };
     size_t r = 0;
     for (size_t i = 1; i < m; i++)
-        if (gsl_vector_get(q, i) < gsl_vector_get(q, r))
+        if (w->q[i] < w->q[r])
             r = i;
-    if (gsl_vector_get(q, r) >= 0) {
-        gsl_vector_set_zero(z);
-        gsl_vector_memcpy(wv, q);
+    if (w->q[r] >= 0) {
+        memset(w->z1, 0, m * sizeof *w->z1);
+        store(w->z1, z);
+        store(w->q, wv);
         return DP_OK;
     }
-    double scale = max_abs_matrix(M);
+    double scale = 0;
+    for (size_t i = 0; i < m * m; i++)
+        scale = fmax(scale, fabs(w->M[i]));
     if (!(scale > 0))
         scale = 1.0;
-    fill_tableau(w, M, q, scale);
+    fill_tableau(w, scale);
     /* First pivot: z0 enters at the lexicographically smallest row of [q, I] (all its column entries are -1,
      * so after it every row is lexicographically positive). */
     for (size_t i = 0; i < m; i++)
@@ -327,7 +405,9 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
         r = ratio_test(w, entering);
         if (r == m) {
             res->outcome = DP_LCP_RAY;
-            tableau_values(w, scale, z, wv);
+            tableau_values(w, scale, w->z1, w->w1);
+            store(w->z1, z);
+            store(w->w1, wv);
             return DP_OK;
         }
         leaving = w->basis[r];
@@ -335,6 +415,6 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
         if (++res->pivots > limit)
             return DP_ELIMIT;
     }
-    finish(w, M, q, scale, z, wv, res);
+    finish(w, scale, z, wv, res);
     return DP_OK;
 }
