@@ -145,6 +145,32 @@ PY
 check "bridge: a parallel RLC, the load current |v_C|/R both ways (rectified), the step matrix PSD not P" \
     python3 "$T/bridge_check.py" "$T/bridge.ndjson"
 
+# The one-mass Coulomb oscillator written as an LCS: x = (x, v), u = F_d ∈ φ0 Sgn(v) is u ∈ [-φ0, φ0] with
+# v ∈ N(u), i.e. w = -v ∈ -N(u): B = (0, -1/m), C = (0, -1). Its θ-step is the stick-slip solver's own
+# (u at the step's end, "events": "none"), so the two trajectories agree to rounding at every step.
+for th in 0.5 1; do
+    cat >"$T/coulomb.json" <<JSON
+{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 1}},
+ "initial": {"x": 4.5, "v": 0}, "solver": {"kind": "stick-slip", "dt": 0.01, "t_end": 10, "theta": $th, "events": "none"}}
+JSON
+    cat >"$T/coulomb_lcs.json" <<JSON
+{"model": {"lcs": {"A": [[0, 1], [-1, 0]], "B": [[0], [-1]], "C": [[0, -1]]},
+           "laws": [{"law": "interval", "min": -1, "max": 1}]},
+ "initial": {"x": [4.5, 0]}, "solver": {"kind": "stick-slip", "dt": 0.01, "t_end": 10, "theta": $th}}
+JSON
+    "$BIN" simulate "$T/coulomb.json" --format csv >"$T/c1.csv"
+    "$BIN" simulate "$T/coulomb_lcs.json" --format csv >"$T/c2.csv"
+    check "the Coulomb oscillator as an LCS equals the stick-slip solver to rounding (theta $th, 1001 rows)" python3 -c "
+import csv
+a = list(csv.reader(open('$T/c1.csv')))[1:]; b = list(csv.reader(open('$T/c2.csv')))[1:]
+assert len(a) == len(b) == 1001
+d = max(abs(float(p[i]) - float(q[i])) for p, q in zip(a, b) for i in (0, 1, 2))
+assert d < 1e-12, d
+# the damper force: Fd (one mass) is u0 (LCS) wherever the mass moves
+assert max(abs(float(p[4]) - float(q[3])) for p, q in zip(a, b) if p[6] == 'slip') < 1e-12
+"
+done
+
 simbad() { # simbad NAME DOC POINTER: dashpot simulate exits 2 naming the pointer
     echo "$2" | "$BIN" simulate - >/dev/null 2>"$T/err"
     local rc=$?
