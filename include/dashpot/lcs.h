@@ -13,6 +13,7 @@
 
 #include <stddef.h>
 #include "dashpot/lcp.h"
+#include "dashpot/model.h"
 #include "dashpot/spec.h"
 
 typedef enum dp_lcs_law_kind { DP_LCS_COMPLEMENTARITY = 0, DP_LCS_INTERVAL = 1 } dp_lcs_law_kind;
@@ -35,6 +36,7 @@ typedef struct dp_lcs_model {
     size_t n, m;
     double *A, *B, *C, *D, *p, *q, *x0;
     dp_lcs_law *law;
+    dp_forcing *pf;      /* NULL, or n offsets in time added to p (the document's forcing objects in "p") */
 } dp_lcs_model;
 
 /* Accepts NULL. */
@@ -58,6 +60,9 @@ void dp_lcs_stepper_free(dp_lcs_stepper *st);
 
 /* The step's LCP matrix D + h C W B (m x m) for the uniqueness theory (dp_lcp_theory_of). */
 const gsl_matrix *dp_lcs_step_matrix(const dp_lcs_stepper *st);
+
+/* Sets the offset p (n numbers) of the following steps: p(t_n + θh) for a time-dependent one. O(n^2). */
+void dp_lcs_stepper_set_p(dp_lcs_stepper *st, const double *p);
 
 /* One step: x (n) in, x+ out; u, w (m) out at the step's end. DP_OK, DP_ESOLVE when the step's LCP has no
  * solution Lemke can find (a ray; x unchanged), DP_ELIMIT (pivot guard; x unchanged). res: Lemke's report. */

@@ -20,7 +20,8 @@
 
 struct dp_lcs_stepper {
     size_t n, m, ma;            /* states, components, LCP size (m + interval components) */
-    gsl_matrix *E, *WB, *C, *D, *M, *Ma;
+    gsl_matrix *E, *WB, *C, *D, *M, *Ma, *W;
+    double h;
     gsl_vector *Whp, *q, *lo, *hi;
     size_t *slot;               /* interval component i's second row, or 0 for complementarity */
     gsl_vector *xh, *r, *qa, *za, *wa, *u;
@@ -31,7 +32,7 @@ void dp_lcs_stepper_free(dp_lcs_stepper *st)
 {
     if (st == NULL)
         return;
-    gsl_matrix *mats[] = { st->E, st->WB, st->C, st->D, st->M, st->Ma };
+    gsl_matrix *mats[] = { st->E, st->WB, st->C, st->D, st->M, st->Ma, st->W };
     gsl_vector *vecs[] = { st->Whp, st->q, st->lo, st->hi, st->xh, st->r, st->qa, st->za, st->wa, st->u };
     for (size_t i = 0; i < sizeof mats / sizeof mats[0]; i++)
         gsl_matrix_free(mats[i]);
@@ -80,6 +81,7 @@ static int discretize(dp_lcs_stepper *st, const dp_lcs *s, double h, double thet
             gsl_matrix_set(R, i, j, d + h * (1 - theta) * a);
         }
     ok = ok && gsl_linalg_LU_decomp(L, p, &sign) == GSL_SUCCESS && gsl_linalg_LU_det(L, sign) != 0;
+    ok = ok && gsl_linalg_LU_invert(L, p, st->W) == GSL_SUCCESS;
     for (size_t j = 0; ok && j < n; j++) {
         gsl_vector_view col = gsl_matrix_column(R, j), out = gsl_matrix_column(st->E, j);
         ok = gsl_linalg_LU_solve(L, p, &col.vector, &out.vector) == GSL_SUCCESS;
@@ -137,11 +139,12 @@ dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *s, double h, double theta, in
     st->n = n, st->m = m, st->ma = ma;
     st->E = gsl_matrix_alloc(n, n), st->WB = gsl_matrix_alloc(n, m), st->C = gsl_matrix_alloc(m, n);
     st->D = gsl_matrix_alloc(m, m), st->M = gsl_matrix_alloc(m, m), st->Ma = gsl_matrix_alloc(ma, ma);
+    st->W = gsl_matrix_alloc(n, n), st->h = h;
     st->Whp = gsl_vector_alloc(n), st->q = gsl_vector_alloc(m), st->lo = gsl_vector_alloc(m);
     st->hi = gsl_vector_alloc(m), st->xh = gsl_vector_alloc(n), st->r = gsl_vector_alloc(m);
     st->qa = gsl_vector_alloc(ma), st->za = gsl_vector_alloc(ma), st->wa = gsl_vector_alloc(ma);
     st->u = gsl_vector_alloc(m), st->slot = calloc(m, sizeof *st->slot), st->lcp = dp_lcp_alloc(ma);
-    if (!st->E || !st->WB || !st->C || !st->D || !st->M || !st->Ma || !st->Whp || !st->q || !st->lo || !st->hi ||
+    if (!st->E || !st->WB || !st->W || !st->C || !st->D || !st->M || !st->Ma || !st->Whp || !st->q || !st->lo || !st->hi ||
         !st->xh || !st->r || !st->qa || !st->za || !st->wa || !st->u || !st->slot || !st->lcp) {
         dp_lcs_stepper_free(st);
         return NULL;
@@ -157,6 +160,12 @@ dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *s, double h, double theta, in
     assemble(st, s);
     *status = DP_OK;
     return st;
+}
+
+void dp_lcs_stepper_set_p(dp_lcs_stepper *st, const double *p)
+{
+    gsl_vector_const_view pv = gsl_vector_const_view_array(p, st->n);
+    gsl_blas_dgemv(CblasNoTrans, st->h, st->W, &pv.vector, 0.0, st->Whp);
 }
 
 const gsl_matrix *dp_lcs_step_matrix(const dp_lcs_stepper *st)

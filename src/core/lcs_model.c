@@ -21,6 +21,10 @@ void dp_lcs_model_free(dp_lcs_model *lm)
     free(lm->q);
     free(lm->x0);
     free(lm->law);
+    if (lm->pf)
+        for (size_t i = 0; i < lm->n; i++)
+            dp_forcing_clear(&lm->pf[i]);
+    free(lm->pf);
     free(lm);
 }
 
@@ -50,6 +54,10 @@ dp_lcs_model *dp_lcs_model_copy(const dp_lcs_model *src)
     d->law = malloc((m ? m : 1) * sizeof *d->law);
     if (d->law)
         memcpy(d->law, src->law, m * sizeof *d->law);
+    if (src->pf && !fail && (d->pf = calloc(n, sizeof *d->pf)) == NULL)
+        fail = 1;
+    for (size_t i = 0; src->pf && d->pf && i < n; i++)
+        fail |= dp_forcing_copy(&d->pf[i], &src->pf[i]) != DP_OK;
     if (fail || d->law == NULL) {
         dp_lcs_model_free(d);
         return NULL;

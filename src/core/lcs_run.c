@@ -18,7 +18,7 @@
 struct dp_lcs_run {
     dp_lcs_stepper *step, *last;   /* the nominal step, and the shorter last one (NULL when equal) */
     size_t n, m, width;
-    double *x, *u, *w;
+    double *x, *u, *w, *p;        /* p: the offset at the step's θ-point, for a time-dependent one */
     double *rows, *final_row;
     size_t rows_cap, rows_used;
     size_t *index;                 /* 0, 1, 2, ... for the CSV headers */
@@ -35,6 +35,7 @@ void dp_lcs_run_free(struct dp_lcs_run *lr)
     free(lr->x);
     free(lr->u);
     free(lr->w);
+    free(lr->p);
     free(lr->rows);
     free(lr->final_row);
     free(lr->index);
@@ -75,7 +76,8 @@ int dp_lcs_run_init(dp_run *r)
     lr->n = n, lr->m = m, lr->width = n + 2 * m;
     lr->x = malloc(n * sizeof *lr->x), lr->u = malloc(m * sizeof *lr->u), lr->w = malloc(m * sizeof *lr->w);
     lr->final_row = malloc(lr->width * sizeof *lr->final_row), lr->index = malloc(k * sizeof *lr->index);
-    if (!lr->x || !lr->u || !lr->w || !lr->final_row || !lr->index)
+    lr->p = malloc(n * sizeof *lr->p);
+    if (!lr->x || !lr->u || !lr->w || !lr->p || !lr->final_row || !lr->index)
         return DP_ENOMEM;
     for (size_t i = 0; i < k; i++)
         lr->index[i] = i;
@@ -147,6 +149,16 @@ static int state_finite(const struct dp_lcs_run *lr)
     return 1;
 }
 
+/* p(t_n + θh) = the constant part plus each forcing at the step's θ-point (the θ-method's own point). */
+static void set_offsets(const dp_run *r, struct dp_lcs_run *lr, dp_lcs_stepper *st)
+{
+    const dp_lcs_model *lm = r->spec.lcs;
+    double h = dp_run_step_length(r), t = (double)r->n * r->h + r->spec.solver.theta * h;
+    for (size_t i = 0; i < lr->n; i++)
+        lr->p[i] = lm->p[i] + dp_forcing_eval(&lm->pf[i], t);
+    dp_lcs_stepper_set_p(st, lr->p);
+}
+
 int dp_lcs_run_advance(dp_run *r)
 {
     struct dp_lcs_run *lr = r->lcs;
@@ -158,6 +170,8 @@ int dp_lcs_run_advance(dp_run *r)
     }
     while (r->n < r->nsteps && !block_full(r, lr)) {
         dp_lcs_stepper *st = r->n + 1 == r->nsteps && lr->last ? lr->last : lr->step;
+        if (r->spec.lcs->pf)
+            set_offsets(r, lr, st);
         dp_lcp_result res;
         int s = dp_lcs_step(st, lr->x, lr->u, lr->w, &res);
         if (s == DP_ESOLVE)
