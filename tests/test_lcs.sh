@@ -199,6 +199,22 @@ blocked = [r for r in s if t1 + 0.01 < r['t'] < 2 * math.pi - 0.01]
 assert len(blocked) > 2000 and max(abs(r['u'][0] + math.sin(r['t'] - 0.0005)) for r in blocked) < 1e-6
 "
 
+# /v1/wellposedness for LCS models: seed 002 Theorem 2.3 needs D's symmetric part positive definite.
+"$BIN" wellposedness "$T/rlc.json" >"$T/wp_rlc.json"
+check "wellposedness, ideal-diode RLC (D = 0): not guaranteed by Theorem 2.3, each θ-step well defined" pyjson "$T/wp_rlc.json" "
+d['framework'] == 'LCS' and d['existence']['guaranteed'] is False and d['uniqueness']['theorem'] is None and
+[c['holds'] for c in d['checks']] == [True, False, True] and 'mu = lambda_min((D + D^T)/2) = 0,' in d['checks'][1]['detail']"
+echo '{"model": {"lcs": {"A": [[-1]], "B": [[1]], "C": [[1]], "D": [[2]]}, "laws": [{"law": "complementarity"}]}}' >"$T/pd.json"
+"$BIN" wellposedness "$T/pd.json" >"$T/wp_pd.json"
+# D = [2]: mu = 2; with the default θ = 1 the step's matrix is D + h C (1 - hθA)^-1 B = 2 + h/(1 + h)
+check "wellposedness, D = [2]: existence and uniqueness by Theorem 2.3, the step's mu = 2 + h/(1 + h)" pyjson "$T/wp_pd.json" "
+d['existence']['guaranteed'] and d['uniqueness']['guaranteed'] and 'Theorem 2.3' in d['existence']['theorem'] and
+all(c['holds'] for c in d['checks']) and 'mu = lambda_min((D + D^T)/2) = 2 > 0' in d['checks'][1]['detail'] and
+'its mu = ' + format(2 + 0.001 / 1.001, '.6g') + ';' in d['checks'][2]['detail']"
+"$BIN" wellposedness "$T/bridge.json" >"$T/wp_bridge.json"
+check "wellposedness, the bridge: the step's matrix has a zero principal minor (not a P-matrix)" pyjson "$T/wp_bridge.json" "
+[c['holds'] for c in d['checks']] == [True, False, False] and 'a principal minor is 0 <= 0' in d['checks'][2]['detail']"
+
 simbad() { # simbad NAME DOC POINTER: dashpot simulate exits 2 naming the pointer
     echo "$2" | "$BIN" simulate - >/dev/null 2>"$T/err"
     local rc=$?
@@ -231,6 +247,9 @@ printf '{"M": ' >"$T/trunc.json"
 post /v1/lcp "$T/trunc.json"
 check "POST /v1/lcp, malformed JSON: 400" [ "$(cut -d' ' -f1 "$T/ct")" = 400 ]
 check "/metrics counts /v1/lcp" bash -c "curl -s '$U/metrics' | grep -q 'route=\"/v1/lcp\"'"
+hcurl -X POST --data-binary @"$T/pd.json" -o "$T/body" "$U/v1/wellposedness"
+check "POST /v1/wellposedness with an LCS model: the CLI's answer" python3 -c "
+import json; assert json.load(open('$T/body')) == json.load(open('$T/wp_pd.json'))"
 hcurl -X POST -H 'Accept: application/x-ndjson' --data-binary @"$T/rlc.json" -o "$T/body" "$U/v1/simulate"
 check "POST /v1/simulate with an LCS model: the CLI's NDJSON byte for byte" cmp -s "$T/body" "$T/rlc.ndjson"
 stop_daemon lcp

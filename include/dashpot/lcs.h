@@ -50,6 +50,12 @@ dp_lcs dp_lcs_model_system(const dp_lcs_model *lm);
  * admit: some u with (u, Cx0 + Du + q) in the laws), appended as located errors. DP_OK, DP_EINVAL, DP_ELIMIT. */
 int dp_lcs_check(const dp_spec *s, double max_steps, dp_errors *e);
 
+/* What seed 002's theory says about a checked LCS spec (framework "LCS"): existence and uniqueness by
+ * Theorem 2.3 when D's symmetric part is positive definite, and whether the θ-step's matrix is a P-matrix.
+ * DP_OK, DP_ENOMEM, DP_ESOLVE. */
+struct dp_wp_report;
+int dp_lcs_wellposedness(const dp_spec *s, struct dp_wp_report *rep);
+
 typedef struct dp_lcs_stepper dp_lcs_stepper;
 
 /* A stepper for step h >= 0 and θ in [0, 1]; h = 0 is the algebraic part alone (M = D: a step leaves x and

@@ -898,6 +898,15 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
         check_keys(&c, root, NULL, keys, NULL, NULL);
         v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
     }
+    if (v != NULL && is_lcs(v)) { /* an LCS: checked as a run's spec, its theory from the step's matrix */
+        cJSON_Delete(root);
+        dp_spec spec;
+        dp_spec_init(&spec);
+        int s = dp_spec_parse(text, len, 0, &spec, errs);
+        s = s == DP_OK ? dp_lcs_wellposedness(&spec, rep) : s;
+        dp_spec_clear(&spec);
+        return s;
+    }
     if (v == NULL || !is_network(v)) {
         cJSON_Delete(root);
         dp_model m = { 0 };
