@@ -130,9 +130,11 @@ robustness: all
 bench: all
 	@bash bench/run.sh $(BUILD)
 
-# dashpot's stick-slip solver next to Siconos (installed from Debian if missing): accuracy and speed.
+# dashpot's stick-slip solver next to Siconos (installed from Debian if missing): accuracy and speed, for one
+# mass (siconos.sh) and for networks (network.sh: chains, Burridge-Knopoff scaling, one node vs one mass).
 bench-peers: all
-	BUILD=$(BUILD) bash bench/siconos.sh
+	@fail=0; for b in bench/siconos.sh bench/network.sh; do echo "== $$b"; BUILD=$(BUILD) bash $$b || fail=1; done; \
+	exit $$fail
 
 clean:
 	rm -rf build build-san build-fuzz

@@ -279,6 +279,34 @@ static void test_parallel_stick_intervals_share_the_load(void **state)
     free(r.d);
 }
 
+/* What the theory guarantees: a network of maximal monotone laws is well posed (existence and uniqueness);
+ * a static threshold above the kinetic one breaks monotonicity, and the report says so, naming the element. */
+static void test_network_wellposedness(void **state)
+{
+    (void)state;
+    const char *good = "{\"model\":{\"masses\":[1,2],\"elements\":[{\"between\":[\"ground\",0],"
+        "\"damper\":{\"law\":\"coulomb\",\"phi0\":0.3}},{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":1}}]}}";
+    const char *bad = "{\"model\":{\"masses\":[1,2],\"elements\":[{\"between\":[0,1],\"spring\":{\"law\":\"linear\","
+        "\"k\":1}},{\"between\":[\"ground\",1],\"damper\":{\"law\":\"generalized-coulomb\",\"phi0\":0.3,\"phi1\":0.5}}]}}";
+    dp_wp_report rep;
+    dp_errors errs;
+    dp_errors_init(&errs);
+    assert_int_equal(dp_wellposedness_parse(good, strlen(good), &rep, &errs), DP_OK);
+    assert_string_equal(rep.framework, "network");
+    assert_true(rep.existence.guaranteed && rep.uniqueness.guaranteed);
+    assert_int_equal(dp_wellposedness_parse(bad, strlen(bad), &rep, &errs), DP_OK);
+    assert_false(rep.existence.guaranteed);
+    assert_false(rep.uniqueness.guaranteed);
+    assert_non_null(rep.counterexample);
+    size_t failing = 0;
+    for (size_t i = 0; i < rep.nchecks; i++)
+        if (!rep.check[i].holds) {
+            failing++;
+            assert_non_null(strstr(rep.check[i].detail, "element 1"));
+        }
+    assert_int_equal(failing, 1);
+}
+
 /* The regularized scheme (PCn, Yosida dampers) converges to the exact stepping at rate 1/n: each decade of n
  * takes a decade off the error (measured 8.3e-3, 8.4e-4, 8.4e-5 for n = 1e2, 1e3, 1e4). */
 static void test_regularized_converges_at_rate_one_over_n(void **state)
@@ -490,6 +518,7 @@ int main(void)
         cmocka_unit_test(test_sticking_block_does_not_creep),
         cmocka_unit_test(test_records_do_not_depend_on_the_block),
         cmocka_unit_test(test_relaxation_step_bound),
+        cmocka_unit_test(test_network_wellposedness),
         cmocka_unit_test(test_parallel_stick_intervals_share_the_load),
         cmocka_unit_test(test_regularized_converges_at_rate_one_over_n),
     };

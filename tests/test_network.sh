@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # tests/test_network.sh - network documents (systems.md §1, docs/networks.md) end to end, over HTTP and the
-# CLI: the 3-mass chain in every format (column names, array lengths, no NaN, events that name an element),
-# every kind of bad network input refused with 422 and the exact JSON Pointer, and two unconnected
-# networks in one document equal to the two separate runs, number for number, and the examples of
-# docs/networks.md print what it shows. The JSON checks are python3 so that nothing here trusts the
+# CLI: the 3-mass chain in every format (column names, array lengths, no NaN, located events that name an
+# element), every kind of bad network input refused with 422 and the exact JSON Pointer (the n-mass step
+# bound with relaxation on both sides of it), relaxation and static thresholds on elements against their
+# laws, the regularized scheme against the exact stepping, /v1/wellposedness for a network, two unconnected
+# networks in one document equal to the two separate runs (bit for bit without event location, to the
+# method's error with it), and the examples of docs/networks.md print what it shows. The JSON checks are python3 so that nothing here trusts the
 # program's own parser. Env BUILD (default build).
 source "$(dirname "$0")/lib/daemon.bash"
 CLI=$BUILD/dashpot
@@ -68,11 +70,17 @@ for r in samples: row_ok(r)
 assert len(events) >= 2 and {e["kind"] for e in events} == {"stick", "slip"}, events
 for e in events: event_ok(e)
 assert samples[0]["x"] == [1, 2] and samples[0]["v"] == [0, 0], samples[0]
+# The spring force 1 is over the threshold 0.3 at t = 0: node 0 slips from the start (Fd = -0.3, no event),
+# as the one-mass model says; a located stick lies strictly inside a step, where the velocity crosses zero.
+assert samples[0]["phase"] == ["slip"] and samples[0]["Fd"] == [-0.3], samples[0]
+sticks = [e for e in events if e["kind"] == "stick"]
+assert sticks and all(abs(e["du"]) < 1e-12 for e in sticks), sticks
+assert any(abs(e["t"] / 0.001 - round(e["t"] / 0.001)) > 1e-3 for e in sticks), [e["t"] for e in sticks]
 '
 CHECK_META='
 assert meta["model"] == "network" and meta["nodes"] == 3 and meta["elements"] == 3, meta
 assert meta["columns"] == {"nodes": [0, 2], "elements": [0]}, meta["columns"]
-assert meta["events_mode"] == "step" and meta["wellposedness"]["framework"] == "network", meta
+assert meta["events_mode"] == "locate" and meta["wellposedness"]["framework"] == "network", meta
 '
 CHECK_SUMMARY='
 last = {k: v for k, v in samples[-1].items() if k != "type"}
@@ -188,6 +196,8 @@ bad "element with neither spring nor damper" /model/elements/1 'd["model"]["elem
 bad "element with an unknown member" /model/elements/1/mass 'd["model"]["elements"][1]["mass"] = 1'
 bad "a zero mass" /model/masses/1 'd["model"]["masses"][1] = 0'
 bad "a negative mass" /model/masses/2 'd["model"]["masses"][2] = -1.5'
+# With no node count to check them against, output.nodes/elements add no errors of their own.
+bad "masses not an array, with output.nodes and output.elements" /model/masses 'd["model"]["masses"] = "three"'
 bad "an empty masses array" /model/masses 'd["model"]["masses"] = []; d["model"]["elements"] = []; d["model"]["forcing"] = []; d["initial"] = {}; del d["output"]["nodes"], d["output"]["elements"]'
 bad "initial.x of 2 numbers for 3 nodes" /initial/x 'd["initial"]["x"] = [1, 2]'
 bad "initial.v of 4 numbers for 3 nodes" /initial/v 'd["initial"]["v"] = [0, 0, 0, 0]'
@@ -203,12 +213,20 @@ bad "masses and mass_matrix together" /model/mass_matrix \
 bad "an indefinite stiffness_matrix" /model/stiffness_matrix 'd["model"]["stiffness_matrix"] = [[0, 0, 0], [0, -1, 0], [0, 0, 0]]'
 bad "output.nodes out of range" /output/nodes/1 'd["output"]["nodes"] = [0, 3]'
 bad "output.elements out of range" /output/elements/0 'd["output"]["elements"] = [3]'
-bad "relaxation on an element" /model/elements/0/damper/relaxation \
-    'd["model"]["elements"][0]["damper"]["relaxation"] = {"kind": "rational", "a": 0.5, "b": 1}'
-bad "a static threshold phi1 > phi0 on an element" /model/elements/0/damper/phi1 \
-    'd["model"]["elements"][0]["damper"] = {"law": "generalized-coulomb", "phi0": 0.3, "phi1": 0.5}'
-bad "the regularized solver on a network" /solver/kind \
-    'd["solver"] = {"kind": "regularized", "scheme": "PC", "n": 10, "t_end": 1, "dt": 0.1}'
+bad "a power relaxation on an element (not Lipschitz at rest)" /model/elements/0/damper/relaxation \
+    'd["model"]["elements"][0]["damper"]["relaxation"] = {"kind": "power", "N": 2}'
+# The n-mass step bound: W - h theta sum_e L_e b_e b_e^T > 0. Element 0 joins node 0 (m = 1) to the ground and
+# only it relaxes, so the bound is hθL < 1 + h²θ²(k0 + k1) = 1 + 0.25e-6 * 3: L < 2000.0015 at dt = 1e-3,
+# θ = 1/2 (one without θ would put it at 1000, one without h²θ²K the same to 1e-6). Rational γ: L = a/b.
+RELAX='d["model"]["elements"][0]["damper"]["relaxation"] = {"kind": "rational", "a": 0.3, "b": 0.3 / L}'
+bad "a dt past the n-mass step bound (L = 2010)" /solver/dt "L = 2010; $RELAX"
+bad "the analytic solver on a network" /solver/kind 'd["solver"] = {"kind": "analytic", "t_end": 1, "dt": 0.1}'
+REG='d["solver"] = {"kind": "regularized", "scheme": "PC", "n": 1e4, "t_end": 1, "dt": 0.01}'
+bad "the regularized solver on a network with scheme PI" /solver/scheme \
+    "$REG"'; d["solver"].update(scheme="PI", k=10); del d["solver"]["n"]'
+bad "the regularized solver on a network with a list of n" /solver/n "$REG"'; d["solver"]["n"] = [10, 100]'
+bad "the regularized solver on a network of 201 masses" /model/masses \
+    "$REG"'; d["model"]["masses"] = [1] * 201; d["initial"] = {}'
 bad "more than 200 nodes with a mass_matrix" /model/mass_matrix \
     'n = 201; d = {"model": {"mass_matrix": [[float(i == j) for j in range(n)] for i in range(n)]}, "solver": {"dt": 0.01, "t_end": 1}}'
 bad "more than 20000 masses" /model/masses \
@@ -217,6 +235,82 @@ bad "output.nodes on a one-mass document" /output/nodes \
     'd = {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "none"}}, "output": {"nodes": [0]}, "solver": {"dt": 0.01, "t_end": 1}}'
 bad "output.elements on a one-mass document" /output/elements \
     'd = {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "none"}}, "output": {"elements": [0]}, "solver": {"dt": 0.01, "t_end": 1}}'
+
+# ---- laws the network stepping took on after the first release: relaxation, static thresholds ----
+# patch JSON-PYTHON: the chain with the python statement applied to d, on stdout.
+patch() { python3 -c 'import json,sys; d=json.loads(sys.argv[1]); exec(sys.argv[2]); print(json.dumps(d))' "$CHAIN" "$1"; }
+# Rational relaxation γ(z) = a z/(b + |z|) on the Coulomb element (thesis (3.2)): a slipping element carries
+# F_d = φ0 sign z − γ(z) (z = v0, the ground does not move), checked on every slipping sample.
+req "$U" application/x-ndjson "$(patch 'd["model"]["elements"][0]["damper"]["relaxation"] = {"kind": "rational", "a": 0.2, "b": 0.5}; d["output"] = {"every": 100}')"
+check "rational relaxation on an element: 200, meta events_mode step, F_d = 0.3 sign v − 0.2 v/(0.5 + |v|) when slipping" py "$BODY" '
+rows = [loads(l) for l in text.splitlines()]
+meta, s = rows[0], [r for r in rows if r["type"] == "sample"]
+assert meta["events_mode"] == "step" and rows[-1]["type"] == "summary", (meta["events_mode"], rows[-1])
+assert [c["holds"] for c in meta["wellposedness"]["checks"]] == [True] * 4, meta["wellposedness"]
+assert s[0]["phase"][0] == "slip" and s[0]["Fd"][0] == -0.3, s[0]     # at rest, pushed by Fs = 1 > 0.3
+slip = [r for r in s[1:] if r["phase"][0] == "slip"]
+assert len(slip) > 150 and rows[-1]["events"] >= 2, (len(slip), rows[-1])
+for r in slip:
+    z = r["v"][0]
+    want = 0.3 * (1 if z > 0 else -1) - 0.2 * z / (0.5 + abs(z))
+    assert abs(r["Fd"][0] - want) < 1e-12 and abs(want) <= 0.3, (r, want)
+'
+# The accepted side of the step bound above: L = 1990 < 2000.0015 runs to its end.
+req "$U" text/csv "$(patch 'L = 1990; d["model"]["elements"][0]["damper"]["relaxation"] = {"kind": "rational", "a": 0.3, "b": 0.3 / L}')"
+check "a dt inside the n-mass step bound (L = 1990): 200, 11 finite rows to t = 20" py "$BODY" '
+lines = text.splitlines()
+assert len(lines) == 12 and lines[-1].startswith("20,"), lines[-2:]
+assert all(math.isfinite(float(f)) for l in lines[1:] for f in l.split(",")[:-1]), lines
+'
+# Generalized Coulomb φ0 = 0.3, φ1 = 0.5 (the rest branch): slipping it carries ±φ0, stuck anything in
+# [−φ1, φ1], and it does hold a force over φ0 at rest (else the static threshold would not matter here).
+req "$U" application/x-ndjson "$(patch 'd["model"]["elements"][0]["damper"] = {"law": "generalized-coulomb", "phi0": 0.3, "phi1": 0.5}; d["output"] = {"every": 10}')"
+check "a static threshold phi1 > phi0 on an element: slipping |Fd| = 0.3, stuck |Fd| <= 0.5 and over 0.3 somewhere" py "$BODY" '
+rows = [loads(l) for l in text.splitlines()]
+assert rows[0]["events_mode"] == "step" and rows[-1]["type"] == "summary", rows[0]
+s = [r for r in rows if r["type"] == "sample"]
+stuck = [abs(r["Fd"][0]) for r in s if r["phase"][0] == "stick"]
+assert all(abs(abs(r["Fd"][0]) - 0.3) < 1e-12 for r in s if r["phase"][0] == "slip")
+assert stuck and max(stuck) <= 0.5 + 1e-12 and max(stuck) > 0.3 + 1e-3, max(stuck or [0])
+'
+
+# ---- the regularized scheme (PCn, Yosida dampers) on the chain ----
+# Against the exact stepping of the same chain at dt = 1e-4 (CLI): it converges at rate 1/n, so n = 1e4 is
+# within a few 1e-4 (the core's study: 8.4e-5 at t = 20); 1e-3 would catch a wrong sign or half the friction.
+REGDOC=$(patch 'd["solver"] = {"kind": "regularized", "scheme": "PC", "n": 1e4, "dt": 0.01, "t_end": 4}; d["output"]["every"] = 100')
+EXACT=$(patch 'd["solver"] = {"kind": "stick-slip", "dt": 1e-4, "t_end": 4, "theta": 0.5}; d["output"]["every"] = 10000')
+echo "$EXACT" | "$CLI" simulate - --format ndjson >"$SCRATCH/exact.ndjson"
+req "$U" application/json "$REGDOC"
+check "regularized on a network, JSON: 5 samples, phase null, within 1e-3 of the exact stepping at dt = 1e-4" py "$BODY" '
+d = loads(text)
+s = d["samples"]
+exact = [json.loads(l) for l in open(sys.argv[1].replace("body", "exact.ndjson"))]
+exact = [r for r in exact if r["type"] == "sample"]
+assert d["events"] == [] and [r["t"] for r in s] == [0, 1, 2, 3, 4] == [r["t"] for r in exact], (s, exact)
+assert all(r["phase"] == [None] and len(r["x"]) == 2 and len(r["Fd"]) == 1 for r in s), s[0]
+err = max(abs(p - q) for r, e in zip(s, exact) for k in ("x", "v") for p, q in zip(r[k], e[k]))
+assert err < 1e-3, err
+assert d["summary"]["steps"] == 400 and d["summary"]["fevals"] > 0, d["summary"]
+'
+req "$U" text/csv "$REGDOC"
+check "regularized on a network, CSV: the chain's header, 5 rows, phase empty" py "$BODY" '
+lines = text.splitlines()
+assert lines[0] == "t,x0,x2,v0,v2,Fs0,Fd0,phase0" and len(lines) == 6, lines
+assert all(l.endswith(",") and len(l.split(",")) == 8 for l in lines[1:]), lines
+'
+
+# ---- /v1/wellposedness and dashpot wellposedness answer for networks ----
+req "$URL_net/v1/wellposedness" application/json "$CHAIN"
+check "/v1/wellposedness on the 3-mass chain: 200, framework network, existence and uniqueness guaranteed" py "$BODY" '
+d = loads(text)
+assert d["framework"] == "network" and d["existence"]["guaranteed"] and d["uniqueness"]["guaranteed"], d
+assert all(c["holds"] for c in d["checks"]) and d["checks"][0]["detail"].startswith("3 nodes"), d["checks"]
+'
+cp "$BODY" "$SCRATCH/wp.http"
+echo "$CHAIN" | "$CLI" wellposedness - >"$SCRATCH/wp.cli"
+check "dashpot wellposedness on the chain: the same report as over HTTP" py "$SCRATCH/wp.cli" '
+assert loads(text) == loads(open(sys.argv[1].replace("wp.cli", "wp.http")).read())
+'
 
 # ---- two unconnected networks in one document are the two separate runs ----
 # A: the chain above with every node written; B: two masses on a belt, a Coulomb element between them.
@@ -239,28 +333,50 @@ print(json.dumps({"model": m, "initial": {k: a["initial"][k] + b["initial"][k] f
                   "solver": a["solver"], "output": a["output"]}))
 PY
 )
-for name in A B AB; do
-    req "$U" application/x-ndjson "${!name}"
-    cp "$BODY" "$SCRATCH/sep.$name"
+# events "none" (Moreau-Jean: every step whole) gives the separate runs bit for bit. Located events split a
+# step for the whole document at the first event of either half, so the other half takes two shorter θ-steps
+# instead of one: the same trajectory to the method's error (θ = 1/2, dt = 1e-3: ~dt² = 1e-6), not bit for bit.
+for mode in none locate; do
+    for name in A B AB; do
+        doc=$(python3 -c 'import json,sys; d=json.loads(sys.argv[1]); d["solver"]["events"] = sys.argv[2]; print(json.dumps(d))' "${!name}" "$mode")
+        req "$U" application/x-ndjson "$doc"
+        cp "$BODY" "$SCRATCH/sep.$mode.$name"
+    done
 done
-check "two unconnected networks in one document: every sample and event equals the separate runs, bit for bit" py "$SCRATCH/sep.AB" '
+SEPARATE='
 def load(f):
     rows = [json.loads(l) for l in open(f).read().splitlines()]
     assert rows[-1]["type"] == "summary", rows[-1]
     return [r for r in rows if r["type"] == "sample"], [r for r in rows if r["type"] == "event"]
-sa, ea = load(sys.argv[1].replace("sep.AB", "sep.A"))
-sb, eb = load(sys.argv[1].replace("sep.AB", "sep.B"))
+base = sys.argv[1][:-len("AB")]
+sa, ea = load(base + "A")
+sb, eb = load(base + "B")
 s, e = load(sys.argv[1])
 assert len(s) == len(sa) == len(sb) == 401, (len(s), len(sa), len(sb))
-for r, a, b in zip(s, sa, sb):
-    assert r["t"] == a["t"] == b["t"]
-    for k in ("x", "v", "Fs", "Fd", "phase"):
-        assert r[k] == a[k] + b[k], (r["t"], k, r[k], a[k] + b[k])
 # Both halves stick and slip; the events of B are renumbered by the 3 elements of A.
 assert len(ea) >= 2 and len(eb) >= 2, (len(ea), len(eb))
 key = lambda x: (x["t"], x["element"], x["kind"])
 want = sorted([x for x in ea] + [dict(x, element=x["element"] + 3) for x in eb], key=key)
-assert sorted(e, key=key) == want, (len(e), len(want))
+got = sorted(e, key=key)
+'
+check "two unconnected networks, events none: every sample and event equals the separate runs, bit for bit" \
+    py "$SCRATCH/sep.none.AB" "$SEPARATE"'
+for r, a, b in zip(s, sa, sb):
+    assert r["t"] == a["t"] == b["t"]
+    for k in ("x", "v", "Fs", "Fd", "phase"):
+        assert r[k] == a[k] + b[k], (r["t"], k, r[k], a[k] + b[k])
+assert got == want, (len(got), len(want))
+'
+check "two unconnected networks, events located: the separate runs to 1e-6, the same events at times within 1e-6" \
+    py "$SCRATCH/sep.locate.AB" "$SEPARATE"'
+worst = 0
+for r, a, b in zip(s, sa, sb):
+    assert r["t"] == a["t"] == b["t"]
+    for k in ("x", "v", "Fs", "Fd"):
+        worst = max([worst] + [abs(p - q) for p, q in zip(r[k], a[k] + b[k])])
+assert worst < 1e-6, worst
+assert [(x["element"], x["kind"]) for x in got] == [(x["element"], x["kind"]) for x in want], (got, want)
+assert max(abs(x["t"] - y["t"]) for x, y in zip(got, want)) < 1e-6, [(x["t"], y["t"]) for x, y in zip(got, want)]
 '
 
 # ---- docs/networks.md: its examples print what it shows (the README's conventions, tests/test_readme.sh) ----

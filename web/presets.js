@@ -122,34 +122,39 @@ PRESETS.push({
 });
 
 // Burridge-Knopoff in the plate's frame: n blocks, each on a leaf spring kp to the plate (the ground here)
-// and with Coulomb friction against the ground, which moves at -V in this frame (belt_velocity -V); neighbour
-// springs kc. Frictions and initial stresses vary from block to block (fixed numbers, no randomness): every
-// block starts stuck (v = -V) with its leaf spring at 30-95 % of its friction, so the weakest break away first,
-// load their neighbours, and a slip front runs along the chain; blocks stick again when their speed relative
-// to the ground falls back to zero with the force inside their friction.
-// With constant Coulomb friction the chain settles towards steady sliding after some tens of seconds:
-// sustained stick-slip needs velocity weakening, which networks do not take yet.
-function burridgeKnopoff(n, V, kp, kc) {
+// and with friction against the ground, which moves at -V in this frame (belt_velocity -V); neighbour
+// springs kc. The friction is Carlson-Langer velocity weakening: Coulomb phi0 with the rational relaxation
+// gamma(z) = alpha phi0 z/(vf + |z|), so a slipping block carries phi0 (1 - alpha |z|/(vf + |z|)) sign z, down to
+// (1 - alpha) phi0 when fast (docs/networks.md). Frictions and initial stresses vary from block to block (fixed
+// numbers, no randomness): every block starts stuck (v = -V) with its leaf spring at 30-95 % of its friction, so
+// the weakest break away first, load their neighbours, and slip fronts run along the chain; blocks stick again
+// when their speed relative to the ground falls back to zero, and the plate loads them again: the weakening
+// keeps the stick-slip cycles going (constant Coulomb friction would let the chain settle into steady sliding).
+// Relaxation is stepped under the n-mass step bound W - h theta sum L b b^T > 0 (refused at /solver/dt past it):
+// with L = alpha phi0 / vf <= 0.5 * 2 / 0.05 = 20, h theta L = 0.1 < m = 1, far inside it.
+function burridgeKnopoff(n, V, kp, kc, alpha, vf) {
   const elements = [], x = [];
   for (let i = 0; i < n; i++) {
     const phi0 = +(1 + Math.sin(7.3 * i) ** 2).toFixed(3);
-    elements.push({ between: ['ground', i], spring: { law: 'linear', k: kp }, damper: { law: 'coulomb', phi0, belt_velocity: -V } });
+    const relaxation = { kind: 'rational', a: +(alpha * phi0).toFixed(4), b: vf };
+    elements.push({ between: ['ground', i], spring: { law: 'linear', k: kp }, damper: { law: 'coulomb', phi0, belt_velocity: -V, relaxation } });
     x.push(+(-(phi0 / kp) * (0.3 + 0.65 * Math.sin(3.1 * i) ** 2)).toFixed(3));
   }
   for (let i = 0; i + 1 < n; i++) elements.push({ between: [i, i + 1], spring: { law: 'linear', k: kc } });
   return {
     model: { masses: Array(n).fill(1), elements },
     initial: { x, v: Array(n).fill(-V) },
-    solver: { kind: 'stick-slip', dt: 0.01, t_end: 40, theta: 0.5 },
-    output: { every: 5 },
+    solver: { kind: 'stick-slip', dt: 0.01, t_end: 100, theta: 0.5 },
+    output: { every: 10 },
   };
 }
 PRESETS.push({
   id: 'burridge-knopoff', group: 'Networks of masses', label: 'Burridge\u2013Knopoff chain of 60 blocks', kind: 'simulate',
-  note: '60 blocks (m = 1) on leaf springs kp = 1 to a plate moving at V = 0.1, neighbour springs kc = 0.5, Coulomb ' +
-    'friction \u03c6\u2080 between 1 and 2 against the ground, which moves at \u2212V in the plate\u2019s frame. In the ' +
-    'space\u2013time picture a stuck block is dark (v = \u2212V): the weakest blocks break away, a slip front runs along ' +
-    'the chain, blocks stick again. ' +
-    'Constant friction lets the chain settle into steady sliding; velocity weakening (not yet on networks) would sustain it.',
-  spec: burridgeKnopoff(60, 0.1, 1, 0.5),
+  note: '60 blocks (m = 1) on leaf springs kp = 1 to a plate moving at V = 0.1, neighbour springs kc = 0.5, ' +
+    'Carlson\u2013Langer friction against the ground, which moves at \u2212V in the plate\u2019s frame: Coulomb ' +
+    '\u03c6\u2080 between 1 and 2 weakened by the relaxation \u03b3 = 0.5 \u03c6\u2080 z/(0.05 + |z|), so a fast block keeps ' +
+    'half its friction. In the space\u2013time picture a stuck block is dark (v = \u2212V): the weakest blocks break ' +
+    'away, slip fronts run along the chain, blocks stick, the plate loads them again, and the stick\u2013slip cycles ' +
+    'go on for the whole run. dt = 0.01 is far inside the step bound h\u03b8L < m (h\u03b8L = 0.1).',
+  spec: burridgeKnopoff(60, 0.1, 1, 0.5, 0.5, 0.05),
 });

@@ -34,37 +34,74 @@ static double held_margin(void *vctx, double s)
     return m;
 }
 
-/* The earliest instant in (0, h] where the starting assignment stops being consistent: a root of the
- * candidates' smallest margin, found once for all of them (each evaluation is one held solve); in
- * `fails` the elements whose margin is zero there (identical blocks fail together). Returns h when the
- * held assignment does not fail, 0 when it fails at once. */
+/* The root in (s0, s1] of the smallest margin among the candidates `cand`, the margins there in nr->margin. */
+static double held_root(dp_run *r, double t, double s0, double s1, const unsigned char *cand)
+{
+    held_ctx c = { r, t, cand };
+    double g0 = held_margin(&c, s0), g1 = held_margin(&c, s1);
+    double at = dp_root_bracket(held_margin, &c, s0, s1, g0, g1, 1e-15 * s1, &r->sum.iterations);
+    held_margin(&c, at);
+    return at;
+}
+
+/* The earliest instant in (0, h] where the starting assignment stops being consistent, in `fails` the
+ * elements that fail there (identical blocks fail together). A free element fails where its relative
+ * velocity at the held step's end reaches a vertex: at t + s. A fixed one fails where its force leaves its
+ * interval; a held step of length s measures the force at t + theta s (the theta-point), so its failure is
+ * sought over s in (0, h / theta] and happens at t + theta s*, as the one-mass solver's holding test, which
+ * reads the force at the instant itself. Returns h when nothing fails in the step, 0 when something fails at
+ * once. */
 static double earliest_event(dp_run *r, double t, double h, unsigned char *fails)
 {
     struct dp_net_run *nr = r->net;
     size_t m = nr->nact;
     held_ctx c = { r, t, NULL };
-    double s0 = 1e-9 * h, *start = nr->roots;
+    double th = nr->theta, s0 = 1e-9 * h, *start = nr->roots, *scale = nr->scale;
+    unsigned char *fixed = nr->fixed, *cand = nr->cand;
     memset(fails, 0, m ? m : 1);
     held_margin(&c, s0);             /* just after the start: the assignment holds there, or fails at once */
     memcpy(start, nr->margin, m * sizeof *start);
-    if (!(held_margin(&c, h) == held_margin(&c, h)))
-        return h;
-    size_t ncand = 0;
-    for (size_t k = 0; k < m; k++) {
-        fails[k] = nr->margin[k] < 0;
-        ncand += fails[k];
-        if (fails[k] && !(start[k] >= 0))
-            return 0;
+    int any_fixed = 0, any_free = 0;
+    for (size_t k = 0; k < m; k++)
+        fixed[k] = (unsigned char)dp_net_ws_fixed(nr->ws, k);
+    for (int pass = 0; pass < 2; pass++) {   /* free elements over h, fixed ones over h / theta */
+        if (!(held_margin(&c, pass ? h / th : h) == held_margin(&c, pass ? h / th : h)))
+            return h;
+        for (size_t k = 0; k < m; k++) {
+            if (fixed[k] != pass || !(nr->margin[k] < 0))
+                continue;
+            if (!(start[k] >= 0)) {
+                fails[k] = 1;
+                return 0;
+            }
+            cand[k] = (unsigned char)(pass + 1);
+            scale[k] = fabs(start[k]) + fabs(nr->margin[k]);
+            pass ? (any_fixed = 1) : (any_free = 1);
+        }
     }
-    if (ncand == 0)
-        return h;
-    c.cand = fails;
-    double g0 = held_margin(&c, s0), g1 = held_margin(&c, h);
-    double at = dp_root_bracket(held_margin, &c, s0, h, g0, g1, 1e-15 * h, &r->sum.iterations);
-    held_margin(&c, at);
-    for (size_t k = 0; k < m; k++)      /* the ones that fail here; the others wait for their own instant */
-        fails[k] = fails[k] && nr->margin[k] <= 1e-9 * fmax(start[k], 1e-300);
-    return at;
+    double best = h;
+    int found = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        if (!(pass ? any_fixed : any_free))
+            continue;
+        for (size_t k = 0; k < m; k++)
+            fails[k] = cand[k] == pass + 1;
+        double s = held_root(r, t, s0, pass ? h / th : h, fails), at = pass ? th * s : s;
+        if (found && at >= best)
+            continue;
+        /* the ones failing at this instant: the smallest margin whatever its last digits, and any other
+         * within the root's tolerance of zero */
+        size_t first = (size_t)-1;
+        for (size_t k = 0; k < m; k++)
+            if (fails[k] && (first == (size_t)-1 || nr->margin[k] < nr->margin[first]))
+                first = k;
+        for (size_t k = 0; k < m; k++)
+            nr->fails_at[k] = fails[k] && (k == first || nr->margin[k] <= 1e-9 * scale[k]);
+        best = at, found = 1;
+    }
+    for (size_t k = 0; k < m; k++)
+        fails[k] = found ? nr->fails_at[k] : 0, cand[k] = 0;
+    return best;
 }
 
 /* Element k's assignment failed at time t (the state is there, the held assignment in the workspace): a
@@ -95,6 +132,28 @@ static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
     return dp_net_ws_at_rest(nr->ws, k) ? DP_PHASE_STICK : DP_PHASE_SLIP;
 }
 
+/* Whether a fixed element's force leaves its interval inside a step that the exact solution keeps it
+ * fixed over: the step's multiplier is the force at its theta-point, so below theta = 1 the held step is
+ * looked at up to h / theta to see the force at the step's end. (One held solve per step with something
+ * fixed; the assignment is left as it was.) */
+static int breaks_away(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    if (nr->theta == 1)
+        return 0;
+    int any = 0;
+    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+    for (size_t k = 0; k < nr->nact && !any; k++)
+        any = dp_net_ws_fixed(nr->ws, k);
+    if (!any)
+        return 0;
+    held_margin(&(held_ctx){ r, t, NULL }, h / nr->theta);
+    for (size_t k = 0; k < nr->nact; k++)
+        if (dp_net_ws_fixed(nr->ws, k) && nr->margin[k] < 0)
+            return 1;
+    return 0;
+}
+
 /* A step split at its phase changes: while the exact step over what is left changes some element's phase,
  * the starting assignment is held up to the earliest instant where it fails, the step is taken to there,
  * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
@@ -110,7 +169,15 @@ int nr_located_step(dp_run *r, double t, double h)
         if (s != DP_OK)
             return s;
         nr_element_forces(nr, 1);
-        if (dp_net_ws_pattern_same(nr->ws, nr->pattern) || sub > 2 * nr->nact + 4) {
+        int same = dp_net_ws_pattern_same(nr->ws, nr->pattern);
+        if (same && nr->theta < 1) {      /* keep the step's solution while the held step looks further */
+            memcpy(nr->v1_keep, nr->v1, nr->n * sizeof *nr->v1);
+            memcpy(nr->force_keep, nr->force, nr->nact * sizeof *nr->force);
+            same = !breaks_away(r, t, left);
+            memcpy(nr->v1, nr->v1_keep, nr->n * sizeof *nr->v1);
+            memcpy(nr->force, nr->force_keep, nr->nact * sizeof *nr->force);
+        }
+        if (same || sub > 2 * nr->nact + 4) {
             nr_take_velocity(nr, left);
             nr_element_forces(nr, 1);
             nr_step_events(r, nr->phase_prev, t + left);

@@ -204,7 +204,7 @@ void dp_network_run_free(struct dp_net_run *nr)
     dp_network_regularized_free(nr->reg);
     for (size_t i = 0; nr->static_A && i < nr->nact; i++)
         dp_graph_clear(&nr->static_A[i]);
-    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
@@ -405,8 +405,15 @@ int dp_network_run_init(dp_run *r)
     nr->pattern = malloc(dp_net_ws_pattern_bytes(nr->ws));
     nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
     nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
-    nr->fails = calloc(nr->nact ? nr->nact : 1, 1);
-    if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL || nr->fails == NULL)
+    size_t na = nr->nact ? nr->nact : 1;
+    nr->fails = calloc(na, 1);
+    nr->scale = calloc(na, sizeof *nr->scale);
+    nr->fixed = calloc(na, 1), nr->cand = calloc(na, 1), nr->fails_at = calloc(na, 1);
+    nr->v1_keep = calloc(nr->n, sizeof *nr->v1_keep);
+    nr->force_keep = calloc(na, sizeof *nr->force_keep);
+    if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL || nr->fails == NULL || nr->scale == NULL ||
+        nr->fixed == NULL || nr->cand == NULL || nr->fails_at == NULL || nr->v1_keep == NULL ||
+        nr->force_keep == NULL)
         return DP_ENOMEM;
     nr->locate = dp_network_locates(&r->spec);
     if ((s = check_step_bound(r)) != DP_OK)

@@ -25,6 +25,10 @@ struct dp_net_run {
     double *margin;             /* per active element, of the assignment held over a shorter step */
     double *roots;              /* per active element: its margin just after a sub-step's start */
     unsigned char *fails;       /* per active element: its held assignment fails at the located instant */
+    double *scale;              /* per active element: the size of its margin over a step */
+    unsigned char *fixed, *cand, *fails_at;   /* per active element: location's scratch */
+    double *v1_keep;            /* n: a step's solution kept while location looks further */
+    dp_net_force *force_keep;   /* per active element, likewise */
     struct dp_net_reg *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
     int one_mass;               /* stepped by the one-mass solver (network_one_mass.c) */
     long *act_of;               /* element -> its index in act, or -1 */

@@ -49,8 +49,10 @@ struct dp_net_ws {
     double *W, *H;        /* band storage n x (p+1) */
     double *R;            /* reduced band storage, capacity n x (p+1) grown on demand */
     size_t R_cap, nr, pr;
-    int factored;         /* R holds the factor of the current structure */
+    int factored;         /* R holds the factor of the structure in fac_st, fac_slope, for h_factored */
     double h_factored;
+    unsigned char *fac_st;
+    double *fac_slope;
     elem_state *es;
     long *parent;         /* union-find over nodes and the ground (index n), with potentials */
     double *pot;
@@ -95,7 +97,9 @@ dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
     w->g1 = calloc(m, sizeof *w->g1);
     w->gshift = calloc(m, sizeof *w->gshift);
     w->zprev = calloc(m, sizeof *w->zprev);
-    if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->zprev ||!w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
+    w->fac_st = calloc(m, 1);
+    w->fac_slope = calloc(m, sizeof *w->fac_slope);
+    if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->zprev || !w->fac_st || !w->fac_slope ||!w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
         !w->y || !w->vs || !w->d || !w->res || !w->head || !w->next_edge || !w->deg || !w->queue) {
         dp_net_ws_free(w);
         return NULL;
@@ -110,7 +114,7 @@ void dp_net_ws_free(dp_net_ws *w)
     free(w->W), free(w->H), free(w->R), free(w->es), free(w->parent), free(w->pot), free(w->kidx);
     free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->head);
     free(w->next_edge), free(w->deg), free(w->queue);
-    free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->zprev);
+    free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->zprev), free(w->fac_st), free(w->fac_slope);
     free(w);
 }
 
@@ -289,23 +293,39 @@ static void build_forest(dp_net_ws *w)
 
 /* ---- the reduced system ------------------------------------------------------------------------------ */
 
-/* H = W + h sum_free slope b b^T; rhs_eff = rhs - h sum_free (lam0 - slope zref) b. */
-static void assemble_H(dp_net_ws *w, double h, const double *rhs)
+/* rhs_eff = rhs - h sum_free (lam0 - slope zref) b. */
+static void effective_rhs(dp_net_ws *w, double h, const double *rhs)
 {
-    size_t p1 = w->p + 1;
-    memcpy(w->H, w->W, w->n * p1 * sizeof *w->H);
     memcpy(w->rhs_eff, rhs, w->n * sizeof *rhs);
     for (size_t i = 0; i < w->ne; i++) {
         const elem_state *s = &w->es[i];
         const dp_net_elem *e = &w->el[i];
         if (s->st != FREE)
             continue;
-        double k = h * s->slope, g = h * (s->lam0 - s->slope * s->zref);
+        double g = h * (s->lam0 - s->slope * s->zref);
         if (e->a >= 0)
-            w->H[(size_t)e->a * p1] += k, w->rhs_eff[e->a] += g;
+            w->rhs_eff[e->a] += g;
         if (e->b >= 0)
-            w->H[(size_t)e->b * p1] += k, w->rhs_eff[e->b] -= g;
-        if (e->a >= 0 && e->b >= 0 && k != 0) {
+            w->rhs_eff[e->b] -= g;
+    }
+}
+
+/* H = W + h sum_free slope b b^T. */
+static void assemble_H(dp_net_ws *w, double h)
+{
+    size_t p1 = w->p + 1;
+    memcpy(w->H, w->W, w->n * p1 * sizeof *w->H);
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *s = &w->es[i];
+        const dp_net_elem *e = &w->el[i];
+        double k = h * s->slope;
+        if (s->st != FREE || k == 0)
+            continue;
+        if (e->a >= 0)
+            w->H[(size_t)e->a * p1] += k;
+        if (e->b >= 0)
+            w->H[(size_t)e->b * p1] += k;
+        if (e->a >= 0 && e->b >= 0) {
             size_t lo = (size_t)(e->a < e->b ? e->a : e->b), d = (size_t)labs(e->b - e->a);
             w->H[lo * p1 + d] -= k;
         }
@@ -323,6 +343,36 @@ static int reduced_storage(dp_net_ws *w)
     }
     memset(w->R, 0, need * sizeof *w->R);
     return DP_OK;
+}
+
+/* Whether the assignment's structure (which elements are fixed, the free ones' slopes) is the factored one:
+ * H and R depend on nothing else, so a quiet step reuses them. */
+static int same_structure(const dp_net_ws *w)
+{
+    for (size_t i = 0; i < w->ne; i++) {
+        const elem_state *s = &w->es[i];
+        if (w->fac_st[i] != s->st || (s->st == FREE && w->fac_slope[i] != s->slope))
+            return 0;
+    }
+    return 1;
+}
+
+static int factor_reduced(dp_net_ws *w);
+
+/* rhs_eff for the current assignment; H and R's factor only where the structure changed (build_forest must
+ * have run: R is over its trees). */
+static int prepare(dp_net_ws *w, double h, const double *rhs)
+{
+    effective_rhs(w, h, rhs);
+    if (w->factored && h == w->h_factored && same_structure(w))
+        return DP_OK;
+    assemble_H(w, h);
+    int s = factor_reduced(w);
+    w->factored = s == DP_OK;
+    w->h_factored = h;
+    for (size_t i = 0; s == DP_OK && i < w->ne; i++)
+        w->fac_st[i] = (unsigned char)w->es[i].st, w->fac_slope[i] = w->es[i].slope;
+    return s;
 }
 
 /* R = T^T H T in band storage, factored (Cholesky). */
@@ -689,8 +739,7 @@ static int pdas(dp_net_ws *w, double h, const double *rhs, const double *u, doub
             return 1;
         (*iters)++;
         build_forest(w);
-        assemble_H(w, h, rhs);
-        if (factor_reduced(w) != DP_OK || solve_assignment(w) != DP_OK)
+        if (prepare(w, h, rhs) != DP_OK || solve_assignment(w) != DP_OK)
             return 1;
         multipliers(w, h);
         if (bulk_update(w, h, u) == 0) {
@@ -705,8 +754,6 @@ static int solve_pl(dp_net_ws *w, double h, const double *rhs, const double *u, 
                     unsigned long long *iters)
 {
     size_t n = w->n;
-    if (h != w->h_factored)
-        w->factored = 0, w->h_factored = h;
     if (!assign_start(w, h, u, v)) {
         memset(v, 0, n * sizeof *v);
         if (!assign_start(w, h, u, v))
@@ -721,13 +768,11 @@ static int solve_pl(dp_net_ws *w, double h, const double *rhs, const double *u, 
         if (!assign_start(w, h, u, v))
             return DP_ESOLVE;
     }
-    w->factored = 0;
     size_t cap = 64 + 8 * w->ne;
     for (size_t it = 0; it < cap; it++) {
         (*iters)++;
         build_forest(w);
-        assemble_H(w, h, rhs);
-        int s = factor_reduced(w);
+        int s = prepare(w, h, rhs);
         s = s ? s : solve_assignment(w);
         if (s != DP_OK)
             return s;
@@ -817,15 +862,13 @@ void dp_net_ws_pattern_save(const dp_net_ws *w, void *buf)
 void dp_net_ws_pattern_restore(dp_net_ws *w, const void *buf)
 {
     memcpy(w->es, buf, w->ne * sizeof *w->es);
-    w->factored = 0;
 }
 
 int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, dp_net_force *f,
                         double *margin)
 {
     build_forest(w);
-    assemble_H(w, h, rhs);
-    int s = factor_reduced(w);
+    int s = prepare(w, h, rhs);
     s = s ? s : solve_assignment(w);
     if (s != DP_OK)
         return s;
@@ -867,7 +910,6 @@ void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v)
     double z = rel_velocity(&w->el[i], v);
     s->fix = fabs(z - s->lo.z) <= fabs(s->hi.z - z) ? s->lo : s->hi;
     s->st = FIXED;
-    w->factored = 0;
 }
 
 int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u)
@@ -877,7 +919,10 @@ int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u)
     if (s->st != FIXED)
         return 0;
     sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
-    return s->lam > hi ? 1 : s->lam < lo ? -1 : 0;
+    if (s->lam > hi || s->lam < lo)
+        return s->lam > hi ? 1 : -1;
+    /* at a located release the force is at a bound to rounding: the nearer one (an end ray's is infinite) */
+    return !isfinite(hi) ? -1 : !isfinite(lo) ? 1 : s->lam - lo > hi - s->lam ? 1 : -1;
 }
 
 int dp_net_ws_fixed(const dp_net_ws *w, size_t i)
@@ -900,5 +945,4 @@ void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir)
 {
     vertex at = w->es[i].fix;
     set_free(w, i, u[i], h, &at, dir);
-    w->factored = 0;
 }

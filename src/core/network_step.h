@@ -70,7 +70,8 @@ int dp_net_ws_pattern_same(const dp_net_ws *w, const void *buf);
 
 /* At a located event: a free element i that reached an end of its piece is fixed at that end (the one
  * nearer its relative velocity in v); a fixed one is freed onto the piece towards its multiplier's
- * violation (the last held solve's). dp_net_ws_violation: +1 above its interval, -1 below, 0 inside. */
+ * violation (the last held solve's). dp_net_ws_violation: +1 above its interval, -1 below, and inside it
+ * the side of the nearer bound (0 for a free element). */
 void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v);
 int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u);
 void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir);

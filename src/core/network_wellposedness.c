@@ -30,8 +30,22 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
     check(rep, "M symmetric positive definite", d);
     check(rep, "K, C symmetric positive semidefinite", "the matrices' smallest eigenvalues are >= 0; element "
           "springs and viscous dampers add k b b^T, c b b^T");
+    long static_at = -1;
+    for (size_t i = 0; i < net->nel && static_at < 0; i++) {
+        const dp_damper *dm = &net->el[i].damper;
+        if (net->el[i].has_damper && dm->law == DP_DAMPER_GENERALIZED_COULOMB && dm->phi1 > dm->phi0)
+            static_at = (long)i;
+    }
     snprintf(d, sizeof d, "%zu elements, each a monotone piecewise-linear graph (one-mass laws)", net->nel);
     check(rep, "element graphs maximal monotone", d);
+    if (static_at >= 0) {   /* the static threshold above the kinetic one: not monotone (seed 001 section 4) */
+        const dp_damper *dm = &net->el[static_at].damper;
+        dp_wp_check *c = &rep->check[rep->nchecks - 1];
+        c->holds = 0;
+        snprintf(c->detail, sizeof c->detail, "element %ld: generalized Coulomb with phi1 = %g > phi0 = %g is not "
+                 "monotone (its force drops as it starts to slip); the solver follows the rest branch",
+                 static_at, dm->phi1, dm->phi0);
+    }
     size_t relaxed = 0;
     for (size_t i = 0; i < net->nel; i++)
         relaxed += net->el[i].has_damper && net->el[i].damper.relaxation.kind != DP_RELAX_NONE;
@@ -39,6 +53,15 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
              "is checked against W - h theta sum L b b^T > 0", relaxed);
     check(rep, "relaxation gamma Lipschitz", d);
     const char *thm = "maximal monotone evolution inclusion (Brezis 1973, Thm 3.1; seed 001 Thms 2-3 for one mass)";
+    if (static_at >= 0) {
+        rep->existence = (dp_wp_verdict){ .guaranteed = 0 };
+        rep->uniqueness = (dp_wp_verdict){ .guaranteed = 0 };
+        snprintf(rep->existence.reason, DP_WP_TEXT, "fails: element graphs maximal monotone");
+        snprintf(rep->uniqueness.reason, DP_WP_TEXT, "fails: element graphs maximal monotone");
+        rep->counterexample = "seed 001 section 4, (24)-(25): with the load at phi1 from rest both rest and "
+                              "x = (phi1 - phi0)(1 - cos t) solve (for one mass; the network follows rest)";
+        return;
+    }
     rep->existence = (dp_wp_verdict){ .guaranteed = 1, .theorem = thm };
     rep->uniqueness = (dp_wp_verdict){ .guaranteed = 1, .theorem = thm };
     snprintf(rep->existence.reason, DP_WP_TEXT, "all hypotheses hold");

@@ -48,15 +48,22 @@ static int whole(dp_buf *out, long v)
     return dp_buf_append(out, p, (size_t)(t + sizeof t - p));
 }
 
+static int regularized_fields(const dp_solver_spec *sv, dp_buf *out);
+
 /* A network run's meta: its size and the columns its rows hold, so an array member can be read by name. */
 static int network_meta(const dp_spec *s, dp_buf *out)
 {
     const dp_solver_spec *sv = &s->solver;
     const dp_network *net = s->net;
-    int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"stick-slip\"");
-    const char *mode = dp_network_locates(s) ? "locate" : sv->events == DP_EVENTS_NONE ? "none" : "step";
-    st |= lit(out, ",\"variant\":\"exact\",\"events_mode\":\"") | lit(out, mode) | lit(out, "\",\"model\":\"network\"");
-    st |= num(out, "theta", sv->theta) | num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
+    int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"");
+    if (sv->kind == DP_SOLVER_REGULARIZED) {
+        st |= lit(out, "regularized") | regularized_fields(sv, out) | lit(out, ",\"model\":\"network\"");
+    } else {
+        const char *mode = dp_network_locates(s) ? "locate" : sv->events == DP_EVENTS_NONE ? "none" : "step";
+        st |= lit(out, "stick-slip\",\"variant\":\"exact\",\"events_mode\":\"") | lit(out, mode);
+        st |= lit(out, "\",\"model\":\"network\"") | num(out, "theta", sv->theta);
+    }
+    st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
     st |= num(out, "steps", dp_spec_steps(s));
     st |= lit(out, ",\"every\":") | whole(out, s->output.every);
     st |= lit(out, ",\"nodes\":") | whole(out, (long)net->n) | lit(out, ",\"elements\":") | whole(out, (long)net->nel);

@@ -269,6 +269,14 @@ try {
   check(bk.meta.nodes >= 50 && kinds('stick') >= 30 && kinds('slip') >= 30 && bk.stuck > 0.05 && bk.stuck < 0.95 && bk.view.colours >= 32,
     `burridge-knopoff: ${bk.meta.nodes} blocks stick-slip visibly (${kinds('stick')} sticks, ${kinds('slip')} slips, ` +
     `${(100 * bk.stuck).toFixed(1)}% stuck, ${bk.view.colours} colours in the picture)`);
+  // Velocity weakening (rational relaxation on every block) sustains the cycles: the last third of the run
+  // has at least half the sticks of the first third and 60 or more (169, 177, 197 per third; the same chain
+  // with constant friction settles into steady sliding: 61, 25, 20).
+  const T = bk.meta.t_end, third = (a, b) => bk.events.filter((e) => e.kind === 'stick' && e.t >= a * T / 3 && e.t < b * T / 3).length;
+  const relaxed = JSON.parse(await page.inputValue('#spec')).model.elements.filter((e) => e.damper && e.damper.relaxation).length;
+  check(relaxed === 60 && bk.meta.events_mode === 'step' && third(2, 3.01) >= 0.5 * third(0, 1) && third(2, 3.01) >= 60,
+    `burridge-knopoff: velocity weakening on ${relaxed} blocks sustains the stick-slip (sticks per third of the run: ` +
+    `${third(0, 1)}, ${third(1, 2)}, ${third(2, 3.01)})`);
   await screenshot(page, 'page-burridge-knopoff');
   // back to one mass: the one-mass plots return, with the samples of the new run
   const belt2 = await runPreset(page, 'page', 'belt', out);
@@ -303,7 +311,7 @@ try {
     return { stale: panel.dataset.stale, note: note.hidden ? '' : note.textContent, menu: document.getElementById('preset').value,
       menuText: document.getElementById('preset').selectedOptions[0]?.textContent,
       opacity: +getComputedStyle(panel.querySelector('.plots')).opacity,
-      previous: document.querySelector('#preset option[value="counter-gc-motion"]').textContent };
+      previous: document.querySelector('#preset option[value="belt"]').textContent }; // the last run: belt2 above
   });
   let st = await stale();
   check(st.stale === 'true' && st.note.startsWith('Stale:') && st.note.includes(st.previous) && st.note.includes('(422)') && st.opacity < 1,

@@ -11,11 +11,23 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include <gsl/gsl_errno.h>
+
 #include "dashpot/encode.h"
 #include "dashpot/json.h"
 #include "dashpot/wellposedness.h"
 
+int LLVMFuzzerInitialize(int *argc, char ***argv);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+/* As every user of the library must (include/dashpot/status.h): GSL's default handler aborts on errors the
+ * library checks for itself, such as a band Cholesky that finds a step matrix indefinite. */
+int LLVMFuzzerInitialize(int *argc, char ***argv)
+{
+    (void)argc, (void)argv;
+    gsl_set_error_handler_off();
+    return 0;
+}
 
 /* Short runs keep the fuzzer fast: 2000 steps is enough to reach events and stick phases. */
 #define FUZZ_MAX_STEPS 2000
