@@ -168,7 +168,11 @@ int dp_lcs_run_advance(dp_run *r)
         lr->started = 1;
         emit_row(r, lr);
     }
-    while (r->n < r->nsteps && !block_full(r, lr)) {
+    /* At most about 2^24 flops per call, so that a front end regains control (deadlines, cancellation) even
+     * when samples are off and a step is a large LCP: the caller then gets DP_MORE with fewer records. */
+    double per_step = (double)(lr->n * lr->n + 4 * lr->m * lr->m * lr->m) + 1;
+    size_t budget = per_step > 16777216.0 ? 1 : (size_t)(16777216.0 / per_step);
+    while (r->n < r->nsteps && !block_full(r, lr) && budget-- > 0) {
         dp_lcs_stepper *st = r->n + 1 == r->nsteps && lr->last ? lr->last : lr->step;
         if (r->spec.lcs->pf)
             set_offsets(r, lr, st);
