@@ -71,6 +71,7 @@ typedef struct dp_spec {
     dp_output_spec output;
     dp_network *net;      /* a network document ("masses" or "mass_matrix"); NULL for the one-mass model */
     double *x0v, *v0v;    /* networks: the initial state, net->n each */
+    struct dp_lcs_model *lcs; /* a linear complementarity system (lcs.h); NULL otherwise */
 } dp_spec;
 
 /* A spec with every default set (stick-slip, exact, theta 1, dt 1e-3, t_end 10, every 1) and an empty model. */

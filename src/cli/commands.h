@@ -30,5 +30,6 @@ int dp_cli_wellposedness(int argc, char **argv);
 int dp_cli_convergence(int argc, char **argv);
 int dp_cli_modes(int argc, char **argv);
 int dp_cli_response(int argc, char **argv);
+int dp_cli_lcp(int argc, char **argv);
 
 #endif

@@ -18,6 +18,7 @@ static int usage(FILE *to)
             "  dashpot convergence SPEC.json|- [--ref-dt H]\n"
             "  dashpot modes SPEC.json|-\n"
             "  dashpot response SPEC.json|- [--format json|ndjson|csv]\n"
+            "  dashpot lcp PROBLEM.json|-\n"
             "  dashpot --help | --version | COMMAND --help\n\n"
             "Exit codes: 0 success, 1 failure while running, 2 bad usage or invalid spec.\n"
             "Specs: see README.md and api/openapi.yaml.\n", DP_VERSION);
@@ -52,6 +53,11 @@ static const struct { const char *name, *text; } command_help[] = {
       "usage: dashpot response SPEC.json|- [--format json|ndjson|csv]\n\n"
       "The receptance of response_node to a harmonic force at force_node over \"omega\", with the\n"
       "resonances and antiresonances located (docs/modes.md).\n" },
+    { "lcp",
+      "usage: dashpot lcp PROBLEM.json|-\n\n"
+      "Solves w = Mz + q, 0 <= z _|_ w >= 0 for {\"M\": [[...]], \"q\": [...]} by Lemke's method, lists every\n"
+      "solution when M has at most 12 rows, and says whether M is a P-matrix, mu = lambda_min((M+M^T)/2)\n"
+      "(docs/lcs.md).\n" },
 };
 
 /* 1 when argv[2..] asks for help. */
@@ -89,6 +95,8 @@ int main(int argc, char **argv)
         return dp_cli_convergence(argc - 1, argv + 1);
     if (strcmp(argv[1], "modes") == 0 || strcmp(argv[1], "response") == 0)
         return (argv[1][0] == 'm' ? dp_cli_modes : dp_cli_response)(argc - 1, argv + 1);
+    if (strcmp(argv[1], "lcp") == 0)
+        return dp_cli_lcp(argc - 1, argv + 1);
     fprintf(stderr, "dashpot: unknown command \"%s\"\n", argv[1]);
     return usage(stderr);
 }

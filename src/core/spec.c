@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "dashpot/spec.h"
+#include "dashpot/lcs.h"
 
 void dp_spec_init(dp_spec *s)
 {
@@ -40,6 +41,8 @@ void dp_spec_clear(dp_spec *s)
         return;
     dp_model_clear(&s->model);
     dp_network_free(s->net);
+    dp_lcs_model_free(s->lcs);
+    s->lcs = NULL;
     free(s->x0v);
     free(s->v0v);
     free(s->output.nodes);
@@ -63,11 +66,14 @@ int dp_spec_copy(dp_spec *dst, const dp_spec *src)
 {
     *dst = *src;
     dst->net = NULL, dst->x0v = dst->v0v = NULL, dst->output.nodes = dst->output.elements = NULL;
+    dst->lcs = NULL;
     if (dp_model_copy(&dst->model, &src->model) != DP_OK) {
         memset(&dst->model, 0, sizeof dst->model);
         return DP_ENOMEM;
     }
     int fail = 0;
+    if (src->lcs)
+        fail = (dst->lcs = dp_lcs_model_copy(src->lcs)) == NULL;
     if (src->net) {
         size_t n = src->net->n;
         dst->net = dp_network_copy(src->net);
@@ -185,6 +191,8 @@ static void check_domain(const dp_graph *g, double y, const char *ptr, const cha
 
 int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
 {
+    if (s->lcs)
+        return dp_lcs_check(s, max_steps, e);
     size_t before = e->n + e->dropped;
     const dp_model *m = &s->model;
     if (s->net)

@@ -727,6 +727,7 @@ static void sample_budget(ctx *c, const cJSON *o, const at *ptr, const dp_spec *
 }
 
 #include "network_json.inc"
+#include "lcs_json.inc"
 
 static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
@@ -756,9 +757,15 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
     const cJSON *v = member(c, o, NULL, "model", "an object with mass, spring and damper", &p);
     if (v != NULL && is_network(v))
         parse_network(c, v, &p, s);
+    else if (v != NULL && is_lcs(v))
+        parse_lcs(c, v, &p, s);
     else if (v != NULL)
         parse_model(c, v, &p, &s->model);
-    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL && s->net == NULL)
+    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL && s->lcs != NULL)
+        parse_lcs_initial(c, v, &p, s);
+    else if (v != NULL && is_lcs(cJSON_GetObjectItemCaseSensitive(o, "model")))
+        ; /* the LCS model was invalid: its errors are reported, its initial state cannot be sized */
+    else if (v != NULL && s->net == NULL)
         parse_initial(c, v, &p, s);
     else if (v != NULL && s->net->n > 0)
         parse_network_initial(c, v, &p, s);
@@ -786,7 +793,7 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
         return DP_ENOMEM;
     if (c.nerr > 0)
         return DP_EINVAL;
-    int s = spec->net ? dp_network_prepare(spec->net) : dp_model_prepare(&spec->model);
+    int s = spec->net ? dp_network_prepare(spec->net) : spec->lcs ? DP_OK : dp_model_prepare(&spec->model);
     if (s == DP_ENOMEM)
         return s;
     if (s != DP_OK) {
@@ -865,7 +872,13 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
     c.nerr += dp_json_refuse_nul(errs, text, len);
     const cJSON *v = model_member(&c, root, &p);
     int s;
-    if (v != NULL && is_network(v)) {
+    if (v != NULL && is_lcs(v)) {   /* an LCS: checked as a run's spec, its theory from the step's matrix */
+        dp_spec spec;
+        dp_spec_init(&spec);
+        s = dp_spec_parse(text, len, 0, &spec, errs);
+        s = s == DP_OK ? dp_lcs_wellposedness(&spec, rep) : s;
+        dp_spec_clear(&spec);
+    } else if (v != NULL && is_network(v)) {
         s = network_report(&c, v, &p, rep);
     } else {
         dp_model m = { 0 };

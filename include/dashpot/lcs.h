@@ -1,0 +1,77 @@
+/* include/dashpot/lcs.h - linear complementarity systems (seed 002 (1.10), §1.4; systems.md §5):
+ *
+ *     x' = A x + B u + p,   w = C x + D u + q,   (u_i, w_i) in the law of component i,
+ *
+ * a law being complementarity 0 <= u_i ⊥ w_i >= 0 (an ideal diode: u the current or minus its voltage) or an
+ * interval w_i ∈ -N_[lo,hi](u_i) (u = lo: w >= 0; u = hi: w <= 0; between: w = 0; a diode with breakdown,
+ * a relay). The θ-step takes u at the step's end: x+ = E x + h W p + h W B u+, W = (I - hθA)^-1,
+ * E = W (I + h(1-θ)A), and u+ solves one LCP with matrix D + h C W B per step (interval components as a
+ * pair of complementarity rows), exactly, by Lemke's method (lcp.h).
+ */
+#ifndef DASHPOT_LCS_H
+#define DASHPOT_LCS_H
+
+#include <stddef.h>
+#include "dashpot/lcp.h"
+#include "dashpot/model.h"
+#include "dashpot/spec.h"
+
+typedef enum dp_lcs_law_kind { DP_LCS_COMPLEMENTARITY = 0, DP_LCS_INTERVAL = 1 } dp_lcs_law_kind;
+
+typedef struct dp_lcs_law {
+    dp_lcs_law_kind kind;
+    double lo, hi;       /* interval laws: lo <= hi */
+} dp_lcs_law;
+
+/* The system; the caller owns the arrays (row-major: A n x n, B n x m, C m x n, D m x m, p n, q m). */
+typedef struct dp_lcs {
+    size_t n, m;
+    const double *A, *B, *C, *D, *p, *q;
+    const dp_lcs_law *law;
+} dp_lcs;
+
+/* An LCS model as a spec holds it (the document's "model": {"lcs": {...}, "laws": [...]}, "initial"): owned
+ * arrays, D, p, q zero when the document leaves them out, x0 the initial state. */
+typedef struct dp_lcs_model {
+    size_t n, m;
+    double *A, *B, *C, *D, *p, *q, *x0;
+    dp_lcs_law *law;
+    dp_forcing *pf;      /* NULL, or n offsets in time added to p (the document's forcing objects in "p") */
+} dp_lcs_model;
+
+/* Accepts NULL. */
+void dp_lcs_model_free(dp_lcs_model *lm);
+/* A deep copy, or NULL when out of memory. */
+dp_lcs_model *dp_lcs_model_copy(const dp_lcs_model *lm);
+/* The system view of a model (pointers into it). */
+dp_lcs dp_lcs_model_system(const dp_lcs_model *lm);
+
+/* The spec rules of an LCS run (the stick-slip solver, t_end/dt within max_steps, an initial state the laws
+ * admit: some u with (u, Cx0 + Du + q) in the laws), appended as located errors. DP_OK, DP_EINVAL, DP_ELIMIT. */
+int dp_lcs_check(const dp_spec *s, double max_steps, dp_errors *e);
+
+/* What seed 002's theory says about a checked LCS spec (framework "LCS"): existence and uniqueness by
+ * Theorem 2.3 when D's symmetric part is positive definite, and whether the θ-step's matrix is a P-matrix.
+ * DP_OK, DP_ENOMEM, DP_ESOLVE. */
+struct dp_wp_report;
+int dp_lcs_wellposedness(const dp_spec *s, struct dp_wp_report *rep);
+
+typedef struct dp_lcs_stepper dp_lcs_stepper;
+
+/* A stepper for step h >= 0 and θ in [0, 1]; h = 0 is the algebraic part alone (M = D: a step leaves x and
+ * finds u, w at it). NULL with *status DP_EINVAL (sizes, non-finite data, an interval with lo > hi, I - hθA
+ * singular) or DP_ENOMEM. The system's arrays are copied. */
+dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *sys, double h, double theta, int *status);
+void dp_lcs_stepper_free(dp_lcs_stepper *st);
+
+/* The step's LCP matrix D + h C W B (m x m) for the uniqueness theory (dp_lcp_theory_of). */
+const gsl_matrix *dp_lcs_step_matrix(const dp_lcs_stepper *st);
+
+/* Sets the offset p (n numbers) of the following steps: p(t_n + θh) for a time-dependent one. O(n^2). */
+void dp_lcs_stepper_set_p(dp_lcs_stepper *st, const double *p);
+
+/* One step: x (n) in, x+ out; u, w (m) out at the step's end. DP_OK, DP_ESOLVE when the step's LCP has no
+ * solution Lemke can find (a ray; x unchanged), DP_ELIMIT (pivot guard; x unchanged). res: Lemke's report. */
+int dp_lcs_step(dp_lcs_stepper *st, double *x, double *u, double *w, dp_lcp_result *res);
+
+#endif

@@ -1,0 +1,190 @@
+/* src/core/lcs_model.c - the LCS model a spec owns (copy, free) and its spec rules: the stick-slip θ-step,
+ * the step count, and an initial state the laws admit (seed 002 (1.10): at t = 0 some u must give
+ * (u, C x0 + D u + q) in the laws; with D = 0 and an ideal diode that is C x0 + q >= 0, a current that
+ * does not already flow backwards). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dashpot/lcs.h"
+#include "dashpot/wellposedness.h"
+#include "dashpot/status.h"
+
+void dp_lcs_model_free(dp_lcs_model *lm)
+{
+    if (lm == NULL)
+        return;
+    free(lm->A);
+    free(lm->B);
+    free(lm->C);
+    free(lm->D);
+    free(lm->p);
+    free(lm->q);
+    free(lm->x0);
+    free(lm->law);
+    if (lm->pf)
+        for (size_t i = 0; i < lm->n; i++)
+            dp_forcing_clear(&lm->pf[i]);
+    free(lm->pf);
+    free(lm);
+}
+
+static double *dup(const double *a, size_t k, int *fail)
+{
+    double *d = malloc((k ? k : 1) * sizeof *d);
+    if (d == NULL)
+        *fail = 1;
+    else if (a)
+        memcpy(d, a, k * sizeof *d);
+    else
+        memset(d, 0, (k ? k : 1) * sizeof *d);
+    return d;
+}
+
+dp_lcs_model *dp_lcs_model_copy(const dp_lcs_model *src)
+{
+    dp_lcs_model *d = calloc(1, sizeof *d);
+    if (d == NULL)
+        return NULL;
+    size_t n = src->n, m = src->m;
+    int fail = 0;
+    d->n = n, d->m = m;
+    d->A = dup(src->A, n * n, &fail), d->B = dup(src->B, n * m, &fail), d->C = dup(src->C, m * n, &fail);
+    d->D = dup(src->D, m * m, &fail), d->p = dup(src->p, n, &fail), d->q = dup(src->q, m, &fail);
+    d->x0 = dup(src->x0, n, &fail);
+    d->law = malloc((m ? m : 1) * sizeof *d->law);
+    if (d->law)
+        memcpy(d->law, src->law, m * sizeof *d->law);
+    if (src->pf && !fail && (d->pf = calloc(n, sizeof *d->pf)) == NULL)
+        fail = 1;
+    for (size_t i = 0; src->pf && d->pf && i < n; i++)
+        fail |= dp_forcing_copy(&d->pf[i], &src->pf[i]) != DP_OK;
+    if (fail || d->law == NULL) {
+        dp_lcs_model_free(d);
+        return NULL;
+    }
+    return d;
+}
+
+dp_lcs dp_lcs_model_system(const dp_lcs_model *lm)
+{
+    return (dp_lcs){ lm->n, lm->m, lm->A, lm->B, lm->C, lm->D, lm->p, lm->q, lm->law };
+}
+
+/* Is there a u for x0? The algebraic part alone (h = 0) at x0, by Lemke. */
+static void check_initial(const dp_lcs_model *lm, dp_errors *e)
+{
+    dp_lcs sys = dp_lcs_model_system(lm);
+    int s;
+    dp_lcs_stepper *st = dp_lcs_stepper_alloc(&sys, 0.0, 1.0, &s);
+    if (st == NULL) {
+        dp_errors_add(e, "/model/lcs", "%s", s == DP_ENOMEM ? "out of memory" : "invalid system");
+        return;
+    }
+    double *x = malloc(lm->n * sizeof *x), *u = malloc(lm->m * sizeof *u), *w = malloc(lm->m * sizeof *w);
+    dp_lcp_result res;
+    if (x && u && w) {
+        memcpy(x, lm->x0, lm->n * sizeof *x);
+        s = dp_lcs_step(st, x, u, w, &res);
+        if (s == DP_ESOLVE)
+            dp_errors_add(e, "/initial/x", "the laws admit no u at this state: w = C x + D u + q cannot meet "
+                          "them (an ideal diode with D = 0 needs C x + q >= 0: no current flowing backwards)");
+        else if (s != DP_OK)
+            dp_errors_add(e, "/initial/x", "the algebraic part at this state could not be solved (%s)", dp_strerror(s));
+    } else
+        dp_errors_add(e, "/initial/x", "out of memory");
+    free(x);
+    free(u);
+    free(w);
+    dp_lcs_stepper_free(st);
+}
+
+int dp_lcs_check(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    const dp_lcs_model *lm = s->lcs;
+    if (s->solver.kind != DP_SOLVER_STICK_SLIP)
+        dp_errors_add(e, "/solver/kind", "an LCS model runs on the \"stick-slip\" θ-step (one LCP per step)");
+    else if (s->solver.variant != DP_VARIANT_EXACT)
+        dp_errors_add(e, "/solver/variant", "an LCS model runs on the \"exact\" variant");
+    if (e->n + e->dropped > before)
+        return DP_EINVAL;
+    check_initial(lm, e);
+    dp_lcs sys = dp_lcs_model_system(lm);
+    int st;
+    dp_lcs_stepper *step = dp_lcs_stepper_alloc(&sys, s->solver.dt, s->solver.theta, &st);
+    if (step == NULL && st == DP_EINVAL)
+        dp_errors_add(e, "/solver/dt", "I - h θ A is singular at this step: choose another dt");
+    dp_lcs_stepper_free(step);
+    if (e->n + e->dropped > before)
+        return st == DP_ENOMEM ? DP_ENOMEM : DP_EINVAL;
+    if (max_steps <= 0 || max_steps > DP_SPEC_MAX_STEPS)
+        max_steps = DP_SPEC_MAX_STEPS;
+    double n = s->solver.t_end / s->solver.dt;
+    if (!(n * (double)(lm->n + lm->m) <= max_steps)) {
+        dp_errors_add(e, "/solver/dt", "t_end/dt = %.6g steps of %zu states and %zu components exceed the limit "
+                      "of %.6g node-steps per run", n, lm->n, lm->m, max_steps);
+        return DP_ELIMIT;
+    }
+    return DP_OK;
+}
+
+/* ---- what seed 002's theory says about an LCS (/v1/wellposedness) ------------------------------------ */
+
+static const char *const TH23 = "seed 002 Theorem 2.3 with Lemma 2.5 (D's symmetric part positive definite: u = s(x) "
+                                "is Lipschitz, and x' = A x + B s(x) + p a Lipschitz ODE)";
+
+/* Appends a check; its detail is written by the caller into the returned slot. */
+static char *add_check(dp_wp_report *rep, const char *name, int holds)
+{
+    dp_wp_check *c = &rep->check[rep->nchecks++];
+    c->name = name;
+    c->holds = holds;
+    return c->detail;
+}
+
+int dp_lcs_wellposedness(const dp_spec *s, dp_wp_report *rep)
+{
+    const dp_lcs_model *lm = s->lcs;
+    memset(rep, 0, sizeof *rep);
+    rep->framework = "LCS";
+    gsl_matrix_const_view D = gsl_matrix_const_view_array(lm->D, lm->m, lm->m);
+    dp_lcp_theory td, ts;
+    int st = dp_lcp_theory_of(&D.matrix, &td);
+    if (st != DP_OK)
+        return st;
+    dp_lcs sys = dp_lcs_model_system(lm);
+    dp_lcs_stepper *step = dp_lcs_stepper_alloc(&sys, s->solver.dt, s->solver.theta, &st);
+    if (step == NULL)
+        return st;
+    st = dp_lcp_theory_of(dp_lcs_step_matrix(step), &ts);
+    dp_lcs_stepper_free(step);
+    if (st != DP_OK)
+        return st;
+    char *d = add_check(rep, "the laws are maximal monotone (complementarity and intervals: normal cones of convex "
+                        "sets, seed 002 Proposition 1.7 for their product)", 1);
+    snprintf(d, DP_WP_TEXT, "holds for every law this model takes");
+    d = add_check(rep, "D has a positive definite symmetric part (seed 002 Lemma 2.5)", td.pd_symmetric);
+    snprintf(d, DP_WP_TEXT, td.pd_symmetric ? "mu = lambda_min((D + D^T)/2) = %.6g > 0: u is Lipschitz in x"
+                                            : "mu = lambda_min((D + D^T)/2) = %.6g, not > 0", td.mu);
+    d = add_check(rep, "the step's matrix D + hCWB is a P-matrix (one u per step)", ts.p_matrix == 1);
+    if (ts.p_matrix == 1)
+        snprintf(d, DP_WP_TEXT, "its mu = %.6g; at dt = %.6g every step has exactly one u", ts.mu, s->solver.dt);
+    else if (ts.p_matrix == 0)
+        snprintf(d, DP_WP_TEXT, "a principal minor is %.6g <= 0 at dt = %.6g: a step may have several u or none",
+                 ts.minor, s->solver.dt);
+    else
+        snprintf(d, DP_WP_TEXT, "undecided (more than %d components) at dt = %.6g", DP_LCP_ENUM_MAX, s->solver.dt);
+    dp_wp_verdict *ex = &rep->existence, *un = &rep->uniqueness;
+    ex->guaranteed = un->guaranteed = td.pd_symmetric;
+    ex->theorem = un->theorem = td.pd_symmetric ? TH23 : NULL;
+    if (td.pd_symmetric)
+        snprintf(ex->reason, sizeof ex->reason, "all hypotheses hold");
+    else
+        snprintf(ex->reason, sizeof ex->reason, "D's symmetric part is not positive definite (mu = %.6g): seed 002's "
+                 "reduction to an ODE does not apply (ideal diodes have D = 0); the θ-step %s", td.mu,
+                 ts.p_matrix == 1 ? "is well defined (its matrix is a P-matrix)" : "may have several u or none");
+    memcpy(un->reason, ex->reason, sizeof un->reason);
+    return DP_OK;
+}

@@ -1,0 +1,198 @@
+/* src/core/lcs_run.c - a linear complementarity system run (docs/lcs.md): the θ-step of lcs.c driven
+ * through the pull iterator, each sample a row of the groups x (n states), u and w (m components each).
+ *
+ * Rows only, no queue: a block takes as many rows as the caller's buffer has slots (within ROW_BUDGET
+ * numbers) and the stepping pauses when it is full, so a stream of any length runs in constant memory.
+ * The first row is the initial state with u, w from the algebraic part alone (D u + C x0 + q in the laws).
+ * A step whose LCP has no solution Lemke's method can find ends the run with DP_ESOLVE, saying when.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dashpot/lcs.h"
+#include "run_internal.h"
+
+#define ROW_BUDGET (1u << 20)
+
+struct dp_lcs_run {
+    dp_lcs_stepper *step, *last;   /* the nominal step, and the shorter last one (NULL when equal) */
+    size_t n, m, width;
+    double *x, *u, *w, *p;        /* p: the offset at the step's θ-point, for a time-dependent one */
+    double *rows, *final_row;
+    size_t rows_cap, rows_used;
+    size_t *index;                 /* 0, 1, 2, ... for the CSV headers */
+    int started;
+    dp_columns cols;
+};
+
+void dp_lcs_run_free(struct dp_lcs_run *lr)
+{
+    if (lr == NULL)
+        return;
+    dp_lcs_stepper_free(lr->step);
+    dp_lcs_stepper_free(lr->last);
+    free(lr->x);
+    free(lr->u);
+    free(lr->w);
+    free(lr->p);
+    free(lr->rows);
+    free(lr->final_row);
+    free(lr->index);
+    free(lr);
+}
+
+static void declare_columns(struct dp_lcs_run *lr)
+{
+    static const char *const names[3] = { "x", "u", "w" };
+    size_t len[3] = { lr->n, lr->m, lr->m };
+    lr->cols.ngroups = 3;
+    for (size_t g = 0; g < 3; g++)
+        lr->cols.group[g] = (dp_column_group){ names[g], len[g], lr->index, 0 };
+    lr->cols.width = lr->width;
+}
+
+/* The initial u, w: the algebraic part at x0 (dp_lcs_check made sure there is one). */
+static int initial_algebraic(struct dp_lcs_run *lr, const dp_lcs *sys)
+{
+    int s;
+    dp_lcs_stepper *alg = dp_lcs_stepper_alloc(sys, 0.0, 1.0, &s);
+    if (alg == NULL)
+        return s;
+    dp_lcp_result res;
+    s = dp_lcs_step(alg, lr->x, lr->u, lr->w, &res);
+    dp_lcs_stepper_free(alg);
+    return s;
+}
+
+int dp_lcs_run_init(dp_run *r)
+{
+    const dp_lcs_model *lm = r->spec.lcs;
+    struct dp_lcs_run *lr = calloc(1, sizeof *lr);
+    if (lr == NULL)
+        return DP_ENOMEM;
+    r->lcs = lr;
+    size_t n = lm->n, m = lm->m, k = n > m ? n : m;
+    lr->n = n, lr->m = m, lr->width = n + 2 * m;
+    lr->x = malloc(n * sizeof *lr->x), lr->u = malloc(m * sizeof *lr->u), lr->w = malloc(m * sizeof *lr->w);
+    lr->final_row = malloc(lr->width * sizeof *lr->final_row), lr->index = malloc(k * sizeof *lr->index);
+    lr->p = malloc(n * sizeof *lr->p);
+    if (!lr->x || !lr->u || !lr->w || !lr->p || !lr->final_row || !lr->index)
+        return DP_ENOMEM;
+    for (size_t i = 0; i < k; i++)
+        lr->index[i] = i;
+    memcpy(lr->x, lm->x0, n * sizeof *lr->x);
+    dp_lcs sys = dp_lcs_model_system(lm);
+    int s;
+    lr->step = dp_lcs_stepper_alloc(&sys, r->h, r->spec.solver.theta, &s);
+    if (lr->step == NULL)
+        return dp_run_fail(r, s, "the θ-step could not be set up (%s)", dp_strerror(s));
+    double hl = r->spec.solver.t_end - (double)(r->nsteps - 1) * r->h;
+    if (fabs(hl - r->h) > 1e-12 * r->h && hl > 0) {
+        lr->last = dp_lcs_stepper_alloc(&sys, hl, r->spec.solver.theta, &s);
+        if (lr->last == NULL)
+            return dp_run_fail(r, s, "the last, shorter step could not be set up (%s)", dp_strerror(s));
+    }
+    if ((s = initial_algebraic(lr, &sys)) != DP_OK)
+        return dp_run_fail(r, s, "the laws admit no u at the initial state");
+    declare_columns(lr);
+    r->cols = &lr->cols;
+    r->cur.t = 0;
+    return DP_OK;
+}
+
+static dp_row fill_row(const struct dp_lcs_run *lr, double t, double *d)
+{
+    memcpy(d, lr->x, lr->n * sizeof *d);
+    memcpy(d + lr->n, lr->u, lr->m * sizeof *d);
+    memcpy(d + lr->n + lr->m, lr->w, lr->m * sizeof *d);
+    return (dp_row){ .t = t, .val = d };
+}
+
+static int reserve_rows(dp_run *r, struct dp_lcs_run *lr)
+{
+    size_t want = r->out_cap, fit = ROW_BUDGET / lr->width;
+    if (want > fit)
+        want = fit ? fit : 1;
+    lr->rows_used = 0;
+    if (want <= lr->rows_cap)
+        return DP_OK;
+    double *rows = realloc(lr->rows, want * lr->width * sizeof *rows);
+    if (rows == NULL)
+        return DP_ENOMEM;
+    lr->rows = rows, lr->rows_cap = want;
+    return DP_OK;
+}
+
+/* A row of the current state into the block (the caller made sure there is a slot). */
+static void emit_row(dp_run *r, struct dp_lcs_run *lr)
+{
+    r->countdown = r->spec.output.every;
+    if (!r->spec.output.samples)
+        return;
+    dp_record rec = { .type = DP_RECORD_ROW };
+    rec.u.row = fill_row(lr, r->cur.t, lr->rows + lr->rows_used++ * lr->width);
+    r->out[r->out_n++] = rec;
+    r->sum.samples++;
+}
+
+static int block_full(const dp_run *r, const struct dp_lcs_run *lr)
+{
+    return r->out_n >= r->out_cap || lr->rows_used >= lr->rows_cap;
+}
+
+static int state_finite(const struct dp_lcs_run *lr)
+{
+    for (size_t i = 0; i < lr->n; i++)
+        if (!(fabs(lr->x[i]) < 1e300))
+            return 0;
+    return 1;
+}
+
+/* p(t_n + θh) = the constant part plus each forcing at the step's θ-point (the θ-method's own point). */
+static void set_offsets(const dp_run *r, struct dp_lcs_run *lr, dp_lcs_stepper *st)
+{
+    const dp_lcs_model *lm = r->spec.lcs;
+    double h = dp_run_step_length(r), t = (double)r->n * r->h + r->spec.solver.theta * h;
+    for (size_t i = 0; i < lr->n; i++)
+        lr->p[i] = lm->p[i] + dp_forcing_eval(&lm->pf[i], t);
+    dp_lcs_stepper_set_p(st, lr->p);
+}
+
+int dp_lcs_run_advance(dp_run *r)
+{
+    struct dp_lcs_run *lr = r->lcs;
+    if (reserve_rows(r, lr) != DP_OK)
+        return dp_run_fail(r, DP_ENOMEM, "out of memory for the rows of a block");
+    if (!lr->started) {
+        lr->started = 1;
+        emit_row(r, lr);
+    }
+    /* At most about 2^24 flops per call, so that a front end regains control (deadlines, cancellation) even
+     * when samples are off and a step is a large LCP: the caller then gets DP_MORE with fewer records. */
+    double per_step = (double)(lr->n * lr->n + 4 * lr->m * lr->m * lr->m) + 1;
+    size_t budget = per_step > 16777216.0 ? 1 : (size_t)(16777216.0 / per_step);
+    while (r->n < r->nsteps && !block_full(r, lr) && budget-- > 0) {
+        dp_lcs_stepper *st = r->n + 1 == r->nsteps && lr->last ? lr->last : lr->step;
+        if (r->spec.lcs->pf)
+            set_offsets(r, lr, st);
+        dp_lcp_result res;
+        int s = dp_lcs_step(st, lr->x, lr->u, lr->w, &res);
+        if (s == DP_ESOLVE)
+            return dp_run_fail(r, s, "the step from t = %.17g has no solution Lemke's method can find (a ray: "
+                               "the step's matrix is neither a P-matrix nor copositive-plus here)", r->cur.t);
+        if (s != DP_OK)
+            return dp_run_fail(r, s, "the step from t = %.17g failed (%s)", r->cur.t, dp_strerror(s));
+        r->n++;
+        r->cur.t = r->n == r->nsteps ? r->spec.solver.t_end : (double)r->n * r->h;
+        if (!state_finite(lr))
+            return dp_run_fail(r, DP_ENONFINITE, "the state left the finite numbers at t = %.17g", r->cur.t);
+        if (--r->countdown <= 0 || r->n == r->nsteps)
+            emit_row(r, lr);
+    }
+    r->sum.steps = r->n;
+    r->sum.final_row = fill_row(lr, r->cur.t, lr->final_row);
+    if (r->n >= r->nsteps)
+        r->finished = 1;
+    return DP_OK;
+}

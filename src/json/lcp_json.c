@@ -1,0 +1,359 @@
+/* src/json/lcp_json.c - POST /v1/lcp and `dashpot lcp`: one LCP w = Mz + q, 0 <= z ⊥ w >= 0 read from JSON,
+ * solved by Lemke's method, every solution of a small one enumerated, and what seed 002's theory says
+ * (Lemma 2.5, Theorem 2.3: µ = λ_min((M + Mᵀ)/2) > 0 gives one solution, Lipschitz in q with constant 1/µ;
+ * a P-matrix gives one solution for every q). Why enumerate: for a general M Lemke finds one solution or
+ * none, and the user asked about the problem, not about the algorithm (Example 2.4 with a < 0 has two).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cjson/cJSON.h>
+
+#include "dashpot/json.h"
+#include "dashpot/lcp.h"
+#include "dashpot/lcp_json.h"
+#include "dashpot/lcs.h"
+
+static const char *type_name(const cJSON *v)
+{
+    return v == NULL ? "nothing" : cJSON_IsNumber(v) ? "a number" : cJSON_IsString(v) ? "a string" :
+           cJSON_IsArray(v) ? "an array" : cJSON_IsObject(v) ? "an object" : cJSON_IsBool(v) ? "a boolean" : "null";
+}
+
+/* The document, or NULL with the error; nesting is bounded before cJSON recurses (an LCP needs 3 levels). */
+static cJSON *parse_doc(const char *text, size_t len, dp_errors *e, int *nomem)
+{
+    int depth = 0, in_string = 0;
+    for (size_t i = 0; i < len; i++) {
+        char ch = text[i];
+        if (in_string) {
+            if (ch == '\\')
+                i++; /* the escaped character cannot end the string */
+            else if (ch == '"')
+                in_string = 0;
+        } else if (ch == '"')
+            in_string = 1;
+        else if ((ch == '[' || ch == '{') && ++depth > DP_JSON_MAX_DEPTH) {
+            dp_errors_add(e, "", "malformed JSON near byte %zu: nested deeper than %d levels", i, DP_JSON_MAX_DEPTH);
+            return NULL;
+        } else if ((ch == ']' || ch == '}') && depth > 0)
+            depth--;
+    }
+    char *buf = malloc(len + 1);
+    if (buf == NULL) {
+        *nomem = 1;
+        return NULL;
+    }
+    memcpy(buf, text, len);
+    buf[len] = '\0';
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(buf, len, &end, 0);
+    if (root != NULL && end[strspn(end, " \t\r\n")] != '\0') {
+        cJSON_Delete(root);
+        root = NULL;
+    }
+    if (root == NULL)
+        dp_errors_add(e, "", "malformed JSON near byte %zu%s", end ? (size_t)(end - buf) : 0,
+                      len == 0 ? " (empty document)" : "");
+    free(buf);
+    return root;
+}
+
+/* A finite number at pointer p into *out; 0 (with the error) otherwise. */
+static int number_at(const cJSON *x, const char *p, double *out, dp_errors *e)
+{
+    if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble)) {
+        dp_errors_add(e, p, "must be a finite number, got %s", type_name(x));
+        return 0;
+    }
+    *out = x->valuedouble;
+    return 1;
+}
+
+/* M: a square array of m rows of m numbers, 1 <= m <= DP_LCP_MAX. NULL on error (added to e). */
+static gsl_matrix *read_matrix(const cJSON *a, dp_errors *e, int *nomem)
+{
+    size_t m = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
+    if (m == 0 || m > DP_LCP_MAX) {
+        dp_errors_add(e, "/M", "must be a square matrix: an array of 1 to %d rows, got %s", DP_LCP_MAX,
+                      cJSON_IsArray(a) ? (m ? "more rows" : "no rows") : type_name(a));
+        return NULL;
+    }
+    gsl_matrix *M = gsl_matrix_alloc(m, m);
+    if (M == NULL) {
+        *nomem = 1;
+        return NULL;
+    }
+    size_t i = 0, bad = 0;
+    char p[DP_POINTER_MAX];
+    for (const cJSON *r = a->child; r; r = r->next, i++) {
+        if (!cJSON_IsArray(r) || (size_t)cJSON_GetArraySize(r) != m) {
+            snprintf(p, sizeof p, "/M/%zu", i);
+            dp_errors_add(e, p, "must be a row of %zu numbers (M is square: %zu rows)", m, m);
+            bad++;
+            continue;
+        }
+        size_t j = 0;
+        for (const cJSON *x = r->child; x; x = x->next, j++) {
+            snprintf(p, sizeof p, "/M/%zu/%zu", i, j);
+            bad += !number_at(x, p, M->data + i * m + j, e);
+        }
+    }
+    if (bad) {
+        gsl_matrix_free(M);
+        return NULL;
+    }
+    return M;
+}
+
+static gsl_vector *read_vector(const cJSON *a, size_t m, dp_errors *e, int *nomem)
+{
+    if (!cJSON_IsArray(a) || (size_t)cJSON_GetArraySize(a) != m) {
+        dp_errors_add(e, "/q", "must be an array of %zu numbers (one per row of M), got %s", m,
+                      cJSON_IsArray(a) ? "another length" : type_name(a));
+        return NULL;
+    }
+    gsl_vector *q = gsl_vector_alloc(m);
+    if (q == NULL) {
+        *nomem = 1;
+        return NULL;
+    }
+    size_t i = 0, bad = 0;
+    char p[DP_POINTER_MAX];
+    for (const cJSON *x = a->child; x; x = x->next, i++) {
+        snprintf(p, sizeof p, "/q/%zu", i);
+        bad += !number_at(x, p, q->data + i, e);
+    }
+    if (bad) {
+        gsl_vector_free(q);
+        return NULL;
+    }
+    return q;
+}
+
+static int read_request(const char *body, size_t len, gsl_matrix **M, gsl_vector **q, dp_errors *e)
+{
+    int nomem = 0;
+    cJSON *doc = parse_doc(body, len, e, &nomem);
+    if (doc == NULL)
+        return nomem ? DP_ENOMEM : DP_ESYNTAX;
+    if (!cJSON_IsObject(doc))
+        dp_errors_add(e, "", "must be an object {\"M\": [[...]], \"q\": [...]}");
+    else {
+        for (const cJSON *k = doc->child; k; k = k->next)
+            if (strcmp(k->string, "M") != 0 && strcmp(k->string, "q") != 0)
+                dp_errors_add(e, "", "unknown key \"%.60s\"; expected M, q", k->string);
+        const cJSON *a = cJSON_GetObjectItemCaseSensitive(doc, "M");
+        *M = read_matrix(a, e, &nomem);
+        if (*M)
+            *q = read_vector(cJSON_GetObjectItemCaseSensitive(doc, "q"), (*M)->size1, e, &nomem);
+        else if (cJSON_GetObjectItemCaseSensitive(doc, "q") == NULL)
+            dp_errors_add(e, "/q", "missing required key \"q\" (an array of numbers)");
+    }
+    cJSON_Delete(doc);
+    if (nomem)
+        return DP_ENOMEM;
+    return e->n + e->dropped > 0 ? DP_EINVAL : DP_OK;
+}
+
+/* ---- writing ---------------------------------------------------------------------------------------- */
+
+static int put(dp_buf *b, const char *s)
+{
+    return dp_buf_append(b, s, strlen(s));
+}
+
+static int put_num(dp_buf *b, double x)
+{
+    char t[40];
+    if (!isfinite(x))
+        return put(b, "null");
+    return dp_buf_append(b, t, dp_format_double(t, x));
+}
+
+static int put_vec(dp_buf *b, const double *x, size_t m)
+{
+    int s = put(b, "[");
+    for (size_t i = 0; i < m && s == DP_OK; i++)
+        s = (i ? put(b, ",") : DP_OK) || put_num(b, x[i] == 0 ? 0.0 : x[i]);
+    return s ? s : put(b, "]");
+}
+
+/* {"z":[...],"w":[...]} with w = Mz + q recomputed for a listed solution. */
+static int put_pair(dp_buf *b, const gsl_matrix *M, const gsl_vector *q, const double *z)
+{
+    size_t m = q->size;
+    double w[DP_LCP_ENUM_MAX];
+    for (size_t i = 0; i < m; i++) {
+        double s = q->data[i];
+        for (size_t j = 0; j < m; j++)
+            s += M->data[i * m + j] * z[j];
+        w[i] = z[i] > 0 ? 0.0 : fmax(s, 0.0); /* complementarity holds exactly: the basis made w_i zero */
+    }
+    return put(b, "{\"z\":") || put_vec(b, z, m) || put(b, ",\"w\":") || put_vec(b, w, m) || put(b, "}");
+}
+
+static int put_theory(dp_buf *b, const dp_lcp_theory *t, size_t m)
+{
+    int s = put(b, ",\"theory\":{\"p_matrix\":");
+    s = s || put(b, t->p_matrix == 1 ? "true" : t->p_matrix == 0 ? "false" : "null");
+    if (t->p_matrix == 0) {
+        s = s || put(b, ",\"minor_witness\":{\"rows\":[");
+        int first = 1;
+        for (size_t i = 0; i < m && !s; i++)
+            if (t->minor_set & (1u << i)) {
+                char k[24];
+                snprintf(k, sizeof k, "%s%zu", first ? "" : ",", i);
+                s = put(b, k);
+                first = 0;
+            }
+        s = s || put(b, "],\"minor\":") || put_num(b, t->minor) || put(b, "}");
+    }
+    s = s || put(b, ",\"mu\":") || put_num(b, t->mu);
+    s = s || put(b, ",\"positive_definite_symmetric_part\":") || put(b, t->pd_symmetric ? "true" : "false");
+    s = s || put(b, ",\"positive_semidefinite\":") || put(b, t->psd ? "true" : "false");
+    s = s || put(b, ",\"lipschitz\":") || put_num(b, t->lipschitz);
+    return s || put(b, "}");
+}
+
+/* One sentence: how many solutions, and whether the theory had promised it. */
+static void verdict(char *v, size_t cap, const dp_lcp_theory *t, const dp_lcp_solutions *s, int enumerated,
+                    const dp_lcp_result *r)
+{
+    const char *why = t->pd_symmetric ? "positive definite symmetric part (seed 002 Lemma 2.5, Theorem 2.3)"
+                      : t->p_matrix == 1 ? "M is a P-matrix" : NULL;
+    if (why)
+        snprintf(v, cap, "exactly one solution: %s", why);
+    else if (!enumerated)
+        snprintf(v, cap, "uniqueness not guaranteed (M not known to be a P-matrix); Lemke %s",
+                 r->outcome == DP_LCP_SOLVED ? "found a solution" : "ended on a ray (no solution found)");
+    else if (s->n == 0 && r->outcome == DP_LCP_RAY && t->psd)
+        snprintf(v, cap, "no solution: Lemke's ray proves it for a positive semidefinite M");
+    else if (s->n == 0)
+        snprintf(v, cap, "no solution%s", s->singular ? " at a regular complementary basis (singular ones not searched)" : "");
+    else
+        snprintf(v, cap, "%zu solution%s%s; uniqueness not guaranteed (M is not a P-matrix)", s->n,
+                 s->n == 1 ? "" : "s", s->singular ? " at regular bases, a continuum may pass through singular ones" : "");
+}
+
+static int answer(dp_buf *b, const gsl_matrix *M, const gsl_vector *q, const gsl_vector *z, const gsl_vector *w,
+                  const dp_lcp_result *r, const dp_lcp_solutions *sol, int enumerated, const dp_lcp_theory *t)
+{
+    size_t m = q->size;
+    char head[96], v[400];
+    snprintf(head, sizeof head, "{\"m\":%zu,\"lemke\":{\"outcome\":\"%s\",\"z\":", m,
+             r->outcome == DP_LCP_SOLVED ? "solved" : "ray");
+    int s = put(b, head);
+    if (r->outcome == DP_LCP_SOLVED)
+        s = s || put_vec(b, z->data, m) || put(b, ",\"w\":") || put_vec(b, w->data, m);
+    else
+        s = s || put(b, "null,\"w\":null");
+    snprintf(head, sizeof head, ",\"pivots\":%zu,\"residual\":", r->pivots);
+    s = s || put(b, head) || put_num(b, r->outcome == DP_LCP_SOLVED ? r->residual : NAN) || put(b, "}");
+    s = s || put(b, ",\"solutions\":");
+    if (!enumerated)
+        s = s || put(b, "null,\"count\":null,\"singular_bases\":null");
+    else {
+        s = s || put(b, "[");
+        for (size_t k = 0; k < sol->n && !s; k++)
+            s = (k ? put(b, ",") : DP_OK) || put_pair(b, M, q, sol->z + k * m);
+        snprintf(head, sizeof head, "],\"count\":%zu,\"singular_bases\":%zu", sol->n, sol->singular);
+        s = s || put(b, head);
+    }
+    s = s || put_theory(b, t, m);
+    verdict(v, sizeof v, t, sol, enumerated, r);
+    s = s || put(b, ",\"verdict\":") || dp_json_quote(b, v);
+    return s ? DP_ENOMEM : put(b, "}\n");
+}
+
+static int solve(const gsl_matrix *M, const gsl_vector *q, dp_buf *out)
+{
+    size_t m = q->size;
+    dp_lcp *ws = dp_lcp_alloc(m);
+    gsl_vector *z = gsl_vector_alloc(m), *w = gsl_vector_alloc(m);
+    dp_lcp_solutions sol = { 0 };
+    dp_lcp_theory t;
+    dp_lcp_result r;
+    int s = ws && z && w ? DP_OK : DP_ENOMEM;
+    s = s ? s : dp_lcp_lemke(ws, M, q, z, w, &r);
+    int enumerated = m <= DP_LCP_ENUM_MAX;
+    s = s ? s : enumerated ? dp_lcp_enumerate(M, q, &sol) : DP_OK;
+    s = s ? s : dp_lcp_theory_of(M, &t);
+    s = s ? s : answer(out, M, q, z, w, &r, &sol, enumerated, &t);
+    dp_lcp_solutions_clear(&sol);
+    gsl_vector_free(z);
+    gsl_vector_free(w);
+    dp_lcp_free(ws);
+    return s;
+}
+
+int dp_lcp_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
+{
+    gsl_matrix *M = NULL;
+    gsl_vector *q = NULL;
+    size_t mark = out->len;
+    int s = read_request(body, len, &M, &q, errs);
+    s = s ? s : solve(M, q, out);
+    if (s != DP_OK)
+        out->len = mark;
+    gsl_matrix_free(M);
+    gsl_vector_free(q);
+    return s;
+}
+
+/* ---- the meta line of an LCS run ------------------------------------------------------------------------ */
+
+static int put_kv(dp_buf *b, const char *key, double x)
+{
+    return put(b, ",\"") || put(b, key) || put(b, "\":") || put_num(b, x);
+}
+
+/* "theory":{...} of one matrix, with a sentence on the uniqueness of u it gives. */
+static int put_matrix_theory(dp_buf *b, const char *key, const gsl_matrix *M)
+{
+    dp_lcp_theory t;
+    int s = dp_lcp_theory_of(M, &t);
+    if (s != DP_OK)
+        return put(b, ",\"") || put(b, key) || put(b, "\":null");
+    s = put(b, ",\"") || put(b, key) || put(b, "\":{\"matrix\":[");
+    for (size_t i = 0; i < M->size1 && !s; i++)
+        s = (i ? put(b, ",") : DP_OK) || put_vec(b, M->data + i * M->tda, M->size2);
+    s = s || put(b, "]");
+    s = s || put_theory(b, &t, M->size1);
+    const char *u = t.pd_symmetric ? "one u per step: positive definite symmetric part (seed 002 Lemma 2.5, Theorem 2.3)"
+                  : t.p_matrix == 1 ? "one u per step: a P-matrix"
+                  : "uniqueness of u not guaranteed: Lemke's solution is taken when there are several";
+    return s || put(b, ",\"uniqueness\":") || dp_json_quote(b, u) || put(b, "}");
+}
+
+int dp_lcs_meta_json(const struct dp_spec *sp, dp_buf *b)
+{
+    const dp_lcs_model *lm = sp->lcs;
+    const dp_solver_spec *sv = &sp->solver;
+    char head[160];
+    snprintf(head, sizeof head, "{\"type\":\"meta\",\"version\":\"%s\",\"solver\":\"stick-slip\","
+             "\"variant\":\"exact\",\"model\":\"lcs\"", DP_VERSION);
+    int s = put(b, head) || put_kv(b, "theta", sv->theta) || put_kv(b, "dt", sv->dt) || put_kv(b, "t_end", sv->t_end);
+    s = s || put_kv(b, "steps", dp_spec_steps(sp)) || put_kv(b, "every", (double)sp->output.every);
+    s = s || put_kv(b, "states", (double)lm->n) || put_kv(b, "components", (double)lm->m) || put(b, ",\"laws\":[");
+    for (size_t i = 0; i < lm->m && !s; i++) {
+        const dp_lcs_law *l = &lm->law[i];
+        s = put(b, i ? "," : "") || put(b, l->kind == DP_LCS_INTERVAL ? "{\"law\":\"interval\",\"min\":"
+                                                                  : "{\"law\":\"complementarity\"}");
+        if (l->kind == DP_LCS_INTERVAL)
+            s = s || put_num(b, l->lo) || put(b, ",\"max\":") || put_num(b, l->hi) || put(b, "}");
+    }
+    s = s || put(b, "]");
+    gsl_matrix_const_view D = gsl_matrix_const_view_array(lm->D, lm->m, lm->m);
+    s = s || put_matrix_theory(b, "D", &D.matrix);
+    dp_lcs sys = dp_lcs_model_system(lm);
+    int st;
+    dp_lcs_stepper *step = dp_lcs_stepper_alloc(&sys, sv->dt, sv->theta, &st);
+    if (step == NULL)
+        return st == DP_ENOMEM ? DP_ENOMEM : DP_EINVAL;
+    s = s || put_matrix_theory(b, "step", dp_lcs_step_matrix(step));
+    dp_lcs_stepper_free(step);
+    return s ? DP_ENOMEM : put(b, "}");
+}

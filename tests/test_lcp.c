@@ -1,0 +1,388 @@
+/* tests/test_lcp.c - Lemke's method and the enumeration of complementary bases (issue 20) on the worked
+ * examples of seed 002 with their own numbers (Examples 1.6, 2.4, 2.6, 2.7, 2.11, Lemma 2.5, Theorem 2.3), and
+ * Lemke against the enumeration on >= 10^4 random P-matrix and PSD problems and on degenerate integer ones.
+ *
+ * The references are independent of Lemke's pivoting: closed forms from the seed's text, and the enumeration
+ * (each complementary basis' linear system by LU), whose own answers are checked by their definition (z >= 0,
+ * w = Mz + q >= 0, z ⊥ w) and, for P-matrices, by the count: exactly one.
+ */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_rng.h>
+
+#include "dashpot/lcp.h"
+#include "dashpot/status.h"
+
+#define CHECK(cond, ...)                                                                                     \
+    do {                                                                                                     \
+        if (!(cond)) {                                                                                       \
+            print_error(__VA_ARGS__);                                                                        \
+            print_error("\n");                                                                               \
+            fail_msg("check failed: %s", #cond);                                                            \
+        }                                                                                                    \
+    } while (0)
+
+#define NEAR(a, b, tol)                                                                                      \
+    do {                                                                                                     \
+        double a_ = (a), b_ = (b);                                                                           \
+        CHECK(fabs(a_ - b_) <= (tol), "%s = %.17g, expected %s = %.17g within %g", #a, a_, #b, b_,          \
+              (double)(tol));                                                                                \
+    } while (0)
+
+typedef struct problem {
+    size_t m;
+    gsl_matrix *M;
+    gsl_vector *q, *z, *w;
+    dp_lcp *ws;
+} problem;
+
+static problem make(size_t m, const double *M, const double *q)
+{
+    problem p = { m, gsl_matrix_alloc(m, m), gsl_vector_alloc(m), gsl_vector_alloc(m), gsl_vector_alloc(m),
+                  dp_lcp_alloc(m) };
+    for (size_t i = 0; i < m; i++) {
+        if (q)
+            gsl_vector_set(p.q, i, q[i]);
+        for (size_t j = 0; j < m; j++)
+            if (M)
+                gsl_matrix_set(p.M, i, j, M[i * m + j]);
+    }
+    return p;
+}
+
+static void drop(problem *p)
+{
+    gsl_matrix_free(p->M);
+    gsl_vector_free(p->q);
+    gsl_vector_free(p->z);
+    gsl_vector_free(p->w);
+    dp_lcp_free(p->ws);
+}
+
+static dp_lcp_result lemke(problem *p)
+{
+    dp_lcp_result r;
+    int s = dp_lcp_lemke(p->ws, p->M, p->q, p->z, p->w, &r);
+    CHECK(s == DP_OK, "dp_lcp_lemke returned %d", s);
+    return r;
+}
+
+/* Is z a solution by the definition, to tol (independent of both solvers)? */
+static int solves(const problem *p, const double *z, double tol)
+{
+    for (size_t i = 0; i < p->m; i++) {
+        double w = gsl_vector_get(p->q, i);
+        for (size_t j = 0; j < p->m; j++)
+            w += gsl_matrix_get(p->M, i, j) * z[j];
+        if (z[i] < -tol || w < -tol || fabs(z[i] * w) > tol * (1 + fabs(z[i]) + fabs(w)))
+            return 0;
+    }
+    return 1;
+}
+
+static double dist(const double *a, const double *b, size_t m)
+{
+    double d = 0;
+    for (size_t i = 0; i < m; i++)
+        d = fmax(d, fabs(a[i] - b[i]));
+    return d;
+}
+
+/* Example 1.6: 0 <= u ⊥ v + u >= 0 has u = v^- = max(-v, 0), v + u = v^+ (M = I, q = v), zeros included. */
+static void test_example_1_6(void **state)
+{
+    (void)state;
+    double I[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+    double vs[][3] = { { -1, 2, -3 }, { 0, -0.5, 0 }, { 4, 5, 6 }, { -2, -2, -2 }, { 0, 0, 0 } };
+    for (size_t k = 0; k < sizeof vs / sizeof vs[0]; k++) {
+        problem p = make(3, I, vs[k]);
+        dp_lcp_result r = lemke(&p);
+        CHECK(r.outcome == DP_LCP_SOLVED, "v #%zu solved", k);
+        for (size_t i = 0; i < 3; i++) {
+            NEAR(gsl_vector_get(p.z, i), fmax(-vs[k][i], 0), 0);
+            NEAR(gsl_vector_get(p.w, i), fmax(vs[k][i], 0), 0);
+        }
+        dp_lcp_solutions s;
+        CHECK(dp_lcp_enumerate(p.M, p.q, &s) == DP_OK, "enumerate");
+        CHECK(s.n == 1 && s.singular == 0, "one solution, got %zu (%zu singular)", s.n, s.singular);
+        dp_lcp_solutions_clear(&s);
+        drop(&p);
+    }
+}
+
+/* Example 2.4: p ∈ a u + N_R+(u), i.e. M = [a], q = [-p] (w = a u - p). a > 0: u = max(p, 0)/a, µ = a, the
+ * solution Lipschitz in p with constant L/µ = 1/a. a = 0: p > 0 none, p < 0 u = 0, p = 0 every u >= 0 (a
+ * continuum: one singular basis). a < 0: p > 0 none, p < 0 two, u = 0 and u = p/a (Figure 7). */
+static void test_example_2_4(void **state)
+{
+    (void)state;
+    struct { double a, p; size_t n; double u0, u1; int ray; } cases[] = {
+        { 2, 3, 1, 1.5, 0, 0 },  { 2, -3, 1, 0, 0, 0 },    { 0.5, 1, 1, 2, 0, 0 },
+        { 0, 1, 0, 0, 0, 1 },    { 0, -1, 1, 0, 0, 0 },    { 0, 0, 1, 0, 0, 0 },
+        { -2, 1, 0, 0, 0, 1 },   { -2, -3, 2, 0, 1.5, 0 },
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        double M[1] = { cases[k].a }, q[1] = { -cases[k].p };
+        problem p = make(1, M, q);
+        dp_lcp_solutions s;
+        CHECK(dp_lcp_enumerate(p.M, p.q, &s) == DP_OK, "enumerate");
+        CHECK(s.n == cases[k].n, "a = %g, p = %g: %zu solutions, expected %zu", cases[k].a, cases[k].p, s.n,
+              cases[k].n);
+        if (s.n >= 1)
+            NEAR(s.z[0], cases[k].u0, 1e-15);
+        if (s.n == 2)
+            NEAR(s.z[1], cases[k].u1, 1e-15);
+        CHECK(s.singular == (cases[k].a == 0 ? 1u : 0u), "singular bases %zu", s.singular);
+        dp_lcp_result r = lemke(&p);
+        CHECK((r.outcome == DP_LCP_RAY) == cases[k].ray, "a = %g, p = %g: Lemke outcome %d", cases[k].a,
+              cases[k].p, (int)r.outcome);
+        if (!cases[k].ray)
+            CHECK(solves(&p, p.z->data, 1e-15), "Lemke's answer solves a = %g, p = %g", cases[k].a, cases[k].p);
+        dp_lcp_theory t;
+        CHECK(dp_lcp_theory_of(p.M, &t) == DP_OK, "theory");
+        CHECK(t.p_matrix == (cases[k].a > 0), "P-matrix iff a > 0");
+        NEAR(t.mu, cases[k].a, 0);
+        if (cases[k].a > 0)
+            NEAR(t.lipschitz, 1 / cases[k].a, 1e-15);
+        dp_lcp_solutions_clear(&s);
+        drop(&p);
+    }
+}
+
+/* Example 2.6 with Lemma 2.5 and Theorem 2.3: A with <Ah, h> > 0 (here not symmetric: A = [[2, 3], [-3, 1]],
+ * symmetric part diag(2, 1), µ = 1) has one solution for every p, and |u1 - u2| <= |p1 - p2| / µ. */
+static void test_example_2_6(void **state)
+{
+    (void)state;
+    double A[4] = { 2, 3, -3, 1 };
+    problem p = make(2, A, NULL);
+    dp_lcp_theory t;
+    CHECK(dp_lcp_theory_of(p.M, &t) == DP_OK, "theory");
+    NEAR(t.mu, 1.0, 1e-15);
+    CHECK(t.pd_symmetric && t.p_matrix == 1, "pd symmetric part, P-matrix");
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    double prev_z[2] = { 0 }, prev_p[2] = { 0 };
+    for (int k = 0; k < 200; k++) {
+        double pv[2] = { 4 * gsl_rng_uniform(rng) - 2, 4 * gsl_rng_uniform(rng) - 2 };
+        gsl_vector_set(p.q, 0, -pv[0]);
+        gsl_vector_set(p.q, 1, -pv[1]);
+        dp_lcp_result r = lemke(&p);
+        CHECK(r.outcome == DP_LCP_SOLVED, "solved");
+        dp_lcp_solutions s;
+        CHECK(dp_lcp_enumerate(p.M, p.q, &s) == DP_OK && s.n == 1, "exactly one solution");
+        CHECK(dist(s.z, p.z->data, 2) <= 1e-14, "Lemke = enumeration");
+        if (k > 0) {
+            double du = hypot(p.z->data[0] - prev_z[0], p.z->data[1] - prev_z[1]);
+            double dpv = hypot(pv[0] - prev_p[0], pv[1] - prev_p[1]);
+            CHECK(du <= dpv / t.mu + 1e-14, "Lipschitz: |du| = %g > |dp|/µ = %g", du, dpv / t.mu);
+        }
+        memcpy(prev_z, p.z->data, sizeof prev_z);
+        memcpy(prev_p, pv, sizeof prev_p);
+        dp_lcp_solutions_clear(&s);
+    }
+    gsl_rng_free(rng);
+    drop(&p);
+}
+
+/* Example 2.7, normal compliance: 0 <= y - r + λ/k ⊥ λ >= 0 gives λ = k max(r - y, 0), µ = 1/k. */
+static void test_example_2_7(void **state)
+{
+    (void)state;
+    double k = 1e4, r = 0.1, ys[] = { 0.2, 0.1, 0.0999, 0.05 };
+    for (size_t i = 0; i < 4; i++) {
+        double M[1] = { 1 / k }, q[1] = { ys[i] - r };
+        problem p = make(1, M, q);
+        lemke(&p);
+        NEAR(gsl_vector_get(p.z, 0), k * fmax(r - ys[i], 0), 1e-12 * k);
+        drop(&p);
+    }
+}
+
+/* Example 2.11: A PSD, S(p) = Ap + N_K(p) monotone; for the LCP the solution set is convex (Proposition 2.2
+ * (ii)): with A = [[1, 1], [1, 1]] (singular, PSD) and q = (-1, -1) every z >= 0 with z1 + z2 = 1 solves.
+ * The enumeration finds the two vertices (1, 0), (0, 1), reports the singular basis, and Lemke lands on one
+ * of them. With q = (1, -1): w1 = w2 + 2 > 0 forces z1 = 0, then w2 = z2 - 1 = 0 (z2 > 0), so z = (0, 1) is
+ * the only solution. µ = 0: PSD, not positive definite. */
+static void test_example_2_11(void **state)
+{
+    (void)state;
+    double A[4] = { 1, 1, 1, 1 }, q[2] = { -1, -1 };
+    problem p = make(2, A, q);
+    dp_lcp_solutions s;
+    CHECK(dp_lcp_enumerate(p.M, p.q, &s) == DP_OK, "enumerate");
+    CHECK(s.n == 2 && s.singular == 1, "two vertices and one singular basis, got %zu, %zu", s.n, s.singular);
+    dp_lcp_result r = lemke(&p);
+    CHECK(r.outcome == DP_LCP_SOLVED, "solved");
+    NEAR(p.z->data[0] + p.z->data[1], 1.0, 1e-15);
+    CHECK(solves(&p, p.z->data, 1e-15), "Lemke's answer solves it");
+    dp_lcp_theory t;
+    CHECK(dp_lcp_theory_of(p.M, &t) == DP_OK, "theory");
+    CHECK(t.psd && !t.pd_symmetric && t.p_matrix == 0, "PSD, not PD, not P");
+    NEAR(t.mu, 0, 1e-15);
+    dp_lcp_solutions_clear(&s);
+    gsl_vector_set(p.q, 0, 1);
+    CHECK(dp_lcp_enumerate(p.M, p.q, &s) == DP_OK && s.n == 1, "one solution for q = (1, -1)");
+    NEAR(s.z[0], 0, 0);
+    NEAR(s.z[1], 1, 1e-15);
+    lemke(&p);
+    NEAR(p.z->data[1], 1, 1e-15);
+    dp_lcp_solutions_clear(&s);
+    drop(&p);
+}
+
+/* Not a P-matrix: the test's witness is the failing principal minor (here the determinant). */
+static void test_p_matrix_witness(void **state)
+{
+    (void)state;
+    double M[4] = { 1, 2, 3, 1 }; /* minors 1, 1, det = 1 - 6 = -5 */
+    problem p = make(2, M, NULL);
+    dp_lcp_theory t;
+    CHECK(dp_lcp_theory_of(p.M, &t) == DP_OK, "theory");
+    CHECK(t.p_matrix == 0 && t.minor_set == 3u, "not P, witness {1,2}, got %u", t.minor_set);
+    NEAR(t.minor, -5, 1e-14);
+    NEAR(t.mu, 1 - 2.5, 1e-14); /* symmetric part [[1, 2.5], [2.5, 1]]: eigenvalues 3.5, -1.5 */
+    drop(&p);
+}
+
+/* Random problems of size 1..8; kind 0: P by the principal-minor test, 1: positive definite symmetric part
+ * plus a skew part, 2: PSD of rank < m (B Bᵀ + skew), 3: degenerate integer data (entries in -2..2, q with
+ * zeros, so ratio ties are exact). */
+static void random_problem(gsl_rng *rng, int kind, problem *p)
+{
+    size_t m = p->m;
+    for (;;) {
+        if (kind == 1 || kind == 2) {
+            size_t rank = kind == 1 ? m + 1 : (m > 1 ? m - 1 : 1);
+            gsl_matrix_set_zero(p->M);
+            for (size_t c = 0; c < rank; c++) {
+                double b[DP_LCP_MAX];
+                for (size_t i = 0; i < m; i++)
+                    b[i] = 2 * gsl_rng_uniform(rng) - 1;
+                for (size_t i = 0; i < m; i++)
+                    for (size_t j = 0; j < m; j++)
+                        p->M->data[i * m + j] += b[i] * b[j];
+            }
+            for (size_t i = 0; i < m; i++)
+                for (size_t j = 0; j < i; j++) {
+                    double s = 2 * gsl_rng_uniform(rng) - 1;
+                    p->M->data[i * m + j] += s;
+                    p->M->data[j * m + i] -= s;
+                }
+        } else {
+            for (size_t i = 0; i < m * m; i++)
+                p->M->data[i] = kind == 3 ? (double)((int)gsl_rng_uniform_int(rng, 5) - 2)
+                                          : 4 * gsl_rng_uniform(rng) - 2 + (i % (m + 1) == 0 ? 2.5 : 0);
+        }
+        for (size_t i = 0; i < m; i++)
+            p->q->data[i] = kind == 3 ? (double)((int)gsl_rng_uniform_int(rng, 5) - 2) * (gsl_rng_uniform(rng) < 0.5)
+                                      : 4 * gsl_rng_uniform(rng) - 2;
+        if (kind != 0)
+            return;
+        dp_lcp_theory t;
+        CHECK(dp_lcp_theory_of(p->M, &t) == DP_OK, "theory");
+        if (t.p_matrix == 1)
+            return;
+    }
+}
+
+static void test_random_against_enumeration(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    size_t total = 0, solved = 0, rays = 0, degenerate_solved = 0;
+    for (int kind = 0; kind < 4; kind++) {
+        for (int n = 0; n < 2600; n++) {
+            size_t m = 1 + (size_t)n % 8;
+            problem p = make(m, NULL, NULL);
+            random_problem(rng, kind, &p);
+            dp_lcp_solutions s;
+            CHECK(dp_lcp_enumerate(p.M, p.q, &s) == DP_OK, "enumerate");
+            for (size_t k = 0; k < s.n; k++)
+                CHECK(solves(&p, s.z + k * m, 1e-9), "enumerated solution %zu solves", k);
+            dp_lcp_result r = lemke(&p);
+            total++;
+            if (r.outcome == DP_LCP_SOLVED) {
+                solved++;
+                CHECK(solves(&p, p.z->data, 1e-11), "kind %d m %zu #%d: Lemke's answer solves (residual %g)", kind,
+                      m, n, r.residual);
+                CHECK(r.residual <= 1e-12, "kind %d: residual %g", kind, r.residual);
+                size_t k = 0;
+                while (k < s.n && dist(s.z + k * m, p.z->data, m) > 1e-9 * (1 + fabs(s.z[k * m])))
+                    k++;
+                CHECK(k < s.n, "kind %d m %zu #%d: Lemke's solution is one of the %zu enumerated",
+                      kind, m, n, s.n);
+                degenerate_solved += kind == 3;
+            } else {
+                rays++;
+                /* A ray proves infeasibility for P-matrices (never happens) and for PSD M (Cottle-Pang-Stone
+                 * Thm 4.4.13: copositive-plus); for general M it proves nothing. */
+                if (kind <= 2)
+                    CHECK(s.n == 0, "kind %d m %zu #%d: Lemke's ray but %zu solutions", kind, m, n, s.n);
+            }
+            if (kind <= 1)
+                CHECK(s.n == 1 && r.outcome == DP_LCP_SOLVED, "P-matrix: exactly one solution, got %zu", s.n);
+            dp_lcp_solutions_clear(&s);
+            drop(&p);
+        }
+    }
+    printf("random: %zu problems, %zu solved by Lemke (%zu degenerate integer ones), %zu rays\n", total, solved,
+           degenerate_solved, rays);
+    CHECK(total >= 10000 && degenerate_solved > 500, "enough problems");
+    gsl_rng_free(rng);
+}
+
+/* Larger P problems (m = 30, 100) against the definition, since enumeration is out of reach. */
+static void test_large(void **state)
+{
+    (void)state;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    size_t sizes[] = { 30, 100 };
+    for (size_t k = 0; k < 2; k++) {
+        for (int n = 0; n < 20; n++) {
+            problem p = make(sizes[k], NULL, NULL);
+            random_problem(rng, 1, &p);
+            dp_lcp_result r = lemke(&p);
+            CHECK(r.outcome == DP_LCP_SOLVED && solves(&p, p.z->data, 1e-10), "m = %zu solved", sizes[k]);
+            CHECK(r.residual <= 1e-11, "residual %g", r.residual);
+            drop(&p);
+        }
+    }
+    gsl_rng_free(rng);
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    problem p = make(2, (double[]){ 1, 0, 0, 1 }, (double[]){ -1, NAN });
+    dp_lcp_result r;
+    CHECK(dp_lcp_lemke(p.ws, p.M, p.q, p.z, p.w, &r) == DP_EINVAL, "NaN in q");
+    gsl_vector *q3 = gsl_vector_calloc(3);
+    CHECK(dp_lcp_lemke(p.ws, p.M, q3, p.z, p.w, &r) == DP_EINVAL, "size mismatch");
+    dp_lcp_solutions s;
+    CHECK(dp_lcp_enumerate(p.M, q3, &s) == DP_EINVAL, "size mismatch in enumeration");
+    dp_lcp_solutions_clear(&s);
+    CHECK(dp_lcp_alloc(0) == NULL && dp_lcp_alloc(DP_LCP_MAX + 1) == NULL, "sizes out of range");
+    gsl_vector_free(q3);
+    drop(&p);
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_example_1_6),       cmocka_unit_test(test_example_2_4),
+        cmocka_unit_test(test_example_2_6),       cmocka_unit_test(test_example_2_7),
+        cmocka_unit_test(test_example_2_11),      cmocka_unit_test(test_p_matrix_witness),
+        cmocka_unit_test(test_random_against_enumeration), cmocka_unit_test(test_large),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
