@@ -7,6 +7,12 @@
  * and the graphs at the step's end (springs at u + h z, as the one-mass step takes them), so a network of
  * one node and one element [ground, 0] is the one-mass model step for step. Events are resolved to the
  * step: a phase change is reported at the end of the step that made it.
+ *
+ * An elastoplastic (Jenkins) spring is weighted like a linear one, (1-theta) F + theta F+, with F+ the
+ * return mapping at u+ = u + h ((1-theta) u' + theta z+) (the position update's own u+): its graph in z+
+ * has two vertices that move with the plastic offset p, rewritten in place before each step and p moved
+ * after it. While elastic it is exactly the linear spring's theta-scheme (second order at theta = 1/2).
+ * Its vertices move with the step, so networks with one are stepped with events resolved to the step.
  */
 #include <math.h>
 #include <stdio.h>
@@ -103,6 +109,14 @@ static int alloc_all(struct dp_net_run *nr)
     nr->can_stick = calloc(ne, 1);
     nr->all_nodes = calloc(n, sizeof(size_t));
     nr->all_elements = calloc(ne, sizeof(size_t));
+    nr->ep_p = calloc(ne, sizeof(double));
+    nr->ep_F = calloc(ne, sizeof(double));
+    nr->ep_flow = calloc(ne, 1);
+    nr->ep_flow_prev = calloc(ne, 1);
+    nr->ep_graph = calloc(ne, sizeof *nr->ep_graph);
+    nr->ep_cols = calloc(ne, sizeof *nr->ep_cols);
+    if (!nr->ep_p || !nr->ep_F || !nr->ep_flow || !nr->ep_flow_prev || !nr->ep_graph || !nr->ep_cols)
+        return DP_ENOMEM;
     nr->qcap = ne + 2;
     nr->queue = calloc(nr->qcap, sizeof *nr->queue);
     return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->act_el && nr->gamma && nr->static_A && nr->held && nr->broke && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
@@ -122,6 +136,46 @@ static void band_add_incidence(double *B, size_t p, long a, long b, double w)
     if (a >= 0 && b >= 0) {
         size_t lo = (size_t)(a < b ? a : b), d = (size_t)labs(a - b);
         B[lo * (p + 1) + d] -= w;
+    }
+}
+
+static int is_ep(const dp_element *e)
+{
+    return e->has_spring && e->spring.law == DP_SPRING_ELASTOPLASTIC;
+}
+
+/* The elastoplastic springs' state at the initial elongations (an elongation past yield moves the offset
+ * there, as the return mapping would), their step graphs (the run's own copies) at that offset. */
+static void ep_init(struct dp_net_run *nr, dp_network *net, const double *x0)
+{
+    for (size_t i = 0; i < nr->nel; i++) {
+        dp_element *e = &net->el[i];
+        if (!is_ep(e))
+            continue;
+        int flow;
+        nr->has_ep = 1;
+        nr->ep_p[i] = e->spring.offset;
+        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, nr_rel(e->a, e->b, x0), &nr->ep_p[i], &flow);
+        nr->ep_graph[i] = &e->spring.graph;
+        dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
+    }
+}
+
+/* After a step (x moved to x+): each elastoplastic spring's return mapping at its new elongation. */
+static void ep_update(struct dp_net_run *nr)
+{
+    if (!nr->has_ep)
+        return;
+    for (size_t i = 0; i < nr->nel; i++) {
+        if (nr->ep_graph[i] == NULL)
+            continue;
+        const dp_element *e = &nr->net->el[i];
+        int flow;
+        nr->ep_flow_prev[i] = nr->ep_flow[i];
+        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, nr_rel(e->a, e->b, nr->x), &nr->ep_p[i], &flow);
+        nr->ep_flow[i] = (signed char)flow;
+        if (flow)
+            dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
     }
 }
 
@@ -168,7 +222,8 @@ static int setup_laws(struct dp_net_run *nr)
         nr->act_el[nr->nact] = i;
         nr->act[nr->nact++] = (dp_net_elem){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
                                              .S = lin_spring ? NULL : &e->spring.graph,
-                                             .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+                                             .vb = e->has_damper ? e->damper.belt_velocity : 0,
+                                             .ep_theta = is_ep(e) ? nr->theta : 0 };
     }
     return DP_OK;
 }
@@ -190,6 +245,14 @@ static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
         nr->cols.group[g] = (dp_column_group){ .name = names[g], .n = g < 2 ? nn : ne,
                                                .index = g < 2 ? nr->cols.node : nr->cols.element, .phase = g == 4 };
     nr->row_len = nr->cols.width = 2 * nn + 3 * ne;
+    for (size_t j = 0; j < ne; j++)
+        if (is_ep(&nr->net->el[nr->cols.element[j]]))
+            nr->ep_cols[nr->nep_cols++] = nr->cols.element[j];
+    if (nr->nep_cols) {   /* the plastic offsets of the written elastoplastic springs */
+        nr->cols.group[nr->cols.ngroups++] = (dp_column_group){ .name = "p", .n = nr->nep_cols,
+                                                                .index = nr->ep_cols };
+        nr->row_len = nr->cols.width += nr->nep_cols;
+    }
     size_t rl = nr->row_len ? nr->row_len : 1;
     nr->final_row = calloc(rl, sizeof(double));
     nr->pending_row = calloc(rl, sizeof(double));
@@ -204,7 +267,7 @@ void dp_network_run_free(struct dp_net_run *nr)
     dp_network_regularized_free(nr->reg);
     for (size_t i = 0; nr->static_A && i < nr->nact; i++)
         dp_graph_clear(&nr->static_A[i]);
-    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    void *p[] = { nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
@@ -224,7 +287,15 @@ void nr_element_forces(struct dp_net_run *nr, int stepped)
         double fs = nr->k[i] * u, fd = nr->c[i] * (z - vb), lo, hi;
         long k = nr->act_of[i];
         int rest = z == vb;
-        if (k >= 0 && stepped) {
+        if (k >= 0 && nr->ep_graph[i]) {   /* the return mapping's force, not the step's weighted one */
+            fs = nr->ep_F[i];
+            if (stepped && nr->act[k].A)   /* without a damper the split's rounding is not a force */
+                fd += nr->force[k].a, rest = nr->force[k].at_rest;
+            else if (nr->act[k].A) {
+                dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
+                fd += fmin(fmax(0.0, lo), hi);
+            }
+        } else if (k >= 0 && stepped) {
             const dp_net_force *f = &nr->force[k];
             fs += f->s, fd += f->a, rest = f->at_rest;
         } else if (k >= 0) {
@@ -311,6 +382,20 @@ void nr_step_rhs(struct dp_net_run *nr, double t, double h)
     }
     for (size_t k = 0; k < nr->nact; k++)
         nr->u[k] = nr_rel(nr->act[k].a, nr->act[k].b, nr->x);
+    if (!nr->has_ep)
+        return;
+    for (size_t k = 0; k < nr->nact; k++) {
+        const dp_net_elem *e = &nr->act[k];
+        if (e->ep_theta == 0)
+            continue;
+        /* u+ = u + h (1-theta) u' + h theta z+; the force's (1-theta) part is known */
+        double g = h * (1 - th) * nr->ep_F[nr->act_el[k]];
+        nr->u[k] += h * (1 - th) * nr_rel(e->a, e->b, nr->v);
+        if (e->b >= 0)
+            nr->rhs[e->b] -= g;
+        if (e->a >= 0)
+            nr->rhs[e->a] += g;
+    }
 }
 
 /* x+ = x + h ((1-theta) v + theta v+), v = v+. */
@@ -320,6 +405,7 @@ void nr_take_velocity(struct dp_net_run *nr, double h)
         nr->x[i] += h * ((1 - nr->theta) * nr->v[i] + nr->theta * nr->v1[i]);
         nr->v[i] = nr->v1[i];
     }
+    ep_update(nr);
 }
 
 /* The exact solution of a step of length h from time t into v1 and the forces; the state is not moved. */
@@ -402,6 +488,7 @@ int dp_network_run_init(dp_run *r)
         return s;
     if (nr->relaxed)
         dp_net_ws_relaxation(nr->ws, nr->gamma, nr->theta);
+    ep_init(nr, r->spec.net, r->spec.x0v);
     nr->pattern = malloc(dp_net_ws_pattern_bytes(nr->ws));
     nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
     nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
@@ -463,6 +550,7 @@ int dp_network_run_advance(dp_run *r)
             if ((s = net_step(r, t, h)) == DP_OK) {
                 nr_element_forces(nr, 1);
                 nr_step_events(r, nr->phase_prev, t + h);
+                nr_plastic_events(r, t + h);
                 nr_stick_time(r, nr->phase, h);
             }
         }

@@ -55,6 +55,10 @@ struct dp_run {
     dp_coulomb_arc an_arc;
     /* regularized solver (regularized.c): its GSL workspace */
     struct dp_regularized *reg;
+    /* one mass on an elastoplastic spring (stick_slip.c): its plastic offset and force after the last
+     * step, whether its slider slid in it (+1/-1, 0) */
+    int ep, ep_flow;
+    double ep_p, ep_F;
     /* network solver (network_run.c) */
     struct dp_net_run *net;
     /* the columns of a run whose samples are rows (dp_run_columns); NULL for one-mass samples */

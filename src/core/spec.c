@@ -157,7 +157,7 @@ static void check_exact(const dp_spec *s, dp_errors *e)
 {
     const dp_model *m = &s->model;
     double h = s->solver.dt, th = s->solver.theta;
-    if (th != 1 && m->spring.law != DP_SPRING_LINEAR)
+    if (th != 1 && m->spring.law != DP_SPRING_LINEAR && m->spring.law != DP_SPRING_ELASTOPLASTIC)
         dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring (the %s spring is stepped by "
                       "backward Euler): use theta = 1", dp_spring_law_name(m->spring.law));
     double k = m->spring.law == DP_SPRING_LINEAR ? m->spring.k : 0;
@@ -200,6 +200,9 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
         ; /* the network's solver rules are in dp_network_check */
     else if (s->solver.kind == DP_SOLVER_ANALYTIC)
         check_analytic(s, e);
+    else if (s->solver.kind == DP_SOLVER_REGULARIZED && m->spring.law == DP_SPRING_ELASTOPLASTIC)
+        dp_errors_add(e, "/model/spring/law", "the elastoplastic spring has memory (its plastic offset), which the "
+                      "regularized schemes' memoryless laws do not: use the stick-slip or the newmark solver");
     else if (s->solver.kind == DP_SOLVER_REGULARIZED)
         dp_regularized_check(s, e);
     else if (s->solver.variant == DP_VARIANT_THESIS)

@@ -466,8 +466,10 @@ static void parse_spring(ctx *c, const cJSON *o, const at *ptr, dp_spring *s)
         { "linear", DP_SPRING_LINEAR, { NUM(dp_spring, k, NONNEG, 1) }, { NULL } },
         { "rope", DP_SPRING_ROPE, { NUM(dp_spring, k, NONNEG, 1), NUM(dp_spring, length, ANY, 1) }, { NULL } },
         { "graph", DP_SPRING_GRAPH, { { NULL } }, { "points", NULL } },
+        { "elastoplastic", DP_SPRING_ELASTOPLASTIC, { NUM(dp_spring, k, POSITIVE, 1), NUM(dp_spring, yield, POSITIVE, 1),
+          NUM(dp_spring, offset, ANY, 0) }, { NULL } },
     };
-    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, 3, NULL, s);
+    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, 4, NULL, s);
     if (v == NULL)
         return;
     s->law = (dp_spring_law)v->id;
