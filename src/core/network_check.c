@@ -13,6 +13,8 @@
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_linalg.h>
 
+#include "dashpot/newmark.h"
+
 #include "dashpot/spec.h"
 
 /* Whether the n x n matrix A is symmetric to rounding; the first asymmetric pair in *i, *j. */
@@ -138,9 +140,11 @@ void dp_network_check(const dp_spec *s, dp_errors *e)
         check_element(s, i, e);
     if (s->solver.kind == DP_SOLVER_REGULARIZED)
         check_regularized(s, e);
+    else if (s->solver.kind == DP_SOLVER_NEWMARK)
+        dp_newmark_check(s, e);
     else if (s->solver.kind != DP_SOLVER_STICK_SLIP)
-        dp_errors_add(e, "/solver/kind", "networks take the stick-slip or the regularized solver (the analytic "
-                      "closed form is for one mass)");
+        dp_errors_add(e, "/solver/kind", "networks take the stick-slip, the regularized or the newmark solver (the "
+                      "analytic closed form is for one mass)");
     else if (s->solver.variant != DP_VARIANT_EXACT)
         dp_errors_add(e, "/solver/variant", "networks take the exact variant only (the thesis' algorithm is for "
                       "one mass)");

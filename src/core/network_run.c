@@ -22,6 +22,7 @@
 #include <gsl/gsl_linalg.h>
 
 #include "network_run.h"
+#include "newmark_step.h"
 #include "root.h"
 
 
@@ -267,7 +268,8 @@ void dp_network_run_free(struct dp_net_run *nr)
     dp_network_regularized_free(nr->reg);
     for (size_t i = 0; nr->static_A && i < nr->nact; i++)
         dp_graph_clear(&nr->static_A[i]);
-    void *p[] = { nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    dp_nm_free(nr->nm);
+    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
@@ -428,6 +430,71 @@ static int net_step(dp_run *r, double t, double h)
     return s;
 }
 
+/* ---- the newmark solver ------------------------------------------------------------------------------ */
+
+/* The load at t: the nodes' forcing and the linear dampers' belt terms c v_b b. */
+static void nm_load(struct dp_net_run *nr, double t, double *P)
+{
+    memset(P, 0, nr->n * sizeof *P);
+    for (size_t i = 0; i < nr->net->nforce; i++)
+        P[nr->net->force[i].node] += dp_forcing_eval(&nr->net->force[i].f, t);
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        double g = e->has_damper ? nr->c[i] * e->damper.belt_velocity : 0;
+        if (g != 0 && e->b >= 0)
+            P[e->b] += g;
+        if (g != 0 && e->a >= 0)
+            P[e->a] -= g;
+    }
+}
+
+/* The elastoplastic forces and tangent states in the stepper's order. */
+static void nm_gather(struct dp_net_run *nr)
+{
+    for (size_t j = 0; j < nr->nm_nep; j++)
+        nr->nm_F[j] = nr->ep_F[nr->nm_el[j]], nr->nm_flow[j] = nr->ep_flow[nr->nm_el[j]];
+}
+
+static int newmark_init(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    size_t m = nr->nel ? nr->nel : 1;
+    nr->nm_ea = calloc(m, sizeof *nr->nm_ea), nr->nm_eb = calloc(m, sizeof *nr->nm_eb);
+    nr->nm_ek = calloc(m, sizeof *nr->nm_ek), nr->nm_F = calloc(m, sizeof *nr->nm_F);
+    nr->nm_flow = calloc(m, 1), nr->nm_el = calloc(m, sizeof *nr->nm_el);
+    nr->nm_P = calloc(nr->n, sizeof *nr->nm_P);
+    if (!nr->nm_ea || !nr->nm_eb || !nr->nm_ek || !nr->nm_F || !nr->nm_flow || !nr->nm_el || !nr->nm_P)
+        return DP_ENOMEM;
+    for (size_t i = 0; i < nr->nel; i++)
+        if (nr->ep_graph[i]) {
+            const dp_element *e = &nr->net->el[i];
+            nr->nm_ea[nr->nm_nep] = e->a, nr->nm_eb[nr->nm_nep] = e->b, nr->nm_ek[nr->nm_nep] = e->spring.k;
+            nr->nm_el[nr->nm_nep++] = i;
+        }
+    dp_nm *w = nr->nm = dp_nm_alloc(nr->n, nr->p, nr->nm_nep);
+    if (w == NULL)
+        return DP_ENOMEM;
+    w->M = nr->M, w->C = nr->C, w->K = nr->K, w->ea = nr->nm_ea, w->eb = nr->nm_eb, w->ek = nr->nm_ek;
+    w->beta = r->spec.solver.beta, w->gamma = r->spec.solver.gamma;
+    nm_load(nr, 0, nr->nm_P);
+    nm_gather(nr);
+    return dp_nm_start(w, nr->x, nr->v, nr->nm_P, nr->nm_F);
+}
+
+/* One step of Höschl's incremental form to t + h, the elastoplastic springs' return mappings after it. */
+static int newmark_step(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    nm_load(nr, t + h, nr->nm_P);
+    nm_gather(nr);
+    if (dp_nm_step(nr->nm, h, nr->nm_P, nr->nm_flow, nr->x, nr->v) != DP_OK)
+        return DP_ESOLVE;
+    ep_update(nr);
+    nm_gather(nr);
+    dp_nm_accel(nr->nm, nr->x, nr->v, nr->nm_P, nr->nm_F);
+    return DP_OK;
+}
+
 /* sup gamma' over the line: the slope that can eat into W's definiteness. */
 static double relaxation_rise(const dp_relaxation *g)
 {
@@ -517,6 +584,15 @@ int dp_network_run_init(dp_run *r)
         nr_emit_row(r);
         return DP_OK;
     }
+    if (r->spec.solver.kind == DP_SOLVER_NEWMARK) {
+        if ((s = newmark_init(r)) != DP_OK)
+            return s;
+        nr_element_forces(nr, 0);
+        r->countdown = 1;
+        nr_finalize_summary(r);
+        nr_emit_row(r);
+        return DP_OK;
+    }
     build_W(nr, r->h);
     /* The initial forces and phases: an exact step of a billionth of dt from the initial state says which
      * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
@@ -543,7 +619,12 @@ int dp_network_run_advance(dp_run *r)
     while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
-        if (nr->locate && nr->solved) {
+        if (nr->nm) {
+            if ((s = newmark_step(r, t, h)) == DP_OK) {
+                nr_element_forces(nr, 0);
+                nr_plastic_events(r, t + h);
+            }
+        } else if (nr->locate && nr->solved) {
             s = nr_located_step(r, t, h);
         } else {
             memcpy(nr->phase_prev, nr->phase, nr->nel);

@@ -55,6 +55,13 @@ struct dp_net_run {
     signed char *ep_flow, *ep_flow_prev;
     dp_graph **ep_graph;
     size_t *ep_cols, nep_cols;  /* the written elements with such a spring: the "p" column group */
+    /* the newmark solver (network_run.c, newmark_step.h): its stepper, the elastoplastic elements' ends,
+     * stiffness, element index, force and tangent state in its order, the load vector */
+    struct dp_nm *nm;
+    long *nm_ea, *nm_eb;
+    double *nm_ek, *nm_F, *nm_P;
+    signed char *nm_flow;
+    size_t *nm_el, nm_nep;
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */

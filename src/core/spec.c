@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dashpot/newmark.h"
 #include "dashpot/spec.h"
 
 void dp_spec_init(dp_spec *s)
@@ -29,6 +30,8 @@ void dp_spec_init(dp_spec *s)
     s->solver.rtol = 1e-8;
     s->solver.atol = 1e-10;
     s->solver.stepper = DP_STEPPER_MSBDF;
+    s->solver.beta = 0.25;
+    s->solver.gamma = 0.5;
     s->output.every = 1;
     s->output.samples = 1;
     s->output.events = 1;
@@ -200,6 +203,8 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
         ; /* the network's solver rules are in dp_network_check */
     else if (s->solver.kind == DP_SOLVER_ANALYTIC)
         check_analytic(s, e);
+    else if (s->solver.kind == DP_SOLVER_NEWMARK)
+        dp_newmark_check(s, e);
     else if (s->solver.kind == DP_SOLVER_REGULARIZED && m->spring.law == DP_SPRING_ELASTOPLASTIC)
         dp_errors_add(e, "/model/spring/law", "the elastoplastic spring has memory (its plastic offset), which the "
                       "regularized schemes' memoryless laws do not: use the stick-slip or the newmark solver");
