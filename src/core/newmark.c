@@ -286,7 +286,7 @@ static void one_mass_forces(dp_run *r)
     dp_sample *c = &r->cur;
     double cv = m->damper.law == DP_DAMPER_LINEAR ? m->damper.c : 0;
     c->Fs = r->ep ? r->ep_F : m->spring.k * c->x;
-    c->Fc = c->Fd = cv * (c->v - m->damper.belt_velocity);
+    c->Fc = c->Fd = cv == 0 ? 0 : cv * (c->v - m->damper.belt_velocity);
     c->phase = DP_PHASE_NONE;
     c->plastic = r->ep, c->p = r->ep ? r->ep_p : 0;
 }
