@@ -13,6 +13,7 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include "dashpot/wellposedness.h"
 #include "trajectory.h"
 
 static const dp_spring jenkins = { .law = DP_SPRING_ELASTOPLASTIC, .k = 2, .yield = 3 };
@@ -346,6 +347,30 @@ static void test_yielding_beside_sticking(void **state)
     traj_free(&a);
 }
 
+/* The well-posedness report: the Jenkins element is a stop operator, so with a maximal monotone damper the
+ * motion exists and is unique (Brezis); a non-monotone damper beside it still fails its check. */
+static void test_wellposedness_entry(void **state)
+{
+    (void)state;
+    dp_model m = { .mass = 1, .spring = { .law = DP_SPRING_ELASTOPLASTIC, .k = 2, .yield = 1 },
+                   .damper = { .law = DP_DAMPER_COULOMB, .phi0 = 0.3 } };
+    assert_int_equal(dp_model_prepare(&m), DP_OK);
+    dp_wp_report r;
+    dp_wellposedness(&m, &r);
+    assert_true(r.existence.guaranteed && r.uniqueness.guaranteed);
+    assert_non_null(strstr(r.existence.theorem, "stop operator"));
+    assert_non_null(strstr(r.check[0].name, "elastoplastic"));
+    assert_true(r.check[0].holds);
+    dp_model_clear(&m);
+    dp_model g = { .mass = 1, .spring = { .law = DP_SPRING_ELASTOPLASTIC, .k = 2, .yield = 1 },
+                   .damper = { .law = DP_DAMPER_GENERALIZED_COULOMB, .phi0 = 0.3, .phi1 = 0.5 } };
+    assert_int_equal(dp_model_prepare(&g), DP_OK);
+    dp_wellposedness(&g, &r);
+    assert_false(r.uniqueness.guaranteed);
+    assert_null(r.uniqueness.theorem);
+    dp_model_clear(&g);
+}
+
 /* ---- bad input ----------------------------------------------------------------------------------------- */
 
 static void expect_error(const char *json, const char *pointer, const char *needle)
@@ -398,6 +423,7 @@ int main(void)
         cmocka_unit_test(test_mass_on_jenkins_theta_half),
         cmocka_unit_test(test_newmark_on_jenkins),
         cmocka_unit_test(test_yielding_beside_sticking),
+        cmocka_unit_test(test_wellposedness_entry),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
