@@ -210,6 +210,35 @@ static void test_stability_limit_both_sides(void **state)
     assert_true(amp_out > 1e6);
 }
 
+/* The highest mode of the two-mass chain (M = diag(1, 2), K = [[5, -2], [-2, 2]]): omega^2 = 3 + sqrt(6) from
+ * det(K - omega^2 M) = 0; an elastoplastic spring counts with its elastic k. */
+static void test_limit_of_a_network(void **state)
+{
+    (void)state;
+    const char *docs[2] = {
+        "{\"model\":{\"masses\":[1,2],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":\"linear\","
+        "\"k\":3}},{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":2}}]},\"initial\":{\"x\":[0,0],"
+        "\"v\":[0,0]},\"solver\":{\"kind\":\"newmark\",\"dt\":0.1,\"t_end\":1,\"beta\":0.16666666666666666}}",
+        "{\"model\":{\"masses\":[1,2],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":\"linear\","
+        "\"k\":3}},{\"between\":[0,1],\"spring\":{\"law\":\"elastoplastic\",\"k\":2,\"yield\":0.1}}]},"
+        "\"initial\":{\"x\":[0,0],\"v\":[0,0]},\"solver\":{\"kind\":\"newmark\",\"dt\":0.1,\"t_end\":1,"
+        "\"beta\":0.16666666666666666}}" };
+    for (int k = 0; k < 2; k++) {
+        dp_spec spec;
+        dp_errors errs;
+        dp_spec_init(&spec);
+        dp_errors_init(&errs);
+        assert_int_equal(dp_spec_parse(docs[k], strlen(docs[k]), 0, &spec, &errs), DP_OK);
+        dp_newmark_limit L;
+        assert_int_equal(dp_newmark_limit_of(&spec, &L), DP_OK);
+        double w = sqrt(3 + sqrt(6));
+        assert_true(fabs(L.omega_max - w) <= 1e-12 * w);
+        assert_true(fabs(L.ratio - 0.1 * w / (2 * M_PI)) <= 1e-12);
+        assert_true(L.inside);
+        dp_spec_clear(&spec);
+    }
+}
+
 /* beta = 1/4, gamma = 1/2 on a linear undamped chain: 1/2 v^T M v + 1/2 x^T K x is the same at every step. */
 static void test_average_acceleration_conserves_energy(void **state)
 {
@@ -294,6 +323,7 @@ int main(void)
         cmocka_unit_test(test_incremental_is_the_textbook_form),
         cmocka_unit_test(test_second_order_for_gamma_half),
         cmocka_unit_test(test_stability_limit_both_sides),
+        cmocka_unit_test(test_limit_of_a_network),
         cmocka_unit_test(test_average_acceleration_conserves_energy),
         cmocka_unit_test(test_bad_input),
     };
