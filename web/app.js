@@ -158,6 +158,7 @@ const plots = [
   new Plot($('plot-phase'), { x: { col: 'x', label: 'x' }, y: { label: 'v' }, series: [{ col: 'v', color: '--c-phase' }],
     markers: () => sim.events.map((e) => ({ x: e.x, y: e.v, kind: e.kind })) }),
   new Plot($('plot-law'), { x: { col: 'v', label: 'v' }, y: { label: 'Fd' }, series: [{ col: 'Fd', color: '--c-Fd' }] }),
+  new Plot($('plot-spring'), { x: { col: 'x', label: 'x' }, y: { label: 'Fs' }, series: [{ col: 'Fs', color: '--c-Fs' }] }),
 ];
 
 function drawAll() {

@@ -66,6 +66,19 @@ PRESETS.push({
   },
 });
 PRESETS.push({
+  id: 'elastoplastic', group: 'Oscillators', label: 'Elastoplastic (Jenkins) spring: k 1, yield 0.5, F = 0.6 cos(0.8 t)',
+  kind: 'simulate',
+  note: 'A spring in series with a Coulomb slider (H\u00f6schl \u00a715): elastic while |F\u209b| < 0.5, then the slider ' +
+    'slides and the offset p moves. Near resonance it yields every swing: the spring law plot draws the hysteresis ' +
+    'loops, whose area is the plastic work.',
+  spec: {
+    model: { mass: 1, spring: { law: 'elastoplastic', k: 1, yield: 0.5 }, damper: { law: 'linear', c: 0.05 },
+      forcing: { kind: 'harmonic', amplitude: 0.6, omega: 0.8 } },
+    initial: { x: 0, v: 0 },
+    solver: { kind: 'stick-slip', dt: 0.001, t_end: 60, theta: 0.5 },
+  },
+});
+PRESETS.push({
   id: 'belt', group: 'Oscillators', label: 'Belt stick-slip: \u03c6\u2080 0.8, \u03c6\u2081 1, belt 0.4', kind: 'simulate',
   note: 'A mass on a spring, dragged by a belt at 0.4: it rides the belt (stick) until the spring overcomes the ' +
     'static threshold \u03c6\u2081, slips back with \u03c6\u2080 < \u03c6\u2081, catches the belt again \u2014 a limit cycle.',

@@ -10,13 +10,20 @@
 #include <stddef.h>
 #include "dashpot/graph.h"
 
-typedef enum dp_spring_law { DP_SPRING_LINEAR, DP_SPRING_ROPE, DP_SPRING_GRAPH } dp_spring_law;
+typedef enum dp_spring_law {
+    DP_SPRING_LINEAR, DP_SPRING_ROPE, DP_SPRING_GRAPH,
+    DP_SPRING_ELASTOPLASTIC      /* Jenkins: spring k in series with a slider of yield force F_y (systems.md §3) */
+} dp_spring_law;
 
 typedef struct dp_spring {
     dp_spring_law law;
     double k;          /* linear, rope: stiffness */
     double length;     /* rope: the rope's length L; x <= L always (thesis Fig. 1) */
-    dp_graph graph;    /* (x, F_s); user points for DP_SPRING_GRAPH, built by dp_model_prepare otherwise */
+    double yield;      /* elastoplastic: the yield force F_y > 0; F = k (x - p), |F| <= F_y */
+    double offset;     /* elastoplastic: the initial plastic offset p(0) */
+    dp_graph graph;    /* (x, F_s); user points for DP_SPRING_GRAPH, built by dp_model_prepare otherwise;
+                          elastoplastic: the graph at the initial offset, vertices (p -/+ F_y/k, -/+F_y) with
+                          horizontal rays, which the solvers move with p (dp_elastoplastic_graph) */
 } dp_spring;
 
 typedef enum dp_damper_law {
@@ -100,6 +107,16 @@ double dp_relaxation_slope(const dp_relaxation *r, double v);
 double dp_relaxation_bound(const dp_relaxation *r);
 
 const char *dp_spring_law_name(dp_spring_law law);
+
+/* The Jenkins element's step (systems.md §3), exact by return mapping: from the plastic offset *p and the
+ * elongation u at the step's end, the force clamp(k (u - p), -F_y, F_y), with *p moved so that
+ * F = k (u - p). Returns the force; *flow is +1/-1 while the slider slides (the trial force left the
+ * interval), 0 when the step stayed elastic. */
+double dp_elastoplastic_return(const dp_spring *s, double u, double *p, int *flow);
+
+/* Rewrites the 2-vertex graph g (n == 2) of an elastoplastic spring in place for offset p, its forces
+ * scaled by `weight` (the theta of the step's weighting: the step sees theta F(u+)). */
+void dp_elastoplastic_graph(const dp_spring *s, double p, double weight, dp_graph *g);
 const char *dp_damper_law_name(dp_damper_law law);
 
 #endif

@@ -22,11 +22,14 @@ typedef struct dp_sample {
     double Fd;       /* damper force F_c - gamma */
     double Fc;       /* the damper graph's force (Coulomb part with its viscous part) */
     dp_phase phase;  /* DP_PHASE_NONE for dampers that cannot stick */
+    int plastic;     /* the spring is elastoplastic: p is its plastic offset (written as "p") */
+    double p;
 } dp_sample;
 
-typedef enum dp_event_kind { DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2 } dp_event_kind;
+typedef enum dp_event_kind { DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2, DP_EVENT_YIELD = 3, DP_EVENT_UNLOAD = 4 } dp_event_kind;
 
-/* A phase change: DP_EVENT_STICK is slip -> stick, DP_EVENT_SLIP is stick -> slip. */
+/* A phase change: DP_EVENT_STICK is slip -> stick, DP_EVENT_SLIP is stick -> slip; an elastoplastic
+ * spring's DP_EVENT_YIELD (its slider starts sliding) and DP_EVENT_UNLOAD (it stops: elastic again). */
 typedef struct dp_event {
     dp_event_kind kind;
     double t, x, v;

@@ -14,7 +14,10 @@
  * is seconds of CPU; beyond that a request is almost surely a mistake in dt or t_end. */
 #define DP_SPEC_MAX_STEPS 1000000000.0
 
-typedef enum dp_solver_kind { DP_SOLVER_STICK_SLIP, DP_SOLVER_ANALYTIC, DP_SOLVER_REGULARIZED } dp_solver_kind;
+typedef enum dp_solver_kind {
+    DP_SOLVER_STICK_SLIP, DP_SOLVER_ANALYTIC, DP_SOLVER_REGULARIZED,
+    DP_SOLVER_NEWMARK     /* Höschl's incremental Newmark (newmark.h): linear and elastoplastic springs */
+} dp_solver_kind;
 
 /* The regularized existence schemes (mathematics.md §3): (PCn) F_c = g_n(x') with g_n the Yosida
  * approximation A_(1/n) (seed 001 (17)); (PIk) F_s = f_k^-1(x), F_d = g_k^-1(x') with f_k = f + u/k
@@ -54,6 +57,8 @@ typedef struct dp_solver_spec {
     size_t n_count;
     double rtol, atol;
     dp_stepper stepper;
+    /* newmark */
+    double beta, gamma;   /* (0, 1/2], [1/2, 1]; 1/6, 1/2 is Höschl's linear acceleration */
 } dp_solver_spec;
 
 typedef struct dp_output_spec {

@@ -35,6 +35,13 @@ static int prepare_spring(dp_spring *s)
     dp_graph_clear(&s->graph);
     if (s->law == DP_SPRING_LINEAR)
         return line_graph(&s->graph, s->k);
+    if (s->law == DP_SPRING_ELASTOPLASTIC) {
+        if (!(s->k > 0 && s->yield > 0 && isfinite(s->offset)))
+            return DP_EINVAL;
+        double y[2] = { s->offset - s->yield / s->k, s->offset + s->yield / s->k }, f[2] = { -s->yield, s->yield };
+        double flat[2] = { 1, 0 };
+        return dp_graph_init(&s->graph, 2, y, f, flat, flat);
+    }
     /* Rope (thesis Fig. 1): F_s = k x while slack; at x = L the rope takes any extra tension. */
     double y = s->length, f = s->k * s->length, left[2] = { 1, s->k };
     return dp_graph_init(&s->graph, 1, &y, &f, left, UP);
@@ -95,8 +102,8 @@ int dp_model_copy(dp_model *dst, const dp_model *src)
 
 const char *dp_spring_law_name(dp_spring_law law)
 {
-    static const char *names[] = { "linear", "rope", "graph" };
-    return (unsigned)law < 3 ? names[law] : "?";
+    static const char *names[] = { "linear", "rope", "graph", "elastoplastic" };
+    return (unsigned)law < 4 ? names[law] : "?";
 }
 
 const char *dp_damper_law_name(dp_damper_law law)

@@ -13,6 +13,8 @@
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_linalg.h>
 
+#include "dashpot/newmark.h"
+
 #include "dashpot/spec.h"
 
 /* Whether the n x n matrix A is symmetric to rounding; the first asymmetric pair in *i, *j. */
@@ -90,7 +92,8 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
             dp_errors_add(e, p, "the initial relative velocity %g is outside the damper graph's domain", z);
         }
     }
-    if (el->has_spring && el->spring.law != DP_SPRING_LINEAR && s->solver.theta != 1) {
+    if (el->has_spring && el->spring.law != DP_SPRING_LINEAR && el->spring.law != DP_SPRING_ELASTOPLASTIC &&
+        s->solver.theta != 1) {
         snprintf(p, sizeof p, "/model/elements/%zu/spring", i);
         dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler): use "
                       "theta = 1", dp_spring_law_name(el->spring.law));
@@ -106,6 +109,13 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
 static void check_regularized(const dp_spec *s, dp_errors *e)
 {
     const dp_solver_spec *sv = &s->solver;
+    char p[DP_POINTER_MAX];
+    for (size_t i = 0; i < s->net->nel; i++)
+        if (s->net->el[i].has_spring && s->net->el[i].spring.law == DP_SPRING_ELASTOPLASTIC) {
+            snprintf(p, sizeof p, "/model/elements/%zu/spring/law", i);
+            dp_errors_add(e, p, "the elastoplastic spring has memory (its plastic offset), which the regularized "
+                          "scheme's memoryless laws do not: use the stick-slip or the newmark solver");
+        }
     if (sv->scheme != DP_SCHEME_PC)
         dp_errors_add(e, "/solver/scheme", "networks take scheme PC (Yosida dampers); PI is for one mass");
     if (sv->n_count != 1)
@@ -130,9 +140,11 @@ void dp_network_check(const dp_spec *s, dp_errors *e)
         check_element(s, i, e);
     if (s->solver.kind == DP_SOLVER_REGULARIZED)
         check_regularized(s, e);
+    else if (s->solver.kind == DP_SOLVER_NEWMARK)
+        dp_newmark_check(s, e);
     else if (s->solver.kind != DP_SOLVER_STICK_SLIP)
-        dp_errors_add(e, "/solver/kind", "networks take the stick-slip or the regularized solver (the analytic "
-                      "closed form is for one mass)");
+        dp_errors_add(e, "/solver/kind", "networks take the stick-slip, the regularized or the newmark solver (the "
+                      "analytic closed form is for one mass)");
     else if (s->solver.variant != DP_VARIANT_EXACT)
         dp_errors_add(e, "/solver/variant", "networks take the exact variant only (the thesis' algorithm is for "
                       "one mass)");

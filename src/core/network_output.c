@@ -23,6 +23,8 @@ dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data)
         size_t i = nr->cols.element[j];
         data[2 * nn + j] = nr->Fs[i], data[2 * nn + ne + j] = nr->Fd[i], data[2 * nn + 2 * ne + j] = nr->phase[i];
     }
+    for (size_t j = 0; j < nr->nep_cols; j++)
+        data[2 * nn + 3 * ne + j] = nr->ep_p[nr->ep_cols[j]];
     return (dp_row){ .t = t, .val = data };
 }
 
@@ -87,6 +89,26 @@ void nr_step_events(dp_run *r, const unsigned char *before, double t)
                                   .v = nr->phase[i] == DP_PHASE_STICK && e->has_damper ? e->damper.belt_velocity
                                                                                        : nr_rel(e->a, e->b, nr->v),
                                   .element = i };
+        nr_put(r, &rec);
+    }
+}
+
+/* An elastoplastic spring's slider starting to slide (yield: from elastic, or reversed from the other
+ * yield force) or stopping (unload), at the end of the step that did it. */
+void nr_plastic_events(dp_run *r, double t)
+{
+    struct dp_net_run *nr = r->net;
+    for (size_t i = 0; nr->has_ep && i < nr->nel; i++) {
+        int before = nr->ep_flow_prev[i], now = nr->ep_flow[i];
+        if (nr->ep_graph[i] == NULL || before == now)
+            continue;
+        r->sum.events++;
+        if (!r->spec.output.events)
+            continue;
+        const dp_element *e = &nr->net->el[i];
+        dp_record rec = { .type = DP_RECORD_EVENT };
+        rec.u.event = (dp_event){ .kind = now ? DP_EVENT_YIELD : DP_EVENT_UNLOAD, .t = t,
+                                  .x = nr_rel(e->a, e->b, nr->x), .v = nr_rel(e->a, e->b, nr->v), .element = i };
         nr_put(r, &rec);
     }
 }

@@ -7,6 +7,12 @@
  * and the graphs at the step's end (springs at u + h z, as the one-mass step takes them), so a network of
  * one node and one element [ground, 0] is the one-mass model step for step. Events are resolved to the
  * step: a phase change is reported at the end of the step that made it.
+ *
+ * An elastoplastic (Jenkins) spring is weighted like a linear one, (1-theta) F + theta F+, with F+ the
+ * return mapping at u+ = u + h ((1-theta) u' + theta z+) (the position update's own u+): its graph in z+
+ * has two vertices that move with the plastic offset p, rewritten in place before each step and p moved
+ * after it. While elastic it is exactly the linear spring's theta-scheme (second order at theta = 1/2).
+ * Its vertices move with the step, so networks with one are stepped with events resolved to the step.
  */
 #include <math.h>
 #include <stdio.h>
@@ -16,6 +22,7 @@
 #include <gsl/gsl_linalg.h>
 
 #include "network_run.h"
+#include "newmark_step.h"
 #include "root.h"
 
 
@@ -103,6 +110,14 @@ static int alloc_all(struct dp_net_run *nr)
     nr->can_stick = calloc(ne, 1);
     nr->all_nodes = calloc(n, sizeof(size_t));
     nr->all_elements = calloc(ne, sizeof(size_t));
+    nr->ep_p = calloc(ne, sizeof(double));
+    nr->ep_F = calloc(ne, sizeof(double));
+    nr->ep_flow = calloc(ne, 1);
+    nr->ep_flow_prev = calloc(ne, 1);
+    nr->ep_graph = calloc(ne, sizeof *nr->ep_graph);
+    nr->ep_cols = calloc(ne, sizeof *nr->ep_cols);
+    if (!nr->ep_p || !nr->ep_F || !nr->ep_flow || !nr->ep_flow_prev || !nr->ep_graph || !nr->ep_cols)
+        return DP_ENOMEM;
     nr->qcap = ne + 2;
     nr->queue = calloc(nr->qcap, sizeof *nr->queue);
     return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->act_el && nr->gamma && nr->static_A && nr->held && nr->broke && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
@@ -122,6 +137,46 @@ static void band_add_incidence(double *B, size_t p, long a, long b, double w)
     if (a >= 0 && b >= 0) {
         size_t lo = (size_t)(a < b ? a : b), d = (size_t)labs(a - b);
         B[lo * (p + 1) + d] -= w;
+    }
+}
+
+static int is_ep(const dp_element *e)
+{
+    return e->has_spring && e->spring.law == DP_SPRING_ELASTOPLASTIC;
+}
+
+/* The elastoplastic springs' state at the initial elongations (an elongation past yield moves the offset
+ * there, as the return mapping would), their step graphs (the run's own copies) at that offset. */
+static void ep_init(struct dp_net_run *nr, dp_network *net, const double *x0)
+{
+    for (size_t i = 0; i < nr->nel; i++) {
+        dp_element *e = &net->el[i];
+        if (!is_ep(e))
+            continue;
+        int flow;
+        nr->has_ep = 1;
+        nr->ep_p[i] = e->spring.offset;
+        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, nr_rel(e->a, e->b, x0), &nr->ep_p[i], &flow);
+        nr->ep_graph[i] = &e->spring.graph;
+        dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
+    }
+}
+
+/* After a step (x moved to x+): each elastoplastic spring's return mapping at its new elongation. */
+static void ep_update(struct dp_net_run *nr)
+{
+    if (!nr->has_ep)
+        return;
+    for (size_t i = 0; i < nr->nel; i++) {
+        if (nr->ep_graph[i] == NULL)
+            continue;
+        const dp_element *e = &nr->net->el[i];
+        int flow;
+        nr->ep_flow_prev[i] = nr->ep_flow[i];
+        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, nr_rel(e->a, e->b, nr->x), &nr->ep_p[i], &flow);
+        nr->ep_flow[i] = (signed char)flow;
+        if (flow)
+            dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
     }
 }
 
@@ -168,7 +223,8 @@ static int setup_laws(struct dp_net_run *nr)
         nr->act_el[nr->nact] = i;
         nr->act[nr->nact++] = (dp_net_elem){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
                                              .S = lin_spring ? NULL : &e->spring.graph,
-                                             .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+                                             .vb = e->has_damper ? e->damper.belt_velocity : 0,
+                                             .ep_theta = is_ep(e) ? nr->theta : 0 };
     }
     return DP_OK;
 }
@@ -190,6 +246,14 @@ static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
         nr->cols.group[g] = (dp_column_group){ .name = names[g], .n = g < 2 ? nn : ne,
                                                .index = g < 2 ? nr->cols.node : nr->cols.element, .phase = g == 4 };
     nr->row_len = nr->cols.width = 2 * nn + 3 * ne;
+    for (size_t j = 0; j < ne; j++)
+        if (is_ep(&nr->net->el[nr->cols.element[j]]))
+            nr->ep_cols[nr->nep_cols++] = nr->cols.element[j];
+    if (nr->nep_cols) {   /* the plastic offsets of the written elastoplastic springs */
+        nr->cols.group[nr->cols.ngroups++] = (dp_column_group){ .name = "p", .n = nr->nep_cols,
+                                                                .index = nr->ep_cols };
+        nr->row_len = nr->cols.width += nr->nep_cols;
+    }
     size_t rl = nr->row_len ? nr->row_len : 1;
     nr->final_row = calloc(rl, sizeof(double));
     nr->pending_row = calloc(rl, sizeof(double));
@@ -204,7 +268,8 @@ void dp_network_run_free(struct dp_net_run *nr)
     dp_network_regularized_free(nr->reg);
     for (size_t i = 0; nr->static_A && i < nr->nact; i++)
         dp_graph_clear(&nr->static_A[i]);
-    void *p[] = { nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    dp_nm_free(nr->nm);
+    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
@@ -224,7 +289,15 @@ void nr_element_forces(struct dp_net_run *nr, int stepped)
         double fs = nr->k[i] * u, fd = nr->c[i] * (z - vb), lo, hi;
         long k = nr->act_of[i];
         int rest = z == vb;
-        if (k >= 0 && stepped) {
+        if (k >= 0 && nr->ep_graph[i]) {   /* the return mapping's force, not the step's weighted one */
+            fs = nr->ep_F[i];
+            if (stepped && nr->act[k].A)   /* without a damper the split's rounding is not a force */
+                fd += nr->force[k].a, rest = nr->force[k].at_rest;
+            else if (nr->act[k].A) {
+                dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
+                fd += fmin(fmax(0.0, lo), hi);
+            }
+        } else if (k >= 0 && stepped) {
             const dp_net_force *f = &nr->force[k];
             fs += f->s, fd += f->a, rest = f->at_rest;
         } else if (k >= 0) {
@@ -311,6 +384,20 @@ void nr_step_rhs(struct dp_net_run *nr, double t, double h)
     }
     for (size_t k = 0; k < nr->nact; k++)
         nr->u[k] = nr_rel(nr->act[k].a, nr->act[k].b, nr->x);
+    if (!nr->has_ep)
+        return;
+    for (size_t k = 0; k < nr->nact; k++) {
+        const dp_net_elem *e = &nr->act[k];
+        if (e->ep_theta == 0)
+            continue;
+        /* u+ = u + h (1-theta) u' + h theta z+; the force's (1-theta) part is known */
+        double g = h * (1 - th) * nr->ep_F[nr->act_el[k]];
+        nr->u[k] += h * (1 - th) * nr_rel(e->a, e->b, nr->v);
+        if (e->b >= 0)
+            nr->rhs[e->b] -= g;
+        if (e->a >= 0)
+            nr->rhs[e->a] += g;
+    }
 }
 
 /* x+ = x + h ((1-theta) v + theta v+), v = v+. */
@@ -320,6 +407,7 @@ void nr_take_velocity(struct dp_net_run *nr, double h)
         nr->x[i] += h * ((1 - nr->theta) * nr->v[i] + nr->theta * nr->v1[i]);
         nr->v[i] = nr->v1[i];
     }
+    ep_update(nr);
 }
 
 /* The exact solution of a step of length h from time t into v1 and the forces; the state is not moved. */
@@ -340,6 +428,71 @@ static int net_step(dp_run *r, double t, double h)
     if (s == DP_OK)
         nr_take_velocity(r->net, h);
     return s;
+}
+
+/* ---- the newmark solver ------------------------------------------------------------------------------ */
+
+/* The load at t: the nodes' forcing and the linear dampers' belt terms c v_b b. */
+static void nm_load(struct dp_net_run *nr, double t, double *P)
+{
+    memset(P, 0, nr->n * sizeof *P);
+    for (size_t i = 0; i < nr->net->nforce; i++)
+        P[nr->net->force[i].node] += dp_forcing_eval(&nr->net->force[i].f, t);
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        double g = e->has_damper ? nr->c[i] * e->damper.belt_velocity : 0;
+        if (g != 0 && e->b >= 0)
+            P[e->b] += g;
+        if (g != 0 && e->a >= 0)
+            P[e->a] -= g;
+    }
+}
+
+/* The elastoplastic forces and tangent states in the stepper's order. */
+static void nm_gather(struct dp_net_run *nr)
+{
+    for (size_t j = 0; j < nr->nm_nep; j++)
+        nr->nm_F[j] = nr->ep_F[nr->nm_el[j]], nr->nm_flow[j] = nr->ep_flow[nr->nm_el[j]];
+}
+
+static int newmark_init(dp_run *r)
+{
+    struct dp_net_run *nr = r->net;
+    size_t m = nr->nel ? nr->nel : 1;
+    nr->nm_ea = calloc(m, sizeof *nr->nm_ea), nr->nm_eb = calloc(m, sizeof *nr->nm_eb);
+    nr->nm_ek = calloc(m, sizeof *nr->nm_ek), nr->nm_F = calloc(m, sizeof *nr->nm_F);
+    nr->nm_flow = calloc(m, 1), nr->nm_el = calloc(m, sizeof *nr->nm_el);
+    nr->nm_P = calloc(nr->n, sizeof *nr->nm_P);
+    if (!nr->nm_ea || !nr->nm_eb || !nr->nm_ek || !nr->nm_F || !nr->nm_flow || !nr->nm_el || !nr->nm_P)
+        return DP_ENOMEM;
+    for (size_t i = 0; i < nr->nel; i++)
+        if (nr->ep_graph[i]) {
+            const dp_element *e = &nr->net->el[i];
+            nr->nm_ea[nr->nm_nep] = e->a, nr->nm_eb[nr->nm_nep] = e->b, nr->nm_ek[nr->nm_nep] = e->spring.k;
+            nr->nm_el[nr->nm_nep++] = i;
+        }
+    dp_nm *w = nr->nm = dp_nm_alloc(nr->n, nr->p, nr->nm_nep);
+    if (w == NULL)
+        return DP_ENOMEM;
+    w->M = nr->M, w->C = nr->C, w->K = nr->K, w->ea = nr->nm_ea, w->eb = nr->nm_eb, w->ek = nr->nm_ek;
+    w->beta = r->spec.solver.beta, w->gamma = r->spec.solver.gamma;
+    nm_load(nr, 0, nr->nm_P);
+    nm_gather(nr);
+    return dp_nm_start(w, nr->x, nr->v, nr->nm_P, nr->nm_F);
+}
+
+/* One step of Höschl's incremental form to t + h, the elastoplastic springs' return mappings after it. */
+static int newmark_step(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    nm_load(nr, t + h, nr->nm_P);
+    nm_gather(nr);
+    if (dp_nm_step(nr->nm, h, nr->nm_P, nr->nm_flow, nr->x, nr->v) != DP_OK)
+        return DP_ESOLVE;
+    ep_update(nr);
+    nm_gather(nr);
+    dp_nm_accel(nr->nm, nr->x, nr->v, nr->nm_P, nr->nm_F);
+    return DP_OK;
 }
 
 /* sup gamma' over the line: the slope that can eat into W's definiteness. */
@@ -402,6 +555,7 @@ int dp_network_run_init(dp_run *r)
         return s;
     if (nr->relaxed)
         dp_net_ws_relaxation(nr->ws, nr->gamma, nr->theta);
+    ep_init(nr, r->spec.net, r->spec.x0v);
     nr->pattern = malloc(dp_net_ws_pattern_bytes(nr->ws));
     nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
     nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
@@ -425,6 +579,15 @@ int dp_network_run_init(dp_run *r)
     if (r->spec.solver.kind == DP_SOLVER_REGULARIZED) {
         if ((s = dp_network_regularized_init(r)) != DP_OK)
             return s;
+        r->countdown = 1;
+        nr_finalize_summary(r);
+        nr_emit_row(r);
+        return DP_OK;
+    }
+    if (r->spec.solver.kind == DP_SOLVER_NEWMARK) {
+        if ((s = newmark_init(r)) != DP_OK)
+            return s;
+        nr_element_forces(nr, 0);
         r->countdown = 1;
         nr_finalize_summary(r);
         nr_emit_row(r);
@@ -460,13 +623,19 @@ int dp_network_run_advance(dp_run *r)
             return r->status;
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
-        if (nr->locate && nr->solved) {
+        if (nr->nm) {
+            if ((s = newmark_step(r, t, h)) == DP_OK) {
+                nr_element_forces(nr, 0);
+                nr_plastic_events(r, t + h);
+            }
+        } else if (nr->locate && nr->solved) {
             s = nr_located_step(r, t, h);
         } else {
             memcpy(nr->phase_prev, nr->phase, nr->nel);
             if ((s = net_step(r, t, h)) == DP_OK) {
                 nr_element_forces(nr, 1);
                 nr_step_events(r, nr->phase_prev, t + h);
+                nr_plastic_events(r, t + h);
                 nr_stick_time(r, nr->phase, h);
             }
         }

@@ -48,6 +48,20 @@ struct dp_net_run {
     dp_record *queue;           /* records that did not fit the caller's block */
     size_t nq, iq, qcap;
     double *pending_row;        /* the data of a queued row */
+    /* elastoplastic (Jenkins) springs, per element (network_run.c): the plastic offset, the force, whether
+     * the slider slid in the last step (+1/-1, 0) and in the one before, the step graph to move with p */
+    int has_ep;
+    double *ep_p, *ep_F;
+    signed char *ep_flow, *ep_flow_prev;
+    dp_graph **ep_graph;
+    size_t *ep_cols, nep_cols;  /* the written elements with such a spring: the "p" column group */
+    /* the newmark solver (network_run.c, newmark_step.h): its stepper, the elastoplastic elements' ends,
+     * stiffness, element index, force and tangent state in its order, the load vector */
+    struct dp_nm *nm;
+    long *nm_ea, *nm_eb;
+    double *nm_ek, *nm_F, *nm_P;
+    signed char *nm_flow;
+    size_t *nm_el, nm_nep;
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */
@@ -79,6 +93,9 @@ void nr_take_velocity(struct dp_net_run *nr, double h);
 void nr_element_forces(struct dp_net_run *nr, int stepped);
 /* One step of length h from t split at its phase changes (network_events.c). */
 int nr_located_step(dp_run *r, double t, double h);
+
+/* Yield and unload events at time t of the elastoplastic springs whose slider started or stopped sliding. */
+void nr_plastic_events(dp_run *r, double t);
 
 /* A row over the columns from the current state, its numbers written to data and ph. */
 dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data);

@@ -153,9 +153,21 @@ static double arg_A(const dp_net_elem *e, const vertex *at)
     return at->src == SRC_A ? at->y : at->z - e->vb;
 }
 
-static double arg_S(double u, double h, const vertex *at)
+/* The spring graph's argument is u + beta z, beta = h (graph springs) or h theta (elastoplastic), and its
+ * force enters Sigma with the weight 1 or theta: factors of exactly 1 keep graph springs bit for bit. */
+static double s_beta(const dp_net_elem *e, double h)
 {
-    return at->src == SRC_S ? at->y : u + h * at->z;
+    return e->ep_theta > 0 ? h * e->ep_theta : h;
+}
+
+static double s_weight(const dp_net_elem *e)
+{
+    return e->ep_theta > 0 ? e->ep_theta : 1;
+}
+
+static double arg_S(const dp_net_elem *e, double u, double h, const vertex *at)
+{
+    return at->src == SRC_S ? at->y : u + s_beta(e, h) * at->z;
 }
 
 /* The piece of Sigma_e leaving `at` towards dir: slope in z, force there, the next vertex. */
@@ -175,11 +187,12 @@ static int sigma_piece(const dp_net_ws *w, size_t i, double u, double h, const v
             *next = (vertex){ pc.next + e->vb, SRC_A, pc.next };
     }
     if (e->S) {
-        dp_graph_piece(e->S, arg_S(u, h, at), dir, &pc);
+        double beta = s_beta(e, h), wt = s_weight(e);
+        dp_graph_piece(e->S, arg_S(e, u, h, at), dir, &pc);
         if (pc.blocked)
             return 0;
-        *slope += h * pc.slope, *f += pc.f;
-        double z = (pc.next - u) / h;
+        *slope += wt * (beta * pc.slope), *f += wt * pc.f;
+        double z = (pc.next - u) / beta;
         if (isfinite(pc.next) && (dir > 0 ? z < next->z : z > next->z))
             *next = (vertex){ z, SRC_S, pc.next };
     }
@@ -200,8 +213,9 @@ static void sigma_interval(const dp_net_ws *w, size_t i, double u, double h, con
         *lo += l, *hi += r;
     }
     if (e->S) {
-        dp_graph_force(e->S, arg_S(u, h, at), &l, &r);
-        *lo += l, *hi += r;
+        double wt = s_weight(e);
+        dp_graph_force(e->S, arg_S(e, u, h, at), &l, &r);
+        *lo += wt * l, *hi += wt * r;
     }
 }
 
@@ -511,8 +525,8 @@ static int assign_start(dp_net_ws *w, double h, const double *u, const double *v
         vertex at = { z, SRC_NONE, 0 }, below;
         if (e->A && dp_graph_has_vertex(e->A, z - e->vb))
             at.src = SRC_A, at.y = z - e->vb;
-        else if (e->S && dp_graph_has_vertex(e->S, u[i] + h * z))
-            at.src = SRC_S, at.y = u[i] + h * z;
+        else if (e->S && dp_graph_has_vertex(e->S, u[i] + s_beta(e, h) * z))
+            at.src = SRC_S, at.y = u[i] + s_beta(e, h) * z;
         sigma_interval(w, i, u[i], h, &at, &lo, &hi);
         if (lo == hi && !isfinite(lo))
             return 0;                    /* outside the domain */
@@ -656,8 +670,10 @@ static void report(dp_net_ws *w, double h, const double *u, const double *v, dp_
         o->lambda += w->g0[i] + w->g1[i] * (at.z - w->zk[i]);   /* the graphs' part, without gamma */
         if (e->A)
             dp_graph_force(e->A, arg_A(e, &at), &alo, &ahi);
-        if (e->S)
-            dp_graph_force(e->S, arg_S(u[i], h, &at), &slo, &shi);
+        if (e->S) {
+            dp_graph_force(e->S, arg_S(e, u[i], h, &at), &slo, &shi);
+            slo *= s_weight(e), shi *= s_weight(e);
+        }
         /* Where both parts are set-valued the split is not unique: the damper takes what it can. */
         if (slo == shi)
             o->s = slo, o->a = o->lambda - slo;

@@ -4,6 +4,10 @@
  *     min_v  1/2 v^T W v - rhs^T v + h sum_e Psi_e(b_e^T v),   Psi_e' = Sigma_e,
  *     Sigma_e(z) = A_e(z - v_b,e) + S_e(u_e + h z),
  *
+ * or, for an elastoplastic (Jenkins) spring stepped theta-consistently, theta S_e(u_e + h theta z) with u_e
+ * the elongation plus h (1-theta) times its rate and S_e the return mapping's graph at the current plastic
+ * offset (the caller rewrites it between steps and puts the (1-theta) part of the force in rhs),
+ *
  * solved by a primal active-set method over the pieces of the graphs Sigma_e (network_step.c). W is given
  * in GSL's symmetric band storage: row i of an n x (p+1) array holds W(i+d, i), d = 0..p.
  */
@@ -21,6 +25,8 @@ typedef struct dp_net_elem {
     const dp_graph *A;    /* (z - vb, F_c) or NULL */
     const dp_graph *S;    /* (u + h z, F_s) or NULL */
     double vb;
+    double ep_theta;      /* 0: S at u + h z with weight 1 (graph springs); theta > 0: S at u + h theta z,
+                             weighted theta (an elastoplastic spring) */
 } dp_net_elem;
 
 /* What the step found for one element. */

@@ -36,7 +36,15 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
         if (net->el[i].has_damper && dm->law == DP_DAMPER_GENERALIZED_COULOMB && dm->phi1 > dm->phi0)
             static_at = (long)i;
     }
-    snprintf(d, sizeof d, "%zu elements, each a monotone piecewise-linear graph (one-mass laws)", net->nel);
+    size_t ep = 0;
+    for (size_t i = 0; i < net->nel; i++)
+        ep += net->el[i].has_spring && net->el[i].spring.law == DP_SPRING_ELASTOPLASTIC;
+    if (ep)   /* a Jenkins element with its force as a state: F' in k u' - N(F), a stop operator (systems.md §3) */
+        snprintf(d, sizeof d, "%zu elements, each a monotone piecewise-linear graph (one-mass laws); %zu "
+                 "elastoplastic, each with its force as a state (F' in k u' - N_K(F), K = [-F_y, F_y]: a maximal "
+                 "monotone stop operator in the product F G / k)", net->nel, ep);
+    else
+        snprintf(d, sizeof d, "%zu elements, each a monotone piecewise-linear graph (one-mass laws)", net->nel);
     check(rep, "element graphs maximal monotone", d);
     if (static_at >= 0) {   /* the static threshold above the kinetic one: not monotone (seed 001 section 4) */
         const dp_damper *dm = &net->el[static_at].damper;

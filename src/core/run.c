@@ -75,6 +75,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
     else switch (spec->solver.kind) {
     case DP_SOLVER_ANALYTIC: s = dp_analytic_init(r); break;
     case DP_SOLVER_REGULARIZED: s = dp_regularized_init(r); break;
+    case DP_SOLVER_NEWMARK: s = dp_newmark_init(r); break;
     default: s = dp_stick_slip_init(r); break;
     }
     if (s != DP_OK) {
@@ -100,6 +101,8 @@ static int advance(dp_run *r)
         return dp_analytic_advance(r);
     if (r->spec.solver.kind == DP_SOLVER_REGULARIZED)
         return dp_regularized_advance(r);
+    if (r->spec.solver.kind == DP_SOLVER_NEWMARK)
+        return dp_newmark_advance(r);
     if (r->spec.solver.variant == DP_VARIANT_THESIS)
         return dp_thesis_advance(r);
     return dp_stick_slip_advance(r);
@@ -176,6 +179,7 @@ void dp_run_free(dp_run *r)
     dp_regularized_free(r->reg);
     dp_network_run_free(r->net);
     dp_lcs_run_free(r->lcs);
+    dp_nm_free(r->nm);
     dp_spec_clear(&r->spec);
     free(r);
 }

@@ -57,6 +57,13 @@ struct dp_run {
     dp_coulomb_arc an_arc;
     /* regularized solver (regularized.c): its GSL workspace */
     struct dp_regularized *reg;
+    /* one mass on an elastoplastic spring (stick_slip.c): its plastic offset and force after the last
+     * step, whether its slider slid in it (+1/-1, 0) */
+    int ep, ep_flow;
+    double ep_p, ep_F;
+    /* the one-mass newmark run (newmark.c): its stepper and 1 x 1 band matrices */
+    struct dp_nm *nm;
+    double nm_M, nm_C, nm_K;
     /* network solver (network_run.c) */
     struct dp_net_run *net;
     /* linear complementarity system (lcs_run.c) */
@@ -122,6 +129,9 @@ int dp_regularized_advance(dp_run *r);
 void dp_regularized_free(struct dp_regularized *reg);
 /* The GSL odeiv2 stepper of a dp_stepper (regularized.c). */
 const gsl_odeiv2_step_type *dp_regularized_step_type(dp_stepper s);
+int dp_newmark_init(dp_run *r);
+int dp_newmark_advance(dp_run *r);
+void dp_nm_free(struct dp_nm *w);
 int dp_network_run_init(dp_run *r);
 int dp_network_run_advance(dp_run *r);
 void dp_network_run_free(struct dp_net_run *nr);

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dashpot/newmark.h"
 #include "dashpot/spec.h"
 #include "dashpot/lcs.h"
 
@@ -30,6 +31,8 @@ void dp_spec_init(dp_spec *s)
     s->solver.rtol = 1e-8;
     s->solver.atol = 1e-10;
     s->solver.stepper = DP_STEPPER_MSBDF;
+    s->solver.beta = 0.25;
+    s->solver.gamma = 0.5;
     s->output.every = 1;
     s->output.samples = 1;
     s->output.events = 1;
@@ -163,7 +166,7 @@ static void check_exact(const dp_spec *s, dp_errors *e)
 {
     const dp_model *m = &s->model;
     double h = s->solver.dt, th = s->solver.theta;
-    if (th != 1 && m->spring.law != DP_SPRING_LINEAR)
+    if (th != 1 && m->spring.law != DP_SPRING_LINEAR && m->spring.law != DP_SPRING_ELASTOPLASTIC)
         dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring (the %s spring is stepped by "
                       "backward Euler): use theta = 1", dp_spring_law_name(m->spring.law));
     double k = m->spring.law == DP_SPRING_LINEAR ? m->spring.k : 0;
@@ -208,6 +211,11 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
         ; /* the network's solver rules are in dp_network_check */
     else if (s->solver.kind == DP_SOLVER_ANALYTIC)
         check_analytic(s, e);
+    else if (s->solver.kind == DP_SOLVER_NEWMARK)
+        dp_newmark_check(s, e);
+    else if (s->solver.kind == DP_SOLVER_REGULARIZED && m->spring.law == DP_SPRING_ELASTOPLASTIC)
+        dp_errors_add(e, "/model/spring/law", "the elastoplastic spring has memory (its plastic offset), which the "
+                      "regularized schemes' memoryless laws do not: use the stick-slip or the newmark solver");
     else if (s->solver.kind == DP_SOLVER_REGULARIZED)
         dp_regularized_check(s, e);
     else if (s->solver.variant == DP_VARIANT_THESIS)

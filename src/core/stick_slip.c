@@ -8,6 +8,11 @@
  * handles any maximal monotone damper graph, monotone spring graph and relaxation. With events "locate"
  * the steps that hold a phase change are split there (event_location.c); long stretches of slip or stick
  * in the closed form run in the hot loops glide and hold.
+ *
+ * An elastoplastic spring (Jenkins: systems.md §3) takes the general inclusion with its step graph at the
+ * current plastic offset, weighted like a linear spring: (1-theta) F + theta F+, F+ = S(x + h (1-theta) v
+ * + h theta v+) the return mapping at the position update's own x+; p moves after the step. Its graph moves
+ * with p, so its steps are not split at events (reported at the end of the step that made them).
  */
 #include <math.h>
 #include <string.h>
@@ -83,6 +88,10 @@ int dp_ss_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double 
     double th = L->theta;
     dp_inclusion p = dp_ss_step_inclusion(L, s, h);
     double w, a, sp;
+    if (r->ep) {   /* theta-weighted: the step graph is theta S (dp_elastoplastic_graph), its argument x+ */
+        p.s_x = s->x + h * (1 - th) * s->v, p.s_h = h * th;
+        p.b -= h * (1 - th) * r->ep_F;
+    }
     if (dp_inclusion_solve(&p, &w, &a, &sp, &r->sum.iterations) != DP_OK)
         return DP_ESOLVE;
     double dir = sgn(s->v - L->vb);
@@ -129,9 +138,23 @@ static void set_forces(dp_run *r, double fc_graph, double fs_graph)
 {
     const dp_ss_law *L = &r->law;
     dp_sample *c = &r->cur;
-    c->Fs = L->S ? fs_graph : L->k * c->x;
+    c->Fs = r->ep ? r->ep_F : L->S ? fs_graph : L->k * c->x;
+    c->plastic = r->ep, c->p = r->ep ? r->ep_p : 0;
     c->Fc = fc_graph + L->c * (c->v - L->vb);
     c->Fd = L->gamma->kind == DP_RELAX_NONE ? c->Fc : c->Fc - dp_relaxation_eval(L->gamma, c->v - L->vb);
+}
+
+/* The elastoplastic spring's return mapping at the step's new position, its graph moved with p, and a
+ * yield or unload event when its slider started or stopped sliding. */
+static void plastic_step(dp_run *r)
+{
+    dp_spring *sp = &r->spec.model.spring;
+    int before = r->ep_flow;
+    r->ep_F = dp_elastoplastic_return(sp, r->cur.x, &r->ep_p, &r->ep_flow);
+    if (r->ep_flow)
+        dp_elastoplastic_graph(sp, r->ep_p, r->law.theta, &sp->graph);
+    if (r->ep_flow != before)
+        dp_run_emit_event(r, r->ep_flow ? DP_EVENT_YIELD : DP_EVENT_UNLOAD, r->cur.t, r->cur.x, r->cur.v);
 }
 
 static void phase_event(dp_run *r, dp_phase before)
@@ -252,6 +275,8 @@ int dp_stick_slip_advance(dp_run *r)
         if (!isfinite(s.x) || !isfinite(s.v) || !isfinite(fc) || !isfinite(fs))
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", s.t);
         r->cur.t = s.t, r->cur.x = s.x, r->cur.v = s.v, r->cur.phase = s.phase;
+        if (r->ep)
+            plastic_step(r);
         if (dp_run_sample_due(r)) /* forces are only read in samples and the summary (the last step) */
             set_forces(r, fc, fs);
         if (!L->locate)
@@ -278,7 +303,7 @@ static void initial_state(dp_run *r)
          * unbounded both ways: take the one closest to zero, which is finite. */
         slo = fmin(fmax(0.0, slo), shi);
     }
-    double Fs = L->S ? slo : L->k * c->x;
+    double Fs = r->ep ? r->ep_F : L->S ? slo : L->k * c->x;
     dp_graph_force(L->A, c->v - L->vb, &lo, &hi);
     double need = dp_forcing_eval(L->F, 0) - Fs, fc = fmin(fmax(need, lo), hi);
     c->phase = DP_PHASE_NONE;
@@ -322,11 +347,19 @@ int dp_stick_slip_init(dp_run *r)
     L->closed = linear_spring && threshold && d->relaxation.kind == DP_RELAX_NONE;
     /* Only a stick interval makes the dynamics nonsmooth; smooth reversals need no splitting. */
     L->h = r->h;
+    if (m->spring.law == DP_SPRING_ELASTOPLASTIC) {   /* its state at x0 and its step graph there */
+        dp_spring *sp = &r->spec.model.spring;
+        r->ep = 1, r->ep_p = sp->offset;
+        r->ep_F = dp_elastoplastic_return(sp, r->spec.x0, &r->ep_p, &r->ep_flow);
+        r->ep_flow = 0;
+        dp_elastoplastic_graph(sp, r->ep_p, L->theta, &sp->graph);
+    }
     L->F_const = m->forcing.kind == DP_FORCING_NONE || m->forcing.kind == DP_FORCING_CONSTANT;
     L->F0 = dp_forcing_eval(&m->forcing, 0);
     dp_ss_coef_init(L, L->h, &L->nominal);
     /* Events are located where the damper can stick; the motion branch leaves rest on its own terms. */
-    L->locate = r->spec.solver.events == DP_EVENTS_LOCATE && (L->closed ? L->tau > 0 : L->can_stick && !L->motion);
+    L->locate = r->spec.solver.events == DP_EVENTS_LOCATE && (L->closed ? L->tau > 0 : L->can_stick && !L->motion)
+                && !r->ep;
     initial_state(r);
     return DP_OK;
 }

@@ -246,7 +246,13 @@ static void framework_pc(const dp_model *m, dp_wp_report *r)
     local_graph l;
     const dp_damper *d = &m->damper;
     r->framework = "PC";
-    add_number(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = ", m->spring.k);
+    if (m->spring.law == DP_SPRING_ELASTOPLASTIC)   /* Jenkins: the stop operator (systems.md §3) */
+        add_check(r, "elastoplastic spring F_s = k (x - p), |F_s| <= F_y, p' in N(F_s) (seed 003 section 15)",
+                  m->spring.k > 0 && m->spring.yield > 0, "k = %s, F_y = %s: with F_s as a state, F_s' in k x' - "
+                  "N_[-F_y, F_y](F_s) makes (x', F_s) a maximal monotone evolution inclusion in the energy product "
+                  "m v w + F G / k", N(m->spring.k), N(m->spring.yield));
+    else
+        add_number(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = ", m->spring.k);
     if (d->law == DP_DAMPER_GENERALIZED_COULOMB && d->phi1 > d->phi0) {
         add_check(r, "A monotone (seed 001 (6))", 0, "points (v, F) = (0, %s) and (1, %s) have (v1 - v2)"
                   "(F1 - F2) < 0: the static threshold phi1 exceeds the dynamic phi0", N(d->phi1), N(d->phi0));
@@ -323,7 +329,7 @@ static int failures(const dp_wp_report *r, const char *skip, char *why, size_t c
 void dp_wellposedness(const dp_model *m, dp_wp_report *r)
 {
     memset(r, 0, sizeof *r);
-    int pc = m->spring.law == DP_SPRING_LINEAR;
+    int ep = m->spring.law == DP_SPRING_ELASTOPLASTIC, pc = m->spring.law == DP_SPRING_LINEAR || ep;
     if (pc)
         framework_pc(m, r);
     else
@@ -336,7 +342,12 @@ void dp_wellposedness(const dp_model *m, dp_wp_report *r)
     r->existence.guaranteed = failures(r, pc ? "gamma Lipschitz" : "constant load (seed 000 Theorem 2.2)",
                                        r->existence.reason, sizeof r->existence.reason) == 0;
     r->uniqueness.guaranteed = failures(r, NULL, r->uniqueness.reason, sizeof r->uniqueness.reason) == 0;
-    if (pc) {
+    if (ep) {
+        static const char *const brezis = "maximal monotone evolution inclusion in (x', F_s) (Brezis 1973, Thm 3.1; "
+                                          "the Jenkins element is a stop operator)";
+        r->existence.theorem = r->existence.guaranteed ? brezis : NULL;
+        r->uniqueness.theorem = r->uniqueness.guaranteed ? brezis : NULL;
+    } else if (pc) {
         r->existence.theorem = r->existence.guaranteed ? "seed 001 Theorem 3 (seed 000 Theorem 3.3)" : NULL;
         r->uniqueness.theorem = r->uniqueness.guaranteed ? "seed 001 Theorem 2 (seed 000 Theorem 3.2)" : NULL;
     } else {

@@ -106,6 +106,8 @@ static char *put_numbers(dp_number_text *recent, char *p, const dp_sample *s, co
 static char *put_sample_members(dp_number_text *recent, char *p, const dp_sample *s)
 {
     p = put_numbers(recent, p, s, &json_keys);
+    if (s->plastic)
+        p = put_num(PUT(p, ",\"p\":"), s->p);
     if (s->phase == DP_PHASE_STICK)
         p = PUT(p, ",\"phase\":\"stick\"");
     else if (s->phase == DP_PHASE_SLIP)
@@ -115,7 +117,8 @@ static char *put_sample_members(dp_number_text *recent, char *p, const dp_sample
 
 static char *put_event_members(char *p, const dp_event *ev, int network)
 {
-    p = ev->kind == DP_EVENT_STICK ? PUT(p, "\"kind\":\"stick\"") : PUT(p, "\"kind\":\"slip\"");
+    p = ev->kind == DP_EVENT_STICK ? PUT(p, "\"kind\":\"stick\"") : ev->kind == DP_EVENT_SLIP ? PUT(p, "\"kind\":\"slip\"")
+      : ev->kind == DP_EVENT_YIELD ? PUT(p, "\"kind\":\"yield\"") : PUT(p, "\"kind\":\"unload\"");
     if (network) {   /* the element, when, and its elongation u and rate du at that instant */
         char num[24];
         int len = snprintf(num, sizeof num, "%zu", ev->element);

@@ -1,10 +1,12 @@
 /* src/json/meta_json.c - the "meta" object that opens every run's output: what was solved and how, and
  * what the theorems guarantee about it, so a stored trajectory says where it came from. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "dashpot/json.h"
 #include "dashpot/lcp_json.h"
+#include "dashpot/newmark.h"
 #include "dashpot/regularized.h"
 
 static const char *variant_name(const dp_solver_spec *s)
@@ -19,6 +21,7 @@ static const char *solver_name(const dp_solver_spec *s)
     switch (s->kind) {
     case DP_SOLVER_ANALYTIC: return "analytic";
     case DP_SOLVER_REGULARIZED: return "regularized";
+    case DP_SOLVER_NEWMARK: return "newmark";
     default: return "stick-slip";
     }
 }
@@ -50,6 +53,29 @@ static int whole(dp_buf *out, long v)
 
 static int regularized_fields(const dp_solver_spec *sv, dp_buf *out);
 
+/* Newmark's parameters and the stability limit for the model's highest mode (newmark.h):
+ * "beta","gamma","stability":{"omega_max","T_min","dt_over_T_min","limit","inside"}; limit null when
+ * the rule is unconditionally stable (2 beta >= gamma), T_min null without stiffness. */
+static int newmark_fields(const dp_spec *s, dp_buf *out)
+{
+    dp_newmark_limit L;
+    int st = lit(out, "\"") | num(out, "beta", s->solver.beta) | num(out, "gamma", s->solver.gamma);
+    if (dp_newmark_limit_of(s, &L) != DP_OK)
+        return st | lit(out, ",\"stability\":null");
+    st |= lit(out, ",\"stability\":{\"omega_max\":");
+    char t[40];
+    st |= dp_buf_append(out, t, dp_format_double(t, L.omega_max));
+    if (isfinite(L.T_min))
+        st |= num(out, "T_min", L.T_min) | num(out, "dt_over_T_min", L.ratio);
+    else
+        st |= lit(out, ",\"T_min\":null,\"dt_over_T_min\":0");
+    if (isfinite(L.ratio_limit))
+        st |= num(out, "limit", L.ratio_limit);
+    else
+        st |= lit(out, ",\"limit\":null");
+    return st | lit(out, L.inside ? ",\"inside\":true}" : ",\"inside\":false}");
+}
+
 /* A network run's meta: its size and the columns its rows hold, so an array member can be read by name. */
 static int network_meta(const dp_spec *s, dp_buf *out)
 {
@@ -58,6 +84,8 @@ static int network_meta(const dp_spec *s, dp_buf *out)
     int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"");
     if (sv->kind == DP_SOLVER_REGULARIZED) {
         st |= lit(out, "regularized") | regularized_fields(sv, out) | lit(out, ",\"model\":\"network\"");
+    } else if (sv->kind == DP_SOLVER_NEWMARK) {
+        st |= lit(out, "newmark") | newmark_fields(s, out) | lit(out, ",\"model\":\"network\"");
     } else {
         const char *mode = dp_network_locates(s) ? "locate" : sv->events == DP_EVENTS_NONE ? "none" : "step";
         st |= lit(out, "stick-slip\",\"variant\":\"exact\",\"events_mode\":\"") | lit(out, mode);
@@ -74,6 +102,13 @@ static int network_meta(const dp_spec *s, dp_buf *out)
     st |= lit(out, "],\"elements\":[");
     for (size_t i = 0; i < ne; i++)
         st |= lit(out, i ? "," : "") | whole(out, (long)(s->output.elements ? s->output.elements[i] : i));
+    /* the elastoplastic elements among them: the "p" group's columns */
+    size_t np = 0;
+    for (size_t i = 0; i < ne; i++) {
+        size_t k = s->output.elements ? s->output.elements[i] : i;
+        if (net->el[k].has_spring && net->el[k].spring.law == DP_SPRING_ELASTOPLASTIC)
+            st |= lit(out, np++ ? "," : "],\"p\":[") | whole(out, (long)k);
+    }
     st |= lit(out, "]},\"wellposedness\":");
     dp_wp_report wp;
     dp_network_wellposedness(net, &wp);
@@ -104,9 +139,14 @@ int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
     int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"") | lit(out, solver_name(sv));
     if (sv->kind == DP_SOLVER_REGULARIZED)
         st |= regularized_fields(sv, out);
+    else if (sv->kind == DP_SOLVER_NEWMARK)
+        st |= newmark_fields(s, out) | lit(out, ",\"events_mode\":\"step\"");
     else {
         st |= lit(out, "\",\"variant\":\"") | lit(out, variant_name(sv));
-        st |= lit(out, sv->events == DP_EVENTS_LOCATE ? "\",\"events_mode\":\"locate" : "\",\"events_mode\":\"none");
+        /* an elastoplastic spring's graph moves with its offset: its events are resolved to the step */
+        int ep = s->model.spring.law == DP_SPRING_ELASTOPLASTIC;
+        st |= lit(out, sv->events == DP_EVENTS_NONE ? "\",\"events_mode\":\"none" : ep ? "\",\"events_mode\":\"step"
+                                                                                  : "\",\"events_mode\":\"locate");
         st |= lit(out, sv->branch == DP_BRANCH_MOTION ? "\",\"branch\":\"motion\"" : "\",\"branch\":\"rest\"");
         st |= num(out, "theta", sv->theta);
     }

@@ -47,6 +47,8 @@ static const range POSITIVE = { 0, INFINITY, 1, " > 0" };
 static const range NONNEG = { 0, INFINITY, 0, " >= 0" };
 static const range ABOVE_ONE = { 1, INFINITY, 1, " > 1" };
 static const range THETA = { 0.5, 1, 0, " in [0.5, 1]" };
+static const range BETA = { 0, 0.5, 1, " in (0, 0.5]" };
+static const range GAMMA = { 0.5, 1, 0, " in [0.5, 1]" };
 static const range Z_RANGE = { 1, 1000000, 0, " in [1, 1000000]" };
 /* 2^53: past it not every integer is a double, and it still fits a long on LP64. */
 static const range EVERY = { 1, 9007199254740992.0, 0, " >= 1 (at most 2^53)" };
@@ -467,8 +469,10 @@ static void parse_spring(ctx *c, const cJSON *o, const at *ptr, dp_spring *s)
         { "linear", DP_SPRING_LINEAR, { NUM(dp_spring, k, NONNEG, 1) }, { NULL } },
         { "rope", DP_SPRING_ROPE, { NUM(dp_spring, k, NONNEG, 1), NUM(dp_spring, length, ANY, 1) }, { NULL } },
         { "graph", DP_SPRING_GRAPH, { { NULL } }, { "points", NULL } },
+        { "elastoplastic", DP_SPRING_ELASTOPLASTIC, { NUM(dp_spring, k, POSITIVE, 1), NUM(dp_spring, yield, POSITIVE, 1),
+          NUM(dp_spring, offset, ANY, 0) }, { NULL } },
     };
-    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, 3, NULL, s);
+    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, 4, NULL, s);
     if (v == NULL)
         return;
     s->law = (dp_spring_law)v->id;
@@ -673,13 +677,16 @@ static void parse_solver(ctx *c, const cJSON *o, const at *ptr, dp_solver_spec *
           { NUM(dp_solver_spec, t_end, POSITIVE, 0), NUM(dp_solver_spec, dt, POSITIVE, 0),
             NUM(dp_solver_spec, rtol, NONNEG, 0), NUM(dp_solver_spec, atol, NONNEG, 0) },
           { "scheme", "n", "k", "stepper", NULL } },
+        { "newmark", DP_SOLVER_NEWMARK,
+          { NUM(dp_solver_spec, dt, POSITIVE, 0), NUM(dp_solver_spec, t_end, POSITIVE, 0),
+            NUM(dp_solver_spec, beta, BETA, 0), NUM(dp_solver_spec, gamma, GAMMA, 0) }, { NULL } },
     };
     static const char *const variants[] = { "exact", "thesis", NULL };
     static const char *const events[] = { "locate", "none", NULL };
     static const char *const branches[] = { "rest", "motion", NULL };
     static const char *const schemes[] = { "PC", "PI", NULL };
     static const char *const steppers[] = { "msbdf", "rk4imp", "bsimp", "rkf45", "rkck", "rk8pd", NULL };
-    const variant *v = parse_tagged(c, o, ptr, "kind", DP_SOLVER_STICK_SLIP, kinds, 3, NULL, s);
+    const variant *v = parse_tagged(c, o, ptr, "kind", DP_SOLVER_STICK_SLIP, kinds, 4, NULL, s);
     if (v == NULL)
         return;
     s->kind = (dp_solver_kind)v->id;

@@ -174,7 +174,7 @@ async function runPreset(page, name, id, origin) {
     `${name}: ${id}: the page read the summary line (samples ${d.summarySamples} = ${samples} sample lines)`);
   check(+d.samples === samples && +d.points === samples,
     `${name}: ${id}: ${samples} samples streamed, ${d.points} held for plotting`, JSON.stringify(d));
-  check(d.canvases.length === 4 && d.canvases.every((n) => n === samples),
+  check(d.canvases.length === 5 && d.canvases.every((n) => n === samples),
     `${name}: ${id}: every plot drew ${samples} points`, JSON.stringify(d.canvases));
   check(+d.events === events, `${name}: ${id}: ${events} stick/slip events marked`, `page: ${d.events}`);
   const wp = lines[0].wellposedness;
@@ -258,6 +258,12 @@ try {
   check(+belt.d.bands >= 4, `belt: the stick phases are shaded (${belt.d.bands} intervals)`);
   await screenshot(page, 'page-belt');
   await runPreset(page, 'page', 'counter-gc-motion', out);
+  const ep = await runPreset(page, 'page', 'elastoplastic', out);
+  const yields = ep.lines.filter((o) => o.type === 'event' && o.kind === 'yield').length;
+  const offsets = new Set(ep.lines.filter((o) => o.type === 'sample').map((o) => o.p));
+  check(yields >= 10 && offsets.size > 10,
+    `elastoplastic: the spring yields (${yields} times) and its offset p moves (${offsets.size} values in the samples)`);
+  await screenshot(page, 'page-elastoplastic');
 
   // ---- networks (web/network.js) ----
   const chain = await runNetworkPreset(page, 'page', 'chain-3', out);
@@ -280,7 +286,7 @@ try {
   await screenshot(page, 'page-burridge-knopoff');
   // back to one mass: the one-mass plots return, with the samples of the new run
   const belt2 = await runPreset(page, 'page', 'belt', out);
-  check(belt2.d.canvases.length === 4, 'after a network run a one-mass preset shows its four plots again');
+  check(belt2.d.canvases.length === 5, 'after a network run a one-mass preset shows its five plots again');
 
   // ---- an invalid spec: the error at the member its pointer names ----
   let from = problems.length;
