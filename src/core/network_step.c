@@ -64,7 +64,7 @@ struct dp_net_ws {
     /* relaxation: gamma per element (NULL: none), linearized at zk as g0 + g1 (z - zk) */
     const dp_relaxation *const *gamma;
     double theta;
-    double *zk, *g0, *g1, *gshift, *zprev;
+    double *zk, *g0, *g1, *gshift;
 };
 
 dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
@@ -96,10 +96,10 @@ dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
     w->g0 = calloc(m, sizeof *w->g0);
     w->g1 = calloc(m, sizeof *w->g1);
     w->gshift = calloc(m, sizeof *w->gshift);
-    w->zprev = calloc(m, sizeof *w->zprev);
     w->fac_st = calloc(m, 1);
     w->fac_slope = calloc(m, sizeof *w->fac_slope);
-    if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->zprev || !w->fac_st || !w->fac_slope ||!w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
+    if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
+        !w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
         !w->y || !w->vs || !w->d || !w->res || !w->head || !w->next_edge || !w->deg || !w->queue) {
         dp_net_ws_free(w);
         return NULL;
@@ -114,7 +114,7 @@ void dp_net_ws_free(dp_net_ws *w)
     free(w->W), free(w->H), free(w->R), free(w->es), free(w->parent), free(w->pot), free(w->kidx);
     free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->head);
     free(w->next_edge), free(w->deg), free(w->queue);
-    free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->zprev), free(w->fac_st), free(w->fac_slope);
+    free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->fac_st), free(w->fac_slope);
     free(w);
 }
 
