@@ -157,5 +157,23 @@ for r in csv.DictReader(open('$tmp/thesis/summary.csv')):
         assert abs(float(r['stick_time']) - float(r['closed_form_stick_time'])) < 1e-2, r
 "
 
+# An elastoplastic spring's plastic offset p is a CSV column too (last, after phase), the same numbers as the
+# NDJSON samples' "p"; a model without one keeps the old header.
+cat > "$tmp/plastic.json" <<'JSON'
+{"model": {"mass": 1, "spring": {"law": "elastoplastic", "k": 1, "yield": 0.5}, "damper": {"law": "none"}},
+ "initial": {"x": 0, "v": 1}, "solver": {"dt": 0.01, "t_end": 3, "theta": 0.5}, "output": {"every": 50}}
+JSON
+"$bin" simulate "$tmp/plastic.json" --format csv > "$tmp/plastic.csv"
+"$bin" simulate "$tmp/plastic.json" --format ndjson > "$tmp/plastic.ndjson"
+check "csv of an elastoplastic spring: header ends in p, the values are the NDJSON samples' p" py "
+import csv, json
+rows = list(csv.DictReader(open('$tmp/plastic.csv')))
+js = [json.loads(l) for l in open('$tmp/plastic.ndjson') if '\"sample\"' in l]
+assert open('$tmp/plastic.csv').readline().strip() == 't,x,v,Fs,Fd,Fc,phase,p'
+assert len(rows) == len(js) == 7 and [float(r['p']) for r in rows] == [s['p'] for s in js]
+assert max(s['p'] for s in js) > 0.7   # it yielded
+"
+check "csv without samples still has its header" bash -c "sed 's/\"every\": 50/\"samples\": false/' '$tmp/plastic.json' | '$bin' simulate - --format csv | grep -qx 't,x,v,Fs,Fd,Fc,phase'"
+
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

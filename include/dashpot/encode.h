@@ -46,6 +46,7 @@ typedef struct dp_number_text {
 typedef struct dp_encoder {
     dp_format format;
     int nsamples_written;    /* JSON: a comma is due before the next sample */
+    int csv_header_due;      /* CSV of one mass: the header waits for the first sample (a plastic offset adds p) */
     dp_event *events;        /* JSON: events are held until the samples array closes */
     size_t nevents, events_cap;
     unsigned long long events_dropped;

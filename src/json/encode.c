@@ -142,6 +142,8 @@ static char *put_csv_row(dp_number_text *recent, char *p, const dp_sample *s)
         memcpy(p, ph, n);
         p += n;
     }
+    if (s->plastic)
+        p = put_num(PUT(p, ","), s->p);
     *p++ = '\n';
     return p;
 }
@@ -177,6 +179,10 @@ static int encode_sample(dp_encoder *e, dp_buf *b, const dp_sample *s)
     char *p = b->data + b->len;
     switch (e->format) {
     case DP_FORMAT_CSV:
+        if (e->csv_header_due) {   /* the one-mass header, with p when the spring is elastoplastic */
+            p = s->plastic ? PUT(p, "t,x,v,Fs,Fd,Fc,phase,p\n") : PUT(p, "t,x,v,Fs,Fd,Fc,phase\n");
+            e->csv_header_due = 0;
+        }
         p = put_csv_row(e->recent, p, s);
         break;
     case DP_FORMAT_JSON:
@@ -402,7 +408,10 @@ int dp_encoder_begin(dp_encoder *e, dp_buf *b, const char *meta_json)
 {
     switch (e->format) {
     case DP_FORMAT_CSV:
-        return e->cols ? csv_row_header(b, e->cols) : put_str(b, "t,x,v,Fs,Fd,Fc,phase\n");
+        if (e->cols)
+            return csv_row_header(b, e->cols);
+        e->csv_header_due = 1;    /* written with the first sample, which says whether p is a column */
+        return DP_OK;
     case DP_FORMAT_JSON: {
         int s = put_str(b, "{\"meta\":");
         s = s ? s : put_meta(b, meta_json, 0);
@@ -461,10 +470,19 @@ static int summary_members(const dp_encoder *e, dp_buf *b, const dp_summary *sm)
     return s ? s : put_ull(b, sm->fevals);
 }
 
+/* A CSV document that had no sample still opens with its header. */
+static int csv_header_if_due(dp_encoder *e, dp_buf *b)
+{
+    if (!e->csv_header_due)
+        return DP_OK;
+    e->csv_header_due = 0;
+    return put_str(b, "t,x,v,Fs,Fd,Fc,phase\n");
+}
+
 int dp_encoder_end(dp_encoder *e, dp_buf *b, const dp_summary *sm, const char *extra_json)
 {
     if (e->format == DP_FORMAT_CSV)
-        return DP_OK;
+        return csv_header_if_due(e, b);
     int s = DP_OK;
     if (e->format == DP_FORMAT_JSON) {
         s = close_samples(e, b);
@@ -517,7 +535,8 @@ int dp_encoder_fail(dp_encoder *e, dp_buf *b, int status, const char *message)
     int s;
     switch (e->format) {
     case DP_FORMAT_CSV:
-        return csv_error(b, status, message);
+        s = csv_header_if_due(e, b);
+        return s ? s : csv_error(b, status, message);
     case DP_FORMAT_JSON:
         s = close_samples(e, b);
         s = s ? s : put_str(b, "\"error\":{");
