@@ -14,7 +14,9 @@
  * is seconds of CPU; beyond that a request is almost surely a mistake in dt or t_end. */
 #define DP_SPEC_MAX_STEPS 1000000000.0
 
-typedef enum dp_solver_kind { DP_SOLVER_STICK_SLIP, DP_SOLVER_ANALYTIC, DP_SOLVER_REGULARIZED } dp_solver_kind;
+typedef enum dp_solver_kind {
+    DP_SOLVER_STICK_SLIP, DP_SOLVER_ANALYTIC, DP_SOLVER_REGULARIZED, DP_SOLVER_RIGHT_HAND
+} dp_solver_kind;
 
 /* The regularized existence schemes (mathematics.md §3): (PCn) F_c = g_n(x') with g_n the Yosida
  * approximation A_(1/n) (seed 001 (17)); (PIk) F_s = f_k^-1(x), F_d = g_k^-1(x') with f_k = f + u/k
@@ -70,7 +72,8 @@ typedef struct dp_spec {
     dp_solver_spec solver;
     dp_output_spec output;
     dp_network *net;      /* a network document ("masses" or "mass_matrix"); NULL for the one-mass model */
-    double *x0v, *v0v;    /* networks: the initial state, net->n each */
+    double *x0v, *v0v;    /* networks: the initial state, net->n each; right-hand models: 2 each */
+    struct dp_rh_model *rh; /* a right-hand friction model (right_hand.h); NULL otherwise */
 } dp_spec;
 
 /* A spec with every default set (stick-slip, exact, theta 1, dt 1e-3, t_end 10, every 1) and an empty model. */
@@ -103,6 +106,9 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *errs);
 
 /* The regularized solver's own rules (regularized.c): which laws each scheme takes, n/k > 0, tolerances. */
 void dp_regularized_check(const dp_spec *s, dp_errors *errs);
+
+/* The right-hand solver's rules (right_hand_check.c): its models only with it, and it only with them. */
+void dp_rh_check(const dp_spec *s, dp_errors *errs);
 
 /* Number of steps the spec asks for: ceil(t_end / dt) (with a rounding guard). */
 double dp_spec_steps(const dp_spec *s);

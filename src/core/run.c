@@ -68,7 +68,9 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
     r->max_steps = max_steps > 0 && max_steps < DP_SPEC_MAX_STEPS ? max_steps : DP_SPEC_MAX_STEPS;
     r->nsteps = (unsigned long long)dp_spec_steps(spec);
     r->countdown = 1; /* the initial state is always a sample */
-    if (spec->net)
+    if (spec->rh)
+        s = dp_rh_run_init(r);
+    else if (spec->net)
         s = dp_network_run_init(r);
     else switch (spec->solver.kind) {
     case DP_SOLVER_ANALYTIC: s = dp_analytic_init(r); break;
@@ -82,7 +84,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
         return NULL;
     }
     r->sum.final = r->cur;
-    if (r->net == NULL || dp_network_run_is_one_mass(r))
+    if ((r->net == NULL && r->rh == NULL) || dp_network_run_is_one_mass(r))
         dp_run_emit_state(r); /* queued in `pending`: no block yet */
     *status = DP_OK;
     return r;
@@ -90,6 +92,8 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
 
 static int advance(dp_run *r)
 {
+    if (r->rh)
+        return dp_rh_run_advance(r);
     if (r->net && !dp_network_run_is_one_mass(r))
         return dp_network_run_advance(r);
     if (r->spec.solver.kind == DP_SOLVER_ANALYTIC)
@@ -113,7 +117,7 @@ int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
         buf[r->out_n++] = r->pending[r->ipending++];
     if (r->ipending == r->npending)
         r->npending = r->ipending = 0;
-    if (dp_run_room(r) || (r->net && dp_network_run_pending(r) && r->status == DP_OK)) {
+    if (dp_run_room(r) || (((r->net && dp_network_run_pending(r)) || dp_rh_run_pending(r)) && r->status == DP_OK)) {
         int s = advance(r);
         if (s < 0 && r->status == DP_OK)
             dp_run_fail(r, s, "%s", dp_strerror(s));
@@ -152,6 +156,7 @@ void dp_run_free(dp_run *r)
         return;
     dp_regularized_free(r->reg);
     dp_network_run_free(r->net);
+    dp_rh_run_free(r->rh);
     dp_spec_clear(&r->spec);
     free(r);
 }

@@ -57,6 +57,8 @@ struct dp_run {
     struct dp_regularized *reg;
     /* network solver (network_run.c) */
     struct dp_net_run *net;
+    /* right-hand friction solver (right_hand_run.c) */
+    struct dp_rh_run *rh;
     /* the columns of a run whose samples are rows (dp_run_columns); NULL for one-mass samples */
     const dp_columns *cols;
 };
@@ -102,6 +104,10 @@ void dp_network_run_free(struct dp_net_run *nr);
 /* A network stepped by the one-mass solver (network_one_mass.c): its block rewritten as rows. */
 int dp_network_run_is_one_mass(const dp_run *r);
 int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n);
+int dp_rh_run_init(dp_run *r);
+int dp_rh_run_advance(dp_run *r);
+int dp_rh_run_pending(const dp_run *r);
+void dp_rh_run_free(struct dp_rh_run *rr);
 /* Whether records wait in the network run's queue. */
 int dp_network_run_pending(const dp_run *r);
 

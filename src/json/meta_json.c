@@ -88,6 +88,8 @@ static int regularized_fields(const dp_solver_spec *sv, dp_buf *out)
 /* Written piece by piece rather than with snprintf: this object opens every run, small ones included. */
 int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
 {
+    if (s->rh)
+        return dp_rh_meta_json(s, out);
     if (s->net)
         return network_meta(s, out);
     const dp_solver_spec *sv = &s->solver;

@@ -672,13 +672,17 @@ static void parse_solver(ctx *c, const cJSON *o, const at *ptr, dp_solver_spec *
           { NUM(dp_solver_spec, t_end, POSITIVE, 0), NUM(dp_solver_spec, dt, POSITIVE, 0),
             NUM(dp_solver_spec, rtol, NONNEG, 0), NUM(dp_solver_spec, atol, NONNEG, 0) },
           { "scheme", "n", "k", "stepper", NULL } },
+        { "right-hand", DP_SOLVER_RIGHT_HAND,
+          { NUM(dp_solver_spec, t_end, POSITIVE, 0), NUM(dp_solver_spec, dt, POSITIVE, 0),
+            NUM(dp_solver_spec, rtol, POSITIVE, 0), NUM(dp_solver_spec, atol, POSITIVE, 0) }, { NULL } },
     };
     static const char *const variants[] = { "exact", "thesis", NULL };
     static const char *const events[] = { "locate", "none", NULL };
     static const char *const branches[] = { "rest", "motion", NULL };
     static const char *const schemes[] = { "PC", "PI", NULL };
     static const char *const steppers[] = { "msbdf", "rk4imp", "bsimp", "rkf45", "rkck", "rk8pd", NULL };
-    const variant *v = parse_tagged(c, o, ptr, "kind", DP_SOLVER_STICK_SLIP, kinds, 3, NULL, s);
+    int def = s->kind == DP_SOLVER_RIGHT_HAND ? DP_SOLVER_RIGHT_HAND : DP_SOLVER_STICK_SLIP;
+    const variant *v = parse_tagged(c, o, ptr, "kind", def, kinds, 4, NULL, s);
     if (v == NULL)
         return;
     s->kind = (dp_solver_kind)v->id;
@@ -726,6 +730,7 @@ static void sample_budget(ctx *c, const cJSON *o, const at *ptr, const dp_spec *
 }
 
 #include "network_json.inc"
+#include "right_hand_json.inc"
 
 static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
@@ -755,9 +760,13 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
     const cJSON *v = member(c, o, NULL, "model", "an object with mass, spring and damper", &p);
     if (v != NULL && is_network(v))
         parse_network(c, v, &p, s);
+    else if (v != NULL && is_right_hand(v))
+        parse_right_hand(c, v, &p, s);
     else if (v != NULL)
         parse_model(c, v, &p, &s->model);
-    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL && s->net == NULL)
+    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL && s->rh != NULL)
+        parse_right_hand_initial(c, v, &p, s);
+    else if (v != NULL && s->net == NULL)
         parse_initial(c, v, &p, s);
     else if (v != NULL && s->net->n > 0)
         parse_network_initial(c, v, &p, s);
@@ -841,7 +850,7 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
         return DP_ENOMEM;
     if (c.nerr > 0)
         return DP_EINVAL;
-    int s = spec->net ? dp_network_prepare(spec->net) : dp_model_prepare(&spec->model);
+    int s = spec->rh ? DP_OK : spec->net ? dp_network_prepare(spec->net) : dp_model_prepare(&spec->model);
     if (s == DP_ENOMEM)
         return s;
     if (s != DP_OK) {
