@@ -41,6 +41,7 @@ typedef enum dp_rh_mode {
 typedef struct dp_rh_sol {
     double qdd[2], N[2], Q[2];
     dp_rh_mode mode[2];
+    int liftoff;      /* the rod leaving the floor (N = 0, free flight): a candidate this model does not follow */
 } dp_rh_sol;
 
 typedef struct dp_rh_result {
@@ -55,6 +56,7 @@ typedef struct dp_rh_frame {
     int fric[2];              /* coordinate s carries friction (f_s > 0) */
     double f[2];
     int ndim[2];              /* 1: N_s = W[s][0] . q'' + w[s][0] (signed); 2: |N_s| = ||W[s] q'' + w[s]|| */
+    int unilateral[2];        /* a floor: N_s >= 0 while in contact (the rod) */
     double W[2][2][2], w[2][2];
 } dp_rh_frame;
 
@@ -65,7 +67,8 @@ void dp_rh_frame_at(const dp_rh_model *m, const double q[2], const double qd[2],
 double dp_rh_force_tol(const dp_rh_frame *fr);
 
 /* Every solution of the acceleration problem at (q, qd): modes forced by the velocities' signs where they
- * move, all three (stick, start +, start -) where they rest (qd_s == 0 exactly). If `fixed` is not NULL
+ * move, all three (stick, start +, start -) where they rest (qd_s == 0 exactly); for the rod also leaving
+ * the floor (liftoff) when its free flight lifts the end A. If `fixed` is not NULL
  * only that mode combination is solved and the rest conditions (stick cone, start direction) are not
  * checked: the solver's smooth phases, where they are located events instead. Never fails. */
 void dp_rh_solve(const dp_rh_model *m, const double q[2], const double qd[2], const dp_rh_mode *fixed,

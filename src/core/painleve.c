@@ -21,8 +21,12 @@
  *     N = m l cos(theta) theta'' - m l sin(theta) theta'^2 + m g.
  * Sliding with sgn x_A' = s, eliminating theta'' gives N (1 + 3cos^2 + 3 s mu sin cos) = m (g - l sin theta'^2)
  * (for N > 0), so the coefficient vanishes, and Painlevé's paradoxes appear, only when mu >= min over theta of
- * (1 + 3 cos^2)/(3 sin cos) = (tan^2 + 4)/(3 tan) = 4/3, at tan(theta) = 2. The contact is held (N of
- * either sign, |N| in the friction, as in the paper); the run stops where N turns negative (lift-off).
+ * (1 + 3 cos^2)/(3 sin cos) = (tan^2 + 4)/(3 tan) = 4/3, at tan(theta) = 2. The floor is unilateral: a
+ * contact solution needs N >= 0, and leaving the floor (N = 0, free flight: x_A'' = l cos theta'^2,
+ * theta'' = 0, y_A'' = l sin theta'^2 - g) is a candidate when g - l sin theta'^2 < 0. With
+ * B = 1 + 3cos^2 - 3 mu sin cos (sliding x_A' < 0): B < 0 and g - l sin theta'^2 > 0 leave no candidate
+ * (inconsistency), B < 0 and g - l sin theta'^2 < 0 two (indeterminacy: contact with N > 0, and lift-off):
+ * Painlevé's classical cases.
  */
 #include <math.h>
 #include <string.h>
@@ -56,6 +60,7 @@ static void rod_frame(const dp_rh_model *p, const double q[2], const double qd[2
     fr->b[1] = -m * p->g * l * c;
     fr->f[0] = p->mu, fr->f[1] = 0;
     fr->ndim[0] = 1, fr->ndim[1] = 1;
+    fr->unilateral[0] = 1;
     fr->W[0][0][0] = 0, fr->W[0][0][1] = m * l * c;
     fr->w[0][0] = m * p->g - m * l * s * w2;
 }

@@ -90,6 +90,8 @@ static void accept(prob *p, const cand *c)
     for (int k = 0; k < 2; k++) {
         s.mode[k] = p->mode[k];
         s.N[k] = normal_of(fr, k, c->qdd); /* the rod's second is identically 0 */
+        if (fr->unilateral[k] && s.N[k] < -tol)
+            return;                          /* a floor cannot pull */
         int sg = sigma_of(p->mode[k]);
         if (sg != 0) {
             if (c->lam[k] < -tol)
@@ -251,11 +253,14 @@ static void solve_mode(const dp_rh_frame *fr, const double qd[2], const dp_rh_mo
     for (int a = 0; a < nk; a++)
         naff += fr->ndim[K[a]] == 1;
     for (int bits = 0; bits < (1 << naff); bits++) {
-        int eps[2] = { 1, 1 }, j = 0;
+        int eps[2] = { 1, 1 }, j = 0, pulls = 0;
         for (int a = 0; a < nk; a++)
-            if (fr->ndim[K[a]] == 1)
+            if (fr->ndim[K[a]] == 1) {
                 eps[a] = (bits >> j++) & 1 ? -1 : 1;
-        solve_signs(&p, K, nk, eps);
+                pulls |= eps[a] < 0 && fr->unilateral[K[a]];
+            }
+        if (!pulls)
+            solve_signs(&p, K, nk, eps);
     }
 }
 
@@ -268,6 +273,20 @@ static double force_scale(const dp_rh_frame *fr)
             s += fabs(fr->w[k][r]);
     }
     return s;
+}
+
+/* The rod's free flight from the floor (painleve.c): a candidate when it lifts A, g - l sin theta'^2 < 0. */
+static void liftoff(const dp_rh_model *m, const double q[2], const double qd[2], double fscale,
+                    dp_rh_result *res)
+{
+    double l = m->length / 2, up = m->m * (l * sin(q[1]) * qd[1] * qd[1] - m->g);
+    if (!(up > TOL_FORCE * fscale))
+        return;
+    dp_rh_sol s = { .qdd = { l * cos(q[1]) * qd[1] * qd[1], 0 }, .mode = { DP_RH_FREE, DP_RH_FREE },
+                    .liftoff = 1 };
+    if (res->n < DP_RH_MAX_SOL)
+        res->sol[res->n] = s;
+    res->n++;
 }
 
 double dp_rh_force_tol(const dp_rh_frame *fr)
@@ -301,6 +320,8 @@ void dp_rh_solve(const dp_rh_model *m, const double q[2], const double qd[2], co
             dp_rh_mode md[2] = { opts[0][i], opts[1][j] };
             solve_mode(&fr, qd, md, 1, fs, res);
         }
+    if (m->kind == DP_RH_ROD)
+        liftoff(m, q, qd, fs, res);
 }
 
 /* d|N_s|/dq''_v at q'' (for a vector reaction of length 0, the largest value over its directions). */

@@ -230,7 +230,8 @@ static void paradox(struct dp_rh_run *rr, const dp_rh_result *res)
     for (int i = 0; i < res->n && i < DP_RH_MAX_SOL && p < end; i++)
         p += snprintf(p, (size_t)(end - p), "%sqdd=[%.6g,%.6g] N=[%.6g,%.6g] (%s,%s)", i ? "; " : "",
                       res->sol[i].qdd[0], res->sol[i].qdd[1], res->sol[i].N[0], res->sol[i].N[1],
-                      mode_name(res->sol[i].mode[0]), mode_name(res->sol[i].mode[1]));
+                      res->sol[i].liftoff ? "lift-off" : mode_name(res->sol[i].mode[0]),
+                      mode_name(res->sol[i].mode[1]));
     rr->fail = 1;
 }
 
@@ -246,10 +247,10 @@ static int classify(dp_run *r, int initial)
         return 0;
     }
     const dp_rh_sol *s = &res.sol[0];
-    if (rr->m.kind == DP_RH_ROD && s->N[0] < 0) {
-        snprintf(rr->why, sizeof rr->why, "the rod lifts off the floor at t=%.10g (N=%.6g < 0), q=[%.9g,%.9g], "
-                 "qd=[%.9g,%.9g]: this model holds the contact only while N >= 0", rr->t, s->N[0], rr->y[0],
-                 rr->y[1], rr->y[2], rr->y[3]);
+    if (s->liftoff) {
+        snprintf(rr->why, sizeof rr->why, "the rod lifts off the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
+                 "its only motion is free flight, which this model (end A on the floor) does not follow",
+                 rr->t, rr->y[0], rr->y[1], rr->y[2], rr->y[3]);
         rr->fail = 1;
         return 0;
     }
