@@ -24,6 +24,7 @@
 #include "dashpot/right_hand.h"
 #include "dashpot/run.h"
 #include "dashpot/spec.h"
+#include "dashpot/wellposedness.h"
 
 /* ---- the reference mechanics: positions only ---- */
 
@@ -533,6 +534,123 @@ static void test_paradox_stops_run(void **state)
     dp_run_free(r);
 }
 
+/* x held (x'' = 0), beta sliding with sign sg: beta'' by fixed point on the Lagrangian's second row, the
+ * force that holds x, Q1 = a_12 beta'' - b_1, and the cone's margin f1 |N1| - |Q1|. */
+static double held(const dp_rh_model *m, const double y[4], double sg, double *bdd)
+{
+    double A[2][2], b[2], N[2], qdd[2] = { 0, 0 };
+    lagrange(m, y, y + 2, A, b);
+    for (int it = 0; it < 60; it++) {
+        reactions(m, y, y + 2, qdd, N);
+        qdd[1] = (b[1] - sg * m->f2 * fabs(N[1])) / A[1][1];
+    }
+    reactions(m, y, y + 2, qdd, N);
+    *bdd = qdd[1];
+    return m->f1 * fabs(N[0]) - fabs(A[0][1] * qdd[1] - b[0]);
+}
+
+static void rk4_held(const dp_rh_model *m, double y[4], double h, double sg)
+{
+    double k[4][2], t[4];
+    for (int s = 0; s < 4; s++) {
+        memcpy(t, y, sizeof t);
+        double c = s == 0 ? 0 : s == 3 ? h : h / 2;
+        if (s) {
+            t[1] += c * k[s - 1][0];
+            t[3] += c * k[s - 1][1];
+        }
+        k[s][0] = t[3];
+        held(m, t, sg, &k[s][1]);
+    }
+    y[1] += h / 6 * (k[0][0] + 2 * k[1][0] + 2 * k[2][0] + k[3][0]);
+    y[3] += h / 6 * (k[0][1] + 2 * k[1][1] + 2 * k[2][1] + k[3][1]);
+}
+
+/* The piston held by friction while the body swings down from rest (beta sliding backwards, beta' < 0):
+ * the run's samples in the stick phase against RK4 of the held system, and the located time where the
+ * force that holds x leaves the cone f1 |N1| against the reference's (bisection on one RK4 step). */
+static void test_stick_until_cone(void **state)
+{
+    (void)state;
+    dp_rh_model m = piston(1, 1, 0.1, 0.5, 0.3, 0.2, 0.02);
+    double x0[2] = { 0, 0.8 }, v0[2] = { 0, 0 }, h = 1e-3, bdd;
+    dp_run *r = start(&m, x0, v0, 0.45, 0.05);
+    dp_record buf[64];
+    size_t n;
+    int st, rows = 0;
+    double tev = -1, y[4] = { 0, 0.8, 0, 0 }, t = 0;
+    do {
+        st = dp_run_next(r, buf, 64, &n);
+        for (size_t i = 0; i < n; i++) {
+            if (buf[i].type == DP_RECORD_EVENT && tev < 0 && buf[i].u.event.element == 0) {
+                assert_int_equal(buf[i].u.event.kind, DP_EVENT_SLIP);
+                tev = buf[i].u.event.t;
+            }
+            if (buf[i].type != DP_RECORD_ROW || tev >= 0)
+                continue;
+            const double *v = buf[i].u.row.val;
+            while (t < buf[i].u.row.t - 1e-12)
+                rk4_held(&m, y, fmin(h, buf[i].u.row.t - t), -1), t += fmin(h, buf[i].u.row.t - t);
+            for (int k = 0; k < 4; k++)
+                if (fabs(v[k] - y[k]) > 1e-8)
+                    fail_msg("t = %g: component %d %.15g, reference %.15g", t, k, v[k], y[k]);
+            assert_true(v[8] == DP_PHASE_STICK && v[4] == 0);
+            rows++;
+        }
+    } while (st == DP_MORE);
+    assert_int_equal(st, DP_DONE);
+    dp_run_free(r);
+    assert_true(rows >= 5);
+    double z[4] = { 0, 0.8, 0, 0 }, prev[4], tz = 0;
+    while (held(&m, z, -1, &bdd) >= 0) {
+        memcpy(prev, z, sizeof z);
+        rk4_held(&m, z, h, -1);
+        tz += h;
+    }
+    double lo = 0, hi = h;
+    for (int it = 0; it < 60; it++) {
+        double mid = 0.5 * (lo + hi), w[4];
+        memcpy(w, prev, sizeof w);
+        rk4_held(&m, w, mid, -1);
+        if (held(&m, w, -1, &bdd) >= 0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double tref = tz - h + hi;
+    if (!(tev > 0) || fabs(tev - tref) > 1e-9)
+        fail_msg("the cone left at %.15g, reference %.15g", tev, tref);
+}
+
+/* The theorems for the rod: mu = 1 < 4/3 is (2.3) everywhere (Theorems 4.1, 4.2); sliding x_A' < 0 at
+ * theta = 1.1 the margin is m - (3m/4)(sin^2 + mu sin cos) > 0 (Theorems 3.1, 5.1); mu = 1.5 at tan = 2 is
+ * Painlevé's inconsistency and no theorem applies. */
+static void test_rod_theorems(void **state)
+{
+    (void)state;
+    dp_rh_model m = rod(2, 1, 1);
+    double q[2] = { 0, 1.1 }, qd[2] = { -0.5, 0 }, s = sin(1.1), c = cos(1.1);
+    dp_wp_report rep;
+    dp_rh_wellposedness(&m, q, qd, &rep);
+    assert_true(rep.existence.guaranteed && rep.uniqueness.guaranteed);
+    assert_string_equal(rep.existence.theorem, "Matrosov-Finogenko Theorems 4.1, 4.2");
+    assert_string_equal(rep.uniqueness.theorem, "Matrosov-Finogenko Theorem 5.1");
+    dp_rh_result res;
+    dp_rh_solve(&m, q, qd, NULL, &res);
+    assert_int_equal(res.n, 1);
+    dp_rh_conditions k;
+    dp_rh_conditions_at(&m, q, qd, &res.sol[0], &k);
+    double expect = 2 - 0.75 * 2 * (s * s + s * c);
+    if (fabs(k.c23 - expect) > 1e-12)
+        fail_msg("(2.3) margin %.15g, expected %.15g", k.c23, expect);
+    m.mu = 1.5;
+    double q2[2] = { 0, atan(2) };
+    dp_rh_wellposedness(&m, q2, qd, &rep);
+    assert_false(rep.existence.guaranteed);
+    assert_null(rep.existence.theorem);
+    assert_false(rep.check[0].holds);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -544,6 +662,8 @@ int main(void)
         cmocka_unit_test(test_condition_23_sign),
         cmocka_unit_test(test_trajectory_against_rk4),
         cmocka_unit_test(test_paradox_stops_run),
+        cmocka_unit_test(test_rod_theorems),
+        cmocka_unit_test(test_stick_until_cone),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -87,7 +87,13 @@ static int in_phase(struct dp_rh_run *rr, const double y[4], dp_rh_sol *out)
         if (rr->mode[k] == DP_RH_STICK && fabs(s->Q[k]) > fr.f[k] * fabs(s->N[k]) + tol)
             return 0;
     }
-    return !(rr->m.kind == DP_RH_ROD && s->N[0] < 0);
+    return !(rr->m.kind == DP_RH_ROD && (s->N[0] < 0 || !(y[1] > 0 && y[1] < M_PI)));
+}
+
+/* Coordinates stuck in the current mode (the summary's stick time counts each). */
+static int stuck(const struct dp_rh_run *rr)
+{
+    return (rr->mode[0] == DP_RH_STICK) + (rr->mode[1] == DP_RH_STICK);
 }
 
 /* One rk8pd step of length h from (t0, y0) into y: 1 inside the phase, 0 outside, -1 the step failed. */
@@ -240,6 +246,13 @@ static void paradox(struct dp_rh_run *rr, const dp_rh_result *res)
 static int classify(dp_run *r, int initial)
 {
     struct dp_rh_run *rr = r->rh;
+    if (rr->m.kind == DP_RH_ROD && !(rr->y[1] > 0 && rr->y[1] < M_PI)) {
+        snprintf(rr->why, sizeof rr->why, "the rod reaches the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
+                 "an impact this model (end A on the floor, 0 < theta < pi) does not follow", rr->t, rr->y[0],
+                 rr->y[1], rr->y[2], rr->y[3]);
+        rr->fail = 1;
+        return 0;
+    }
     dp_rh_result res;
     dp_rh_solve(&rr->m, rr->y, rr->y + 2, NULL, &res);
     if (res.n != 1 || res.continuum) {
@@ -287,11 +300,13 @@ static int segment(dp_run *r, double t1)
         } else if (!in_phase(rr, rr->y, &rr->sol)) {
             hi = rr->t - t0;
         } else {
+            r->sum.stick_time += (rr->t - t0) * stuck(rr);
             continue;
         }
         if (!(hi > 0))
             hi = fmax(fabs(t0), 1) * LOCATE_REL;
         locate(rr, t0, y0, hi);
+        r->sum.stick_time += (rr->t - t0) * stuck(rr);
         gsl_odeiv2_evolve_reset(rr->ev);
         rr->h = rr->h0;
         if (++rr->events > MAX_EVENTS)

@@ -82,15 +82,23 @@ void dp_rh_wellposedness(const dp_rh_model *m, const double q[2], const double q
             n1empty &= !on_cone;
         }
     }
-    snprintf(add(rep, "(1.2) at the initial state", c12)->detail, DP_WP_TEXT, "margin %.6g", k.c12);
-    snprintf(add(rep, "(2.3) at the initial state (Theorem 3.1)", c23)->detail, DP_WP_TEXT,
-             "margin %.6g (min over s, v of a_ss/k* - |a_ss dF_s/dq''_v|)", k.c23);
-    snprintf(add(rep, "|N_s| != 0 for the coordinates not strictly stuck (Theorem 3.1, the set A)", nonzero)->detail,
-             DP_WP_TEXT, "N = [%.6g, %.6g]", res.n ? res.sol[0].N[0] : NAN, res.n ? res.sol[0].N[1] : NAN);
+    const char *none = "not evaluated: no acceleration solves the initial problem";
+    if (res.n < 1) {
+        snprintf(add(rep, "(1.2) at the initial state", 0)->detail, DP_WP_TEXT, "%s", none);
+        snprintf(add(rep, "(2.3) at the initial state (Theorem 3.1)", 0)->detail, DP_WP_TEXT, "%s", none);
+        snprintf(add(rep, "|N_s| != 0 for the coordinates not strictly stuck (Theorem 3.1, the set A)", 0)->detail,
+                 DP_WP_TEXT, "%s", none);
+    } else {
+        snprintf(add(rep, "(1.2) at the initial state", c12)->detail, DP_WP_TEXT, "margin %.6g", k.c12);
+        snprintf(add(rep, "(2.3) at the initial state (Theorem 3.1)", c23)->detail, DP_WP_TEXT,
+                 "margin %.6g (min over s, v of a_ss/k* - |a_ss dF_s/dq''_v|)", k.c23);
+        snprintf(add(rep, "|N_s| != 0 for the coordinates not strictly stuck (Theorem 3.1, the set A)",
+                     nonzero)->detail, DP_WP_TEXT, "N = [%.6g, %.6g]", res.sol[0].N[0], res.sol[0].N[1]);
+    }
     snprintf(add(rep, "no resting coordinate on its friction cone, N1 empty (Theorem 5.1)", n1empty)->detail,
-             DP_WP_TEXT, "%s", n1empty ? "every resting coordinate strictly inside or sliding"
-                                       : "a resting coordinate holds exactly f|N|");
-    if (m->kind == DP_RH_PISTON_HINGE) {
+             DP_WP_TEXT, "%s", res.n < 1 ? none : n1empty ? "every resting coordinate strictly inside or sliding"
+                                                           : "a resting coordinate holds exactly f|N|");
+    if (m->kind == DP_RH_PISTON_HINGE && res.n >= 1) {
         snprintf(add(rep, "(6.2) at the initial state", k.c62 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c62);
         snprintf(add(rep, "(6.3)", k.c63 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c63);
         snprintf(add(rep, "(6.4) at the initial state", k.c64 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c64);

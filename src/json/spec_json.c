@@ -900,6 +900,8 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
         check_keys(&c, root, NULL, keys, NULL, NULL);
         v = member(&c, root, NULL, "model", "an object with mass, spring and damper", &p);
     }
+    if (v != NULL && is_right_hand(v))
+        return right_hand_wellposedness(&c, root, v, &p, rep);
     if (v == NULL || !is_network(v)) {
         cJSON_Delete(root);
         dp_model m = { 0 };
