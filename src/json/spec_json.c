@@ -758,13 +758,14 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
         return;
     check_keys(c, o, NULL, keys, NULL, NULL);
     const cJSON *v = member(c, o, NULL, "model", "an object with mass, spring and damper", &p);
+    int rh = v != NULL && !is_network(v) && is_right_hand(v); /* its own initial state, even if the model is bad */
     if (v != NULL && is_network(v))
         parse_network(c, v, &p, s);
-    else if (v != NULL && is_right_hand(v))
+    else if (rh)
         parse_right_hand(c, v, &p, s);
     else if (v != NULL)
         parse_model(c, v, &p, &s->model);
-    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL && s->rh != NULL)
+    if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL && rh)
         parse_right_hand_initial(c, v, &p, s);
     else if (v != NULL && s->net == NULL)
         parse_initial(c, v, &p, s);
