@@ -76,7 +76,7 @@ void dp_rh_solve(const dp_rh_model *m, const double q[2], const double qd[2], co
 
 /* The paper's conditions at a state and one solution of it (margins: > 0 holds, <= 0 fails). */
 typedef struct dp_rh_conditions {
-    double c12;        /* (1.2): min over friction coordinates of a_ss - f_s |d|N_s|/d q_s''| */
+    double c12;        /* (1.2): min over friction coordinates of a_ss - f_s |d|N_s|/d q_s''| (none: min a_ss) */
     double c23;        /* (2.3) (signs corrected, docs/right-hand.md): min of a_ss/k* - |J_sv| */
     double c62, c63, c64; /* piston-hinge (6.2), (6.3), (6.4) (min of its three); NAN for the rod */
     int in_A;          /* the state is in the set A: no resting coordinate on its cone with N_s = 0 */

@@ -376,7 +376,7 @@ void dp_rh_conditions_at(const dp_rh_model *m, const double q[2], const double q
     dp_rh_frame fr;
     dp_rh_frame_at(m, q, qd, &fr);
     double tol = TOL_FORCE * force_scale(&fr);
-    c->c12 = fmin(fr.A[0][0], fr.A[1][1]);
+    c->c12 = INFINITY;
     c->in_A = 1;
     for (int s = 0; s < 2; s++) {
         if (!fr.fric[s])
@@ -386,6 +386,8 @@ void dp_rh_conditions_at(const dp_rh_model *m, const double q[2], const double q
             fabs(sol->Q[s]) >= fr.f[s] * fabs(sol->N[s]) - tol)
             c->in_A = 0;                      /* on the cone (set N1) with N_s = 0 */
     }
+    if (!isfinite(c->c12))
+        c->c12 = fmin(fr.A[0][0], fr.A[1][1]); /* no friction: vacuous, reported as the smallest a_ss */
     c->c23 = cond23(&fr, sol);
     if (m->kind == DP_RH_ROD) {
         c->c62 = c->c63 = c->c64 = NAN;
