@@ -26,6 +26,9 @@
 #define LOCATE_REL 1e-13
 /* A run locating more events than this is taken for an accumulation of events (Zeno): it stops. */
 #define MAX_EVENTS 100000
+/* Integrator steps one dp_run_next call may take before it hands control back (as the other solvers do, so
+ * that a front end's deadline and cancellation are checked between calls): the segment resumes next call. */
+#define CALL_STEPS 100000
 
 struct dp_rh_run {
     dp_rh_model m;
@@ -50,6 +53,7 @@ struct dp_rh_run {
     int fail;                       /* stop with `why` once the FIFO is drained */
     char why[256];
     unsigned long events;
+    unsigned long call_steps;       /* integrator steps in the current dp_run_next call */
 };
 
 static int rhs(double t, const double y[], double dydt[], void *params)
@@ -293,6 +297,8 @@ static int segment(dp_run *r, double t1)
         memcpy(y0, rr->y, sizeof y0);
         if ((double)++r->sum.steps > r->max_steps)
             return dp_run_fail(r, DP_ELIMIT, "the integrator took more than %.6g steps", r->max_steps);
+        if (++rr->call_steps > CALL_STEPS)
+            return DP_MORE; /* resumed by the next call, toward the same t1 */
         int s = gsl_odeiv2_evolve_apply(rr->ev, rr->ctl, rr->st, &rr->sys, &rr->t, t1, &rr->h, rr->y);
         if (s != GSL_SUCCESS) {
             rr->t = t0, hi = hb;
@@ -338,6 +344,7 @@ int dp_rh_run_advance(dp_run *r)
     struct dp_rh_run *rr = r->rh;
     if (reserve(r) != DP_OK)
         return dp_run_fail(r, DP_ENOMEM, "out of memory for a block's rows");
+    rr->call_steps = 0;
     flush(r);
     while (r->out_n < r->out_cap && rr->nq == 0 && !rr->ended && r->status == DP_OK) {
         if (rr->fail) {
@@ -346,7 +353,10 @@ int dp_rh_run_advance(dp_run *r)
         }
         if (rr->k > 0) {
             double t1 = rr->k < r->nsteps ? (double)rr->k * r->h : r->spec.solver.t_end;
-            if (segment(r, t1) != DP_OK)
+            int s = segment(r, t1);
+            if (s == DP_MORE)
+                break;
+            if (s != DP_OK)
                 return r->status;
             if (rr->fail)
                 continue;
