@@ -622,6 +622,46 @@ static void test_stick_until_cone(void **state)
         fail_msg("the cone left at %.15g, reference %.15g", tev, tref);
 }
 
+/* Where (2.3) holds, the paper's map of §2, F_s(q'') = (b_s - sum_{i != s} a_si q''_i - f_s sgn(q_s') |N_s(q'')|)
+ * / a_ss, contracts: iterated from 0 it reaches the enumeration's one solution. Random piston states with both
+ * coordinates sliding and f2 > 0 (k* = 2, no frictionless coordinate), A, b and N from the test's own
+ * mechanics; the states where (2.3) fails are skipped, and enough must remain. */
+static void test_contraction_where_23_holds(void **state)
+{
+    (void)state;
+    uint64_t seed = 4;
+    int checked = 0;
+    for (int it = 0; it < 300; it++) {
+        dp_rh_model m = piston(urand(&seed, 1, 3), urand(&seed, 0.2, 1), urand(&seed, 0.5, 2), urand(&seed, 0.2, 0.6),
+                               urand(&seed, 0, M_PI / 2), urand(&seed, 0, 0.4), urand(&seed, 0.01, 0.1));
+        double q[2] = { 0, urand(&seed, -M_PI, M_PI) };
+        double qd[2] = { urand(&seed, 0.1, 2) * (it % 2 ? 1 : -1), urand(&seed, 0.1, 2) * (it % 3 ? 1 : -1) };
+        dp_rh_result res;
+        dp_rh_solve(&m, q, qd, NULL, &res);
+        assert_int_equal(res.n, 1);
+        dp_rh_conditions c;
+        dp_rh_conditions_at(&m, q, qd, &res.sol[0], &c);
+        if (!(c.c23 > 0.05))
+            continue;
+        double A[2][2], b[2], x[2] = { 0, 0 }, f[2] = { m.f1, m.f2 };
+        lagrange(&m, q, qd, A, b);
+        for (int k = 0; k < 200; k++) {
+            double N[2], y[2];
+            reactions(&m, q, qd, x, N);
+            for (int s = 0; s < 2; s++)
+                y[s] = (b[s] - A[s][1 - s] * x[1 - s] - (qd[s] > 0 ? 1 : -1) * f[s] * fabs(N[s])) / A[s][s];
+            x[0] = y[0], x[1] = y[1];
+        }
+        for (int s = 0; s < 2; s++)
+            if (fabs(x[s] - res.sol[0].qdd[s]) > 1e-7 * (1 + fabs(x[s])))
+                fail_msg("state %d: the contraction gives qdd%d = %.12g, the enumeration %.12g", it, s, x[s],
+                         res.sol[0].qdd[s]);
+        checked++;
+    }
+    if (checked < 50)
+        fail_msg("only %d states with (2.3)", checked);
+}
+
 /* The theorems for the rod: mu = 1 < 4/3 is (2.3) everywhere (Theorems 4.1, 4.2); sliding x_A' < 0 at
  * theta = 1.1 the margin is m - (3m/4)(sin^2 + mu sin cos) > 0 (Theorems 3.1, 5.1); mu = 1.5 at tan = 2 is
  * Painlevé's inconsistency and no theorem applies. */
@@ -664,6 +704,7 @@ int main(void)
         cmocka_unit_test(test_paradox_stops_run),
         cmocka_unit_test(test_rod_theorems),
         cmocka_unit_test(test_stick_until_cone),
+        cmocka_unit_test(test_contraction_where_23_holds),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
