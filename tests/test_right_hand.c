@@ -691,6 +691,51 @@ static void test_rod_theorems(void **state)
     assert_false(rep.check[0].holds);
 }
 
+/* A second acceleration appearing mid-run (its branch's coefficient crossing zero, the candidate arriving from
+ * infinity): the run stops there with the indeterminacy and both candidates, in few steps rather than
+ * crawling toward the boundary with vanishing steps. */
+static void test_indeterminacy_mid_run(void **state)
+{
+    (void)state;
+    dp_rh_model m = piston(2.2125135032518366, 3.6782720695148559, 0.6876667405886886, 0.41610333722368964,
+                           0.73521748059865155, 5.2067753128738961, 0.25320956192594468);
+    double x0[2] = { 0, -1.2396900130422936 }, v0[2] = { -0.68885202598238937, -4.7616041916243752 };
+    dp_run *r = start(&m, x0, v0, 1, 0.05);
+    dp_record buf[64];
+    size_t n;
+    int st;
+    double tl = -1;
+    do {
+        st = dp_run_next(r, buf, 64, &n); /* the records of the block that fails come with its status */
+        for (size_t i = 0; i < n; i++)
+            if (buf[i].type == DP_RECORD_ROW)
+                tl = buf[i].u.row.t;
+    } while (st == DP_MORE);
+    assert_int_equal(st, DP_ESOLVE);
+    char why[256];
+    snprintf(why, sizeof why, "%s", dp_run_error(r));
+    double t, q[2], qd[2];
+    if (strstr(why, "Painleve indeterminacy (2 accelerations)") == NULL ||
+        sscanf(strstr(why, "t="), "t=%lf, q=[%lf,%lf], qd=[%lf,%lf]", &t, &q[0], &q[1], &qd[0], &qd[1]) != 5)
+        fail_msg("record: %s", why);
+    assert_true(dp_run_summary(r)->steps < 1000);
+    dp_run_free(r);
+    if (!(t > tl && t < tl + 0.05))
+        fail_msg("stop at %.12g, last row at %.12g: %s", t, tl, why);
+    /* the record's state (9 digits) lies within 1e-6 s of motion of the boundary: one solution just before it,
+     * two just after, the new one from far away */
+    dp_rh_result res;
+    double qa[2] = { q[0] + 1e-6 * qd[0], q[1] + 1e-6 * qd[1] }, qe[2] = { q[0] - 1e-6 * qd[0], q[1] - 1e-6 * qd[1] };
+    dp_rh_solve(&m, qa, qd, NULL, &res);
+    assert_int_equal(res.n, 2);
+    double big = fmax(fabs(res.sol[0].qdd[0]), fabs(res.sol[1].qdd[0]));
+    double small = fmin(fabs(res.sol[0].qdd[0]), fabs(res.sol[1].qdd[0]));
+    if (!(big > 1e4 && small < 100))
+        fail_msg("candidates %g and %g", small, big);
+    dp_rh_solve(&m, qe, qd, NULL, &res);
+    assert_int_equal(res.n, 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -705,6 +750,7 @@ int main(void)
         cmocka_unit_test(test_rod_theorems),
         cmocka_unit_test(test_stick_until_cone),
         cmocka_unit_test(test_contraction_where_23_holds),
+        cmocka_unit_test(test_indeterminacy_mid_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -69,8 +69,9 @@ double dp_rh_force_tol(const dp_rh_frame *fr);
 /* Every solution of the acceleration problem at (q, qd): modes forced by the velocities' signs where they
  * move, all three (stick, start +, start -) where they rest (qd_s == 0 exactly); for the rod also leaving
  * the floor (liftoff) when its free flight lifts the end A. If `fixed` is not NULL
- * only that mode combination is solved and the rest conditions (stick cone, start direction) are not
- * checked: the solver's smooth phases, where they are located events instead. Never fails. */
+ * only that mode combination is solved and the stick cone is not checked: the solver's smooth phases,
+ * where leaving the cone is a located event instead (a start's direction is checked: it tells the two
+ * solutions of a mode apart at the phase's first instant). Never fails. */
 void dp_rh_solve(const dp_rh_model *m, const double q[2], const double qd[2], const dp_rh_mode *fixed,
                  dp_rh_result *res);
 

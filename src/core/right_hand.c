@@ -97,8 +97,9 @@ static void accept(prob *p, const cand *c)
             if (c->lam[k] < -tol)
                 return;                      /* eps_k disagrees with the sign of N_k */
             s.Q[k] = -sg * fmax(c->lam[k], 0);
-            if (p->check_rest && p->qd[k] == 0 && !(sg * c->qdd[k] > 0))
-                return;                      /* a start against its own friction */
+            if (p->qd[k] == 0 && !(sg * c->qdd[k] > 0))
+                return;                      /* a start against its own friction (in a phase too: its first
+                                              * instant, where the velocity is still 0) */
         } else if (p->mode[k] == DP_RH_STICK) {
             s.Q[k] = fr->A[k][0] * c->qdd[0] + fr->A[k][1] * c->qdd[1] - fr->b[k];
             if (p->check_rest && fabs(s.Q[k]) > fr->f[k] * fabs(s.N[k]) + tol)
@@ -275,15 +276,21 @@ static double force_scale(const dp_rh_frame *fr)
     return s;
 }
 
-/* The rod's free flight from the floor (painleve.c): a candidate when it lifts A, g - l sin theta'^2 < 0. */
-static void liftoff(const dp_rh_model *m, const double q[2], const double qd[2], double fscale,
-                    dp_rh_result *res)
+/* The rod's free flight from the floor (painleve.c): a candidate when it lifts A, g - l sin theta'^2 < 0.
+ * A contact solution with the same accelerations (N = 0 to the tolerance) is that same motion: it becomes
+ * the lift-off rather than a second solution. */
+static void liftoff(const dp_rh_model *m, const double q[2], const double qd[2], dp_rh_result *res)
 {
     double l = m->length / 2, up = m->m * (l * sin(q[1]) * qd[1] * qd[1] - m->g);
-    if (!(up > TOL_FORCE * fscale))
+    if (!(up > 0))
         return;
     dp_rh_sol s = { .qdd = { l * cos(q[1]) * qd[1] * qd[1], 0 }, .mode = { DP_RH_FREE, DP_RH_FREE },
                     .liftoff = 1 };
+    for (int i = 0; i < res->n && i < DP_RH_MAX_SOL; i++)
+        if (same(res->sol[i].qdd, s.qdd)) {
+            res->sol[i].liftoff = 1;
+            return;
+        }
     if (res->n < DP_RH_MAX_SOL)
         res->sol[res->n] = s;
     res->n++;
@@ -321,7 +328,7 @@ void dp_rh_solve(const dp_rh_model *m, const double q[2], const double qd[2], co
             solve_mode(&fr, qd, md, 1, fs, res);
         }
     if (m->kind == DP_RH_ROD)
-        liftoff(m, q, qd, fs, res);
+        liftoff(m, q, qd, res);
 }
 
 /* d|N_s|/dq''_v at q'' (for a vector reaction of length 0, the largest value over its directions). */

@@ -24,6 +24,11 @@
 #define QCAP0 64
 /* Bisection on a step's length stops at this relative width of the time (root-finding to rounding). */
 #define LOCATE_REL 1e-13
+/* Steps this short (relative to the time) may fall back on a Taylor step when rk8pd's stages fail. */
+#define TAYLOR_MAX 1e-7
+/* evolve_apply halves a step whose stages fail until one passes: a step below this (relative) that does not
+ * reach its target means the phase ends just ahead, and the boundary is located. */
+#define COLLAPSE 1e-12
 /* A run locating more events than this is taken for an accumulation of events (Zeno): it stops. */
 #define MAX_EVENTS 100000
 /* Integrator steps one dp_run_next call may take before it hands control back (as the other solvers do, so
@@ -91,7 +96,8 @@ static int in_phase(struct dp_rh_run *rr, const double y[4], dp_rh_sol *out)
         if (rr->mode[k] == DP_RH_STICK && fabs(s->Q[k]) > fr.f[k] * fabs(s->N[k]) + tol)
             return 0;
     }
-    return !(rr->m.kind == DP_RH_ROD && (s->N[0] < 0 || !(y[1] > 0 && y[1] < M_PI)));
+    /* the rod's floor: the same tolerance as the acceptance of a contact solution (right_hand.c) */
+    return !(rr->m.kind == DP_RH_ROD && (s->N[0] < -tol || !(y[1] > 0 && y[1] < M_PI)));
 }
 
 /* Coordinates stuck in the current mode (the summary's stick time counts each). */
@@ -100,17 +106,33 @@ static int stuck(const struct dp_rh_run *rr)
     return (rr->mode[0] == DP_RH_STICK) + (rr->mode[1] == DP_RH_STICK);
 }
 
-/* One rk8pd step of length h from (t0, y0) into y: 1 inside the phase, 0 outside, -1 the step failed. */
+/* The second-order Taylor step y0 + h y0' + h^2/2 y0'' with y0'' of the current mode at y0 (0: none). */
+static int taylor(struct dp_rh_run *rr, const double y0[4], double h, double y[4])
+{
+    dp_rh_sol s;
+    if (!in_phase(rr, y0, &s))
+        return 0;
+    for (int k = 0; k < 2; k++) {
+        y[k] = y0[k] + h * y0[2 + k] + 0.5 * h * h * s.qdd[k];
+        y[2 + k] = y0[2 + k] + h * s.qdd[k];
+    }
+    return 1;
+}
+
+/* One rk8pd step of length h from (t0, y0) into y: 1 inside the phase, 0 outside, -1 the step failed. A
+ * step shorter than TAYLOR_MAX whose inner stages leave the phase (its problem has no unique solution there)
+ * is taken by the Taylor step instead, so that a phase boundary is located at the state where it lies rather
+ * than at the stages that cross it (error O(h^3) ~ 1e-21 there). */
 static int step_to(struct dp_rh_run *rr, double t0, const double y0[4], double h, double y[4])
 {
     double yerr[4];
     memcpy(y, y0, 4 * sizeof *y);
     gsl_odeiv2_step_reset(rr->st);
-    if (gsl_odeiv2_step_apply(rr->st, t0, h, y, yerr, NULL, NULL, &rr->sys) != GSL_SUCCESS)
+    int ok = gsl_odeiv2_step_apply(rr->st, t0, h, y, yerr, NULL, NULL, &rr->sys) == GSL_SUCCESS;
+    for (int i = 0; i < 4 && ok; i++)
+        ok = isfinite(y[i]);
+    if (!ok && !(h <= TAYLOR_MAX * fmax(1, fabs(t0)) && taylor(rr, y0, h, y)))
         return -1;
-    for (int i = 0; i < 4; i++)
-        if (!isfinite(y[i]))
-            return -1;
     return in_phase(rr, y, NULL);
 }
 
@@ -229,14 +251,15 @@ static const char *mode_name(dp_rh_mode m)
 static void paradox(struct dp_rh_run *rr, const dp_rh_result *res)
 {
     char *p = rr->why, *end = rr->why + sizeof rr->why;
-    p += snprintf(p, (size_t)(end - p), "Painleve %s at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: ",
-                  res->n == 0 && !res->continuum ? "inconsistency (no acceleration solves the friction law)"
-                                                 : "indeterminacy (several accelerations solve it)",
-                  rr->t, rr->y[0], rr->y[1], rr->y[2], rr->y[3]);
-    if (res->continuum && p < end)
-        p += snprintf(p, (size_t)(end - p), "a continuum of solutions; ");
+    char what[48];
+    if (res->n == 0 && !res->continuum)
+        snprintf(what, sizeof what, "inconsistency (no acceleration)");
+    else
+        snprintf(what, sizeof what, "indeterminacy (%d accelerations%s)", res->n, res->continuum ? " and more" : "");
+    p += snprintf(p, (size_t)(end - p), "Painleve %s at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: ", what, rr->t,
+                  rr->y[0], rr->y[1], rr->y[2], rr->y[3]);
     if (res->n == 0 && p < end)
-        snprintf(p, (size_t)(end - p), "no candidate accelerations");
+        snprintf(p, (size_t)(end - p), "no candidates");
     for (int i = 0; i < res->n && i < DP_RH_MAX_SOL && p < end; i++)
         p += snprintf(p, (size_t)(end - p), "%sqdd=[%.6g,%.6g] N=[%.6g,%.6g] (%s,%s)", i ? "; " : "",
                       res->sol[i].qdd[0], res->sol[i].qdd[1], res->sol[i].N[0], res->sol[i].N[1],
@@ -288,6 +311,17 @@ static int classify(dp_run *r, int initial)
     return 1;
 }
 
+/* The first of 4^k LOCATE_REL-scaled lengths (up to 1e-3) at which a step from (t0, y0) leaves the phase,
+ * or 0 when none does. */
+static double ahead(struct dp_rh_run *rr, double t0, const double y0[4])
+{
+    double y[4];
+    for (double h = LOCATE_REL * fmax(1, fabs(t0)); h < 1e-3; h *= 4)
+        if (step_to(rr, t0, y0, h, y) != 1)
+            return h;
+    return 0;
+}
+
 /* Integrates the phases up to t1 (the next sample), locating and crossing the events on the way. */
 static int segment(dp_run *r, double t1)
 {
@@ -305,6 +339,8 @@ static int segment(dp_run *r, double t1)
             memcpy(rr->y, y0, sizeof y0);
         } else if (!in_phase(rr, rr->y, &rr->sol)) {
             hi = rr->t - t0;
+        } else if (rr->t < t1 && rr->t - t0 < COLLAPSE * fmax(1, fabs(t0)) && (hi = ahead(rr, t0, y0)) > 0) {
+            ;                   /* the step collapsed before a boundary: hi is past it */
         } else {
             r->sum.stick_time += (rr->t - t0) * stuck(rr);
             continue;
