@@ -71,6 +71,10 @@ req "$U" text/csv "$PISTON"
 check "piston CSV: header" is "$(head -1 "$BODY")" "t,q0,q1,qd0,qd1,qdd0,qdd1,N0,N1,mode0,mode1,margin0,margin1,margin2,margin3"
 check "piston CSV: 21 rows" is "$(($(wc -l <"$BODY") - 1))" 21
 
+EVERY=$(python3 -c 'import json,sys; d=json.loads(sys.argv[1]); d["output"]={"every": 4}; print(json.dumps(d))' "$PISTON")
+req "$U" text/csv "$EVERY"
+check "output.every 4 on the grid of dt: t = 0, 0.2, ..., 1" is "$(tail -n +2 "$BODY" | cut -d, -f1 | tr '\n' ' ')" "0 0.2 0.4 0.6000000000000001 0.8 1 "
+
 # Painlevé's example (alpha = 0, f2 = 0, m1 = m2 = 1, J_C = 0) sliding at tan(beta) = f1/4: no acceleration.
 PAINLEVE='{"model": {"kind": "piston-hinge", "m1": 1, "m2": 1, "r": 0.8, "alpha": 0, "f1": 5},
  "initial": {"x": [0, 0.8960553845713439], "v": [1, 0]}, "solver": {"t_end": 1, "dt": 0.1}}'

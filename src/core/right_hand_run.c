@@ -234,7 +234,9 @@ static int emit_row(dp_run *r)
     fill_row(rr, row);
     memcpy(rr->final_row, row, sizeof row);
     r->sum.final_row = (dp_row){ .t = rr->t, .val = rr->final_row };
-    if (!r->spec.output.samples)
+    /* output.every decimates the grid k dt (the first and the last sample always written) */
+    int due = rr->k % (unsigned long long)r->spec.output.every == 0 || rr->k >= r->nsteps;
+    if (!r->spec.output.samples || !due)
         return DP_OK;
     r->sum.samples++;
     dp_record rec = { .type = DP_RECORD_ROW, .u.row = { .t = rr->t, .val = NULL } };
