@@ -408,6 +408,8 @@ int dp_rh_run_advance(dp_run *r)
     }
     flush(r);
     if (rr->ended && rr->nq == 0) {
+        if (rr->fail && r->out_n > 0)
+            return DP_OK;      /* the rows before the stop go out first; the next call fails with the record */
         if (rr->fail)
             return dp_run_fail(r, DP_ESOLVE, "%s", rr->why);
         r->finished = 1;
