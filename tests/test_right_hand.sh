@@ -87,6 +87,19 @@ assert "Painleve inconsistency" in d["detail"] and "t=0," in d["detail"] and "qd
 "$CLI" simulate "$SCRATCH/request" >/dev/null 2>"$SCRATCH/cli.err"
 check "Painleve paradox: CLI says which" grep -q "Painleve inconsistency" "$SCRATCH/cli.err"
 
+# A second acceleration appears at t = 0.0853 (tests/test_right_hand.c): the stream carries the rows before it,
+# then the record as its error object.
+MID='{"model": {"kind": "piston-hinge", "m1": 2.2125, "m2": 3.6783, "J_C": 0.6877, "r": 0.4161, "alpha": 0.7352, "f1": 5.2068, "f2": 0.2532},
+ "initial": {"x": [0, -1.2397], "v": [-0.6889, -4.7616]}, "solver": {"t_end": 0.2, "dt": 0.01}}'
+req "$U" application/x-ndjson "$MID"
+check "indeterminacy mid-run: 200, 9 rows to t = 0.08, then the record" py "$BODY" '
+lines = [loads(l) for l in text.splitlines()]
+rows, last = [l for l in lines if l["type"] == "sample"], lines[-1]
+assert '"$STATUS"' == 200 and len(rows) == 9 and abs(rows[-1]["t"] - 0.08) < 1e-12, (len(rows), rows[-1]["t"])
+assert last["type"] == "error" and last["status"] == 422, last
+assert "Painleve indeterminacy (2 accelerations) at t=0.0853" in last["detail"], last
+'
+
 ROD='{"model": {"kind": "painleve-rod", "m": 1, "length": 1, "mu": 1}, "initial": {"x": [0, 1.1], "v": [-0.5, 0]}}'
 req "$URL_rh/v1/wellposedness" application/json "$ROD"
 check "rod wellposedness: Theorems 4.1, 4.2 and 5.1" py "$BODY" '
