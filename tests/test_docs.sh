@@ -67,6 +67,7 @@ PY
 run_examples() { # run_examples DOC: every example of one document against its own daemon
     local doc=$1 name dir count i cmd
     name=$(basename "$doc" .md)
+    name=${name//-/_} # a daemon's name is part of shell variable names
     dir=$SCRATCH/$name
     extract "$ROOT/$doc" "$dir"
     count=$(cat "$dir/count")

@@ -22,6 +22,7 @@ import { Editor, pretty } from './editor.js';
 import { PRESETS } from './presets.js';
 import { NetworkView } from './network.js';
 import { runModes, renderModes } from './modes.js';
+import { RightHandView } from './right_hand.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
@@ -42,6 +43,8 @@ const headers = (accept) => ({ 'Content-Type': 'application/json', Accept: accep
   ...(ui.token ? { Authorization: 'Bearer ' + ui.token } : {}) });
 const editor = new Editor($('editor'), () => run());
 const network = new NetworkView(); // a run of a network model (meta.model "network") is drawn there
+const rhView = new RightHandView(); // a run of a right-hand friction model (web/right_hand.js)
+const RH_MODELS = ['piston-hinge', 'painleve-rod'];
 
 // ---- presets and tabs ----
 
@@ -142,7 +145,7 @@ async function problemOf(res) {
 let sim = newRun();
 
 function newRun() {
-  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, events: [], stick: [], stickStart: null,
+  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, rh: null, events: [], stick: [], stickStart: null,
     meta: null, summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
     label: '' };
 }
@@ -163,6 +166,8 @@ const plots = [
 
 function drawAll() {
   network.show(!!sim.net);
+  rhView.show(!!sim.rh);
+  if (sim.rh) { $('plots-one').hidden = true; rhView.draw(sim.rh); return; }
   if (sim.net) { network.draw(sim.net); return; }
   for (const p of plots) { p.setTable(sim.table); p.draw(); }
 }
@@ -176,7 +181,7 @@ function setSimState(state) {
   const d = $('panel-simulate').dataset;
   d.state = state;
   d.samples = sim.samples;
-  d.points = sim.net ? sim.net.table.n : sim.table.n;
+  d.points = (sim.net || sim.rh || sim).table.n;
   d.events = sim.events.length;
   d.summarySamples = sim.summary ? sim.summary.samples : '';
   d.bands = stickBands().length;
@@ -207,12 +212,14 @@ function onRecord(o) {
       sim.samples++;
       sim.lastT = o.t;
       if (sim.net) { sim.net.push(o); break; }
+      if (sim.rh) { sim.rh.push(o); break; }
       if (sim.table.n < MAX_POINTS) sim.table.push(o);
       if (o.phase === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
       if (o.phase === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
       break;
     case 'event': // located transitions: the shading starts and ends at the event, not at the next sample
       sim.events.push(o);
+      if (sim.rh) { sim.rh.event(o); break; }
       if (o.kind === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
       if (o.kind === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
       break;
@@ -220,10 +227,11 @@ function onRecord(o) {
       sim.meta = o;
       sim.tEnd = o.t_end;
       if (o.model === 'network') sim.net = network.start(o);
+      if (RH_MODELS.includes(o.model)) sim.rh = rhView.start(o);
       renderWellposedness(o.wellposedness, o);
       break;
     case 'summary': sim.summary = o; break;
-    case 'error': sim.error = o; break;
+    case 'error': sim.error = o; if (sim.rh) sim.rh.stop(o, sim.lastT); break;
   }
 }
 
@@ -315,8 +323,8 @@ function renderStats(state) {
   h += chip('samples', num(sim.samples)) + chip('events', num(sim.events.length));
   if (s) {
     h += chip('stick time', num(s.stick_time));
-    if (!sim.net) h += chip('final x', num(s.final.x, 6));
-    if (sim.samples > (sim.net || sim).table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
+    if (!sim.net && !sim.rh) h += chip('final x', num(s.final.x, 6));
+    if (sim.samples > (sim.net || sim.rh || sim).table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
   }
   $('stats').innerHTML = h;
   if (state === 'done') {

@@ -187,3 +187,41 @@ PRESETS.push({
     force_node: 0, response_node: 0, omega: { from: 0.1, to: 3, points: 400, spacing: 'log' },
   },
 });
+
+// Friction whose normal force depends on the motion (docs/right-hand.md): Matrosov & Finogenko's piston and
+// hinge, Painlevé's rod, and a run that meets Painlevé's indeterminacy (a second acceleration appears).
+const RH = 'Friction with motion-dependent normal force (Painlev\u00e9)';
+PRESETS.push({
+  id: 'piston-hinge', group: RH, label: 'Piston in an inclined tube with a body on a hinge', kind: 'simulate',
+  note: 'Seed 004 \u00a76: a piston (m1 = 1, f1 = 0.2) in a tube at 0.3 rad carries a body (m2 = 1, J_C = 0.1, r = 0.5) ' +
+    'on a hinge with friction arm f2 = 0.02. Friction holds the piston while the body swings down, until the force ' +
+    'that holds it leaves the cone f1|N1| at t = 0.402; N1 and |N2| depend on the accelerations.',
+  spec: {
+    model: { kind: 'piston-hinge', m1: 1, m2: 1, J_C: 0.1, r: 0.5, alpha: 0.3, f1: 0.2, f2: 0.02 },
+    initial: { x: [0, 0.8], v: [0, 0] },
+    solver: { kind: 'right-hand', t_end: 3, dt: 0.01 },
+    output: { every: 1 },
+  },
+});
+PRESETS.push({
+  id: 'painleve-rod', group: RH, label: 'Painlev\u00e9\u2019s rod falling on a rough floor (\u03bc = 0.5)', kind: 'simulate',
+  note: 'A uniform rod (m = 1, length 1) leaning at 1.2 rad on a floor with \u03bc = 0.5 < 4/3: held by friction, then ' +
+    'sliding, until it reaches the floor (an impact this model does not follow: the run stops there, shaded).',
+  spec: {
+    model: { kind: 'painleve-rod', m: 1, length: 1, mu: 0.5 },
+    initial: { x: [0, 1.2], v: [0, 0] },
+    solver: { kind: 'right-hand', t_end: 1, dt: 0.005 },
+    output: { every: 1 },
+  },
+});
+PRESETS.push({
+  id: 'painleve-indeterminacy', group: RH, label: 'A run that meets Painlev\u00e9\u2019s indeterminacy', kind: 'simulate',
+  note: 'Both coordinates sliding with f1 = 5.2: at t = 0.0853 a second acceleration appears from infinity and the ' +
+    'friction law no longer decides the motion. The run stops there with both candidates (shaded after).',
+  spec: {
+    model: { kind: 'piston-hinge', m1: 2.2125, m2: 3.6783, J_C: 0.6877, r: 0.4161, alpha: 0.7352, f1: 5.2068, f2: 0.2532 },
+    initial: { x: [0, -1.2397], v: [-0.6889, -4.7616] },
+    solver: { kind: 'right-hand', t_end: 0.2, dt: 0.001 },
+    output: { every: 1 },
+  },
+});

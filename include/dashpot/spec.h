@@ -16,7 +16,8 @@
 
 typedef enum dp_solver_kind {
     DP_SOLVER_STICK_SLIP, DP_SOLVER_ANALYTIC, DP_SOLVER_REGULARIZED,
-    DP_SOLVER_NEWMARK     /* Höschl's incremental Newmark (newmark.h): linear and elastoplastic springs */
+    DP_SOLVER_NEWMARK,    /* Höschl's incremental Newmark (newmark.h): linear and elastoplastic springs */
+    DP_SOLVER_RIGHT_HAND  /* right-hand solutions of friction with motion-dependent normal force (right_hand.h) */
 } dp_solver_kind;
 
 /* The regularized existence schemes (mathematics.md §3): (PCn) F_c = g_n(x') with g_n the Yosida
@@ -75,8 +76,9 @@ typedef struct dp_spec {
     dp_solver_spec solver;
     dp_output_spec output;
     dp_network *net;      /* a network document ("masses" or "mass_matrix"); NULL for the one-mass model */
-    double *x0v, *v0v;    /* networks: the initial state, net->n each */
+    double *x0v, *v0v;    /* networks: the initial state, net->n each; right-hand models: 2 each */
     struct dp_lcs_model *lcs; /* a linear complementarity system (lcs.h); NULL otherwise */
+    struct dp_rh_model *rh; /* a right-hand friction model (right_hand.h); NULL otherwise */
 } dp_spec;
 
 /* A spec with every default set (stick-slip, exact, theta 1, dt 1e-3, t_end 10, every 1) and an empty model. */
@@ -109,6 +111,9 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *errs);
 
 /* The regularized solver's own rules (regularized.c): which laws each scheme takes, n/k > 0, tolerances. */
 void dp_regularized_check(const dp_spec *s, dp_errors *errs);
+
+/* The right-hand solver's rules (right_hand_check.c): its models only with it, and it only with them. */
+void dp_rh_check(const dp_spec *s, dp_errors *errs);
 
 /* Number of steps the spec asks for: ceil(t_end / dt) (with a rounding guard). */
 double dp_spec_steps(const dp_spec *s);

@@ -70,6 +70,8 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
     r->countdown = 1; /* the initial state is always a sample */
     if (spec->lcs)
         s = dp_lcs_run_init(r);
+    if (spec->rh)
+        s = dp_rh_run_init(r);
     else if (spec->net)
         s = dp_network_run_init(r);
     else switch (spec->solver.kind) {
@@ -85,7 +87,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
         return NULL;
     }
     r->sum.final = r->cur;
-    if ((r->net == NULL && r->lcs == NULL) || (r->net && dp_network_run_is_one_mass(r)))
+    if ((r->net == NULL && r->lcs == NULL && r->rh == NULL) || dp_network_run_is_one_mass(r))
         dp_run_emit_state(r); /* queued in `pending`: no block yet */
     *status = DP_OK;
     return r;
@@ -95,6 +97,8 @@ static int advance(dp_run *r)
 {
     if (r->lcs)
         return dp_lcs_run_advance(r);
+    if (r->rh)
+        return dp_rh_run_advance(r);
     if (r->net && !dp_network_run_is_one_mass(r))
         return dp_network_run_advance(r);
     if (r->spec.solver.kind == DP_SOLVER_ANALYTIC)
@@ -120,7 +124,7 @@ int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
         buf[r->out_n++] = r->pending[r->ipending++];
     if (r->ipending == r->npending)
         r->npending = r->ipending = 0;
-    if (dp_run_room(r) || (r->net && dp_network_run_pending(r) && r->status == DP_OK)) {
+    if (dp_run_room(r) || (((r->net && dp_network_run_pending(r)) || dp_rh_run_pending(r)) && r->status == DP_OK)) {
         int s = advance(r);
         if (s < 0 && r->status == DP_OK)
             dp_run_fail(r, s, "%s", dp_strerror(s));
@@ -180,6 +184,7 @@ void dp_run_free(dp_run *r)
     dp_network_run_free(r->net);
     dp_lcs_run_free(r->lcs);
     dp_nm_free(r->nm);
+    dp_rh_run_free(r->rh);
     dp_spec_clear(&r->spec);
     free(r);
 }

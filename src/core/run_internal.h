@@ -68,6 +68,8 @@ struct dp_run {
     struct dp_net_run *net;
     /* linear complementarity system (lcs_run.c) */
     struct dp_lcs_run *lcs;
+    /* right-hand friction solver (right_hand_run.c) */
+    struct dp_rh_run *rh;
     /* the columns of a run whose samples are rows (dp_run_columns); NULL for one-mass samples */
     const dp_columns *cols;
     /* the stop hook (dp_run_set_stop) and the work count at which it is polled next */
@@ -141,6 +143,10 @@ int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n);
 int dp_lcs_run_init(dp_run *r);
 int dp_lcs_run_advance(dp_run *r);
 void dp_lcs_run_free(struct dp_lcs_run *lr);
+int dp_rh_run_init(dp_run *r);
+int dp_rh_run_advance(dp_run *r);
+int dp_rh_run_pending(const dp_run *r);
+void dp_rh_run_free(struct dp_rh_run *rr);
 /* Whether records wait in the network run's queue. */
 int dp_network_run_pending(const dp_run *r);
 

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "dashpot/newmark.h"
+#include "dashpot/right_hand.h"
 #include "dashpot/spec.h"
 #include "dashpot/lcs.h"
 
@@ -50,6 +51,8 @@ void dp_spec_clear(dp_spec *s)
     free(s->v0v);
     free(s->output.nodes);
     free(s->output.elements);
+    free(s->rh);
+    s->rh = NULL;
     s->net = NULL, s->x0v = s->v0v = NULL, s->output.nodes = s->output.elements = NULL;
 }
 
@@ -68,7 +71,7 @@ static void *dup_array(const void *src, size_t n, size_t size, int *fail)
 int dp_spec_copy(dp_spec *dst, const dp_spec *src)
 {
     *dst = *src;
-    dst->net = NULL, dst->x0v = dst->v0v = NULL, dst->output.nodes = dst->output.elements = NULL;
+    dst->net = NULL, dst->rh = NULL, dst->x0v = dst->v0v = NULL, dst->output.nodes = dst->output.elements = NULL;
     dst->lcs = NULL;
     if (dp_model_copy(&dst->model, &src->model) != DP_OK) {
         memset(&dst->model, 0, sizeof dst->model);
@@ -83,6 +86,11 @@ int dp_spec_copy(dp_spec *dst, const dp_spec *src)
         fail = dst->net == NULL;
         dst->x0v = dup_array(src->x0v, n, sizeof(double), &fail);
         dst->v0v = dup_array(src->v0v, n, sizeof(double), &fail);
+    }
+    if (src->rh) {
+        dst->rh = dup_array(src->rh, 1, sizeof *src->rh, &fail);
+        dst->x0v = dup_array(src->x0v, 2, sizeof(double), &fail);
+        dst->v0v = dup_array(src->v0v, 2, sizeof(double), &fail);
     }
     dst->output.nodes = dup_array(src->output.nodes, src->output.nnodes, sizeof(size_t), &fail);
     dst->output.elements = dup_array(src->output.elements, src->output.nelements, sizeof(size_t), &fail);
@@ -198,17 +206,19 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
         return dp_lcs_check(s, max_steps, e);
     size_t before = e->n + e->dropped;
     const dp_model *m = &s->model;
-    if (s->net)
+    if (s->rh || s->solver.kind == DP_SOLVER_RIGHT_HAND)
+        dp_rh_check(s, e);
+    else if (s->net)
         dp_network_check(s, e);
     else if (m->spring.law == DP_SPRING_ROPE && s->x0 > m->spring.length)
         dp_errors_add(e, "/initial/x", "the rope is inextensible: x must be <= length = %g, got %g",
                       m->spring.length, s->x0);
     else
         check_domain(&m->spring.graph, s->x0, "/initial/x", "x", e);
-    if (!s->net)
+    if (!s->net && !s->rh && s->solver.kind != DP_SOLVER_RIGHT_HAND)
         check_domain(&m->damper.graph, s->v0 - m->damper.belt_velocity, "/initial/v", "v - belt_velocity", e);
-    if (s->net)
-        ; /* the network's solver rules are in dp_network_check */
+    if (s->net || s->rh || s->solver.kind == DP_SOLVER_RIGHT_HAND)
+        ; /* the network's and right-hand solver's rules are in their own checks */
     else if (s->solver.kind == DP_SOLVER_ANALYTIC)
         check_analytic(s, e);
     else if (s->solver.kind == DP_SOLVER_NEWMARK)

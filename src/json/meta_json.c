@@ -133,6 +133,8 @@ int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
 {
     if (s->lcs)
         return dp_lcs_meta_json(s, out);
+    if (s->rh)
+        return dp_rh_meta_json(s, out);
     if (s->net)
         return network_meta(s, out);
     const dp_solver_spec *sv = &s->solver;

@@ -680,13 +680,17 @@ static void parse_solver(ctx *c, const cJSON *o, const at *ptr, dp_solver_spec *
         { "newmark", DP_SOLVER_NEWMARK,
           { NUM(dp_solver_spec, dt, POSITIVE, 0), NUM(dp_solver_spec, t_end, POSITIVE, 0),
             NUM(dp_solver_spec, beta, BETA, 0), NUM(dp_solver_spec, gamma, GAMMA, 0) }, { NULL } },
+        { "right-hand", DP_SOLVER_RIGHT_HAND,
+          { NUM(dp_solver_spec, t_end, POSITIVE, 0), NUM(dp_solver_spec, dt, POSITIVE, 0),
+            NUM(dp_solver_spec, rtol, POSITIVE, 0), NUM(dp_solver_spec, atol, POSITIVE, 0) }, { NULL } },
     };
     static const char *const variants[] = { "exact", "thesis", NULL };
     static const char *const events[] = { "locate", "none", NULL };
     static const char *const branches[] = { "rest", "motion", NULL };
     static const char *const schemes[] = { "PC", "PI", NULL };
     static const char *const steppers[] = { "msbdf", "rk4imp", "bsimp", "rkf45", "rkck", "rk8pd", NULL };
-    const variant *v = parse_tagged(c, o, ptr, "kind", DP_SOLVER_STICK_SLIP, kinds, 4, NULL, s);
+    int def = s->kind == DP_SOLVER_RIGHT_HAND ? DP_SOLVER_RIGHT_HAND : DP_SOLVER_STICK_SLIP;
+    const variant *v = parse_tagged(c, o, ptr, "kind", def, kinds, 5, NULL, s);
     if (v == NULL)
         return;
     s->kind = (dp_solver_kind)v->id;
@@ -735,6 +739,7 @@ static void sample_budget(ctx *c, const cJSON *o, const at *ptr, const dp_spec *
 
 #include "network_json.inc"
 #include "lcs_json.inc"
+#include "right_hand_json.inc"
 
 static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
@@ -762,16 +767,21 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
         return;
     check_keys(c, o, NULL, keys, NULL, NULL);
     const cJSON *v = member(c, o, NULL, "model", "an object with mass, spring and damper", &p);
+    int rh = v != NULL && !is_network(v) && is_right_hand(v); /* its own initial state, even if the model is bad */
     if (v != NULL && is_network(v))
         parse_network(c, v, &p, s);
     else if (v != NULL && is_lcs(v))
         parse_lcs(c, v, &p, s);
+    else if (rh)
+        parse_right_hand(c, v, &p, s);
     else if (v != NULL)
         parse_model(c, v, &p, &s->model);
     if ((v = member(c, o, NULL, "initial", NULL, &p)) != NULL && s->lcs != NULL)
         parse_lcs_initial(c, v, &p, s);
     else if (v != NULL && is_lcs(cJSON_GetObjectItemCaseSensitive(o, "model")))
         ; /* the LCS model was invalid: its errors are reported, its initial state cannot be sized */
+    else if (v != NULL && rh)
+        parse_right_hand_initial(c, v, &p, s);
     else if (v != NULL && s->net == NULL)
         parse_initial(c, v, &p, s);
     else if (v != NULL && s->net->n > 0)
@@ -800,7 +810,7 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
         return DP_ENOMEM;
     if (c.nerr > 0)
         return DP_EINVAL;
-    int s = spec->net ? dp_network_prepare(spec->net) : spec->lcs ? DP_OK : dp_model_prepare(&spec->model);
+    int s = spec->rh ? DP_OK : spec->net ? dp_network_prepare(spec->net) : spec->lcs ? DP_OK : dp_model_prepare(&spec->model);
     if (s == DP_ENOMEM)
         return s;
     if (s != DP_OK) {
@@ -879,7 +889,9 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
     c.nerr += dp_json_refuse_nul(errs, text, len);
     const cJSON *v = model_member(&c, root, &p);
     int s;
-    if (v != NULL && is_lcs(v)) {   /* an LCS: checked as a run's spec, its theory from the step's matrix */
+    if (v != NULL && is_right_hand(v)) {
+        s = right_hand_wellposedness(&c, root, v, &p, rep);
+    } else if (v != NULL && is_lcs(v)) {   /* an LCS: checked as a run's spec, its theory from the step's matrix */
         dp_spec spec;
         dp_spec_init(&spec);
         s = dp_spec_parse(text, len, 0, &spec, errs);

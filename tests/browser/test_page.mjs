@@ -240,6 +240,30 @@ async function runNetworkPreset(page, name, id, origin) {
   return { d, view, events, stuck, samples, meta };
 }
 
+// Runs a right-hand friction preset (web/right_hand.js) and checks the page against the daemon's own stream:
+// the samples held and drawn on its two plots (the one-mass plots hidden), the events, and for a run that
+// stops (a Painlevé paradox, the rod at the floor) the stop time the view shades from, read from the record.
+async function runRightHandPreset(page, name, id, origin, stops) {
+  const from = problems.length;
+  await page.selectOption('#preset', id);
+  const d = await press(page, 'panel-simulate');
+  const spec = await page.inputValue('#spec');
+  const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: spec, headers: { Accept: 'application/x-ndjson' } });
+  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  const samples = lines.filter((o) => o.type === 'sample'), events = lines.filter((o) => o.type === 'event');
+  const last = lines[lines.length - 1];
+  check(d.state === (stops ? 'error' : 'done') && last.type === (stops ? 'error' : 'summary'),
+    `${name}: right-hand preset ${id} ${stops ? 'stops with its record' : 'streams to its end'}`, JSON.stringify(d));
+  check(+d.samples === samples.length && d.canvases.length === 2 && d.canvases.every((n) => n === samples.length),
+    `${name}: ${id}: both right-hand plots drew the ${samples.length} samples (one-mass plots hidden)`, JSON.stringify(d));
+  check(+d.events === events.length, `${name}: ${id}: ${events.length} events`, `page: ${d.events}`);
+  const stop = await page.evaluate(() => document.getElementById('rh-plots').dataset.stop);
+  const want = stops ? String(+/at t=([-+0-9.eE]+)/.exec(last.detail)[1]) : '';
+  check(stop === want, `${name}: ${id}: the plots are shaded from ${want || 'nowhere'}`, `data-stop ${stop}`);
+  const bad = unexpected(from, /status of 422|Failed to load resource/);
+  check(bad.length === 0, `${name}: ${id}: no console error, page error or failed request`, bad.join('\n    '));
+}
+
 const out = base.endsWith('/') ? base : base + '/';
 try {
   // ---- the page at / ----
@@ -284,6 +308,12 @@ try {
     `burridge-knopoff: velocity weakening on ${relaxed} blocks sustains the stick-slip (sticks per third of the run: ` +
     `${third(0, 1)}, ${third(1, 2)}, ${third(2, 3.01)})`);
   await screenshot(page, 'page-burridge-knopoff');
+  // ---- friction with motion-dependent normal force (web/right_hand.js) ----
+  await runRightHandPreset(page, 'page', 'piston-hinge', out, false);
+  await screenshot(page, 'page-piston-hinge');
+  await runRightHandPreset(page, 'page', 'painleve-indeterminacy', out, true);
+  await screenshot(page, 'page-painleve-indeterminacy');
+  await runRightHandPreset(page, 'page', 'painleve-rod', out, true);
   // back to one mass: the one-mass plots return, with the samples of the new run
   const belt2 = await runPreset(page, 'page', 'belt', out);
   check(belt2.d.canvases.length === 5, 'after a network run a one-mass preset shows its five plots again');

@@ -1,0 +1,477 @@
+/* src/core/right_hand_run.c - right-hand solutions (seed 004 §3: D+q = q', D+q' = G(t, q, q')) of the
+ * friction models of right_hand.h, as a dp_run of rows.
+ *
+ * A smooth phase keeps every coordinate's mode (stick, slip +/-, free) and is integrated by GSL odeiv2
+ * rk8pd with the acceleration problem of that mode solved at every evaluation. A phase ends at a located
+ * event: a sliding velocity reaching zero, a stuck coordinate's force leaving its cone, the mode's problem
+ * losing its unique solution, the rod's N turning negative. Each is found by bisection on the length of one
+ * step from the step's start (the step is the one the error control accepted, so its local error holds).
+ * At the event the full enumeration (dp_rh_solve) picks the next mode: accelerations may jump there. When
+ * it finds no solution or several, the run stops with the time, state and candidates in its error:
+ * Painlevé's inconsistency or indeterminacy, never guessed.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_errno.h>
+
+#include "dashpot/right_hand.h"
+#include "run_internal.h"
+
+#define MAX_WIDTH 16
+#define QCAP0 64
+/* Bisection on a step's length stops at this relative width of the time (root-finding to rounding). */
+#define LOCATE_REL 1e-13
+/* Steps this short (relative to the time) may fall back on a Taylor step when rk8pd's stages fail. */
+#define TAYLOR_MAX 1e-7
+/* evolve_apply halves a step whose stages fail until one passes: a step below this (relative) that does not
+ * reach its target means the phase ends just ahead, and the boundary is located. */
+#define COLLAPSE 1e-12
+/* A run locating more events than this is taken for an accumulation of events (Zeno): it stops. */
+#define MAX_EVENTS 100000
+/* Integrator steps one dp_run_next call may take before it hands control back (as the other solvers do, so
+ * that a front end's deadline and cancellation are checked between calls): the segment resumes next call. */
+#define CALL_STEPS 100000
+
+struct dp_rh_run {
+    dp_rh_model m;
+    double t, y[4];                 /* q0, q1, q0', q1' */
+    dp_rh_mode mode[2];
+    dp_rh_sol sol;                  /* the mode's solution at (t, y): the right-hand derivative */
+    gsl_odeiv2_system sys;
+    gsl_odeiv2_step *st;
+    gsl_odeiv2_control *ctl;
+    gsl_odeiv2_evolve *ev;
+    double h, h0;
+    unsigned long long k;           /* samples emitted; the next is at k dt */
+    dp_columns cols;
+    size_t nN, nmargin;
+    dp_record *q;                   /* FIFO of records not yet handed out; rows' numbers in qrows */
+    double *qrows;
+    size_t nq, iq, qcap;
+    double *block;                  /* row slots of the block being produced */
+    size_t block_cap, block_used;
+    double final_row[MAX_WIDTH];
+    int ended;                      /* no more records will be produced */
+    int fail;                       /* stop with `why` once the FIFO is drained */
+    char why[256];
+    unsigned long events;
+    unsigned long call_steps;       /* integrator steps in the current dp_run_next call */
+};
+
+static int rhs(double t, const double y[], double dydt[], void *params)
+{
+    (void)t;
+    struct dp_rh_run *rr = params;
+    dp_rh_result res;
+    dp_rh_solve(&rr->m, y, y + 2, rr->mode, &res);
+    if (res.n != 1 || res.continuum || !isfinite(res.sol[0].qdd[0]) || !isfinite(res.sol[0].qdd[1]))
+        return GSL_EDOM; /* the mode's acceleration problem has no unique solution here */
+    dydt[0] = y[2], dydt[1] = y[3];
+    dydt[2] = res.sol[0].qdd[0], dydt[3] = res.sol[0].qdd[1];
+    return GSL_SUCCESS;
+}
+
+/* Whether the state y lies inside the current phase: its mode solvable uniquely, sliding velocities on
+ * their side, stick forces within their cones, the rod on the floor. */
+static int in_phase(struct dp_rh_run *rr, const double y[4], dp_rh_sol *out)
+{
+    dp_rh_result res;
+    dp_rh_solve(&rr->m, y, y + 2, rr->mode, &res);
+    if (res.n != 1 || res.continuum)
+        return 0;
+    const dp_rh_sol *s = &res.sol[0];
+    if (out)
+        *out = *s;
+    dp_rh_frame fr;
+    dp_rh_frame_at(&rr->m, y, y + 2, &fr);
+    double tol = dp_rh_force_tol(&fr);
+    for (int k = 0; k < 2; k++) {
+        if (rr->mode[k] == DP_RH_SLIP_POS && y[2 + k] < 0)
+            return 0;
+        if (rr->mode[k] == DP_RH_SLIP_NEG && y[2 + k] > 0)
+            return 0;
+        if (rr->mode[k] == DP_RH_STICK && fabs(s->Q[k]) > fr.f[k] * fabs(s->N[k]) + tol)
+            return 0;
+    }
+    /* the rod's floor: the same tolerance as the acceptance of a contact solution (right_hand.c) */
+    return !(rr->m.kind == DP_RH_ROD && (s->N[0] < -tol || !(y[1] > 0 && y[1] < M_PI)));
+}
+
+/* Coordinates stuck in the current mode (the summary's stick time counts each). */
+static int stuck(const struct dp_rh_run *rr)
+{
+    return (rr->mode[0] == DP_RH_STICK) + (rr->mode[1] == DP_RH_STICK);
+}
+
+/* The second-order Taylor step y0 + h y0' + h^2/2 y0'' with y0'' of the current mode at y0 (0: none). */
+static int taylor(struct dp_rh_run *rr, const double y0[4], double h, double y[4])
+{
+    dp_rh_sol s;
+    if (!in_phase(rr, y0, &s))
+        return 0;
+    for (int k = 0; k < 2; k++) {
+        y[k] = y0[k] + h * y0[2 + k] + 0.5 * h * h * s.qdd[k];
+        y[2 + k] = y0[2 + k] + h * s.qdd[k];
+    }
+    return 1;
+}
+
+/* One rk8pd step of length h from (t0, y0) into y: 1 inside the phase, 0 outside, -1 the step failed. A
+ * step shorter than TAYLOR_MAX whose inner stages leave the phase (its problem has no unique solution there)
+ * is taken by the Taylor step instead, so that a phase boundary is located at the state where it lies rather
+ * than at the stages that cross it (error O(h^3) ~ 1e-21 there). */
+static int step_to(struct dp_rh_run *rr, double t0, const double y0[4], double h, double y[4])
+{
+    double yerr[4];
+    memcpy(y, y0, 4 * sizeof *y);
+    gsl_odeiv2_step_reset(rr->st);
+    int ok = gsl_odeiv2_step_apply(rr->st, t0, h, y, yerr, NULL, NULL, &rr->sys) == GSL_SUCCESS;
+    for (int i = 0; i < 4 && ok; i++)
+        ok = isfinite(y[i]);
+    if (!ok && !(h <= TAYLOR_MAX * fmax(1, fabs(t0)) && taylor(rr, y0, h, y)))
+        return -1;
+    return in_phase(rr, y, NULL);
+}
+
+/* The phase ends in (t0, t0 + hi] (a step of hi leaves it): bisection to LOCATE_REL, then t and y just
+ * past the end (or just before it when the step past it cannot be taken). */
+static void locate(struct dp_rh_run *rr, double t0, const double y0[4], double hi)
+{
+    double lo = 0, y[4];
+    while (hi - lo > LOCATE_REL * fmax(1, fabs(t0) + hi)) {
+        double mid = 0.5 * (lo + hi);
+        if (step_to(rr, t0, y0, mid, y) == 1)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    if (step_to(rr, t0, y0, hi, y) < 0 && step_to(rr, t0, y0, lo, y) < 0)
+        memcpy(y, y0, sizeof y);
+    rr->t = t0 + hi;
+    memcpy(rr->y, y, sizeof y);
+    for (int k = 0; k < 2; k++) /* a sliding velocity that reached zero is zero: the coordinate rests */
+        if ((rr->mode[k] == DP_RH_SLIP_POS && rr->y[2 + k] <= 0) ||
+            (rr->mode[k] == DP_RH_SLIP_NEG && rr->y[2 + k] >= 0))
+            rr->y[2 + k] = 0;
+}
+
+/* ---- records: a FIFO that grows (an event and a row may fall due together), rows copied into the block's
+ * own slots as they are handed out ---- */
+
+static int queue(dp_run *r, const dp_record *rec, const double *row)
+{
+    struct dp_rh_run *rr = r->rh;
+    size_t w = rr->cols.width;
+    if (rr->nq == rr->qcap) {
+        size_t cap = rr->qcap ? 2 * rr->qcap : QCAP0;
+        dp_record *q = realloc(rr->q, cap * sizeof *q);
+        if (q == NULL)
+            return DP_ENOMEM;
+        rr->q = q;
+        double *rows = realloc(rr->qrows, cap * w * sizeof *rows);
+        if (rows == NULL)
+            return DP_ENOMEM;
+        rr->qrows = rows, rr->qcap = cap;
+    }
+    rr->q[rr->nq] = *rec;
+    if (row)
+        memcpy(rr->qrows + rr->nq * w, row, w * sizeof *row);
+    rr->nq++;
+    return DP_OK;
+}
+
+static void flush(dp_run *r)
+{
+    struct dp_rh_run *rr = r->rh;
+    size_t w = rr->cols.width;
+    while (rr->iq < rr->nq && r->out_n < r->out_cap && rr->block_used < rr->block_cap) {
+        dp_record rec = rr->q[rr->iq];
+        if (rec.type == DP_RECORD_ROW) {
+            double *d = rr->block + rr->block_used++ * w;
+            memcpy(d, rr->qrows + rr->iq * w, w * sizeof *d);
+            rec.u.row.val = d;
+        }
+        r->out[r->out_n++] = rec;
+        rr->iq++;
+    }
+    if (rr->iq == rr->nq)
+        rr->iq = rr->nq = 0;
+}
+
+static double phase_code(dp_rh_mode m)
+{
+    return m == DP_RH_STICK ? DP_PHASE_STICK : m == DP_RH_FREE ? DP_PHASE_NONE : DP_PHASE_SLIP;
+}
+
+/* q, q', q'', N, mode, margins of the current state into row. */
+static void fill_row(const struct dp_rh_run *rr, double *row)
+{
+    dp_rh_conditions c;
+    dp_rh_conditions_at(&rr->m, rr->y, rr->y + 2, &rr->sol, &c);
+    size_t i = 0;
+    for (int k = 0; k < 2; k++)
+        row[i++] = rr->y[k];
+    for (int k = 0; k < 2; k++)
+        row[i++] = rr->y[2 + k];
+    for (int k = 0; k < 2; k++)
+        row[i++] = rr->sol.qdd[k];
+    for (size_t k = 0; k < rr->nN; k++)
+        row[i++] = rr->sol.N[k];
+    for (int k = 0; k < 2; k++)
+        row[i++] = phase_code(rr->mode[k]);
+    row[i++] = c.c12, row[i++] = c.c23;
+    if (rr->m.kind == DP_RH_PISTON_HINGE)
+        row[i++] = c.c62, row[i++] = c.c64;
+}
+
+static int emit_row(dp_run *r)
+{
+    struct dp_rh_run *rr = r->rh;
+    double row[MAX_WIDTH];
+    fill_row(rr, row);
+    memcpy(rr->final_row, row, sizeof row);
+    r->sum.final_row = (dp_row){ .t = rr->t, .val = rr->final_row };
+    /* output.every decimates the grid k dt (the first and the last sample always written) */
+    int due = rr->k % (unsigned long long)r->spec.output.every == 0 || rr->k >= r->nsteps;
+    if (!r->spec.output.samples || !due)
+        return DP_OK;
+    r->sum.samples++;
+    dp_record rec = { .type = DP_RECORD_ROW, .u.row = { .t = rr->t, .val = NULL } };
+    return queue(r, &rec, row);
+}
+
+static const char *mode_name(dp_rh_mode m)
+{
+    static const char *const names[] = { "free", "stick", "slip+", "slip-" };
+    return names[m];
+}
+
+/* The stop record: time, state, which paradox, the candidate accelerations. */
+static void paradox(struct dp_rh_run *rr, const dp_rh_result *res)
+{
+    char *p = rr->why, *end = rr->why + sizeof rr->why;
+    char what[48];
+    if (res->n == 0 && !res->continuum)
+        snprintf(what, sizeof what, "inconsistency (no acceleration)");
+    else
+        snprintf(what, sizeof what, "indeterminacy (%d accelerations%s)", res->n, res->continuum ? " and more" : "");
+    p += snprintf(p, (size_t)(end - p), "Painleve %s at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: ", what, rr->t,
+                  rr->y[0], rr->y[1], rr->y[2], rr->y[3]);
+    if (res->n == 0 && p < end)
+        snprintf(p, (size_t)(end - p), "no candidates");
+    for (int i = 0; i < res->n && i < DP_RH_MAX_SOL && p < end; i++)
+        p += snprintf(p, (size_t)(end - p), "%sqdd=[%.6g,%.6g] N=[%.6g,%.6g] (%s,%s)", i ? "; " : "",
+                      res->sol[i].qdd[0], res->sol[i].qdd[1], res->sol[i].N[0], res->sol[i].N[1],
+                      res->sol[i].liftoff ? "lift-off" : mode_name(res->sol[i].mode[0]),
+                      mode_name(res->sol[i].mode[1]));
+    rr->fail = 1;
+}
+
+/* The full acceleration problem at the current state picks the mode (events for the coordinates whose
+ * stick/slip changed); 0 when the run must stop (a paradox, the rod lifting off). */
+static int classify(dp_run *r, int initial)
+{
+    struct dp_rh_run *rr = r->rh;
+    if (rr->m.kind == DP_RH_ROD && !(rr->y[1] > 0 && rr->y[1] < M_PI)) {
+        snprintf(rr->why, sizeof rr->why, "the rod reaches the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
+                 "an impact this model (end A on the floor, 0 < theta < pi) does not follow", rr->t, rr->y[0],
+                 rr->y[1], rr->y[2], rr->y[3]);
+        rr->fail = 1;
+        return 0;
+    }
+    dp_rh_result res;
+    dp_rh_solve(&rr->m, rr->y, rr->y + 2, NULL, &res);
+    if (res.n != 1 || res.continuum) {
+        paradox(rr, &res);
+        return 0;
+    }
+    const dp_rh_sol *s = &res.sol[0];
+    if (s->liftoff) {
+        snprintf(rr->why, sizeof rr->why, "the rod lifts off the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
+                 "its only motion is free flight, which this model (end A on the floor) does not follow",
+                 rr->t, rr->y[0], rr->y[1], rr->y[2], rr->y[3]);
+        rr->fail = 1;
+        return 0;
+    }
+    for (int k = 0; k < 2 && !initial; k++) {
+        int now = s->mode[k] == DP_RH_STICK;
+        if (rr->mode[k] == s->mode[k] || s->mode[k] == DP_RH_FREE)
+            continue;                    /* a reversal slip+ -> slip- is a new slip phase */
+        r->sum.events++;
+        rr->events++;
+        dp_record rec = { .type = DP_RECORD_EVENT };
+        rec.u.event = (dp_event){ .kind = now ? DP_EVENT_STICK : DP_EVENT_SLIP, .t = rr->t, .x = rr->y[k],
+                                  .v = rr->y[2 + k], .element = (size_t)k };
+        if (r->spec.output.events && queue(r, &rec, NULL) != DP_OK)
+            return dp_run_fail(r, DP_ENOMEM, "out of memory for the events"), 0;
+    }
+    memcpy(rr->mode, s->mode, sizeof rr->mode);
+    rr->sol = *s;
+    return 1;
+}
+
+/* The first of 4^k LOCATE_REL-scaled lengths (up to 1e-3) at which a step from (t0, y0) leaves the phase,
+ * or 0 when none does. */
+static double ahead(struct dp_rh_run *rr, double t0, const double y0[4])
+{
+    double y[4];
+    for (double h = LOCATE_REL * fmax(1, fabs(t0)); h < 1e-3; h *= 4)
+        if (step_to(rr, t0, y0, h, y) != 1)
+            return h;
+    return 0;
+}
+
+/* Integrates the phases up to t1 (the next sample), locating and crossing the events on the way. */
+static int segment(dp_run *r, double t1)
+{
+    struct dp_rh_run *rr = r->rh;
+    while (rr->t < t1) {
+        double t0 = rr->t, y0[4], hb = fmin(rr->h, t1 - t0), hi;
+        memcpy(y0, rr->y, sizeof y0);
+        if ((double)++r->sum.steps > r->max_steps)
+            return dp_run_fail(r, DP_ELIMIT, "the integrator took more than %.6g steps", r->max_steps);
+        if (++rr->call_steps > CALL_STEPS)
+            return DP_MORE; /* resumed by the next call, toward the same t1 */
+        int s = gsl_odeiv2_evolve_apply(rr->ev, rr->ctl, rr->st, &rr->sys, &rr->t, t1, &rr->h, rr->y);
+        if (s != GSL_SUCCESS) {
+            rr->t = t0, hi = hb;
+            memcpy(rr->y, y0, sizeof y0);
+        } else if (!in_phase(rr, rr->y, &rr->sol)) {
+            hi = rr->t - t0;
+        } else if (rr->t < t1 && rr->t - t0 < COLLAPSE * fmax(1, fabs(t0)) && (hi = ahead(rr, t0, y0)) > 0) {
+            ;                   /* the step collapsed before a boundary: hi is past it */
+        } else {
+            r->sum.stick_time += (rr->t - t0) * stuck(rr);
+            continue;
+        }
+        if (!(hi > 0))
+            hi = fmax(fabs(t0), 1) * LOCATE_REL;
+        locate(rr, t0, y0, hi);
+        r->sum.stick_time += (rr->t - t0) * stuck(rr);
+        gsl_odeiv2_evolve_reset(rr->ev);
+        rr->h = rr->h0;
+        if (++rr->events > MAX_EVENTS)
+            return dp_run_fail(r, DP_ESOLVE, "more than %d located events (t=%.10g): an accumulation of "
+                               "events (Zeno) this solver does not cross", MAX_EVENTS, rr->t);
+        if (!classify(r, 0))
+            return DP_OK;
+    }
+    rr->t = t1; /* evolve_apply lands on t1 exactly */
+    return DP_OK;
+}
+
+/* Row slots for this block: one per record the caller can take (rows are narrow). */
+static int reserve(dp_run *r)
+{
+    struct dp_rh_run *rr = r->rh;
+    rr->block_used = 0;
+    if (r->out_cap <= rr->block_cap)
+        return DP_OK;
+    double *b = realloc(rr->block, r->out_cap * rr->cols.width * sizeof *b);
+    if (b == NULL)
+        return DP_ENOMEM;
+    rr->block = b, rr->block_cap = r->out_cap;
+    return DP_OK;
+}
+
+int dp_rh_run_advance(dp_run *r)
+{
+    struct dp_rh_run *rr = r->rh;
+    if (reserve(r) != DP_OK)
+        return dp_run_fail(r, DP_ENOMEM, "out of memory for a block's rows");
+    rr->call_steps = 0;
+    flush(r);
+    while (r->out_n < r->out_cap && rr->nq == 0 && !rr->ended && r->status == DP_OK) {
+        if (rr->fail) {
+            rr->ended = 1;
+            break;
+        }
+        if (rr->k > 0) {
+            double t1 = rr->k < r->nsteps ? (double)rr->k * r->h : r->spec.solver.t_end;
+            int s = segment(r, t1);
+            if (s == DP_MORE)
+                break;
+            if (s != DP_OK)
+                return r->status;
+            if (rr->fail)
+                continue;
+        }
+        if (emit_row(r) != DP_OK)
+            return dp_run_fail(r, DP_ENOMEM, "out of memory for the rows");
+        r->n = rr->k;
+        if (rr->k++ >= r->nsteps)
+            rr->ended = 1;
+        flush(r);
+    }
+    flush(r);
+    if (rr->ended && rr->nq == 0) {
+        if (rr->fail && r->out_n > 0)
+            return DP_OK;      /* the rows before the stop go out first; the next call fails with the record */
+        if (rr->fail)
+            return dp_run_fail(r, DP_ESOLVE, "%s", rr->why);
+        r->finished = 1;
+    }
+    return DP_OK;
+}
+
+int dp_rh_run_pending(const dp_run *r)
+{
+    return r->rh && r->rh->nq > r->rh->iq;
+}
+
+static void setup_columns(struct dp_rh_run *rr)
+{
+    static const char *const names[] = { "q", "qd", "qdd", "N", "mode", "margin" };
+    rr->nN = rr->m.kind == DP_RH_ROD ? 1 : 2;
+    rr->nmargin = rr->m.kind == DP_RH_ROD ? 2 : 4;
+    size_t n[] = { 2, 2, 2, rr->nN, 2, rr->nmargin };
+    rr->cols.ngroups = 6;
+    rr->cols.width = 0;
+    for (size_t g = 0; g < 6; g++) {
+        rr->cols.group[g] = (dp_column_group){ .name = names[g], .n = n[g], .index = NULL, .phase = g == 4 };
+        rr->cols.width += n[g];
+    }
+}
+
+int dp_rh_run_init(dp_run *r)
+{
+    struct dp_rh_run *rr = calloc(1, sizeof *rr);
+    if (rr == NULL)
+        return DP_ENOMEM;
+    r->rh = rr;
+    rr->m = *r->spec.rh;
+    memcpy(rr->y, r->spec.x0v, 2 * sizeof *rr->y);
+    memcpy(rr->y + 2, r->spec.v0v, 2 * sizeof *rr->y);
+    setup_columns(rr);
+    r->cols = &rr->cols;
+    double rtol = r->spec.solver.rtol > 0 ? r->spec.solver.rtol : 1e-10;
+    double atol = r->spec.solver.atol > 0 ? r->spec.solver.atol : rtol * 1e-2;
+    rr->sys = (gsl_odeiv2_system){ rhs, NULL, 4, rr };
+    rr->st = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 4);
+    rr->ctl = gsl_odeiv2_control_y_new(atol, rtol);
+    rr->ev = gsl_odeiv2_evolve_alloc(4);
+    if (rr->st == NULL || rr->ctl == NULL || rr->ev == NULL)
+        return DP_ENOMEM;
+    rr->h0 = rr->h = fmin(r->h, 1e-3);
+    classify(r, 1); /* a paradox at t = 0 stops the run in its first block, with its record */
+    return DP_OK;
+}
+
+void dp_rh_run_free(struct dp_rh_run *rr)
+{
+    if (rr == NULL)
+        return;
+    if (rr->ev)
+        gsl_odeiv2_evolve_free(rr->ev);
+    if (rr->ctl)
+        gsl_odeiv2_control_free(rr->ctl);
+    if (rr->st)
+        gsl_odeiv2_step_free(rr->st);
+    free(rr->q);
+    free(rr->qrows);
+    free(rr->block);
+    free(rr);
+}
