@@ -70,7 +70,7 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
     r->countdown = 1; /* the initial state is always a sample */
     if (spec->lcs)
         s = dp_lcs_run_init(r);
-    if (spec->rh)
+    else if (spec->rh)
         s = dp_rh_run_init(r);
     else if (spec->net)
         s = dp_network_run_init(r);
