@@ -99,6 +99,8 @@ typedef struct server {
     atomic_int draining;         /* SIGTERM seen: /readyz says 503 */
     atomic_int abort_streams;    /* grace period over: streams end with an error line */
     atomic_llong connections_admitted; /* connections holding a --max-connections place (conn_admit) */
+    atomic_llong requests_open;  /* requests begun and not completed (a body arriving, a stream): the drain waits
+                                    for them, so a request that began before SIGTERM is answered, not cut */
     pthread_mutex_t conns_lock;  /* guards `conns`, the open connections (deadline.c) */
     struct conn *conns;
     _Atomic(dp_stability_ws *) ws_pool[WS_POOL]; /* NULL or an idle workspace, taken by exchange */

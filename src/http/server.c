@@ -167,6 +167,7 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         if ((r = request_new(cls, method, url)) == NULL)
             return MHD_NO;
         *con_cls = r;
+        atomic_fetch_add(&((server *)cls)->requests_open, 1);
         int answered = first_call(c, r, method, url, version);
         if (answered >= 0)
             deadline_mark(c, 1);
@@ -192,6 +193,7 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls, en
     if (r == NULL)
         return;
     *con_cls = NULL;
+    atomic_fetch_sub(&s->requests_open, 1);
     slot_give(r); /* a slot it holds or was handed (a stream gives its own back in stream_free) */
     deadline_mark(c, 0);
     double dt = now_seconds() - r->t_start;
@@ -357,13 +359,15 @@ unsigned server_port(const server *s)
     return info ? info->port : s->cfg.port;
 }
 
-/* Waits until no run or study is in flight or `seconds` pass; returns how many still are. Connections
- * keep their request deadline meanwhile. */
+/* Waits until no run or study is in flight and no request is open (one whose body was still arriving when
+ * the signal came becomes a run, or a 503 since draining is set), or `seconds` pass; returns how many runs
+ * and requests still are. Connections keep their request deadline meanwhile. */
 static long long wait_runs(server *s, double seconds)
 {
     double until = now_seconds() + seconds;
     long long n;
-    while ((n = atomic_load(&s->m.runs_in_flight) + atomic_load(&s->m.studies_in_flight)) > 0 &&
+    while ((n = atomic_load(&s->m.runs_in_flight) + atomic_load(&s->m.studies_in_flight) +
+                atomic_load(&s->requests_open)) > 0 &&
            now_seconds() < until) {
         struct timespec ts = { 0, 20 * 1000 * 1000 };
         nanosleep(&ts, NULL);
@@ -383,7 +387,8 @@ void server_shutdown(server *s)
         close(fd);
     long long left = wait_runs(s, s->cfg.shutdown_grace);
     if (left > 0) {
-        log_line("shutdown: grace period over, ending %lld run(s) with an error line", left);
+        log_line("shutdown: grace period over, ending what is open (%lld runs and requests) with an error line",
+                 left);
         atomic_store(&s->abort_streams, 1);
         slots_open(s);
         left = wait_runs(s, ABORT_WAIT);
