@@ -175,5 +175,14 @@ assert max(s['p'] for s in js) > 0.7   # it yielded
 "
 check "csv without samples still has its header" bash -c "sed 's/\"every\": 50/\"samples\": false/' '$tmp/plastic.json' | '$bin' simulate - --format csv | grep -qx 't,x,v,Fs,Fd,Fc,phase'"
 
+# A damper graph whose stick interval at rest does not hold 0 ([-inf, -1] here: a vertical first piece): at
+# the start the mass slips off it with the force at the bound it passes (-1), not a non-finite one
+# (a fuzzer find; the interval's side used to be taken from the sign of the force needed).
+cat > "$tmp/interval.json" <<'JSON'
+{"model":{"mass":8,"spring":{"law":"graph","points":[[-0,-2],[0,0],[1,1],[1,5]]},"damper":{"law":"graph","points":[[-0,-9],[0,-1],[1,0],[1,2]],"belt_velocity":0.3}},"initial":{"x":0.5,"v":0.3},"solver":{"dt":0.005,"t_end":0.05}}
+JSON
+check "a stick interval without 0: the initial sample's damper force is its bound, -1" bash -c \
+  "'$bin' simulate '$tmp/interval.json' --format csv | sed -n 2p | grep -qx '0,0.5,0.3,0.5,-1,-1,slip'"
+
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

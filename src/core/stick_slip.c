@@ -312,7 +312,8 @@ static void initial_state(dp_run *r)
         dp_ss_stick_interval(L, &rlo, &rhi);
         int holds = rlo <= need && need <= rhi;
         c->phase = holds ? DP_PHASE_STICK : DP_PHASE_SLIP;
-        fc = holds ? need : need > 0 ? hi : lo;
+        /* slipping off: the bound it slips past (not the sign of the need: an interval need not hold 0) */
+        fc = holds ? need : need > rhi ? hi : lo;
     } else if (L->can_stick) {
         c->phase = DP_PHASE_SLIP;
     }
