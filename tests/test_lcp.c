@@ -21,21 +21,7 @@
 #include "dashpot/lcp.h"
 #include "dashpot/status.h"
 
-#define CHECK(cond, ...)                                                                                     \
-    do {                                                                                                     \
-        if (!(cond)) {                                                                                       \
-            print_error(__VA_ARGS__);                                                                        \
-            print_error("\n");                                                                               \
-            fail_msg("check failed: %s", #cond);                                                            \
-        }                                                                                                    \
-    } while (0)
-
-#define NEAR(a, b, tol)                                                                                      \
-    do {                                                                                                     \
-        double a_ = (a), b_ = (b);                                                                           \
-        CHECK(fabs(a_ - b_) <= (tol), "%s = %.17g, expected %s = %.17g within %g", #a, a_, #b, b_,          \
-              (double)(tol));                                                                                \
-    } while (0)
+#include "check.h"
 
 typedef struct problem {
     size_t m;

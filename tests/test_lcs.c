@@ -19,21 +19,7 @@
 #include "dashpot/lcs.h"
 #include "dashpot/status.h"
 
-#define CHECK(cond, ...)                                                                                     \
-    do {                                                                                                     \
-        if (!(cond)) {                                                                                       \
-            print_error(__VA_ARGS__);                                                                        \
-            print_error("\n");                                                                               \
-            fail_msg("check failed: %s", #cond);                                                            \
-        }                                                                                                    \
-    } while (0)
-
-#define NEAR(a, b, tol)                                                                                      \
-    do {                                                                                                     \
-        double a_ = (a), b_ = (b);                                                                           \
-        CHECK(fabs(a_ - b_) <= (tol), "%s = %.17g, expected %s = %.17g within %g", #a, a_, #b, b_,          \
-              (double)(tol));                                                                                \
-    } while (0)
+#include "check.h"
 
 /* The series circuit: R = 0.5, L = 1, C = 0.25, no source; x = (charge, current), i(0) = 1, q(0) = 0. */
 static const double R = 0.5, L = 1, Cap = 0.25, H = 1e-4;

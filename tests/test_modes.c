@@ -20,21 +20,7 @@
 
 #include "dashpot/modes.h"
 
-#define CHECK(cond, ...)                                                                                     \
-    do {                                                                                                     \
-        if (!(cond)) {                                                                                       \
-            print_error(__VA_ARGS__);                                                                        \
-            print_error("\n");                                                                               \
-            fail_msg("check failed: %s", #cond);                                                            \
-        }                                                                                                    \
-    } while (0)
-
-#define NEAR(a, b, tol)                                                                                      \
-    do {                                                                                                     \
-        double a_ = (a), b_ = (b);                                                                           \
-        CHECK(fabs(a_ - b_) <= (tol), "%s = %.17g, expected %s = %.17g within %g", #a, a_, #b, b_,          \
-              (double)(tol));                                                                                \
-    } while (0)
+#include "check.h"
 
 /* LAPACK's generalized symmetric-definite solver: the independent reference. */
 extern void dsygv_(const int *itype, const char *jobz, const char *uplo, const int *n, double *a, const int *lda,

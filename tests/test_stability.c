@@ -21,22 +21,7 @@
 #include "dashpot/stability.h"
 #include "dashpot/stability_json.h"
 
-#define CHECK(cond, ...)                                                                                     \
-    do {                                                                                                     \
-        if (!(cond)) {                                                                                       \
-            print_error(__VA_ARGS__);                                                                        \
-            print_error("\n");                                                                               \
-            fail_msg("check failed: %s", #cond);                                                            \
-        }                                                                                                    \
-    } while (0)
-
-/* |a - b| <= tol, printing both (cmocka 1.1.5 has no assert_double_equal). */
-#define NEAR(a, b, tol)                                                                                      \
-    do {                                                                                                     \
-        double a_ = (a), b_ = (b);                                                                           \
-        CHECK(fabs(a_ - b_) <= (tol), "%s = %.17g, expected %s = %.17g within %g", #a, a_, #b, b_,          \
-              (double)(tol));                                                                                \
-    } while (0)
+#include "check.h"
 
 static dp_law law_of(double m, int nl, const double *l, int nm, const double *u)
 {
