@@ -154,6 +154,14 @@ enum MHD_Result respond_problem(struct MHD_Connection *c, request *r, int status
 /* The problem for a failed dp_status (syntax 400, invalid 422, limit 422, memory 503, ...). */
 enum MHD_Result respond_status(struct MHD_Connection *c, request *r, int status, const char *detail,
                                const dp_errors *errs);
+/* The outcome of a JSON-layer function that answered the body into `out`: 200 with `type`, or (out freed)
+ * the problem for status s, a syntax error's message as its detail. */
+enum MHD_Result respond_answer(struct MHD_Connection *c, request *r, int s, dp_buf *out, const dp_errors *errs,
+                               const char *type);
+/* A route whose answer is one JSON document computed from the body by `answer`: 406 unless JSON is
+ * acceptable, then respond_answer. */
+typedef int (*json_answer_fn)(const char *body, size_t len, dp_buf *out, dp_errors *errs);
+enum MHD_Result respond_json_answer(struct MHD_Connection *c, request *r, json_answer_fn answer);
 
 /* ---- routes (routes.c, simulate.c, stability.c) ---- */
 

@@ -11,18 +11,7 @@
 
 enum MHD_Result handle_modes(struct MHD_Connection *c, request *r)
 {
-    static const char *const offers[] = { "application/json" };
-    if (negotiate(MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_ACCEPT), offers, 1) < 0)
-        return respond_problem(c, r, 406, NULL, "this route answers application/json", NULL, NULL);
-    dp_buf out = { 0 };
-    dp_errors errs;
-    dp_errors_init(&errs);
-    int s = dp_modes_respond(r->body.data ? r->body.data : "", r->body.len, &out, &errs);
-    if (s != DP_OK) {
-        dp_buf_free(&out);
-        return respond_status(c, r, s, s == DP_ESYNTAX && errs.n ? errs.item[0].message : NULL, &errs);
-    }
-    return respond_buffer(c, r, 200, "application/json", &out);
+    return respond_json_answer(c, r, dp_modes_respond);
 }
 
 enum MHD_Result handle_response(struct MHD_Connection *c, request *r)
@@ -37,9 +26,5 @@ enum MHD_Result handle_response(struct MHD_Connection *c, request *r)
     dp_errors errs;
     dp_errors_init(&errs);
     int s = dp_response_respond(r->body.data ? r->body.data : "", r->body.len, formats[f], &out, &errs);
-    if (s != DP_OK) {
-        dp_buf_free(&out);
-        return respond_status(c, r, s, s == DP_ESYNTAX && errs.n ? errs.item[0].message : NULL, &errs);
-    }
-    return respond_buffer(c, r, 200, dp_format_content_type((dp_format)formats[f]), &out);
+    return respond_answer(c, r, s, &out, &errs, dp_format_content_type((dp_format)formats[f]));
 }

@@ -136,3 +136,24 @@ enum MHD_Result respond_status(struct MHD_Connection *c, request *r, int status,
     }
     return respond_problem(c, r, dp_status_http(status), type, detail ? detail : dp_strerror(status), errs, NULL);
 }
+
+enum MHD_Result respond_answer(struct MHD_Connection *c, request *r, int s, dp_buf *out, const dp_errors *errs,
+                               const char *type)
+{
+    if (s == DP_OK)
+        return respond_buffer(c, r, 200, type, out);
+    dp_buf_free(out);
+    return respond_status(c, r, s, s == DP_ESYNTAX && errs->n ? errs->item[0].message : NULL, errs);
+}
+
+enum MHD_Result respond_json_answer(struct MHD_Connection *c, request *r, json_answer_fn answer)
+{
+    static const char *const offers[] = { "application/json" };
+    if (negotiate(MHD_lookup_connection_value(c, MHD_HEADER_KIND, MHD_HTTP_HEADER_ACCEPT), offers, 1) < 0)
+        return respond_problem(c, r, 406, NULL, "this route answers application/json", NULL, NULL);
+    dp_buf out = { 0 };
+    dp_errors errs;
+    dp_errors_init(&errs);
+    int s = answer(r->body.data ? r->body.data : "", r->body.len, &out, &errs);
+    return respond_answer(c, r, s, &out, &errs, "application/json");
+}
