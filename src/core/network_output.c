@@ -71,6 +71,20 @@ void nr_finalize_summary(dp_run *r)
 }
 
 
+/* Counts an event of element i at time t and hands it out if events are wanted: its elongation now and the
+ * rate du. */
+static void element_event(dp_run *r, dp_event_kind kind, double t, size_t i, double du)
+{
+    struct dp_net_run *nr = r->net;
+    r->sum.events++;
+    if (!r->spec.output.events)
+        return;
+    const dp_element *e = &nr->net->el[i];
+    dp_record rec = { .type = DP_RECORD_EVENT };
+    rec.u.event = (dp_event){ .kind = kind, .t = t, .x = nr_rel(e->a, e->b, nr->x), .v = du, .element = i };
+    nr_put(r, &rec);
+}
+
 /* Events at time t for the elements whose phase differs from `before`. */
 void nr_step_events(dp_run *r, const unsigned char *before, double t)
 {
@@ -78,18 +92,11 @@ void nr_step_events(dp_run *r, const unsigned char *before, double t)
     for (size_t i = 0; i < nr->nel; i++) {
         if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
             continue;
-        r->sum.events++;
-        if (!r->spec.output.events)
-            continue;
         const dp_element *e = &nr->net->el[i];
-        dp_record rec = { .type = DP_RECORD_EVENT };
-        rec.u.event = (dp_event){ .kind = nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP,
-                                  .t = t, .x = nr_rel(e->a, e->b, nr->x),
-                                  /* a stick holds the belt's speed exactly; the state carries its rounding */
-                                  .v = nr->phase[i] == DP_PHASE_STICK && e->has_damper ? e->damper.belt_velocity
-                                                                                       : nr_rel(e->a, e->b, nr->v),
-                                  .element = i };
-        nr_put(r, &rec);
+        /* a stick holds the belt's speed exactly; the state carries its rounding */
+        double du = nr->phase[i] == DP_PHASE_STICK && e->has_damper ? e->damper.belt_velocity
+                                                                    : nr_rel(e->a, e->b, nr->v);
+        element_event(r, nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP, t, i, du);
     }
 }
 
@@ -102,14 +109,8 @@ void nr_plastic_events(dp_run *r, double t)
         int before = nr->ep_flow_prev[i], now = nr->ep_flow[i];
         if (nr->ep_graph[i] == NULL || before == now)
             continue;
-        r->sum.events++;
-        if (!r->spec.output.events)
-            continue;
         const dp_element *e = &nr->net->el[i];
-        dp_record rec = { .type = DP_RECORD_EVENT };
-        rec.u.event = (dp_event){ .kind = now ? DP_EVENT_YIELD : DP_EVENT_UNLOAD, .t = t,
-                                  .x = nr_rel(e->a, e->b, nr->x), .v = nr_rel(e->a, e->b, nr->v), .element = i };
-        nr_put(r, &rec);
+        element_event(r, now ? DP_EVENT_YIELD : DP_EVENT_UNLOAD, t, i, nr_rel(e->a, e->b, nr->v));
     }
 }
 
