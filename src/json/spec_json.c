@@ -797,13 +797,21 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
 
 
 
+/* The document's tree (NULL: malformed, or out of memory in c->nomem), a NUL in a string counted as an error. */
+static cJSON *read_document(ctx *c, const char *text, size_t len)
+{
+    cJSON *root = dp_json_read(text ? text : "", text ? len : 0, c->errs, &c->nomem);
+    if (root != NULL)
+        c->nerr += dp_json_refuse_nul(c->errs, text, len);
+    return root;
+}
+
 int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs)
 {
     ctx c = { errs, 0, 0 };
-    cJSON *root = dp_json_read(text ? text : "", text ? len : 0, errs, &c.nomem);
+    cJSON *root = read_document(&c, text, len);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
-    c.nerr += dp_json_refuse_nul(errs, text, len);
     parse_root(&c, root, spec);
     cJSON_Delete(root);
     if (c.nomem)
@@ -850,10 +858,9 @@ int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_err
 {
     ctx c = { errs, 0, 0, 1 };
     at p;
-    cJSON *root = dp_json_read(text ? text : "", text ? len : 0, errs, &c.nomem);
+    cJSON *root = read_document(&c, text, len);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
-    c.nerr += dp_json_refuse_nul(errs, text, len);
     int s = lenient_model(&c, model_member(&c, root, &p), &p, model);
     cJSON_Delete(root);
     return s;
@@ -883,10 +890,9 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
 {
     ctx c = { errs, 0, 0, 1 };
     at p;
-    cJSON *root = dp_json_read(text ? text : "", text ? len : 0, errs, &c.nomem);
+    cJSON *root = read_document(&c, text, len);
     if (root == NULL)
         return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
-    c.nerr += dp_json_refuse_nul(errs, text, len);
     const cJSON *v = model_member(&c, root, &p);
     int s;
     if (v != NULL && is_right_hand(v)) {
