@@ -21,11 +21,22 @@
 /* Full matrices are n x n numbers on the wire: past this many nodes a matrix document is refused. */
 #define DP_NETWORK_MAX_MATRIX_NODES 200
 
+/* A unilateral contact on an element (systems.md §4): its elongation must stay at least `distance`.
+ * Rigid (compliance 0): Newton's impact law with restitution e in [0, 1] at the velocity level (Moreau-Jean);
+ * compliant (compliance k > 0): the force k max(distance - u, 0) pushing the ends apart instead, the Yosida
+ * approximation of the rigid contact (002 (2.7)), which rebounds elastically. */
+typedef struct dp_contact {
+    double distance;
+    double restitution;
+    double compliance;
+} dp_contact;
+
 typedef struct dp_element {
     long a, b;          /* ends: node index or DP_GROUND */
-    int has_spring, has_damper;
+    int has_spring, has_damper, has_contact;
     dp_spring spring;
     dp_damper damper;
+    dp_contact contact;
 } dp_element;
 
 /* A load on one node. */
@@ -62,8 +73,9 @@ int dp_element_can_stick(const dp_element *e);
  * (linear and Bingham dampers) b b^T. Any of the outputs may be NULL. */
 void dp_network_linear_parts(const dp_network *net, double *M, double *K, double *C);
 
-/* The elements whose laws are not linear (set-valued or nonlinear springs and dampers, relaxation): what a
- * linear analysis leaves out. Writes their indices into `out` (room for net->nel) and returns how many. */
+/* The elements whose laws are not linear (set-valued or nonlinear springs and dampers, relaxation, contacts):
+ * what a linear analysis leaves out. Writes their indices into `out` (room for net->nel; NULL: only counts)
+ * and returns how many. */
 size_t dp_network_nonlinear_elements(const dp_network *net, size_t *out);
 
 struct dp_wp_report;

@@ -173,8 +173,11 @@ size_t dp_network_nonlinear_elements(const dp_network *net, size_t *out)
         int nonlinear_damper = e->has_damper && e->damper.law != DP_DAMPER_NONE &&
                                e->damper.law != DP_DAMPER_LINEAR;
         int relaxed = e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE;
-        if (nonlinear_spring || nonlinear_damper || relaxed)
-            out[m++] = i;
+        if (nonlinear_spring || nonlinear_damper || relaxed || e->has_contact) {
+            if (out)
+                out[m] = i;
+            m++;
+        }
     }
     return m;
 }

@@ -67,6 +67,39 @@ static void check_matrix(const double *A, size_t n, const char *ptr, int definit
         dp_errors_add(e, ptr, "must be positive semidefinite: its smallest eigenvalue is %.6g", lo);
 }
 
+/* A contact (network_contact.c): the initial state must respect it, the element's spring must leave it
+ * something to do, and its solver must step it. */
+static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
+{
+    const dp_element *el = &s->net->el[i];
+    const dp_contact *c = &el->contact;
+    char p[DP_POINTER_MAX];
+    if (u < c->distance) {
+        snprintf(p, sizeof p, "/initial/x/%ld", el->b >= 0 ? el->b : el->a);
+        dp_errors_add(e, p, "element %zu's contact needs its elongation u = x_b - x_a >= %g (its distance), but "
+                      "the initial state has u = %.17g: the ends start inside the stop", i, c->distance, u);
+    }
+    const dp_graph *g = el->has_spring ? &el->spring.graph : NULL;
+    snprintf(p, sizeof p, "/model/elements/%zu/contact/distance", i);
+    if (g && g->n && g->right[0] == 0 && g->y[g->n - 1] < c->distance)
+        dp_errors_add(e, p, "the element's spring allows no elongation above %g, the contact none below %g: no "
+                      "state satisfies both", g->y[g->n - 1], c->distance);
+    else if (g && g->n && g->left[0] == 0 && g->y[0] >= c->distance)
+        dp_errors_add(e, p, "the element's spring already forbids elongations below %g, so the contact (>= %g) "
+                      "could never act: drop it, or raise its distance", g->y[0], c->distance);
+    snprintf(p, sizeof p, "/model/elements/%zu/contact", i);
+    if (s->solver.kind == DP_SOLVER_NEWMARK)
+        dp_errors_add(e, p, "contacts are stepped by the stick-slip solver (Moreau-Jean) or, compliant, by the "
+                      "regularized one; the newmark solver has no impact law");
+    else if (s->solver.kind == DP_SOLVER_REGULARIZED && c->compliance == 0)
+        dp_errors_add(e, p, "a rigid contact makes the velocity jump, which the regularized ODE cannot: give it a "
+                      "\"compliance\" (its Yosida approximation, force k max(d - u, 0)), or use the stick-slip "
+                      "solver");
+    else if (s->solver.kind == DP_SOLVER_STICK_SLIP && c->compliance > 0 && s->solver.theta != 1)
+        dp_errors_add(e, p, "a compliant contact is a graph spring, stepped by backward Euler: use theta = 1, or "
+                      "the regularized solver (which integrates it to its tolerances)");
+}
+
 static void check_element(const dp_spec *s, size_t i, dp_errors *e)
 {
     const dp_element *el = &s->net->el[i];
@@ -98,6 +131,8 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
         dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler): use "
                       "theta = 1", dp_spring_law_name(el->spring.law));
     }
+    if (el->has_contact)
+        check_contact(s, i, u, e);
     if (el->has_damper && el->damper.relaxation.kind == DP_RELAX_POWER) {
         snprintf(p, sizeof p, "/model/elements/%zu/damper/relaxation", i);
         dp_errors_add(e, p, "the power relaxation is not Lipschitz at rest, so a network step need not have one "

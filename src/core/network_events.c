@@ -27,6 +27,7 @@ static double held_margin(void *vctx, double s)
     nr_step_rhs(nr, c->t, s);
     if (dp_net_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
         return NAN;
+    nr_contacts_margins(nr, s);
     double m = INFINITY;
     for (size_t k = 0; k < nr->nact; k++)
         if (c->cand == NULL || c->cand[k])
@@ -158,18 +159,59 @@ static int breaks_away(dp_run *r, double t, double h)
  * the starting assignment is held up to the earliest instant where it fails, the step is taken to there,
  * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
  * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. */
+/* The rest of a step taken whole from t (no instant to split it at): contacts the solution carries through
+ * their stops are armed and it is solved again. */
+static int finish_step(dp_run *r, double t, double left)
+{
+    struct dp_net_run *nr = r->net;
+    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+    int s = nr_net_step_keep(r, t, left);
+    if (s == DP_OK && nr_contacts_arm_closing(nr, left))
+        s = nr_net_step_keep(r, t, left);
+    if (s != DP_OK)
+        return s;
+    nr_take_velocity(nr, left);
+    nr_element_forces(nr, 1);
+    nr_step_events(r, nr->phase_prev, t + left);
+    nr_stick_time(r, nr->phase, left);
+    if (nr->nc)
+        nr_contacts_mj_events(r, t, left);
+    return DP_OK;
+}
+
+/* Contacts at a sub-step's start t: impacts there; after a velocity jump the assignment is renewed by a
+ * billionth of a step (as at the run's start) and the phase changes it made are events at t. */
+static int contacts_at(dp_run *r, double t, double left)
+{
+    struct dp_net_run *nr = r->net;
+    int jumped = nr_contacts_instant(r, t, r->h);
+    if (jumped < 0)
+        return -jumped;
+    if (jumped == 0)
+        return DP_OK;
+    int s = nr_net_step_keep(r, t, 1e-9 * left);
+    if (s != DP_OK)
+        return s;
+    nr_element_forces(nr, 1);
+    nr_step_events(r, nr->phase_prev, t);
+    memcpy(nr->phase_prev, nr->phase, nr->nel);
+    return DP_OK;
+}
+
 int nr_located_step(dp_run *r, double t, double h)
 {
     struct dp_net_run *nr = r->net;
     double left = h;
     for (size_t sub = 0; left > 0; sub++) {
         memcpy(nr->phase_prev, nr->phase, nr->nel);
-        dp_net_ws_pattern_save(nr->ws, nr->pattern);
-        int s = nr_net_step_keep(r, t, left);
+        int s = nr->nc ? contacts_at(r, t, left) : DP_OK;
         if (s != DP_OK)
             return s;
+        dp_net_ws_pattern_save(nr->ws, nr->pattern);
+        if ((s = nr_net_step_keep(r, t, left)) != DP_OK)
+            return s;
         nr_element_forces(nr, 1);
-        int same = dp_net_ws_pattern_same(nr->ws, nr->pattern);
+        int same = dp_net_ws_pattern_same(nr->ws, nr->pattern) && !nr_contacts_penetrate(nr, left);
         if (same && nr->theta < 1) {      /* keep the step's solution while the held step looks further */
             memcpy(nr->v1_keep, nr->v1, nr->n * sizeof *nr->v1);
             memcpy(nr->force_keep, nr->force, nr->nact * sizeof *nr->force);
@@ -177,33 +219,34 @@ int nr_located_step(dp_run *r, double t, double h)
             memcpy(nr->v1, nr->v1_keep, nr->n * sizeof *nr->v1);
             memcpy(nr->force, nr->force_keep, nr->nact * sizeof *nr->force);
         }
-        if (same || sub > 2 * nr->nact + 4) {
+        if (same) {
             nr_take_velocity(nr, left);
             nr_element_forces(nr, 1);
             nr_step_events(r, nr->phase_prev, t + left);
             nr_stick_time(r, nr->phase, left);
             return DP_OK;
         }
+        /* impacts add sub-steps of their own (accumulating ones end plastic: network_contact.c) */
+        if (sub > 2 * nr->nact + 4 + 2 * nr->impacts_step)
+            return finish_step(r, t, left);
         double at = earliest_event(r, t, left, nr->fails);
-        if (!(at > 1e-9 * left) || at >= left) {
-            /* no instant to split at (a change at the very start, or none the held assignment sees) */
-            dp_net_ws_pattern_restore(nr->ws, nr->pattern);
-            if ((s = nr_net_step_keep(r, t, left)) != DP_OK)
-                return s;
-            nr_take_velocity(nr, left);
-            nr_element_forces(nr, 1);
-            nr_step_events(r, nr->phase_prev, t + left);
-            nr_stick_time(r, nr->phase, left);
-            return DP_OK;
-        }
+        if (!(at > 1e-9 * left) || at >= left)
+            return finish_step(r, t, left);  /* no instant to split at (a change at the very start, or none the
+                                                 held assignment sees) */
         held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
         nr_take_velocity(nr, at);
         nr_element_forces(nr, 1);
         /* every element whose assignment fails at this instant (to the root's tolerance) switches here:
          * identical blocks stick together */
-        for (size_t j = 0; j < nr->nact; j++)
-            if (nr->fails[j])
+        for (size_t j = 0; j < nr->nact; j++) {
+            if (!nr->fails[j])
+                continue;
+            if (j < nr->nact_el)
                 nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
+            else if (nr->ct_on[j - nr->nact_el])
+                switch_element(r, t + at, left - at, j);    /* a resting contact let go */
+            /* a closing contact takes its impact at the next sub-step's start */
+        }
         nr_stick_time(r, nr->phase_prev, at);
         nr_step_events(r, nr->phase_prev, t + at);
         t += at, left -= at;

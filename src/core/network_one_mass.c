@@ -13,7 +13,7 @@ int dp_network_is_one_mass(const dp_spec *s)
     const dp_network *n = s->net;
     if (n == NULL || n->n != 1 || n->nel != 1 || n->mass == NULL || n->M || n->K || n->C)
         return 0;
-    if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS)
+    if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
         return 0;
     /* an elastoplastic spring steps on the network solver, which writes its "p" columns */
     return s->solver.kind == DP_SOLVER_STICK_SLIP && n->el[0].spring.law != DP_SPRING_ELASTOPLASTIC;

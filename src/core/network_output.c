@@ -25,6 +25,8 @@ dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data)
     }
     for (size_t j = 0; j < nr->nep_cols; j++)
         data[2 * nn + 3 * ne + j] = nr->ep_p[nr->ep_cols[j]];
+    for (size_t j = 0; nr->Fn && j < ne; j++)
+        data[2 * nn + 3 * ne + nr->nep_cols + j] = nr->Fn[nr->cols.element[j]];
     return (dp_row){ .t = t, .val = data };
 }
 
@@ -82,6 +84,19 @@ static void element_event(dp_run *r, dp_event_kind kind, double t, size_t i, dou
     const dp_element *e = &nr->net->el[i];
     dp_record rec = { .type = DP_RECORD_EVENT };
     rec.u.event = (dp_event){ .kind = kind, .t = t, .x = nr_rel(e->a, e->b, nr->x), .v = du, .element = i };
+    nr_put(r, &rec);
+}
+
+void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse)
+{
+    struct dp_net_run *nr = r->net;
+    r->sum.events++;
+    if (!r->spec.output.events)
+        return;
+    const dp_element *e = &nr->net->el[i];
+    dp_record rec = { .type = DP_RECORD_EVENT };
+    rec.u.event = (dp_event){ .kind = DP_EVENT_IMPACT, .t = t, .x = nr_rel(e->a, e->b, nr->x), .v = before,
+                              .element = i, .v_after = after, .impulse = impulse };
     nr_put(r, &rec);
 }
 

@@ -28,6 +28,12 @@ struct dp_net_reg {
     unsigned long long fevals;
 };
 
+/* A compliant contact's force -k max(d - u, 0) (network_contact.c). */
+static double contact_force(const dp_element *e, double u)
+{
+    return e->has_contact ? -e->contact.compliance * fmax(e->contact.distance - u, 0) : 0;
+}
+
 /* An element's regularized force at elongation u and rate z, and (slopes) its derivatives in u and z. */
 static double element_force(const struct dp_net_run *nr, size_t i, double u, double z, double lam, double *du,
                             double *dz)
@@ -37,6 +43,10 @@ static double element_force(const struct dp_net_run *nr, size_t i, double u, dou
     *du = *dz = 0;
     if (e->has_spring && e->spring.law != DP_SPRING_LINEAR)
         f += dp_graph_yosida_slope(&e->spring.graph, lam, u, du);
+    if (e->has_contact && u < e->contact.distance) {   /* compliant (rigid ones are refused) */
+        f += contact_force(e, u);
+        *du += e->contact.compliance;
+    }
     if (e->has_damper) {
         f += dp_graph_yosida_slope(&e->damper.graph, lam, z - vb, &s);
         *dz += s;
@@ -171,12 +181,13 @@ static void row_forces(struct dp_net_reg *g)
             s = dp_graph_yosida_slope(&e->spring.graph, g->lam, u, &du);
         if (e->has_damper) {
             vb = e->damper.belt_velocity;
-            d = element_force(nr, i, u, z, g->lam, &du, &dz) - s;
+            d = element_force(nr, i, u, z, g->lam, &du, &dz) - s - contact_force(e, u);
         }
         nr->Fs[i] = nr->k[i] * u + s;
         nr->Fd[i] = nr->c[i] * (z - vb) + d;
         nr->phase[i] = DP_PHASE_NONE;
     }
+    nr_contacts_forces(nr, 0);
 }
 
 /* M^-1, dense: the inverse masses, or the mass matrix inverted through its Cholesky factor. */

@@ -83,17 +83,18 @@ static void build_W(struct dp_net_run *nr, double h)
 
 static int alloc_all(struct dp_net_run *nr)
 {
-    size_t n = nr->n, ne = nr->nel ? nr->nel : 1, band = n * (nr->p + 1);
+    /* arrays over the convex problem's elements hold every element's laws and every contact: 2 per element */
+    size_t n = nr->n, ne = nr->nel ? nr->nel : 1, na = 2 * ne, band = n * (nr->p + 1);
     nr->M = calloc(band, sizeof(double));
     nr->K = calloc(band, sizeof(double));
     nr->C = calloc(band, sizeof(double));
-    nr->act = calloc(ne, sizeof *nr->act);
+    nr->act = calloc(na, sizeof *nr->act);
     nr->act_of = calloc(ne, sizeof *nr->act_of);
-    nr->act_el = calloc(ne, sizeof *nr->act_el);
-    nr->gamma = calloc(ne, sizeof *nr->gamma);
-    nr->static_A = calloc(ne, sizeof *nr->static_A);
-    nr->held = calloc(ne, 1);
-    nr->broke = calloc(ne, 1);
+    nr->act_el = calloc(na, sizeof *nr->act_el);
+    nr->gamma = calloc(na, sizeof *nr->gamma);
+    nr->static_A = calloc(na, sizeof *nr->static_A);
+    nr->held = calloc(na, 1);
+    nr->broke = calloc(na, 1);
     nr->k = calloc(ne, sizeof(double));
     nr->c = calloc(ne, sizeof(double));
     nr->x = calloc(n, sizeof(double));
@@ -101,8 +102,8 @@ static int alloc_all(struct dp_net_run *nr)
     nr->v1 = calloc(n, sizeof(double));
     nr->rhs = calloc(n, sizeof(double));
     nr->tmp = calloc(n, sizeof(double));
-    nr->u = calloc(ne, sizeof(double));
-    nr->force = calloc(ne, sizeof *nr->force);
+    nr->u = calloc(na, sizeof(double));
+    nr->force = calloc(na, sizeof *nr->force);
     nr->Fs = calloc(ne, sizeof(double));
     nr->Fd = calloc(ne, sizeof(double));
     nr->phase = calloc(ne, 1);
@@ -226,7 +227,7 @@ static int setup_laws(struct dp_net_run *nr)
                                              .vb = e->has_damper ? e->damper.belt_velocity : 0,
                                              .ep_theta = is_ep(e) ? nr->theta : 0 };
     }
-    return DP_OK;
+    return nr_contacts_setup(nr);
 }
 
 static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
@@ -254,6 +255,10 @@ static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
                                                                 .index = nr->ep_cols };
         nr->row_len = nr->cols.width += nr->nep_cols;
     }
+    if (nr->nc) {         /* the contacts' forces (0 for the written elements without one) */
+        nr->cols.group[nr->cols.ngroups++] = (dp_column_group){ .name = "Fn", .n = ne, .index = nr->cols.element };
+        nr->row_len = nr->cols.width += ne;
+    }
     size_t rl = nr->row_len ? nr->row_len : 1;
     nr->final_row = calloc(rl, sizeof(double));
     nr->pending_row = calloc(rl, sizeof(double));
@@ -269,6 +274,7 @@ void dp_network_run_free(struct dp_net_run *nr)
     for (size_t i = 0; nr->static_A && i < nr->nact; i++)
         dp_graph_clear(&nr->static_A[i]);
     dp_nm_free(nr->nm);
+    nr_contacts_free(nr);
     void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
@@ -315,6 +321,7 @@ void nr_element_forces(struct dp_net_run *nr, int stepped)
         nr->Fs[i] = fs, nr->Fd[i] = fd;
         nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
     }
+    nr_contacts_forces(nr, stepped);
 }
 
 /* ---- stepping --------------------------------------------------------------------------------------- */
@@ -421,12 +428,16 @@ int nr_net_step_keep(dp_run *r, double t, double h)
     return s;
 }
 
-/* One theta-step of length h from time t, solved exactly. */
+/* One theta-step of length h from time t, solved exactly; contacts armed by Moreau-Jean's rule. */
 static int net_step(dp_run *r, double t, double h)
 {
+    if (r->net->nc)
+        nr_contacts_arm_mj(r->net, h);
     int s = nr_net_step_keep(r, t, h);
     if (s == DP_OK)
         nr_take_velocity(r->net, h);
+    if (s == DP_OK && r->net->nc)
+        nr_contacts_mj_events(r, t, h);
     return s;
 }
 
@@ -598,6 +609,8 @@ int dp_network_run_init(dp_run *r)
      * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
      * leaves its assignment for the first located step. */
     double h0 = 1e-9 * r->h;
+    if (nr->nc)
+        nr_contacts_arm_mj(nr, h0);
     if (nr_net_step_keep(r, 0, h0) == DP_OK)
         nr_element_forces(nr, 1);
     else
@@ -623,6 +636,7 @@ int dp_network_run_advance(dp_run *r)
             return r->status;
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
+        nr->impacts_step = 0;
         if (nr->nm) {
             if ((s = newmark_step(r, t, h)) == DP_OK) {
                 nr_element_forces(nr, 0);
@@ -665,6 +679,9 @@ int dp_network_locates(const dp_spec *s)
     int sticky = 0;
     for (size_t i = 0; i < s->net->nel; i++) {
         const dp_element *e = &s->net->el[i];
+        if (e->has_contact && e->contact.compliance > 0)
+            return 0;     /* a compliant contact is a graph spring */
+        sticky |= e->has_contact;
         if (e->has_spring && e->spring.law != DP_SPRING_LINEAR)
             return 0;
         if (e->has_damper && (e->damper.relaxation.kind != DP_RELAX_NONE ||

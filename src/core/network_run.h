@@ -62,6 +62,20 @@ struct dp_net_run {
     double *nm_ek, *nm_F, *nm_P;
     signed char *nm_flow;
     size_t *nm_el, nm_nep;
+    /* unilateral contacts (network_contact.c): act[nact_el..nact) are the contacts, in element order */
+    size_t nact_el, nc;
+    size_t *ct_el;              /* per contact: its element */
+    dp_graph cone;              /* the rigid contacts' cone, shared */
+    dp_graph *ct_soft;          /* per contact: a compliant one's spring graph, else empty */
+    unsigned char *ct_on;       /* per contact: armed for the current (sub-)step */
+    unsigned char *ct_touch;    /* per contact: scratch of an instant */
+    double *ct_last, *ct_pre;   /* per contact: time of its last located impact; its rate when armed (MJ) */
+    double *Fn;                 /* per element: the contact's force */
+    dp_net_ws *iws;             /* the impact problem: W = M, the contacts' cones */
+    dp_net_elem *imp;
+    dp_net_force *iforce;
+    double *iv;                 /* 2n: its right side and solution */
+    unsigned long long impacts_step;
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */
@@ -93,6 +107,20 @@ void nr_take_velocity(struct dp_net_run *nr, double h);
 void nr_element_forces(struct dp_net_run *nr, int stepped);
 /* One step of length h from t split at its phase changes (network_events.c). */
 int nr_located_step(dp_run *r, double t, double h);
+
+/* Contacts (network_contact.c): set-up after the elements' laws, Moreau-Jean arming and its impact events,
+ * located impacts at an instant, the unarmed contacts' gaps as held margins, their forces. */
+int nr_contacts_setup(struct dp_net_run *nr);
+void nr_contacts_free(struct dp_net_run *nr);
+void nr_contacts_arm_mj(struct dp_net_run *nr, double h);
+void nr_contacts_mj_events(dp_run *r, double t, double h);
+int nr_contacts_instant(dp_run *r, double t, double h);
+void nr_contacts_margins(struct dp_net_run *nr, double s);
+int nr_contacts_penetrate(struct dp_net_run *nr, double h);
+size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h);
+void nr_contacts_forces(struct dp_net_run *nr, int stepped);
+/* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
+void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse);
 
 /* Yield and unload events at time t of the elastoplastic springs whose slider started or stopped sliding. */
 void nr_plastic_events(dp_run *r, double t);

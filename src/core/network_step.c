@@ -514,8 +514,25 @@ static int inside(double lam, double lo, double hi)
     return lam >= lo - tol && lam <= hi + tol;
 }
 
+/* The end of A's domain nearest z, for a z outside it (a vertical end ray of the damper graph); 0 when the
+ * domain is not A's to end (a spring graph's). */
+static int domain_end(const dp_net_elem *e, double z, vertex *at)
+{
+    const dp_graph *A = e->A;
+    if (A == NULL)
+        return 0;
+    double y = z - e->vb, lo, hi;
+    size_t k = y < A->y[0] ? 0 : A->n - 1;
+    dp_graph_force(A, A->y[k], &lo, &hi);
+    if (!(lo < hi))
+        return 0;
+    *at = (vertex){ A->y[k] + e->vb, SRC_A, A->y[k] };
+    return 1;
+}
+
 /* The assignment at a start point v: elements on a vertex of A are fixed there (while independent),
- * others free on the piece holding z. 0 when some z lies outside its graph's domain. */
+ * others free on the piece holding z; one whose z lies beyond a vertical end of A fixed at that end. 0 when
+ * some z lies outside its graph's domain otherwise. */
 static int assign_start(dp_net_ws *w, double h, const double *u, const double *v)
 {
     forest_reset(w);
@@ -528,8 +545,14 @@ static int assign_start(dp_net_ws *w, double h, const double *u, const double *v
         else if (e->S && dp_graph_has_vertex(e->S, u[i] + s_beta(e, h) * z))
             at.src = SRC_S, at.y = u[i] + s_beta(e, h) * z;
         sigma_interval(w, i, u[i], h, &at, &lo, &hi);
-        if (lo == hi && !isfinite(lo))
-            return 0;                    /* outside the domain */
+        if (lo == hi && !isfinite(lo)) {
+            /* outside the domain (a contact approaching at the start): fixed at the domain's end, where the
+             * first solve puts it; v is then infeasible until the walk reaches a minimizer */
+            if (!domain_end(e, z, &at) || !join(w, e, at.z))
+                return 0;
+            w->es[i].st = FIXED, w->es[i].fix = at;
+            continue;
+        }
         if (lo < hi && join(w, e, z)) {  /* a vertex with a force interval */
             w->es[i].st = FIXED, w->es[i].fix = at;
             continue;

@@ -61,6 +61,32 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
              "is checked against W - h theta sum L b b^T > 0", relaxed);
     check(rep, "relaxation gamma Lipschitz", d);
     const char *thm = "maximal monotone evolution inclusion (Brezis 1973, Thm 3.1; seed 001 Thms 2-3 for one mass)";
+    size_t rigid = 0, soft = 0, other = dp_network_nonlinear_elements(net, NULL);
+    for (size_t i = 0; i < net->nel; i++)
+        if (net->el[i].has_contact)
+            net->el[i].contact.compliance > 0 ? soft++ : rigid++;
+    if (rigid + soft) {
+        snprintf(d, sizeof d, "%zu rigid contacts (Newton's law, restitution in [0, 1], so no impact gains energy), "
+                 "%zu compliant ones (a monotone spring graph, covered by the theorem above)", rigid, soft);
+        check(rep, "contacts: restitution in [0, 1]", d);
+    }
+    if (rigid && static_at < 0) {   /* Moreau's sweeping process of second order with Newton's impact law */
+        rep->existence = (dp_wp_verdict){ .guaranteed = 1, .theorem = "measure differential inclusion with "
+            "Newton's impact law (Moreau 1988; Monteiro Marques 1993; Paoli-Schatzman 2002: Moreau-Jean's scheme "
+            "converges to a solution)" };
+        snprintf(rep->existence.reason, DP_WP_TEXT, "all hypotheses hold, each contact's restitution in [0, 1]");
+        int unique = rigid == 1 && other == 1;   /* the contact's element is the only nonlinear one */
+        rep->uniqueness = (dp_wp_verdict){ .guaranteed = unique, .theorem = unique ? "Ballard 2000: one "
+            "unilateral constraint and analytic data (linear elements; the forcing must be analytic too)" : NULL };
+        snprintf(rep->uniqueness.reason, DP_WP_TEXT, unique ? "one rigid contact, every other law linear" :
+                 rigid > 1 ? "several rigid contacts: where they close at the same instant Newton's law is one "
+                             "choice of outcome (Moreau's), and the motion need not depend continuously on the "
+                             "initial state (Newton's cradle); beyond analytic data uniqueness can fail even for "
+                             "one (Schatzman 1978)" :
+                 "a rigid contact with set-valued or piecewise-linear laws: the data are not analytic, and "
+                 "uniqueness can fail (Schatzman 1978); Ballard 2000 needs analytic data");
+        return;
+    }
     if (static_at >= 0) {
         rep->existence = (dp_wp_verdict){ .guaranteed = 0 };
         rep->uniqueness = (dp_wp_verdict){ .guaranteed = 0 };

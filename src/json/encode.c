@@ -118,14 +118,20 @@ static char *put_sample_members(dp_number_text *recent, char *p, const dp_sample
 static char *put_event_members(char *p, const dp_event *ev, int network)
 {
     p = ev->kind == DP_EVENT_STICK ? PUT(p, "\"kind\":\"stick\"") : ev->kind == DP_EVENT_SLIP ? PUT(p, "\"kind\":\"slip\"")
-      : ev->kind == DP_EVENT_YIELD ? PUT(p, "\"kind\":\"yield\"") : PUT(p, "\"kind\":\"unload\"");
+      : ev->kind == DP_EVENT_YIELD ? PUT(p, "\"kind\":\"yield\"") : ev->kind == DP_EVENT_IMPACT ? PUT(p, "\"kind\":\"impact\"")
+      : PUT(p, "\"kind\":\"unload\"");
     if (network) {   /* the element, when, and its elongation u and rate du at that instant */
         char num[24];
         int len = snprintf(num, sizeof num, "%zu", ev->element);
         p = put_lit(PUT(p, ",\"element\":"), num, (size_t)len);
         p = put_num(PUT(p, ",\"t\":"), ev->t);
         p = put_num(PUT(p, ",\"u\":"), ev->x);
-        return put_num(PUT(p, ",\"du\":"), ev->v);
+        p = put_num(PUT(p, ",\"du\":"), ev->v);
+        if (ev->kind != DP_EVENT_IMPACT)
+            return p;
+        /* an impact: the rate just after and the impulse that made the jump */
+        p = put_num(PUT(p, ",\"du_after\":"), ev->v_after);
+        return put_num(PUT(p, ",\"impulse\":"), ev->impulse);
     }
     p = put_num(PUT(p, ",\"t\":"), ev->t);
     p = put_num(PUT(p, ",\"x\":"), ev->x);

@@ -1,0 +1,292 @@
+/* src/core/network_contact.c - unilateral contacts on a network (systems.md §4, seed 002 §2.3): an element's
+ * elongation u kept at least its distance d.
+ *
+ * A rigid contact is one more element of the step's convex problem, armed for a step where it closes: the
+ * cone  z >= v_c  (force in (-inf, 0] at z = v_c, 0 above), with v_c = -e u'- (Newton's law on the step's end
+ * velocity, Moreau-Jean: Siconos' NewtonImpactNSL). So a block that hits a stop while it sticks or slips on
+ * a belt is one exact step problem, and the contact sticks to rounding (no creep) as friction does.
+ *
+ * With events located (network_events.c) an impact is found inside its step as a root of the gap, and at
+ * that instant the velocity jumps by the impact problem  min 1/2 |v+ - v-|_M^2  over  b_c^T v+ >= -e b_c^T v-
+ * for the touching contacts (the same exact solver with W = M: only contacts carry an impulse; forces of
+ * bounded laws carry none in no time). A contact that rests (closed at zero relative velocity) stays armed at
+ * v_c = 0 until the step's solution lets it go.
+ *
+ * Accumulating impacts (a ball coming to rest, Zeno): a contact's impacts k and k+1 a time tau apart predict
+ * e tau / (1 - e) before the accumulation point (exact for a constant force). Once that falls below 10^-9 of
+ * a step the infinitely many impacts left take less time than location resolves, and the impact is made
+ * plastic: the mass rests on the stop from there, after finitely many located impacts.
+ *
+ * A compliant contact is a spring graph, force -k max(d - u, 0) (the Yosida approximation of the rigid one):
+ * one more element with that graph, or a force in the regularized scheme (network_regularized.c).
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "network_run.h"
+
+/* Impacts of one step after which the rest of the step is plain Moreau-Jean for every contact. */
+#define IMPACTS_PER_STEP 100000
+
+/* The rigid cone (vertex (0, 0), a vertical ray down, a horizontal ray right) and a compliant contact's
+ * graph in u (vertex (d, 0), slope k to the left, 0 to the right). */
+static int cone_graph(dp_graph *g)
+{
+    const double y = 0, f = 0, left[2] = { 0, 1 }, right[2] = { 1, 0 };
+    return dp_graph_init(g, 1, &y, &f, left, right);
+}
+
+static int compliance_graph(dp_graph *g, const dp_contact *c)
+{
+    const double left[2] = { 1, c->compliance }, right[2] = { 1, 0 };
+    return dp_graph_init(g, 1, &c->distance, &(double){ 0 }, left, right);
+}
+
+int nr_contacts_setup(struct dp_net_run *nr)
+{
+    const dp_network *net = nr->net;
+    size_t m = 0;
+    for (size_t i = 0; i < nr->nel; i++)
+        m += net->el[i].has_contact;
+    nr->nact_el = nr->nact;
+    if (m == 0)
+        return DP_OK;
+    nr->nc = m;
+    nr->ct_el = calloc(m, sizeof *nr->ct_el);
+    nr->ct_soft = calloc(m, sizeof *nr->ct_soft);
+    nr->ct_on = calloc(m, 1);
+    nr->ct_last = calloc(m, sizeof *nr->ct_last);
+    nr->ct_pre = calloc(m, sizeof *nr->ct_pre);
+    nr->ct_touch = calloc(m, 1);
+    nr->Fn = calloc(nr->nel, sizeof *nr->Fn);
+    nr->imp = calloc(m, sizeof *nr->imp);
+    nr->iforce = calloc(m, sizeof *nr->iforce);
+    nr->iv = calloc(2 * nr->n, sizeof *nr->iv);
+    if (!nr->ct_el || !nr->ct_soft || !nr->ct_on || !nr->ct_last || !nr->ct_pre || !nr->ct_touch || !nr->Fn || !nr->imp ||
+        !nr->iforce || !nr->iv || cone_graph(&nr->cone) != DP_OK)
+        return DP_ENOMEM;
+    size_t c = 0;
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &net->el[i];
+        if (!e->has_contact)
+            continue;
+        nr->ct_el[c] = i, nr->ct_last[c] = -INFINITY;
+        dp_net_elem *a = &nr->act[nr->nact];
+        *a = (dp_net_elem){ .a = e->a, .b = e->b };
+        if (e->contact.compliance > 0) {
+            if (compliance_graph(&nr->ct_soft[c], &e->contact) != DP_OK)
+                return DP_ENOMEM;
+            a->S = &nr->ct_soft[c];
+        }
+        nr->imp[c] = (dp_net_elem){ .a = e->a, .b = e->b };
+        nr->act_el[nr->nact++] = i;
+        c++;
+    }
+    nr->iws = dp_net_ws_alloc(nr->n, nr->p, m, nr->imp);
+    if (nr->iws == NULL)
+        return DP_ENOMEM;
+    memcpy(dp_net_ws_W(nr->iws), nr->M, nr->n * (nr->p + 1) * sizeof(double));
+    dp_net_ws_W_changed(nr->iws);
+    return DP_OK;
+}
+
+void nr_contacts_free(struct dp_net_run *nr)
+{
+    for (size_t c = 0; nr->ct_soft && c < nr->nc; c++)
+        dp_graph_clear(&nr->ct_soft[c]);
+    dp_graph_clear(&nr->cone);
+    dp_net_ws_free(nr->iws);
+    void *p[] = { nr->ct_el, nr->ct_soft, nr->ct_on, nr->ct_last, nr->ct_pre, nr->ct_touch, nr->Fn, nr->imp, nr->iforce, nr->iv };
+    for (size_t i = 0; i < sizeof p / sizeof *p; i++)
+        free(p[i]);
+}
+
+static int rigid(const struct dp_net_run *nr, size_t c)
+{
+    return nr->net->el[nr->ct_el[c]].contact.compliance == 0;
+}
+
+/* Contact c's gap u - d, its rate, and how close to zero a gap counts as touching: the rounding of the
+ * positions and a billionth of what the gap moves in a step. */
+static double gap(const struct dp_net_run *nr, size_t c, const double *x)
+{
+    const dp_element *e = &nr->net->el[nr->ct_el[c]];
+    return nr_rel(e->a, e->b, x) - e->contact.distance;
+}
+
+static double touch_tol(const struct dp_net_run *nr, size_t c, double h)
+{
+    const dp_element *e = &nr->net->el[nr->ct_el[c]];
+    double xs = fabs(e->contact.distance) + (e->a >= 0 ? fabs(nr->x[e->a]) : 0) + (e->b >= 0 ? fabs(nr->x[e->b]) : 0);
+    return 1e-9 * h * fabs(nr_rel(e->a, e->b, nr->v)) + 64 * 2.2204460492503131e-16 * xs;
+}
+
+/* Arms contact c for the coming step with the cone at v_c, or disarms it (a zero law). */
+static int arm(struct dp_net_run *nr, size_t c, int on, double vc)
+{
+    dp_net_elem *a = &nr->act[nr->nact_el + c];
+    int changed = (a->A != NULL) != on;
+    a->A = on ? &nr->cone : NULL;
+    a->vb = on ? vc : 0;
+    nr->ct_on[c] = (unsigned char)on;
+    return changed;
+}
+
+/* Moreau-Jean's rule (Siconos' MoreauJeanOSI index set): armed for the step from t where the gap predicted
+ * half a step on, g + h/2 g', has closed; the cone at -e g'. */
+void nr_contacts_arm_mj(struct dp_net_run *nr, double h)
+{
+    int changed = 0;
+    for (size_t c = 0; c < nr->nc; c++) {
+        if (!rigid(nr, c))
+            continue;
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        double g = gap(nr, c, nr->x), gd = nr_rel(e->a, e->b, nr->v);
+        int was = nr->ct_on[c];
+        changed |= arm(nr, c, g + 0.5 * h * gd <= 0, -e->contact.restitution * gd);
+        nr->ct_pre[c] = was ? 0 : gd;      /* an impact closes a contact; a closed one rests */
+    }
+    if (changed)
+        dp_net_ws_W_changed(nr->ws);
+}
+
+/* After a Moreau-Jean step from t of length h: an impact event at its end for each contact the step closed
+ * (armed now, not in the step before) while approaching, that took an impulse. */
+void nr_contacts_mj_events(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    for (size_t c = 0; c < nr->nc; c++) {
+        size_t k = nr->nact_el + c;
+        if (nr->ct_on[c] && nr->ct_pre[c] < 0 && nr->force[k].lambda < 0)
+            nr_impact_event(r, t + h, nr->ct_el[c], nr->ct_pre[c], nr->force[k].z, -h * nr->force[k].lambda);
+    }
+}
+
+/* The velocity jump at time t for the touching contacts (located events); `plastic` where the impacts have
+ * accumulated. Emits the events; returns 1 when some contact was approaching (v changed), 0 if none, or an
+ * error. */
+static int impact(dp_run *r, double t, const unsigned char *touch)
+{
+    struct dp_net_run *nr = r->net;
+    size_t n = nr->n;
+    int any = 0;
+    for (size_t c = 0; c < nr->nc; c++) {
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        double gd = nr_rel(e->a, e->b, nr->v), en = e->contact.restitution;
+        int approaching = touch[c] && gd < 0;
+        if (approaching && en > 0 && (en * (t - nr->ct_last[c]) / (1 - en) <= 1e-9 * r->h ||
+                                      nr->impacts_step >= IMPACTS_PER_STEP))
+            en = 0;                                   /* accumulated (Zeno): the rest of it is plastic */
+        nr->imp[c].A = touch[c] ? &nr->cone : NULL;
+        nr->imp[c].vb = approaching ? -en * gd : 0;
+        any |= approaching;
+    }
+    if (!any)
+        return 0;
+    double *rhs = nr->iv, *vplus = nr->iv + n;
+    nr_band_symv(nr->M, n, nr->p, nr->v, rhs);
+    dp_net_ws_W_changed(nr->iws);
+    int s = dp_net_solve(nr->iws, 1, rhs, nr->u, nr->v, vplus, nr->iforce, &r->sum.iterations);
+    if (s != DP_OK)
+        return -s;
+    for (size_t c = 0; c < nr->nc; c++) {
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        double before = nr_rel(e->a, e->b, nr->v);
+        if (!touch[c] || !(before < 0))
+            continue;
+        nr->impacts_step++;
+        nr->ct_last[c] = t;
+        nr_impact_event(r, t, nr->ct_el[c], before, nr->iforce[c].z, -nr->iforce[c].lambda);
+    }
+    memcpy(nr->v, vplus, n * sizeof *nr->v);
+    return 1;
+}
+
+/* At a sub-step's start t (events located): the impacts of the touching contacts, then which contacts are
+ * armed for the sub-step: those that rest (kept closed by the last solution, or closed by a plastic impact
+ * now). Returns 1 when velocities jumped (the caller refreshes the assignment), 0, or -status. */
+int nr_contacts_instant(dp_run *r, double t, double h)
+{
+    struct dp_net_run *nr = r->net;
+    if (nr->nc == 0)
+        return 0;
+    unsigned char *touch = nr->ct_touch;
+    for (size_t c = 0; c < nr->nc; c++)
+        touch[c] = rigid(nr, c) && (gap(nr, c, nr->x) <= touch_tol(nr, c, h) ||
+                                    (nr->ct_on[c] && dp_net_ws_fixed(nr->ws, nr->nact_el + c)));
+    int jumped = impact(r, t, touch);
+    if (jumped < 0)
+        return jumped;
+    int changed = 0;
+    for (size_t c = 0; c < nr->nc; c++) {
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        double gd = nr_rel(e->a, e->b, nr->v);
+        changed |= arm(nr, c, touch[c] && gd <= touch_tol(nr, c, h) / (h > 0 ? h : 1), 0);
+    }
+    if (changed)
+        dp_net_ws_W_changed(nr->ws);
+    return jumped;
+}
+
+/* The held step's margins for the contacts that are not armed: the gap at its end (x + s ((1-theta) v +
+ * theta v1)), measured from the start's gap where that is already (to rounding) below zero. */
+void nr_contacts_margins(struct dp_net_run *nr, double s)
+{
+    for (size_t c = 0; c < nr->nc; c++) {
+        size_t k = nr->nact_el + c;
+        if (!rigid(nr, c) || nr->ct_on[c])
+            continue;
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        double g0 = nr->u[k] - e->contact.distance;
+        double rate = (1 - nr->theta) * nr_rel(e->a, e->b, nr->v) + nr->theta * nr_rel(e->a, e->b, nr->v1);
+        nr->margin[k] = g0 + s * rate - fmin(g0, 0);
+    }
+}
+
+/* Whether a step of length h just solved (v1) carries a contact that is not armed through its stop. */
+int nr_contacts_penetrate(struct dp_net_run *nr, double h)
+{
+    if (nr->nc == 0)
+        return 0;
+    nr_contacts_margins(nr, h);
+    for (size_t c = 0; c < nr->nc; c++)
+        if (rigid(nr, c) && !nr->ct_on[c] && nr->margin[nr->nact_el + c] < 0)
+            return 1;
+    return 0;
+}
+
+/* Arms, Moreau-Jean's way (the cone at -e g'), every contact that is not armed and that the step of length h
+ * just solved (v1) carries through its stop: where location cannot split the step (a gap closing within a
+ * billionth of it, or a step with too many changes) the impact is taken inside the step. Returns how many. */
+size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h)
+{
+    if (!nr_contacts_penetrate(nr, h))
+        return 0;
+    size_t m = 0;
+    for (size_t c = 0; c < nr->nc; c++) {
+        if (nr->ct_on[c] || !rigid(nr, c) || !(nr->margin[nr->nact_el + c] < 0))
+            continue;
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        double gd = nr_rel(e->a, e->b, nr->v);
+        arm(nr, c, 1, -e->contact.restitution * fmin(gd, 0));
+        nr->ct_pre[c] = gd;
+        m++;
+    }
+    dp_net_ws_W_changed(nr->ws);
+    return m;
+}
+
+/* Each contact's force at the current state into Fn (per element): a rigid one's from the last solution
+ * (in a Moreau-Jean step with an impact, the impulse over the step), a compliant one's from its gap. */
+void nr_contacts_forces(struct dp_net_run *nr, int stepped)
+{
+    for (size_t c = 0; c < nr->nc; c++) {
+        size_t i = nr->ct_el[c], k = nr->nact_el + c;
+        const dp_contact *ct = &nr->net->el[i].contact;
+        if (ct->compliance > 0)
+            nr->Fn[i] = -ct->compliance * fmax(ct->distance - nr_rel(nr->net->el[i].a, nr->net->el[i].b, nr->x), 0);
+        else
+            nr->Fn[i] = stepped && nr->ct_on[c] ? nr->force[k].lambda : 0;
+    }
+}
