@@ -59,7 +59,7 @@ function entry(color, dashed, text) {
   span.append(sw, text);
   return span;
 }
-const said = ([sym, meaning], col) => `${col} = ${sym}` + (meaning ? ` (${meaning})` : '');
+const said = ([sym, meaning], col) => (sym === col ? col : `${col} = ${sym}`) + (meaning ? ` (${meaning})` : '');
 
 export class LcsView {
   constructor() {

@@ -361,6 +361,24 @@ async function checkCircuits(page, out) {
   check(vErr < 5e-4 && load < 1e-9 && br.samples.some((r) => r.x[0] > 1e-3) && br.samples.some((r) => r.x[0] < -1e-3),
     `bridge: v_C = -2e^{-t} sin t (error ${vErr.toExponential(2)}) changes sign, the load current is |v_C|/R (error ${load.toExponential(1)})`);
   await screenshot(page, 'page-lcs-bridge');
+
+  // An edited request with one state (x' = -x - 2 + u, 0 <= u ⊥ x >= 0, x(0) = 1): the preset's names no
+  // longer fit, so the columns are x0, u0, w0, and there is no phase portrait. x = 3e^{-t} - 2 reaches 0 at
+  // t = ln 1.5; from then on u = 2 holds it there: the complementarity plot's top is u's 2 (w = x is at most 1).
+  const from = problems.length;
+  await page.fill('#spec', JSON.stringify({ model: { lcs: { A: [[-1]], B: [[1]], C: [[1]], D: [[0]], p: [-2] },
+    laws: [{ law: 'complementarity' }] }, initial: { x: [1] }, solver: { kind: 'stick-slip', dt: 0.001, t_end: 2, theta: 0.5 } }));
+  const d = await press(page, 'panel-simulate');
+  const one = await page.evaluate(() => ({ ...document.getElementById('lcs-plots').dataset,
+    phaseHidden: document.getElementById('lcs-phase-figure').hidden, legend: document.getElementById('lcs-uw-legend').textContent,
+    uw: document.getElementById('plot-lcs-uw').dataset.yrange.split(',').map(Number),
+    x: document.getElementById('plot-lcs-x').dataset.yrange.split(',').map(Number) }));
+  check(d.state === 'done' && one.named === 'false' && one.phaseHidden && d.canvases.length === 2 && one.legend === 'u0w0',
+    'an edited one-state LCS: columns named x0, u0, w0 (not the preset\'s), no phase portrait', JSON.stringify({ d, one }));
+  check(Math.abs(one.uw[1] - 2) < 1e-6 && one.uw[0] === 0 && Math.abs(one.x[0]) < 1e-12 && one.x[1] === 1,
+    `an edited one-state LCS: x falls from 1 to 0 and u = 2 holds it there (page: u, w in [${one.uw}], x in [${one.x}])`);
+  const extra = unexpected(from);
+  check(extra.length === 0, 'the edited LCS: no console error', extra.join('\n    '));
 }
 
 const out = base.endsWith('/') ? base : base + '/';
