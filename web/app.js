@@ -15,7 +15,9 @@
 // The sample budget: a request without an "output" member is sent with output.max_samples of about the
 // plots' width in device pixels, so a 10^8-step run streams what the canvas can show, not 10^8 samples; the
 // server picks every (docs/http.md), the page says the curve is decimated. An explicit output is sent as is.
-// A network run (meta.model "network", docs/networks.md) is held and drawn by network.js instead.
+// A network run (meta.model "network", docs/networks.md) is held and drawn by network.js instead, a
+// right-hand friction run by right_hand.js, a linear complementarity system (meta.model "lcs") by lcs.js
+// with the column names of the preset the request came from.
 
 import { Table, Plot } from './plot.js';
 import { Editor, pretty } from './editor.js';
@@ -23,6 +25,7 @@ import { PRESETS } from './presets.js';
 import { NetworkView } from './network.js';
 import { runModes, renderModes } from './modes.js';
 import { RightHandView } from './right_hand.js';
+import { LcsView, lcsReport } from './lcs.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
@@ -45,6 +48,7 @@ const editor = new Editor($('editor'), () => run());
 const network = new NetworkView(); // a run of a network model (meta.model "network") is drawn there
 const rhView = new RightHandView(); // a run of a right-hand friction model (web/right_hand.js)
 const RH_MODELS = ['piston-hinge', 'painleve-rod'];
+const lcsView = new LcsView(); // a run of a linear complementarity system (web/lcs.js)
 
 // ---- presets and tabs ----
 
@@ -145,10 +149,12 @@ async function problemOf(res) {
 let sim = newRun();
 
 function newRun() {
-  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, rh: null, events: [], stick: [], stickStart: null,
+  return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, rh: null, lcs: null, events: [], stick: [], stickStart: null,
     meta: null, summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
-    label: '' };
+    label: '', preset: null };
 }
+// The run held by a view of its own (network, right-hand, LCS), or null for the one-mass plots.
+const viewRun = () => sim.net || sim.rh || sim.lcs;
 
 const stickBands = () => (sim.stickStart === null ? sim.stick : [...sim.stick, [sim.stickStart, sim.lastT]]);
 const timeAxis = { col: 't', label: 't', monotone: true, range: () => [0, sim.tEnd] };
@@ -167,7 +173,9 @@ const plots = [
 function drawAll() {
   network.show(!!sim.net);
   rhView.show(!!sim.rh);
+  lcsView.show(!!sim.lcs);
   if (sim.rh) { $('plots-one').hidden = true; rhView.draw(sim.rh); return; }
+  if (sim.lcs) { $('plots-one').hidden = true; lcsView.draw(sim.lcs); return; }
   if (sim.net) { network.draw(sim.net); return; }
   for (const p of plots) { p.setTable(sim.table); p.draw(); }
 }
@@ -181,7 +189,7 @@ function setSimState(state) {
   const d = $('panel-simulate').dataset;
   d.state = state;
   d.samples = sim.samples;
-  d.points = (sim.net || sim.rh || sim).table.n;
+  d.points = (viewRun() || sim).table.n;
   d.events = sim.events.length;
   d.summarySamples = sim.summary ? sim.summary.samples : '';
   d.bands = stickBands().length;
@@ -213,6 +221,7 @@ function onRecord(o) {
       sim.lastT = o.t;
       if (sim.net) { sim.net.push(o); break; }
       if (sim.rh) { sim.rh.push(o); break; }
+      if (sim.lcs) { sim.lcs.push(o); break; }
       if (sim.table.n < MAX_POINTS) sim.table.push(o);
       if (o.phase === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
       if (o.phase === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
@@ -228,6 +237,7 @@ function onRecord(o) {
       sim.tEnd = o.t_end;
       if (o.model === 'network') sim.net = network.start(o);
       if (RH_MODELS.includes(o.model)) sim.rh = rhView.start(o);
+      if (o.model === 'lcs') sim.lcs = lcsView.start(o, sim.preset && sim.preset.columns);
       renderWellposedness(o.wellposedness, o);
       break;
     case 'summary': sim.summary = o; break;
@@ -259,6 +269,7 @@ async function runSimulation() {
     sim.started = started;
     sim.budget = budget;
     sim.label = label;
+    sim.preset = PRESETS.find((q) => q.id === ui.preset.simulate) || null; // names an LCS run's columns
     markStale(null);
     renderStats();
     drawAll();
@@ -316,15 +327,16 @@ function renderStats(state) {
       (sim.budget ? ` (at most ${num(sim.budget)}, about the plot width; set "output" in the request to choose)` : '') + '</span>';
     if (m.branch) h += chip('branch', m.branch);
     if (m.model === 'network') h += chip('nodes', num(m.nodes)) + chip('elements', num(m.elements));
+    if (m.model === 'lcs') h += chip('states', num(m.states)) + chip('components', num(m.components));
     const wp = m.wellposedness;
     if (wp) for (const k of ['existence', 'uniqueness'])
       h += `<span class="chip ${wp[k].guaranteed ? 'ok' : 'no'}" title="${esc(wp[k].theorem || wp[k].reason)}"><b>${k}</b> ${wp[k].guaranteed ? '\u2713' : '\u2717 not'} guaranteed</span>`;
   }
   h += chip('samples', num(sim.samples)) + chip('events', num(sim.events.length));
   if (s) {
-    h += chip('stick time', num(s.stick_time));
-    if (!sim.net && !sim.rh) h += chip('final x', num(s.final.x, 6));
-    if (sim.samples > (sim.net || sim.rh || sim).table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
+    if (!sim.lcs) h += chip('stick time', num(s.stick_time));
+    if (!viewRun()) h += chip('final x', num(s.final.x, 6));
+    if (sim.samples > (viewRun() || sim).table.n) h += `<span class="chip warn">plotted the first ${num(sim.table.n)} samples</span>`;
   }
   $('stats').innerHTML = h;
   if (state === 'done') {
@@ -337,6 +349,7 @@ function renderStats(state) {
 
 function renderWellposedness(wp, meta) {
   const body = $('wp-body');
+  if (!wp && meta.model === 'lcs') { body.innerHTML = lcsReport(meta); return; }
   if (!wp) { body.textContent = 'The meta line has no well-posedness report.'; return; }
   const verdict = (name, r) => `<div class="verdict ${r.guaranteed ? 'ok' : 'no'}">
       <span class="badge">${r.guaranteed ? '\u2713' : '\u2717'} ${name} ${r.guaranteed ? 'guaranteed' : 'not guaranteed'}</span>

@@ -104,6 +104,7 @@ export class Plot {
     let [xlo, xhi] = opts.x.range ? opts.x.range() : [t ? t.min[opts.x.col] : NaN, t ? t.max[opts.x.col] : NaN];
     let ylo = Infinity, yhi = -Infinity;
     if (t) for (const s of opts.series) { ylo = Math.min(ylo, t.min[s.col]); yhi = Math.max(yhi, t.max[s.col]); }
+    const [dlo, dhi] = [ylo, yhi];
     const xticks = Math.max(2, Math.round(pw / 90)), yticks = Math.max(2, Math.round(ph / 48));
     if (!opts.x.range) [xlo, xhi] = niceRange(xlo, xhi, xticks);
     [ylo, yhi] = niceRange(ylo, yhi, yticks);
@@ -175,6 +176,7 @@ export class Plot {
     ctx.lineWidth = 1;
     ctx.strokeRect(m.l + 0.5, m.t + 0.5, pw - 1, ph - 1);
     canvas.dataset.points = String(n);
+    canvas.dataset.yrange = t && opts.series.length ? `${dlo},${dhi}` : ''; // the data's, before the ticks widen it
   }
 }
 

@@ -225,3 +225,50 @@ PRESETS.push({
     output: { every: 1 },
   },
 });
+
+// Circuits as linear complementarity systems (docs/lcs.md, seed 002 Examples 1.9 and 1.10): the docs' three
+// documents without their "output" (the page asks for about a plot's width of samples), drawn by web/lcs.js.
+// `columns` names a row's x, u and w components as [symbol, meaning] (the rows carry only x0, u0, w0, ...);
+// the view uses them when the run has as many states and components. Component j pairs u_j with w_j.
+const LCS = 'Circuits (linear complementarity systems)';
+const rlcLcs = (lcs, law, t_end) => ({
+  model: { lcs: { A: [[0, 1], [-4, -0.5]], ...lcs }, laws: [law] },
+  initial: { x: [0, 1] },
+  solver: { kind: 'stick-slip', dt: 0.001, t_end, theta: 0.5 },
+});
+PRESETS.push({
+  id: 'lcs-rlc-diode', group: LCS, label: 'Series RLC with an ideal diode', kind: 'simulate',
+  note: 'R = 0.5, L = 1, C = 0.25, q(0) = 0, i(0) = 1, no source; u = \u2212v_D \u22a5 i. The current falls to 0 at ' +
+    't* = atan2(\u03c9_d, \u03b1)/\u03c9_d = 0.7285 with the charge q* = 0.41675; the diode then blocks for good and holds ' +
+    '\u2212v_D = q*/C = 1.667.',
+  columns: { x: [['q', 'charge'], ['i', 'current']], u: [['\u2212v_D', 'reverse diode voltage']], w: [['i', 'diode current']] },
+  spec: rlcLcs({ B: [[0], [1]], C: [[0, 1]], D: [[0]] }, { law: 'complementarity' }, 3),
+});
+PRESETS.push({
+  id: 'lcs-rlc-breakdown', group: LCS, label: 'Series RLC with a breakdown diode (V_b = 0.5)', kind: 'simulate',
+  note: 'The same circuit with v_D \u2208 [\u2212V_b, 0], V_b = 0.5 (an interval law). When the current stops, q*/C = 1.667 > V_b ' +
+    'breaks the diode down: the current reverses with v_D = \u2212V_b and oscillates about q = C V_b = 0.125.',
+  columns: { x: [['q', 'charge'], ['i', 'current']], u: [['v_D', 'diode voltage']], w: [['\u2212i', 'minus the current']] },
+  spec: rlcLcs({ B: [[0], [-1]], C: [[0, -1]] }, { law: 'interval', min: -0.5, max: 0 }, 2),
+});
+const complementarity = { law: 'complementarity' };
+PRESETS.push({
+  id: 'lcs-bridge', group: LCS, label: 'Four-diode bridge rectifier', kind: 'simulate',
+  note: 'R = 1, L = 1, C = 0.5 with the seed\u2019s A, B, C, D; x = (v_C, i_L). Each pair u_j \u22a5 w_j is one diode\u2019s reverse ' +
+    'voltage and current. The load current i_DF1 + i_DR1 = |v_C|/R whichever sign v_C has (rectified); the tank is a ' +
+    'parallel RLC, v_C = \u22122e^{\u2212t} sin t.',
+  columns: {
+    x: [['v_C', 'capacitor voltage'], ['i_L', 'inductor current']],
+    u: [['\u2212v_DR1', 'DR1 reverse voltage'], ['\u2212v_DF2', 'DF2 reverse voltage'], ['i_DF1', 'DF1 current'], ['i_DR2', 'DR2 current']],
+    w: [['i_DR1', 'DR1 current'], ['i_DF2', 'DF2 current'], ['\u2212v_DF1', 'DF1 reverse voltage'], ['\u2212v_DR2', 'DR2 reverse voltage']],
+  },
+  spec: {
+    model: {
+      lcs: { A: [[0, -2], [1, 0]], B: [[0, 0, -2, 2], [0, 0, 0, 0]], C: [[0, 0], [0, 0], [-1, 0], [1, 0]],
+        D: [[1, 1, -1, 0], [1, 1, 0, -1], [1, 0, 0, 0], [0, 1, 0, 0]] },
+      laws: [complementarity, complementarity, complementarity, complementarity],
+    },
+    initial: { x: [0, 1] },
+    solver: { kind: 'stick-slip', dt: 0.001, t_end: 6, theta: 0.5 },
+  },
+});

@@ -264,6 +264,123 @@ async function runRightHandPreset(page, name, id, origin, stops) {
   check(bad.length === 0, `${name}: ${id}: no console error, page error or failed request`, bad.join('\n    '));
 }
 
+// The document docs/lcs.md gives under `<!-- file: NAME -->` (the LCS presets are those, without "output").
+function docsDocument(name) {
+  const md = fs.readFileSync(new URL('../../docs/lcs.md', import.meta.url), 'utf8');
+  const m = new RegExp(`<!-- file: ${name.replace('.', '\\.')} -->\\s*\`\`\`json\\n([\\s\\S]*?)\`\`\``).exec(md);
+  if (!m) throw new Error(`docs/lcs.md has no file ${name}`);
+  return JSON.parse(m[1]);
+}
+
+// Runs a linear complementarity system preset (web/lcs.js) and checks the page against the daemon's own
+// stream of the request the page sent: the docs' document, the samples held and drawn on its three plots
+// (the one-mass plots hidden), the preset's column names in the legends, finite data, and each plot's data
+// range equal to the stream's over the same columns. Returns the stream and the plots' ranges.
+async function runLcsPreset(page, name, id, origin, docFile) {
+  const from = problems.length;
+  await page.selectOption('#preset', id);
+  const d = await press(page, 'panel-simulate');
+  const spec = JSON.parse(await page.inputValue('#spec')), doc = docsDocument(docFile);
+  delete doc.output;
+  check(JSON.stringify(spec) === JSON.stringify(doc) && +d.budget > 0,
+    `${name}: ${id}: the request is docs/lcs.md's ${docFile} without its output (the page picks the samples: ${d.budget})`,
+    JSON.stringify(spec));
+  const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: JSON.stringify({ ...spec, output: { max_samples: +d.budget } }),
+    headers: { Accept: 'application/x-ndjson' } });
+  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  const meta = lines[0], samples = lines.filter((o) => o.type === 'sample'), n = samples.length;
+  check(d.state === 'done' && meta.model === 'lcs' && lines[lines.length - 1].type === 'summary' && +d.every === meta.every,
+    `${name}: LCS preset ${id} streams to its end (every ${meta.every})`, JSON.stringify(d));
+  check(+d.samples === n && +d.points === n && d.canvases.length === 3 && d.canvases.every((k) => k === n),
+    `${name}: ${id}: the state, complementarity and phase plots drew the ${n} samples (one-mass plots hidden)`, JSON.stringify(d));
+  const view = await page.evaluate(() => {
+    const box = document.getElementById('lcs-plots'), text = (i) => document.getElementById(i).textContent;
+    const range = (i) => document.getElementById(i).dataset.yrange.split(',').map(Number);
+    return { ...box.dataset, xLegend: text('lcs-x-legend'), uwLegend: text('lcs-uw-legend'), oneHidden: document.getElementById('plots-one').hidden,
+      x: range('plot-lcs-x'), uw: range('plot-lcs-uw'), phase: range('plot-lcs-phase'), wp: text('wp-body') };
+  });
+  const preset = JSON.parse(await page.evaluate(async () => JSON.stringify((await import('./presets.js')).PRESETS)))
+    .find((p) => p.id === id);
+  const said = ([sym, meaning], col) => `${col} = ${sym} (${meaning})`;
+  check(view.states === String(meta.states) && view.components === String(meta.components) && view.named === 'true' &&
+    preset.columns.x.every((c, j) => view.xLegend.includes(said(c, 'x' + j))) &&
+    preset.columns.u.every((c, j) => view.uwLegend.includes(said(c, 'u' + j)) && view.uwLegend.includes(said(preset.columns.w[j], 'w' + j))),
+    `${name}: ${id}: the legends name the columns as the preset does (${view.xLegend})`, JSON.stringify(view));
+  const span = (cols) => { const v = samples.flatMap((s) => cols.map(([g, j]) => s[g][j])); return [Math.min(...v), Math.max(...v)]; };
+  const cols = (g, k) => Array.from({ length: k }, (_, j) => [g, j]);
+  const want = { x: span(cols('x', meta.states)), uw: span([...cols('u', meta.components), ...cols('w', meta.components)]), phase: span([['x', 1]]) };
+  check(view.finite === 'true' && ['x', 'uw', 'phase'].every((k) => view[k].every(Number.isFinite) && view[k].join() === want[k].join()),
+    `${name}: ${id}: finite data, each plot's range that of its columns in the stream`, JSON.stringify({ view, want }));
+  check(view.wp.includes(meta.step.uniqueness), `${name}: ${id}: the step's uniqueness is reported (${meta.step.uniqueness})`, view.wp);
+  const ink = await inked(page);
+  check(ink.every((k) => k > 300), `${name}: ${id}: every LCS canvas carries curves`, `saturated pixels per canvas: ${ink}`);
+  const bad = unexpected(from);
+  check(bad.length === 0, `${name}: ${id}: no console error, page error or failed request`, bad.join('\n    '));
+  return { samples, meta, view };
+}
+
+// The closed forms of docs/lcs.md for the three circuits, checked on the stream the page drew (and, for the
+// ideal diode, on the page's own plotted range). Series RLC, R = 0.5, L = 1, C = 0.25, q(0) = 0, i(0) = 1:
+// i = e^{-at}(cos wd t - (a/wd) sin wd t), a = R/2L, first zero t* = atan2(wd, a)/wd, q* = e^{-at*} sin(wd t*)/wd.
+const RLC = (() => {
+  const a = 0.25, wd = Math.sqrt(4 - a * a), ts = Math.atan2(wd, a) / wd;
+  return { a, wd, C: 0.25, ts, qs: Math.exp(-a * ts) * Math.sin(wd * ts) / wd,
+    i: (t) => Math.exp(-a * t) * (Math.cos(wd * t) - (a / wd) * Math.sin(wd * t)) };
+})();
+
+async function checkCircuits(page, out) {
+  const { a, wd, C, ts, qs } = RLC;
+  const rlc = await runLcsPreset(page, 'page', 'lcs-rlc-diode', out, 'rlc.json');
+  const s = rlc.samples, k = s.findIndex((r) => r.x[1] === 0), h = rlc.meta.dt * rlc.meta.every;
+  const later = s.slice(k), before = s.slice(0, k);
+  check(k > 0 && s[k].t >= ts && s[k].t <= ts + h + 1e-9 && later.every((r) => r.x[1] === 0 && r.x[0] === s[k].x[0]) &&
+    Math.abs(s[k].x[0] - qs) < 1e-5 && later.every((r) => Math.abs(r.u[0] - qs / C) < 1e-4) &&
+    before.every((r) => Math.abs(r.x[1] - RLC.i(r.t)) < 1e-5 && r.u[0] === 0),
+    `ideal diode: i follows e^{-at}(cos - (a/wd) sin) until it first vanishes (t = ${s[k]?.t}, t* = ${ts.toFixed(4)}), then stays 0 ` +
+    `with q = ${s[k]?.x[0]} = q* (${qs.toFixed(5)}) and -v_D = q*/C`, JSON.stringify(s[k]));
+  check(Math.abs(rlc.view.uw[1] - qs / C) < 1e-4 && rlc.view.phase[0] === 0,
+    `ideal diode: the page plots -v_D up to q*/C = ${(qs / C).toFixed(4)} (${rlc.view.uw[1]}) and never a negative current`,
+    JSON.stringify(rlc.view));
+  await screenshot(page, 'page-lcs-rlc');
+
+  // Breakdown, V_b = 0.5: after t* the current reverses with v_D = -V_b about q = C V_b:
+  // q = C V_b + y* e^{-as}(cos wd s + (a/wd) sin wd s), s = t - t*, y* = q* - C V_b (O(h) in the switch).
+  const bd = await runLcsPreset(page, 'page', 'lcs-rlc-breakdown', out, 'breakdown.json');
+  const Vb = 0.5, ys = qs - C * Vb, rev = bd.samples.filter((r) => r.t > ts + 0.005);
+  const q = (t) => C * Vb + ys * Math.exp(-a * (t - ts)) * (Math.cos(wd * (t - ts)) + (a / wd) * Math.sin(wd * (t - ts)));
+  const err = Math.max(...rev.map((r) => Math.abs(r.x[0] - q(r.t))));
+  check(rev.length > 50 && rev.every((r) => r.u[0] === -Vb && r.x[1] < 0) && err < 1e-3,
+    `breakdown diode: after t* v_D = -V_b, the current reversed, q about C V_b as the closed form (error ${err.toExponential(2)})`);
+  await screenshot(page, 'page-lcs-breakdown');
+
+  // The bridge, R = 1, L = 1, C = 0.5, v_C(0) = 0, i_L(0) = 1: a parallel RLC, v_C = -2 e^{-t} sin t, and the
+  // load current i_DF1 + i_DR1 = u2 + w0 = |v_C|/R whichever sign v_C has.
+  const br = await runLcsPreset(page, 'page', 'lcs-bridge', out, 'bridge.json');
+  const vErr = Math.max(...br.samples.map((r) => Math.abs(r.x[0] + 2 * Math.exp(-r.t) * Math.sin(r.t))));
+  const load = Math.max(...br.samples.map((r) => Math.abs(r.u[2] + r.w[0] - Math.abs(r.x[0]))));
+  check(vErr < 5e-4 && load < 1e-9 && br.samples.some((r) => r.x[0] > 1e-3) && br.samples.some((r) => r.x[0] < -1e-3),
+    `bridge: v_C = -2e^{-t} sin t (error ${vErr.toExponential(2)}) changes sign, the load current is |v_C|/R (error ${load.toExponential(1)})`);
+  await screenshot(page, 'page-lcs-bridge');
+
+  // An edited request with one state (x' = -x - 2 + u, 0 <= u ⊥ x >= 0, x(0) = 1): the preset's names no
+  // longer fit, so the columns are x0, u0, w0, and there is no phase portrait. x = 3e^{-t} - 2 reaches 0 at
+  // t = ln 1.5; from then on u = 2 holds it there: the complementarity plot's top is u's 2 (w = x is at most 1).
+  const from = problems.length;
+  await page.fill('#spec', JSON.stringify({ model: { lcs: { A: [[-1]], B: [[1]], C: [[1]], D: [[0]], p: [-2] },
+    laws: [{ law: 'complementarity' }] }, initial: { x: [1] }, solver: { kind: 'stick-slip', dt: 0.001, t_end: 2, theta: 0.5 } }));
+  const d = await press(page, 'panel-simulate');
+  const one = await page.evaluate(() => ({ ...document.getElementById('lcs-plots').dataset,
+    phaseHidden: document.getElementById('lcs-phase-figure').hidden, legend: document.getElementById('lcs-uw-legend').textContent,
+    uw: document.getElementById('plot-lcs-uw').dataset.yrange.split(',').map(Number),
+    x: document.getElementById('plot-lcs-x').dataset.yrange.split(',').map(Number) }));
+  check(d.state === 'done' && one.named === 'false' && one.phaseHidden && d.canvases.length === 2 && one.legend === 'u0w0',
+    'an edited one-state LCS: columns named x0, u0, w0 (not the preset\'s), no phase portrait', JSON.stringify({ d, one }));
+  check(Math.abs(one.uw[1] - 2) < 1e-6 && one.uw[0] === 0 && Math.abs(one.x[0]) < 1e-12 && one.x[1] === 1,
+    `an edited one-state LCS: x falls from 1 to 0 and u = 2 holds it there (page: u, w in [${one.uw}], x in [${one.x}])`);
+  const extra = unexpected(from);
+  check(extra.length === 0, 'the edited LCS: no console error', extra.join('\n    '));
+}
+
 const out = base.endsWith('/') ? base : base + '/';
 try {
   // ---- the page at / ----
@@ -314,6 +431,8 @@ try {
   await runRightHandPreset(page, 'page', 'painleve-indeterminacy', out, true);
   await screenshot(page, 'page-painleve-indeterminacy');
   await runRightHandPreset(page, 'page', 'painleve-rod', out, true);
+  // ---- circuits as linear complementarity systems (web/lcs.js) ----
+  await checkCircuits(page, out);
   // back to one mass: the one-mass plots return, with the samples of the new run
   const belt2 = await runPreset(page, 'page', 'belt', out);
   check(belt2.d.canvases.length === 5, 'after a network run a one-mass preset shows its five plots again');
