@@ -69,6 +69,7 @@ start_daemon contact || finish
 U=$URL_contact/v1/simulate
 
 req "$U" application/x-ndjson "$BALL"
+cp "$BODY" "$SCRATCH/ndjson1"
 check "ball NDJSON: 200" is "$STATUS" 200
 check "ball NDJSON: impacts and rows against the closed form" py "$BODY" "$CLOSED"'
 rows = [loads(l) for l in text.splitlines()]
@@ -94,8 +95,20 @@ ev = [loads(b.split("data: ", 1)[1]) for b in text.split("\n\n") if b.startswith
 assert len(ev) > 20 and all(e["kind"] == "impact" and e["impulse"] >= 0 for e in ev), ev[:3]
 '
 "$CLI" simulate - --format ndjson <<<"$BALL" >"$SCRATCH/cli.out"
-req "$U" application/x-ndjson "$BALL"
-check "ball: the CLI prints what the daemon streams" cmp -s "$SCRATCH/cli.out" "$BODY"
+check "ball: the CLI prints what the daemon streamed" bash -c 'grep -v "^{\"type\":\"meta\"" "$1" >"$1.a"; grep -v "^{\"type\":\"meta\"" "$2" >"$2.a"; cmp -s "$1.a" "$2.a"' _ "$SCRATCH/cli.out" "$SCRATCH/ndjson1"
+
+# ---- metrics: the impacts of the runs that ended (the five ball runs above, each ending after t_inf) ----
+IMPACTS=$(python3 -c 'import json,sys; print(sum(1 for l in open(sys.argv[1]) if "\"impact\"" in l))' "$SCRATCH/cli.out")
+for _ in $(seq 50); do   # a run's counters land when its connection is freed, just after the body ends
+    hcurl -o "$SCRATCH/metrics" "$URL_contact/metrics"
+    grep -q "^dashpot_impacts_total $((4 * IMPACTS))\$" "$SCRATCH/metrics" && break
+    sleep 0.1
+done
+check "metrics: dashpot_impacts_total counts the four runs' impacts ($IMPACTS each)" py "$SCRATCH/metrics" '
+v = {l.split()[0]: float(l.split()[1]) for l in text.splitlines() if l and not l.startswith("#")}
+assert v["dashpot_impacts_total"] == 4 * '"$IMPACTS"', v["dashpot_impacts_total"]
+assert v["dashpot_events_total"] >= v["dashpot_impacts_total"], v
+'
 
 # ---- well-posedness: what the theorems say with contacts ----
 WP=$URL_contact/v1/wellposedness
