@@ -163,6 +163,30 @@ bad "a rigid contact with the regularized solver" /model/elements/0/contact \
     'd["solver"] = {"kind": "regularized", "n": 100, "dt": 0.001, "t_end": 1}'
 bad "a compliant contact at theta 1/2" /model/elements/0/contact "del $C[\"restitution\"]; $C[\"compliance\"] = 1e4"
 
+# ---- a one-mass document with a contact: the one-node network it is ----
+ONE='{"model": {"mass": 1, "spring": {"law": "linear", "k": 0}, "damper": {"law": "none"}, "contact": {"distance": 0, "restitution": 0.5}, "forcing": {"kind": "constant", "value": -9.81}},
+ "initial": {"x": 1, "v": 0}, "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 2, "theta": 0.5}, "output": {"every": 100}}'
+req "$U" application/x-ndjson "$ONE"
+check "one-mass document with a contact: 200" is "$STATUS" 200
+check "one-mass document with a contact: the network's rows and impacts, bit for bit" py "$BODY" '
+got = [l for l in text.splitlines() if not l.startswith("{\"type\":\"meta\"")]
+want = [l for l in open("'"$SCRATCH/ndjson1"'").read().splitlines() if not l.startswith("{\"type\":\"meta\"")]
+assert got == want, (got[:2], want[:2])
+'
+badone() {
+    local doc
+    doc=$(python3 -c 'import json,sys; d=json.loads(sys.argv[1]); exec(sys.argv[2]); print(json.dumps(d))' "$ONE" "$3") || return 1
+    req "$U" '*/*' "$doc"
+    check "one mass, $1: 422 at $2" py "$BODY" '
+d = loads(text)
+assert d["status"] == 422 and [e["pointer"] for e in d["errors"]] == ["'"$2"'"], d
+'
+}
+badone "restitution 7" /model/contact/restitution 'd["model"]["contact"]["restitution"] = 7'
+badone "starting inside the stop" /initial/x 'd["initial"]["x"] = -0.2'
+badone "rigid and compliant at once" /model/contact/compliance 'd["model"]["contact"]["compliance"] = 100'
+badone "the newmark solver" /model/contact 'd["solver"] = {"kind": "newmark", "dt": 0.001, "t_end": 1}'
+
 # ---- the examples of docs/contact.md ----
 DOC=$SCRATCH/doc
 mkdir -p "$DOC/build"
