@@ -2,12 +2,13 @@
 # bench/contact.sh - unilateral contact and impacts (issue 19): dashpot's "events": "none" contact step next
 # to Siconos' Moreau-Jean (bench/contact_peer.cpp; the rules it follows are in bench/contact_peer.md) on the
 # bouncing ball (e = 0.9, 0.5, 0), two stacked masses with two contacts, and a chain of 100 blocks on stops.
-# 1. the peer's ball against the closed form (impact instants, the impact law), the pair against statics;
+# 1. the peer's ball against the closed form (impact instants, the impact law), the pair against statics,
+#    and the peer against bench/contact_mj.py (contact_peer.md's rules in plain Python) to rounding;
 # 2. dashpot against the peer, every step, every node: max |dx|, |dv| (bench/contact_cases.py compare);
 # 3. time per step side by side on the ball and the 100-block chain, and the ratio.
 # The cases are defined once, in bench/contact_cases.py, which writes both programs' inputs.
 #
-# Usage: BUILD=build bash bench/contact.sh   (also run by `make bench`)
+# Usage: BUILD=build bash bench/contact.sh   (also run by `make bench`; DASHPOT=program replaces build/dashpot)
 # Exits non-zero if a check fails, or if this build of dashpot does not accept contacts yet (said plainly:
 # "dashpot side: contact not supported by this build"); the peer's side runs and is checked either way.
 set -euo pipefail
@@ -22,7 +23,7 @@ mkdir -p "$build/bench"
 c++ -O2 -std=c++17 -Wall -Wextra -Werror -isystem /usr/include/siconos -isystem /usr/include/siconos/kernel \
   -isystem /usr/include/siconos/numerics bench/contact_peer.cpp -o "$build/bench/contact_peer" \
   -lsiconos_kernel -lsiconos_numerics
-peer="$build/bench/contact_peer" dp="$build/dashpot" cases=bench/contact_cases.py
+peer="$build/bench/contact_peer" dp=${DASHPOT:-$build/dashpot} cases=bench/contact_cases.py
 
 peer_run() { OPENBLAS_NUM_THREADS=1 timeout 600 "$peer" "$@"; } # one thread, as dashpot
 kv() { awk -v k="$2" '$1 == k { print $2; f = 1 } END { if (!f) print "-" }' "$1"; }
@@ -43,6 +44,20 @@ peer_run "$tmp/pair.txt" >"$tmp/pair.0.5.rows" 2>/dev/null
 awk 'END { ok = ($2 < 0.01 && $2 > -0.01 && $3 - $2 > 0.49 && $3 - $2 < 0.51 && $4 * $4 + $5 * $5 < 1e-12)
            printf "  pair: final x = (%.3g, %.6g), v = (%.2g, %.2g); at rest on both contacts: %s\n", $2, $3, $4, $5,
                   ok ? "ok" : "FAIL"; exit !ok }' "$tmp/pair.0.5.rows" || fail=1
+echo
+echo "   the rules of bench/contact_peer.md, written out in bench/contact_mj.py, against the peer (every step, node)"
+printf '  %-10s %-5s %10s %10s  %s\n' case theta 'max|dx|' 'max|dv|' verdict
+for c in ball_e0.9 ball_e0.5 ball_e0 pair chain100; do
+  for th in 0.5 1; do
+    python3 "$cases" write "$c" "$tmp" theta=$th
+    peer_run "$tmp/$c.txt" >"$tmp/$c.rows" 2>/dev/null
+    python3 bench/contact_mj.py "$tmp/$c.txt" >"$tmp/$c.mj"
+    verdict=ok
+    python3 "$cases" compare "$tmp/$c.rows" "$tmp/$c.mj" >"$tmp/cmp" 2>"$tmp/cmp.err" || { verdict=FAIL; fail=1; }
+    printf '  %-10s %-5s %10s %10s  %s\n' "$c" "$th" "$(awk '{ print $2 }' "$tmp/cmp")" \
+      "$(awk '{ print $4 }' "$tmp/cmp")" "$verdict"
+  done
+done
 echo
 
 echo "2. dashpot against the peer, \"events\": \"none\", every step, every node (tol 1e-12 x steps x scale)"
@@ -104,7 +119,7 @@ for spec in ball_e0.9:100000 chain100:2000; do
   s=$(kv "$tmp/t.$c" ns_per_step) d=- r=-
   if [ "$dashpot_ok" = 1 ]; then
     d=$(dp_ns "$c" "$((n * 10))") || d=-
-    r=$(awk -v a="$s" -v b="$d" 'BEGIN { if (b + 0 > 0) printf "%.0f", a / b; else printf "-" }')
+    r=$(awk -v a="$s" -v b="$d" 'BEGIN { if (b + 0 <= 0) printf "-"; else printf (a / b < 10 ? "%.2g" : "%.0f"), a / b }')
   fi
   ratio[$c]=$r
   printf '  %-10s %7s %12s %12s %9sx\n' "$c" "$n" "$d" "$s" "$r"
