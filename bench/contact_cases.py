@@ -32,7 +32,7 @@ def pair():
 def chain(n):
     """n blocks on ground springs kg = 1, neighbour springs kc = 10, each with a stop x_i >= d_i,
     d_i = -(0.9 + 0.3 sin 2.3 i) (e = 0.5), pushed down by a load -2 on every block (rest at -2 without
-    stops), x_i(0) = 0.5 cos 1.3 i: every block falls onto its stop, bounces, and the chain settles."""
+    stops), x_i(0) = 0.5 cos 1.3 i: in 2000 steps 72 blocks reach their stop (about 135 impacts)."""
     springs = [("ground", i, 1.0) for i in range(n)] + [(i, i + 1, 10.0) for i in range(n - 1)]
     contacts = [("ground", i, -(0.9 + 0.3 * math.sin(2.3 * i)), 0.5) for i in range(n)]
     return {"masses": [1.0] * n, "x0": [0.5 * math.cos(1.3 * i) for i in range(n)], "v0": [0.0] * n,
