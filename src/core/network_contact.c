@@ -20,6 +20,7 @@
  * A compliant contact is a spring graph, force -k max(d - u, 0) (the Yosida approximation of the rigid one):
  * one more element with that graph, or a force in the regularized scheme (network_regularized.c).
  */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -143,6 +144,8 @@ void nr_contacts_arm_mj(struct dp_net_run *nr, double h)
             continue;
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double g = gap(nr, c, nr->x), gd = nr_rel(e->a, e->b, nr->v);
+        if (fabs(gd) < DBL_MIN)
+            gd = 0;   /* a resting contact's rate decays by e per step into subnormals: 0, not a slow tail */
         int was = nr->ct_on[c];
         changed |= arm(nr, c, g + 0.5 * h * gd <= 0, -e->contact.restitution * gd);
         nr->ct_pre[c] = was ? 0 : gd;      /* an impact closes a contact; a closed one rests */
