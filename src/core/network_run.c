@@ -292,7 +292,8 @@ void nr_element_forces(struct dp_net_run *nr, int stepped)
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
         double u = nr_rel(e->a, e->b, nr->x), z = nr_rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
-        double fs = nr->k[i] * u, fd = nr->c[i] * (z - vb), lo, hi;
+        /* no linear part: 0, not the -0 of 0 * (a negative elongation) */
+        double fs = nr->k[i] != 0 ? nr->k[i] * u : 0, fd = nr->c[i] != 0 ? nr->c[i] * (z - vb) : 0, lo, hi;
         long k = nr->act_of[i];
         int rest = z == vb;
         if (k >= 0 && nr->ep_graph[i]) {   /* the return mapping's force, not the step's weighted one */

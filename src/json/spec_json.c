@@ -868,12 +868,17 @@ int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_err
 
 /* A network's report: parsed as strictly as a run's (its laws are graphs the solver could take), then its
  * checks (dp_network_check). */
-static int network_report(ctx *c, const cJSON *v, const at *p, dp_wp_report *rep)
+static int network_report(ctx *c, const cJSON *root, const cJSON *v, const at *p, dp_wp_report *rep)
 {
     dp_spec spec;
     dp_spec_init(&spec);
     c->lenient = 0;
     parse_network(c, v, p, &spec);
+    /* the initial state, where given, is checked against the laws' domains and the contacts (else 0) */
+    at pi = { NULL, "initial", 0 };
+    const cJSON *init = cJSON_GetObjectItemCaseSensitive(root, "initial");
+    if (init != NULL && !c->nerr && spec.net != NULL)
+        parse_network_initial(c, init, &pi, &spec);
     int s = c->nomem ? DP_ENOMEM : c->nerr ? DP_EINVAL : dp_network_prepare(spec.net);
     if (s == DP_OK) {
         size_t before = c->errs->n + c->errs->dropped;
@@ -904,7 +909,7 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
         s = s == DP_OK ? dp_lcs_wellposedness(&spec, rep) : s;
         dp_spec_clear(&spec);
     } else if (v != NULL && is_network(v)) {
-        s = network_report(&c, v, &p, rep);
+        s = network_report(&c, root, v, &p, rep);
     } else {
         dp_model m = { 0 };
         if ((s = lenient_model(&c, v, &p, &m)) == DP_OK)

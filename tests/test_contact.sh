@@ -1,0 +1,183 @@
+#!/usr/bin/env bash
+# tests/test_contact.sh - contacts and impacts (systems.md §4, docs/contact.md) end to end, over HTTP and the
+# CLI: the bouncing ball in every format (the Fn column, impact events with the rate before and after and the
+# impulse, against the closed form), /v1/wellposedness's contact entries, every kind of bad contact input
+# refused with 422 and the exact JSON Pointer, and the examples of docs/contact.md print what it shows.
+# The JSON checks are python3 so that nothing here trusts the program's own parser. Env BUILD (default build).
+source "$(dirname "$0")/lib/daemon.bash"
+CLI=$BUILD/dashpot
+BODY=$SCRATCH/body
+HDRS=$SCRATCH/headers
+
+req() {
+    printf '%s' "$3" >"$SCRATCH/request"
+    STATUS=$(hcurl -D "$HDRS" -o "$BODY" -w '%{http_code}' -H "Accept: $2" --data-binary @"$SCRATCH/request" "$1")
+}
+header() { grep -i "^$1:" "$HDRS" | head -1 | cut -d: -f2- | tr -d '\r' | sed 's/^ *//'; }
+is() { [ "$1" = "$2" ] || { echo "    got '$1', expected '$2'"; return 1; }; }
+py() {
+    python3 - "$1" "$2" <<'PY' || return 1
+import json, math, sys
+text = open(sys.argv[1]).read()
+def no_constant(c):
+    raise ValueError("JSON holds " + c)
+loads = lambda s: json.loads(s, parse_constant=no_constant)
+try:
+    exec(sys.argv[2])
+except AssertionError as e:
+    print("    " + (str(e) or "assertion failed")[:600]); sys.exit(1)
+except Exception as e:
+    print("    " + type(e).__name__ + ": " + str(e)[:600]); sys.exit(1)
+PY
+}
+
+# The ball of docs/contact.md: dropped from 1 m on a table, e = 0.5, rows every 100 steps.
+BALL='{"model": {"masses": [1],
+ "elements": [{"between": ["ground", 0], "contact": {"distance": 0, "restitution": 0.5}}],
+ "forcing": [{"node": 0, "kind": "constant", "value": -9.81}]},
+ "initial": {"x": [1], "v": [0]},
+ "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 2, "theta": 0.5},
+ "output": {"every": 100}}'
+# Impacts at t1 = sqrt(2/g), then every 2 e^k v1 / g; rebound speeds e^k v1, v1 = sqrt(2 g); rest from
+# t_inf = t1 + 2 e v1 / (g (1 - e)) on.
+CLOSED='
+g, e = 9.81, 0.5
+v1, t = math.sqrt(2 * g), math.sqrt(2 / g)
+t_inf = t + 2 * e * v1 / (g * (1 - e))
+def check_impacts(events):
+    global t
+    speed, tk = v1, t
+    assert len(events) > 20, len(events)
+    for ev in events[:10]:
+        assert ev["kind"] == "impact" and ev["element"] == 0, ev
+        assert abs(ev["t"] - tk) < 1e-9 and abs(ev["du"] + speed) < 1e-9 and abs(ev["du_after"] - e * speed) < 1e-9, (ev, tk, speed)
+        assert abs(ev["impulse"] - (1 + e) * speed) < 1e-9 and abs(ev["u"]) < 1e-12, ev
+        tk += 2 * e * speed / g; speed *= e
+    assert abs(events[-1]["t"] - t_inf) < 1e-9, (events[-1], t_inf)
+def check_rows(samples):
+    assert [round(r["t"], 9) for r in samples] == [round(0.1 * i, 9) for i in range(21)], [r["t"] for r in samples]
+    for r in samples:
+        assert set(r) >= {"x", "v", "Fs", "Fd", "phase", "Fn"} and len(r["Fn"]) == 1, r
+        assert r["x"][0] >= -1e-12, r
+        if r["t"] > t_inf:
+            assert abs(r["x"][0]) < 1e-12 and r["v"] == [0] and abs(r["Fn"][0] + g) < 1e-9, r
+        elif r["x"][0] > 1e-9:
+            assert r["Fn"] == [0], r
+'
+
+start_daemon contact || finish
+U=$URL_contact/v1/simulate
+
+req "$U" application/x-ndjson "$BALL"
+check "ball NDJSON: 200" is "$STATUS" 200
+check "ball NDJSON: impacts and rows against the closed form" py "$BODY" "$CLOSED"'
+rows = [loads(l) for l in text.splitlines()]
+check_impacts([r for r in rows if r["type"] == "event"])
+check_rows([r for r in rows if r["type"] == "sample"])
+assert rows[-1]["type"] == "summary" and rows[-1]["events"] == len([r for r in rows if r["type"] == "event"]), rows[-1]
+'
+req "$U" application/json "$BALL"
+check "ball JSON: the same events and rows" py "$BODY" "$CLOSED"'
+d = loads(text)
+check_impacts(d["events"]); check_rows(d["samples"])
+'
+req "$U" text/csv "$BALL"
+check "ball CSV: header with the Fn column, rest on the table" py "$BODY" '
+lines = text.splitlines()
+assert lines[0] == "t,x0,v0,Fs0,Fd0,phase0,Fn0", lines[0]
+last = lines[-1].split(",")
+assert float(last[0]) == 2 and abs(float(last[1])) < 1e-12 and float(last[2]) == 0 and abs(float(last[6]) + 9.81) < 1e-9, last
+'
+req "$U" text/event-stream "$BALL"
+check "ball SSE: impact events" py "$BODY" '
+ev = [loads(b.split("data: ", 1)[1]) for b in text.split("\n\n") if b.startswith("event: event")]
+assert len(ev) > 20 and all(e["kind"] == "impact" and e["impulse"] >= 0 for e in ev), ev[:3]
+'
+"$CLI" simulate - --format ndjson <<<"$BALL" >"$SCRATCH/cli.out"
+req "$U" application/x-ndjson "$BALL"
+check "ball: the CLI prints what the daemon streams" cmp -s "$SCRATCH/cli.out" "$BODY"
+
+# ---- well-posedness: what the theorems say with contacts ----
+WP=$URL_contact/v1/wellposedness
+req "$WP" application/json "$BALL"
+check "wellposedness, one contact and linear laws: unique (Ballard)" py "$BODY" '
+d = loads(text)
+assert d["existence"]["guaranteed"] and d["uniqueness"]["guaranteed"], d
+assert "Ballard" in d["uniqueness"]["theorem"] and any(c["hypothesis"].startswith("contacts") for c in d["checks"]), d
+'
+TWO=$(python3 -c 'import json,sys; d=json.loads(sys.argv[1]); d["model"]["masses"]=[1,1]; d["model"]["elements"].append({"between":[0,1],"contact":{"distance":0.1,"restitution":1}}); d["initial"]={"x":[1,2],"v":[0,0]}; print(json.dumps(d))' "$BALL")
+req "$WP" application/json "$TWO"
+check "wellposedness, two contacts: existence, uniqueness not guaranteed (simultaneous impacts)" py "$BODY" '
+d = loads(text)
+assert d["existence"]["guaranteed"] and not d["uniqueness"]["guaranteed"], d
+assert "several rigid contacts" in d["uniqueness"]["reason"], d["uniqueness"]
+'
+
+# ---- bad input: 422 problem+json naming the member ----
+bad() {
+    local doc
+    doc=$(python3 -c 'import json,sys; d=json.loads(sys.argv[1]); exec(sys.argv[2]); print(json.dumps(d))' "$BALL" "$3") || return 1
+    req "$U" '*/*' "$doc"
+    check "$1: 422 at $2" py "$BODY" '
+d = loads(text)
+assert d["status"] == '"$STATUS"' == 422 and d["type"] == "/problems/invalid-spec", (d["status"], d.get("type"))
+ptrs = sorted(e["pointer"] for e in d["errors"])
+assert ptrs == sorted("'"$2"'".split()), ptrs
+assert d["errors"][0]["detail"], d
+'
+    check "$1: application/problem+json" is "$(header Content-Type)" application/problem+json
+    "$CLI" simulate "$SCRATCH/request" >/dev/null 2>"$SCRATCH/cli.err"
+    local rc=$?
+    check "$1: CLI exit 2 naming ${2%% *}" bash -c '[ "$1" = 2 ] && grep -q "^dashpot: [^:]*: $2: " "$3"' _ "$rc" "${2%% *}" "$SCRATCH/cli.err"
+}
+C='d["model"]["elements"][0]["contact"]'
+bad "restitution above 1" /model/elements/0/contact/restitution "$C[\"restitution\"] = 1.5"
+bad "restitution below 0" /model/elements/0/contact/restitution "$C[\"restitution\"] = -0.1"
+bad "restitution not a number" /model/elements/0/contact/restitution "$C[\"restitution\"] = \"elastic\""
+bad "contact without a distance" /model/elements/0/contact/distance "del $C[\"distance\"]"
+bad "rigid and compliant at once" /model/elements/0/contact/compliance "$C[\"compliance\"] = 1000"
+bad "a zero compliance" /model/elements/0/contact/compliance "del $C[\"restitution\"]; $C[\"compliance\"] = 0"
+bad "an unknown contact member" /model/elements/0/contact/mu "$C[\"mu\"] = 0.3"
+bad "contact not an object" /model/elements/0/contact "$C = 0.5"
+bad "initial state inside the stop" /initial/x/0 'd["initial"]["x"] = [-0.01]'
+# (no initial state satisfies a rope shorter than the contact's distance: that is named at /initial/x/0 too)
+bad "a rope that forbids every admissible elongation" "/model/elements/0/contact/distance /initial/x/0" \
+    'd["model"]["elements"][0]["spring"] = {"law": "rope", "k": 1, "length": 0.5}; '"$C"'["distance"] = 0.8; d["initial"]["x"] = [0.4]; d["solver"]["theta"] = 1'
+bad "a spring whose domain already keeps the contact open" /model/elements/0/contact/distance \
+    'd["model"]["elements"][0]["spring"] = {"law": "graph", "points": [[-0.5, -1e9], [-0.5, 0], [1, 1]]}; '"$C"'["distance"] = -1; d["solver"]["theta"] = 1'
+bad "the newmark solver" /model/elements/0/contact 'd["solver"] = {"kind": "newmark", "dt": 0.001, "t_end": 1}'
+bad "a rigid contact with the regularized solver" /model/elements/0/contact \
+    'd["solver"] = {"kind": "regularized", "n": 100, "dt": 0.001, "t_end": 1}'
+bad "a compliant contact at theta 1/2" /model/elements/0/contact "del $C[\"restitution\"]; $C[\"compliance\"] = 1e4"
+
+# ---- the examples of docs/contact.md ----
+DOC=$SCRATCH/doc
+mkdir -p "$DOC/build"
+ln -s "$CLI" "$DOC/build/dashpot"
+python3 - "$ROOT/docs/contact.md" "$DOC" <<'PY'
+import os, re, sys
+text, out = open(sys.argv[1]).read(), sys.argv[2]
+n = 0
+for kind, name, body in re.findall(r'<!-- (example|file: ([^ ]+)) -->\n```[a-z]*\n(.*?)```', text, re.S):
+    if kind.startswith('file'):
+        open(os.path.join(out, name), 'w').write(body)
+        continue
+    cmd, _, expected = body.partition('\n')
+    n += 1
+    open(os.path.join(out, 'cmd%02d' % n), 'w').write(cmd[2:] + '\n')
+    open(os.path.join(out, 'want%02d' % n), 'w').write(expected)
+open(os.path.join(out, 'count'), 'w').write(str(n))
+PY
+count=$(cat "$DOC/count")
+check "docs/contact.md has examples ($count)" test "$count" -ge 2
+for i in $(seq -f %02g "$count"); do
+    cmd=$(sed "s/localhost:8080/127.0.0.1:$PORT_contact/g" "$DOC/cmd$i")
+    (cd "$DOC" && timeout 30 bash -c "$cmd") >"$DOC/got$i" 2>&1
+    if ! check "docs/contact.md example $i: $(head -c 70 "$DOC/cmd$i")" cmp -s "$DOC/got$i" "$DOC/want$i"; then
+        diff "$DOC/want$i" "$DOC/got$i" | head -10 | sed 's/^/    /'
+    fi
+done
+
+stop_daemon contact
+check "SIGTERM: exit 0" is "$RC_contact" 0
+finish
