@@ -273,7 +273,7 @@ async function runSimulation() {
     sim.budget = budget;
     sim.label = label;
     sim.preset = PRESETS.find((q) => q.id === ui.preset.simulate) || null; // names an LCS run's columns
-    sim.spec = JSON.parse(body); // a 200 means it parsed; says which network elements are contacts
+    try { sim.spec = JSON.parse(body); } catch { sim.spec = null; } // says which network elements are contacts
     markStale(null);
     renderStats();
     drawAll();

@@ -1,5 +1,6 @@
 // web/presets.js - the runs the page offers: the thesis' figures, the paper's two counterexamples (each
-// branch), a forced oscillator, a belt-driven stick-slip and stability maps. kind: which tab runs it.
+// branch), a forced oscillator, a belt-driven stick-slip, networks, circuits, contacts and impacts, and
+// stability maps. kind: which tab runs it.
 
 const linear = { law: 'linear', k: 1 };
 const thesis = (x0, relaxed) => ({
