@@ -131,9 +131,10 @@ bench: all
 	@bash bench/run.sh $(BUILD)
 
 # dashpot's stick-slip solver next to Siconos (installed from Debian if missing): accuracy and speed, for one
-# mass (siconos.sh) and for networks (network.sh: chains, Burridge-Knopoff scaling, one node vs one mass).
+# mass (siconos.sh), for networks (network.sh: chains, Burridge-Knopoff scaling, one node vs one mass) and for
+# contacts (contact.sh: the bouncing ball, two masses, 100 blocks on stops).
 bench-peers: all
-	@fail=0; for b in bench/siconos.sh bench/network.sh; do echo "== $$b"; BUILD=$(BUILD) bash $$b || fail=1; done; \
+	@fail=0; for b in bench/siconos.sh bench/network.sh bench/contact.sh; do echo "== $$b"; BUILD=$(BUILD) bash $$b || fail=1; done; \
 	exit $$fail
 
 clean:

@@ -73,11 +73,23 @@ typedef struct dp_forcing {
     struct dp_forcing *terms;
 } dp_forcing;
 
+/* A unilateral contact on an element (systems.md §4): its elongation must stay at least `distance`.
+ * Rigid (compliance 0): Newton's impact law with restitution e in [0, 1] at the velocity level (Moreau-Jean);
+ * compliant (compliance k > 0): the force k max(distance - u, 0) pushing the ends apart instead, the Yosida
+ * approximation of the rigid contact (002 (2.7)), which rebounds elastically. */
+typedef struct dp_contact {
+    double distance;
+    double restitution;
+    double compliance;
+} dp_contact;
+
 typedef struct dp_model {
     double mass;
     dp_spring spring;
     dp_damper damper;
     dp_forcing forcing;
+    int has_contact;      /* a contact: the document runs as the one-node network (docs/contact.md) */
+    dp_contact contact;
 } dp_model;
 
 /* Builds the graphs of the named laws (idempotent for user graphs). DP_OK, DP_EINVAL or DP_ENOMEM. */

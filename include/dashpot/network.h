@@ -21,16 +21,6 @@
 /* Full matrices are n x n numbers on the wire: past this many nodes a matrix document is refused. */
 #define DP_NETWORK_MAX_MATRIX_NODES 200
 
-/* A unilateral contact on an element (systems.md §4): its elongation must stay at least `distance`.
- * Rigid (compliance 0): Newton's impact law with restitution e in [0, 1] at the velocity level (Moreau-Jean);
- * compliant (compliance k > 0): the force k max(distance - u, 0) pushing the ends apart instead, the Yosida
- * approximation of the rigid contact (002 (2.7)), which rebounds elastically. */
-typedef struct dp_contact {
-    double distance;
-    double restitution;
-    double compliance;
-} dp_contact;
-
 typedef struct dp_element {
     long a, b;          /* ends: node index or DP_GROUND */
     int has_spring, has_damper, has_contact;
@@ -54,6 +44,7 @@ typedef struct dp_network {
     dp_element *el;
     size_t nforce;
     dp_node_forcing *force;
+    int one_mass_doc;      /* made from a one-mass document with a contact: errors name its members */
 } dp_network;
 
 /* Builds every element's graphs (dp_model_prepare's laws). DP_OK, DP_EINVAL, DP_ENOMEM. */

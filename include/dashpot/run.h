@@ -85,6 +85,7 @@ typedef struct dp_summary {
                                     * regularized: Jacobian evaluations */
     unsigned long long rejected;   /* regularized: steps the error control rejected (0 elsewhere) */
     unsigned long long fevals;     /* regularized: right-hand side evaluations (0 elsewhere) */
+    unsigned long long impacts;    /* contacts' impacts (among `events`) */
     dp_row final_row;              /* runs with columns: the state at t_end (valid while the run lives) */
 } dp_summary;
 

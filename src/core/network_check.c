@@ -67,6 +67,16 @@ static void check_matrix(const double *A, size_t n, const char *ptr, int definit
         dp_errors_add(e, ptr, "must be positive semidefinite: its smallest eigenvalue is %.6g", lo);
 }
 
+/* The pointer of element i's member `rest` ("/contact/distance", "" for the element): a one-mass document
+ * made into a network names its own members (/model/contact, /model/spring). */
+static void el_ptr(char *p, size_t cap, const dp_spec *s, size_t i, const char *rest)
+{
+    if (s->net->one_mass_doc)
+        snprintf(p, cap, "/model%s", rest);
+    else
+        snprintf(p, cap, "/model/elements/%zu%s", i, rest);
+}
+
 /* A contact (network_contact.c): the initial state must respect it, the element's spring must leave it
  * something to do, and its solver must step it. */
 static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
@@ -75,19 +85,22 @@ static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
     const dp_contact *c = &el->contact;
     char p[DP_POINTER_MAX];
     if (u < c->distance) {
-        snprintf(p, sizeof p, "/initial/x/%ld", el->b >= 0 ? el->b : el->a);
+        if (s->net->one_mass_doc)
+            snprintf(p, sizeof p, "/initial/x");
+        else
+            snprintf(p, sizeof p, "/initial/x/%ld", el->b >= 0 ? el->b : el->a);
         dp_errors_add(e, p, "element %zu's contact needs its elongation u = x_b - x_a >= %g (its distance), but "
                       "the initial state has u = %.17g: the ends start inside the stop", i, c->distance, u);
     }
     const dp_graph *g = el->has_spring ? &el->spring.graph : NULL;
-    snprintf(p, sizeof p, "/model/elements/%zu/contact/distance", i);
+    el_ptr(p, sizeof p, s, i, "/contact/distance");
     if (g && g->n && g->right[0] == 0 && g->y[g->n - 1] < c->distance)
         dp_errors_add(e, p, "the element's spring allows no elongation above %g, the contact none below %g: no "
                       "state satisfies both", g->y[g->n - 1], c->distance);
     else if (g && g->n && g->left[0] == 0 && g->y[0] >= c->distance)
         dp_errors_add(e, p, "the element's spring already forbids elongations below %g, so the contact (>= %g) "
                       "could never act: drop it, or raise its distance", g->y[0], c->distance);
-    snprintf(p, sizeof p, "/model/elements/%zu/contact", i);
+    el_ptr(p, sizeof p, s, i, "/contact");
     if (s->solver.kind == DP_SOLVER_NEWMARK)
         dp_errors_add(e, p, "contacts are stepped by the stick-slip solver (Moreau-Jean) or, compliant, by the "
                       "regularized one; the newmark solver has no impact law");
@@ -105,7 +118,7 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
     const dp_element *el = &s->net->el[i];
     char p[DP_POINTER_MAX];
     if (el->a == el->b) {
-        snprintf(p, sizeof p, "/model/elements/%zu/between", i);
+        el_ptr(p, sizeof p, s, i, "/between");
         dp_errors_add(e, p, "an element must join two different ends");
     }
     double u = (el->b >= 0 ? s->x0v[el->b] : 0) - (el->a >= 0 ? s->x0v[el->a] : 0);
@@ -113,7 +126,7 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
     if (el->has_spring && el->spring.graph.n) {
         dp_graph_force(&el->spring.graph, u, &lo, &hi);
         if (lo == hi && !isfinite(lo)) {
-            snprintf(p, sizeof p, "/model/elements/%zu/spring", i);
+            el_ptr(p, sizeof p, s, i, "/spring");
             dp_errors_add(e, p, "the initial elongation %g is outside the spring's domain (a rope's length, a "
                           "vertical end piece)", u);
         }
@@ -121,20 +134,20 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
     if (el->has_damper && el->damper.graph.n) {
         dp_graph_force(&el->damper.graph, z - el->damper.belt_velocity, &lo, &hi);
         if (lo == hi && !isfinite(lo)) {
-            snprintf(p, sizeof p, "/model/elements/%zu/damper", i);
+            el_ptr(p, sizeof p, s, i, "/damper");
             dp_errors_add(e, p, "the initial relative velocity %g is outside the damper graph's domain", z);
         }
     }
     if (el->has_spring && el->spring.law != DP_SPRING_LINEAR && el->spring.law != DP_SPRING_ELASTOPLASTIC &&
         s->solver.theta != 1) {
-        snprintf(p, sizeof p, "/model/elements/%zu/spring", i);
+        el_ptr(p, sizeof p, s, i, "/spring");
         dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler): use "
                       "theta = 1", dp_spring_law_name(el->spring.law));
     }
     if (el->has_contact)
         check_contact(s, i, u, e);
     if (el->has_damper && el->damper.relaxation.kind == DP_RELAX_POWER) {
-        snprintf(p, sizeof p, "/model/elements/%zu/damper/relaxation", i);
+        el_ptr(p, sizeof p, s, i, "/damper/relaxation");
         dp_errors_add(e, p, "the power relaxation is not Lipschitz at rest, so a network step need not have one "
                       "solution (one mass only, with its branches)");
     }
@@ -147,7 +160,7 @@ static void check_regularized(const dp_spec *s, dp_errors *e)
     char p[DP_POINTER_MAX];
     for (size_t i = 0; i < s->net->nel; i++)
         if (s->net->el[i].has_spring && s->net->el[i].spring.law == DP_SPRING_ELASTOPLASTIC) {
-            snprintf(p, sizeof p, "/model/elements/%zu/spring/law", i);
+            el_ptr(p, sizeof p, s, i, "/spring/law");
             dp_errors_add(e, p, "the elastoplastic spring has memory (its plastic offset), which the regularized "
                           "scheme's memoryless laws do not: use the stick-slip or the newmark solver");
         }

@@ -90,7 +90,7 @@ static void element_event(dp_run *r, dp_event_kind kind, double t, size_t i, dou
 void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse)
 {
     struct dp_net_run *nr = r->net;
-    r->sum.events++;
+    r->sum.events++, r->sum.impacts++;
     if (!r->spec.output.events)
         return;
     const dp_element *e = &nr->net->el[i];

@@ -61,10 +61,15 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
              "is checked against W - h theta sum L b b^T > 0", relaxed);
     check(rep, "relaxation gamma Lipschitz", d);
     const char *thm = "maximal monotone evolution inclusion (Brezis 1973, Thm 3.1; seed 001 Thms 2-3 for one mass)";
-    size_t rigid = 0, soft = 0, other = dp_network_nonlinear_elements(net, NULL);
-    for (size_t i = 0; i < net->nel; i++)
-        if (net->el[i].has_contact)
-            net->el[i].contact.compliance > 0 ? soft++ : rigid++;
+    size_t rigid = 0, soft = 0, other = 0;   /* other: elements with a law that is not linear, contacts aside */
+    for (size_t i = 0; i < net->nel; i++) {
+        const dp_element *e = &net->el[i];
+        if (e->has_contact)
+            e->contact.compliance > 0 ? soft++ : rigid++;
+        other += (e->has_spring && e->spring.law != DP_SPRING_LINEAR) ||
+                 (e->has_damper && ((e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR) ||
+                                    e->damper.relaxation.kind != DP_RELAX_NONE));
+    }
     if (rigid + soft) {
         snprintf(d, sizeof d, "%zu rigid contacts (Newton's law, restitution in [0, 1], so no impact gains energy), "
                  "%zu compliant ones (a monotone spring graph, covered by the theorem above)", rigid, soft);
@@ -75,7 +80,7 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
             "Newton's impact law (Moreau 1988; Monteiro Marques 1993; Paoli-Schatzman 2002: Moreau-Jean's scheme "
             "converges to a solution)" };
         snprintf(rep->existence.reason, DP_WP_TEXT, "all hypotheses hold, each contact's restitution in [0, 1]");
-        int unique = rigid == 1 && other == 1;   /* the contact's element is the only nonlinear one */
+        int unique = rigid == 1 && soft == 0 && other == 0;
         rep->uniqueness = (dp_wp_verdict){ .guaranteed = unique, .theorem = unique ? "Ballard 2000: one "
             "unilateral constraint and analytic data (linear elements; the forcing must be analytic too)" : NULL };
         snprintf(rep->uniqueness.reason, DP_WP_TEXT, unique ? "one rigid contact, every other law linear" :

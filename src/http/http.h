@@ -72,6 +72,7 @@ typedef struct metrics {
     atomic_ullong duration_us_sum[NROUTES];
     atomic_ullong samples_streamed, bytes_streamed;
     atomic_ullong runs_started, runs_completed, runs_failed, runs_cancelled;
+    atomic_ullong events, impacts;   /* of the runs that ended */
     atomic_llong runs_in_flight, connections_open;
     atomic_llong studies_in_flight;              /* /v1/convergence studies computing now */
     atomic_uint workers_busy;                    /* solver slots taken (slots.c); written under its lock */

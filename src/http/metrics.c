@@ -126,6 +126,10 @@ int metrics_render(const metrics *m, dp_buf *b)
     render_one(b, &s, "dashpot_runs_cancelled_total", "counter",
                "Runs stopped because the client went away (or the connection timed out).",
                (long long)LOAD(m->runs_cancelled));
+    render_one(b, &s, "dashpot_events_total", "counter", "Events (stick, slip, yield, unload, impact) of runs that "
+               "ended.", (long long)LOAD(m->events));
+    render_one(b, &s, "dashpot_impacts_total", "counter", "Contacts' impacts of runs that ended (docs/contact.md).",
+               (long long)LOAD(m->impacts));
     render_one(b, &s, "dashpot_runs_in_flight", "gauge", "Runs streaming now.", LOAD(m->runs_in_flight));
     render_one(b, &s, "dashpot_studies_in_flight", "gauge", "Convergence studies computing now.",
                LOAD(m->studies_in_flight));

@@ -182,6 +182,11 @@ void stream_free(stream *st)
     if (st == NULL)
         return;
     metrics *m = &st->s->m;
+    if (st->run) {
+        const dp_summary *sum = dp_run_summary(st->run);
+        atomic_fetch_add_explicit(&m->events, sum->events, memory_order_relaxed);
+        atomic_fetch_add_explicit(&m->impacts, sum->impacts, memory_order_relaxed);
+    }
     if (!st->delivered)
         atomic_fetch_add(&m->runs_cancelled, 1);
     else

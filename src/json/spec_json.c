@@ -597,14 +597,36 @@ static void parse_forcing_with(ctx *c, const cJSON *o, const at *ptr, dp_forcing
     f->n = ok ? n : 0;
 }
 
+static const range RESTITUTION = { 0, 1, 0, " in [0, 1]" };
+
+/* {"distance": d, "restitution": e} (rigid, e default 0) or {"distance": d, "compliance": k} (compliant). */
+static void parse_contact(ctx *c, const cJSON *o, const at *ptr, dp_contact *ct)
+{
+    static const char *const keys[] = { "distance", "restitution", "compliance", NULL };
+    if (!want_object(c, o, ptr))
+        return;
+    check_keys(c, o, ptr, keys, NULL, NULL);
+    get_num(c, o, ptr, "distance", &ANY, 1, 0, &ct->distance);
+    int rigid = get_num(c, o, ptr, "restitution", &RESTITUTION, 0, 0, &ct->restitution);
+    int soft = get_num(c, o, ptr, "compliance", &POSITIVE, 0, 0, &ct->compliance);
+    if (rigid && soft) {
+        at p = { ptr, "compliance", 0 };
+        fail(c, &p, "a contact is rigid (\"restitution\") or compliant (\"compliance\"), not both: a compliant "
+                    "contact rebounds through its spring");
+    }
+}
+
 static void parse_model(ctx *c, const cJSON *o, const at *ptr, dp_model *m)
 {
-    static const char *const keys[] = { "mass", "spring", "damper", "forcing", NULL };
+    static const char *const keys[] = { "mass", "spring", "damper", "forcing", "contact", NULL };
     at p;
     if (!want_object(c, o, ptr))
         return;
     check_keys(c, o, ptr, keys, NULL, NULL);
     get_num(c, o, ptr, "mass", &POSITIVE, 1, 0, &m->mass);
+    const cJSON *ct = member(c, o, ptr, "contact", NULL, &p);
+    if (ct != NULL)
+        m->has_contact = 1, parse_contact(c, ct, &p, &m->contact);
     const cJSON *v = member(c, o, ptr, "spring", "an object with a \"law\"", &p);
     if (v != NULL)
         parse_spring(c, v, &p, &m->spring);
@@ -759,6 +781,33 @@ static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
                   &out->nelements);
 }
 
+/* A one-mass document with a contact is the network it is: one node of its mass, one element [ground, 0]
+ * with its spring, damper and contact, its forcing on node 0 (the laws are moved, not copied). */
+static int one_mass_as_network(dp_spec *s)
+{
+    dp_network *net = calloc(1, sizeof *net);
+    if (net == NULL)
+        return DP_ENOMEM;
+    s->net = net;
+    net->n = 1, net->nel = 1, net->one_mass_doc = 1;
+    net->mass = malloc(sizeof *net->mass);
+    net->el = calloc(1, sizeof *net->el);
+    s->x0v = malloc(sizeof *s->x0v), s->v0v = malloc(sizeof *s->v0v);
+    int forced = s->model.forcing.kind != DP_FORCING_NONE;
+    net->force = forced ? calloc(1, sizeof *net->force) : NULL;
+    if (!net->mass || !net->el || !s->x0v || !s->v0v || (forced && !net->force))
+        return DP_ENOMEM;
+    net->mass[0] = s->model.mass, s->x0v[0] = s->x0, s->v0v[0] = s->v0;
+    net->el[0] = (dp_element){ .a = DP_GROUND, .b = 0, .has_spring = 1, .has_damper = 1, .has_contact = 1,
+                               .spring = s->model.spring, .damper = s->model.damper, .contact = s->model.contact };
+    if (forced)
+        net->force[0] = (dp_node_forcing){ .node = 0, .f = s->model.forcing }, net->nforce = 1;
+    memset(&s->model.spring, 0, sizeof s->model.spring);
+    memset(&s->model.damper, 0, sizeof s->model.damper);
+    memset(&s->model.forcing, 0, sizeof s->model.forcing);
+    return DP_OK;
+}
+
 static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
 {
     static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
@@ -790,6 +839,8 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
         parse_solver(c, v, &p, &s->solver);
     if ((v = member(c, o, NULL, "output", NULL, &p)) != NULL)
         parse_output(c, v, &p, s);
+    if (s->net == NULL && s->model.has_contact && !c->nerr && !c->nomem && one_mass_as_network(s) != DP_OK)
+        c->nomem = 1;
 }
 
 /* ---- syntax ----------------------------------------------------------------------------------------- */
@@ -910,6 +961,13 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
         dp_spec_clear(&spec);
     } else if (v != NULL && is_network(v)) {
         s = network_report(&c, root, v, &p, rep);
+    } else if (v != NULL && cJSON_GetObjectItemCaseSensitive(v, "contact") != NULL) {
+        dp_spec spec;   /* a one-mass document with a contact: the one-node network it runs as */
+        dp_spec_init(&spec);
+        s = dp_spec_parse(text, len, 0, &spec, errs);
+        if (s == DP_OK)
+            dp_network_wellposedness(spec.net, rep);
+        dp_spec_clear(&spec);
     } else {
         dp_model m = { 0 };
         if ((s = lenient_model(&c, v, &p, &m)) == DP_OK)
