@@ -24,9 +24,12 @@ const $ = (id) => document.getElementById(id);
 const PALETTE = ['#0072b2', '#d55e00', '#009e73', '#cc79a7', '#e69f00', '#56b4e9', '#7a5cc4', '#000000'];
 
 // The written elements of the request that carry a contact: {element, col (its place among the written
-// elements, the Fn column), between, distance, rigid}. None when the request cannot be read.
+// elements, the Fn column), between, distance, rigid}. None when the request cannot be read. A one-mass
+// document with a contact runs as the network of one node whose element 0 is ["ground", 0] (docs/contact.md).
 export function contactsOf(spec, meta) {
-  const elements = spec && spec.model && Array.isArray(spec.model.elements) ? spec.model.elements : [];
+  const model = (spec && spec.model) || {};
+  const elements = Array.isArray(model.elements) ? model.elements
+    : model.contact ? [{ between: ['ground', 0], contact: model.contact }] : [];
   const written = meta.columns.elements;
   return written.flatMap((e, col) => {
     const el = elements[e];
