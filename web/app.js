@@ -16,7 +16,8 @@
 // plots' width in device pixels, so a 10^8-step run streams what the canvas can show, not 10^8 samples; the
 // server picks every (docs/http.md), the page says the curve is decimated. An explicit output is sent as is.
 // A network run (meta.model "network", docs/networks.md) is held and drawn by network.js instead, a
-// right-hand friction run by right_hand.js, a linear complementarity system (meta.model "lcs") by lcs.js
+// right-hand friction run by right_hand.js (a network with contact elements adds web/contact.js's plots and
+// impact markers), a linear complementarity system (meta.model "lcs") by lcs.js
 // with the column names of the preset the request came from.
 
 import { Table, Plot } from './plot.js';
@@ -26,6 +27,7 @@ import { NetworkView } from './network.js';
 import { runModes, renderModes } from './modes.js';
 import { RightHandView } from './right_hand.js';
 import { LcsView, lcsReport } from './lcs.js';
+import { ContactPlots } from './contact.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
@@ -45,7 +47,7 @@ const ui = {
 const headers = (accept) => ({ 'Content-Type': 'application/json', Accept: accept,
   ...(ui.token ? { Authorization: 'Bearer ' + ui.token } : {}) });
 const editor = new Editor($('editor'), () => run());
-const network = new NetworkView(); // a run of a network model (meta.model "network") is drawn there
+const network = new NetworkView(new ContactPlots()); // a network run (meta.model "network"), with contacts or not
 const rhView = new RightHandView(); // a run of a right-hand friction model (web/right_hand.js)
 const RH_MODELS = ['piston-hinge', 'painleve-rod'];
 const lcsView = new LcsView(); // a run of a linear complementarity system (web/lcs.js)
@@ -151,7 +153,7 @@ let sim = newRun();
 function newRun() {
   return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, rh: null, lcs: null, events: [], stick: [], stickStart: null,
     meta: null, summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
-    label: '', preset: null };
+    label: '', preset: null, spec: null };
 }
 // The run held by a view of its own (network, right-hand, LCS), or null for the one-mass plots.
 const viewRun = () => sim.net || sim.rh || sim.lcs;
@@ -229,13 +231,14 @@ function onRecord(o) {
     case 'event': // located transitions: the shading starts and ends at the event, not at the next sample
       sim.events.push(o);
       if (sim.rh) { sim.rh.event(o); break; }
+      if (sim.net && sim.net.event) { sim.net.event(o); break; } // impacts (web/contact.js)
       if (o.kind === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
       if (o.kind === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
       break;
     case 'meta':
       sim.meta = o;
       sim.tEnd = o.t_end;
-      if (o.model === 'network') sim.net = network.start(o);
+      if (o.model === 'network') sim.net = network.start(o, sim.spec);
       if (RH_MODELS.includes(o.model)) sim.rh = rhView.start(o);
       if (o.model === 'lcs') sim.lcs = lcsView.start(o, sim.preset && sim.preset.columns);
       renderWellposedness(o.wellposedness, o);
@@ -270,6 +273,7 @@ async function runSimulation() {
     sim.budget = budget;
     sim.label = label;
     sim.preset = PRESETS.find((q) => q.id === ui.preset.simulate) || null; // names an LCS run's columns
+    try { sim.spec = JSON.parse(body); } catch { sim.spec = null; } // says which network elements are contacts
     markStale(null);
     renderStats();
     drawAll();

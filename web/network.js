@@ -28,11 +28,11 @@ function viridis(s) {
 
 // The samples of one network run as columns t, x0.., v0.. (indices into the written nodes).
 export class NetworkRun {
-  constructor(meta) {
+  constructor(meta, extra = []) { // extra: more columns, filled by a subclass (web/contact.js)
     this.nodes = meta.columns.nodes;
     this.elements = meta.columns.elements;
     const k = this.nodes.length;
-    this.table = new Table(['t', ...this.nodes.map((_, j) => 'x' + j), ...this.nodes.map((_, j) => 'v' + j)]);
+    this.table = new Table(['t', ...this.nodes.map((_, j) => 'x' + j), ...this.nodes.map((_, j) => 'v' + j), ...extra]);
     this.maxRows = Math.max(1, Math.floor(MAX_CELLS / (2 * k + 1)));
     const m = Math.min(MAX_CURVES, k); // curves at evenly spread columns, first and last included
     this.curves = [...new Set(Array.from({ length: m }, (_, i) => (m === 1 ? 0 : Math.round((i * (k - 1)) / (m - 1)))))];
@@ -152,17 +152,24 @@ class SpaceTime {
 
 // The three network plots and their container; one per page, reused by every network run.
 export class NetworkView {
-  constructor() {
+  // contact: web/contact.js's ContactPlots (a run with contact elements gets its run and two more plots)
+  constructor(contact = null) {
     this.box = $('network-plots');
+    this.contact = contact;
     this.spaceTime = new SpaceTime($('plot-spacetime'));
     const timeAxis = { col: 't', label: 't', monotone: true, range: () => [0, this.spaceTime.tEnd] };
+    this.timeAxis = timeAxis;
     this.px = new Plot($('plot-nodes-x'), { x: timeAxis, y: { label: 'x\u1d62' }, series: [] });
     this.pv = new Plot($('plot-nodes-v'), { x: timeAxis, y: { label: 'v\u1d62' }, series: [] });
   }
 
-  // A new run from its meta line: the curves' series and legend, the empty pictures.
-  start(meta) {
-    const run = new NetworkRun(meta);
+  // A new run from its meta line (and the request sent, which says which elements are contacts): the
+  // curves' series and legend, the empty pictures.
+  start(meta, spec = null) {
+    const run = (this.contact && this.contact.runFor(meta, spec)) || new NetworkRun(meta);
+    this.px.opts.markers = null;
+    this.withContacts = !!run.contacts;
+    if (run.contacts) this.contact.start(run, this.px, this.timeAxis);
     const series = (p) => run.curves.map((j, i) => ({ col: p + j, color: PALETTE[i % PALETTE.length] }));
     this.px.opts.series = series('x');
     this.pv.opts.series = series('v');
@@ -186,10 +193,14 @@ export class NetworkView {
   show(on) {
     this.box.hidden = !on;
     $('plots-one').hidden = on;
+    if (this.contact) this.contact.show(on && this.withContacts);
+    // one node with contacts (a ball, an impact oscillator): its x(t), v(t) and phase portrait say it all
+    $('plot-spacetime').closest('figure').hidden = on && this.withContacts && this.spaceTime.run?.nodes.length === 1;
   }
 
   draw(run) {
     for (const p of [this.px, this.pv]) { p.setTable(run ? run.table : null); p.draw(); }
+    if (this.withContacts) this.contact.draw(run);
     this.spaceTime.run = run;
     this.spaceTime.draw();
   }

@@ -169,7 +169,7 @@ export class Plot {
     ctx.setLineDash([]);
     if (opts.markers) { // breakaways first: a stick at the same point stays visible inside its triangle
       const mks = opts.markers();
-      for (const kind of ['slip', 'stick']) for (const mk of mks) if (mk.kind === kind) marker(ctx, X(mk.x), Y(mk.y), kind);
+      for (const kind of ['slip', 'stick', 'impact']) for (const mk of mks) if (mk.kind === kind) marker(ctx, X(mk.x), Y(mk.y), kind);
     }
     ctx.restore();
     ctx.strokeStyle = css('--frame');
@@ -214,11 +214,17 @@ function line(ctx, xs, ys, n, X, Y, monotone, widthPx) {
   ctx.stroke();
 }
 
-// stick (slip -> stick): a filled dark circle; slip (breakaway): an open triangle.
+// stick (slip -> stick): a filled dark circle; slip (breakaway): an open triangle; impact: a filled diamond.
 export function marker(ctx, x, y, kind) {
   ctx.lineWidth = 1.5;
   ctx.beginPath();
-  if (kind === 'stick') {
+  if (kind === 'impact') {
+    ctx.moveTo(x, y - 6); ctx.lineTo(x + 5, y); ctx.lineTo(x, y + 6); ctx.lineTo(x - 5, y); ctx.closePath();
+    ctx.fillStyle = css('--ev-impact');
+    ctx.strokeStyle = '#fff';
+    ctx.fill();
+    ctx.stroke();
+  } else if (kind === 'stick') {
     ctx.arc(x, y, 4, 0, 2 * Math.PI);
     ctx.fillStyle = css('--ev-stick');
     ctx.strokeStyle = '#fff';

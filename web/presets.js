@@ -1,5 +1,6 @@
 // web/presets.js - the runs the page offers: the thesis' figures, the paper's two counterexamples (each
-// branch), a forced oscillator, a belt-driven stick-slip and stability maps. kind: which tab runs it.
+// branch), a forced oscillator, a belt-driven stick-slip, networks, circuits, contacts and impacts, and
+// stability maps. kind: which tab runs it.
 
 const linear = { law: 'linear', k: 1 };
 const thesis = (x0, relaxed) => ({
@@ -270,5 +271,39 @@ PRESETS.push({
     },
     initial: { x: [0, 1] },
     solver: { kind: 'stick-slip', dt: 0.001, t_end: 6, theta: 0.5 },
+  },
+});
+
+// Contacts and impacts (docs/contact.md): a network element with "contact" keeps its elongation
+// u = x_b - x_a >= distance (Newton's impact law with restitution e); drawn by web/network.js with
+// web/contact.js's phase portrait, contact forces and impact markers.
+const CONTACT = 'Contacts and impacts';
+PRESETS.push({
+  id: 'bouncing-ball', group: CONTACT, label: 'Bouncing ball, e = 0.8', kind: 'simulate',
+  note: 'A unit mass dropped from x = 1 under g = 9.81 onto a table at x = 0 (a contact to the ground, ' +
+    'restitution e = 0.8). The first impact at t\u2081 = \u221a(2/g) = 0.4515 with speed \u221a(2g) = 4.429, each rebound e times ' +
+    'the one before; the impacts accumulate at t\u221e = t\u2081 + 2e\u221a(2g)/(g(1 \u2212 e)) = 4.064, after which the ball ' +
+    'rests on the table (F\u2099 = \u2212mg).',
+  spec: {
+    model: { masses: [1], elements: [{ between: ['ground', 0], contact: { distance: 0, restitution: 0.8 } }],
+      forcing: [{ node: 0, kind: 'constant', value: -9.81 }] },
+    initial: { x: [1], v: [0] },
+    solver: { kind: 'stick-slip', dt: 0.001, t_end: 5, theta: 0.5 },
+  },
+});
+PRESETS.push({
+  id: 'impact-oscillator', group: CONTACT, label: 'Impact oscillator: forced spring hitting a stop, e = 0.7',
+  kind: 'simulate',
+  note: 'm = k = 1 on a spring to the ground, F = 0.5 cos(0.8 t), and a stop at x = \u22120.5 (a second element to the ' +
+    'ground with contact distance \u22120.5, e = 0.7). Free of the stop x = (0.5/(1 \u2212 0.8\u00b2))(cos 0.8t \u2212 cos t) ' +
+    'until it first reaches \u22120.5 at t = 4.02; then it hits the stop about once per forcing period and the phase ' +
+    'portrait jumps from \u2212v to 0.7 v at x = \u22120.5.',
+  spec: {
+    model: { masses: [1], elements: [
+      { between: ['ground', 0], spring: { law: 'linear', k: 1 } },
+      { between: ['ground', 0], contact: { distance: -0.5, restitution: 0.7 } }],
+    forcing: [{ node: 0, kind: 'harmonic', amplitude: 0.5, omega: 0.8, phase: 0 }] },
+    initial: { x: [0], v: [0] },
+    solver: { kind: 'stick-slip', dt: 0.001, t_end: 60, theta: 0.5 },
   },
 });

@@ -381,6 +381,83 @@ async function checkCircuits(page, out) {
   check(extra.length === 0, 'the edited LCS: no console error', extra.join('\n    '));
 }
 
+// Runs a contact preset (web/contact.js on top of web/network.js) and checks the page against the daemon's
+// own stream of the request the page sent (with its sample budget): one node, so the space-time picture is
+// hidden and x(t), v(t), the phase portrait and the contact forces are drawn, each through the samples and
+// the two rows added at each impact (v before and after, at x = u of the contact to the ground); the
+// impacts marked are the stream's; finite data; the x and phase plots' ranges are the stream's over the
+// samples and the impacts' states. Returns the stream and the plots' ranges for the closed-form checks.
+async function runContactPreset(page, name, id, origin) {
+  const from = problems.length;
+  await page.selectOption('#preset', id);
+  const d = await press(page, 'panel-simulate');
+  const spec = JSON.parse(await page.inputValue('#spec'));
+  const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: JSON.stringify({ ...spec, output: { max_samples: +d.budget } }),
+    headers: { Accept: 'application/x-ndjson' } });
+  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  const meta = lines[0], samples = lines.filter((o) => o.type === 'sample'), summary = lines[lines.length - 1];
+  const impacts = lines.filter((o) => o.type === 'event' && o.kind === 'impact'), rows = samples.length + 2 * impacts.length;
+  check(d.state === 'done' && meta.model === 'network' && summary.type === 'summary' && +d.budget > 0 && +d.every === meta.every,
+    `${name}: contact preset ${id} streams to its end (every ${meta.every})`, JSON.stringify(d));
+  const view = await page.evaluate(() => {
+    const box = document.getElementById('network-plots'), range = (i) => document.getElementById(i).dataset.yrange.split(',').map(Number);
+    return { ...box.dataset, spaceTimeHidden: document.getElementById('plot-spacetime').closest('figure').hidden,
+      x: range('plot-nodes-x'), v: range('plot-nodes-v'), phase: range('plot-contact-phase'), fn: range('plot-contact-fn'),
+      fnLegend: document.getElementById('legend-contact-fn').textContent };
+  });
+  check(+d.samples === samples.length && +view.impacts === impacts.length && +view.impactRows === 2 * impacts.length &&
+    +d.points === rows && d.canvases.length === 4 && d.canvases.every((k) => k === rows) && view.spaceTimeHidden,
+    `${name}: ${id}: x(t), v(t), phase portrait and contact forces drew the ${samples.length} samples and 2 rows at each of ` +
+    `the ${impacts.length} impacts (${rows}; no space-time picture for one node)`, JSON.stringify({ d, view }));
+  const span = (v) => [Math.min(...v), Math.max(...v)];
+  const want = { x: span([...samples.map((s) => s.x[0]), ...impacts.map((e) => e.u)]),
+    phase: span([...samples.map((s) => s.v[0]), ...impacts.flatMap((e) => [e.du, e.du_after])]) };
+  check(view.finite === 'true' && view.contacts === '1' && /rigid/.test(view.fnLegend) &&
+    ['x', 'phase', 'fn'].every((k) => view[k].every(Number.isFinite)) && view.x.join() === want.x.join() && view.phase.join() === want.phase.join(),
+    `${name}: ${id}: finite data; x in [${view.x}] and v in [${view.phase}] as the stream's samples and impacts`, JSON.stringify({ view, want }));
+  const ink = await inked(page);
+  check(ink.every((k) => k > 300), `${name}: ${id}: every contact-run canvas carries curves`, `saturated pixels per canvas: ${ink}`);
+  const bad = unexpected(from);
+  check(bad.length === 0, `${name}: ${id}: no console error, page error or failed request`, bad.join('\n    '));
+  return { samples, impacts, summary, view };
+}
+
+// The closed forms of the two contact presets. The ball (h0 = 1, g = 9.81, e = 0.8): impact k at
+// t_k = t1 + 2 v1 (e + ... + e^{k-1}) / g with t1 = sqrt(2/g), v1 = sqrt(2g), rebound e^k v1, accumulation at
+// t_inf = t1 + 2 v1 e / (g (1 - e)), then at rest on the table (Fn = -mg). The impact oscillator
+// (m = k = 1, F = 0.5 cos 0.8t, x(0) = v(0) = 0, stop x >= -0.5, e = 0.7): before the first impact
+// x = (0.5 / (1 - 0.64)) (cos 0.8t - cos t), so the first impact is the first root of x = -0.5.
+async function checkContacts(page, out) {
+  const g = 9.81, e = 0.8, t1 = Math.sqrt(2 / g), v1 = Math.sqrt(2 * g), tInf = t1 + 2 * v1 * e / (g * (1 - e));
+  const ball = await runContactPreset(page, 'page', 'bouncing-ball', out);
+  const I = ball.impacts, tk = (k) => t1 + 2 * v1 * Array.from({ length: k }, (_, j) => e ** (j + 1)).reduce((a, b) => a + b, 0) / g;
+  check(I.length >= 10 && Math.abs(I[0].t - t1) < 1e-9 && Math.abs(I[0].du + v1) < 1e-9 && Math.abs(I[0].du_after - e * v1) < 1e-9,
+    `ball: first impact at t = ${I[0]?.t} (sqrt(2/g) = ${t1.toFixed(10)}), speed ${I[0]?.du} -> ${I[0]?.du_after} (-sqrt(2g), e sqrt(2g))`,
+    JSON.stringify(I[0]));
+  check(I.slice(0, 8).every((o, k) => Math.abs(o.t - tk(k)) < 1e-8 && Math.abs(o.du_after - e ** (k + 1) * v1) < 1e-8 && Math.abs(o.u) < 1e-12),
+    'ball: the first 8 impacts at the closed-form times t_k, at x = 0, rebounding at e^k sqrt(2g)', JSON.stringify(I.slice(0, 8).map((o) => [o.t, o.du_after])));
+  const f = ball.summary.final;
+  check(Math.abs(I[I.length - 1].t - tInf) < 1e-6 && Math.abs(f.x[0]) < 1e-12 && f.v[0] === 0 && Math.abs(f.Fn[0] + g) < 1e-9,
+    `ball: the impacts accumulate at t = ${I[I.length - 1].t} (t_inf = ${tInf.toFixed(8)}) and it rests on the table, Fn = ${f.Fn[0]} = -mg`);
+  check(Math.abs(ball.view.phase[0] + v1) < 1e-9 && Math.abs(ball.view.phase[1] - e * v1) < 1e-9 && ball.view.x[0] > -1e-12 && ball.view.x[1] === 1 &&
+    Math.abs(ball.view.fn[0] + g) < 1e-9,
+    `ball: the page's phase portrait spans v in [-sqrt(2g), e sqrt(2g)] = [${ball.view.phase}], x never below the table (${ball.view.x[0]})`);
+  await screenshot(page, 'page-bouncing-ball');
+
+  const osc = await runContactPreset(page, 'page', 'impact-oscillator', out);
+  const A = 0.5 / (1 - 0.8 ** 2), x = (t) => A * (Math.cos(0.8 * t) - Math.cos(t)), dx = (t) => A * (Math.sin(t) - 0.8 * Math.sin(0.8 * t));
+  let [a, b] = [3, 4.5]; // x(3) > -0.5 > x(4.5), and x stays above -0.5 on [0, 3]
+  for (let i = 0; i < 100; i++) { const m = (a + b) / 2; if (x(m) + 0.5 > 0) a = m; else b = m; }
+  const J = osc.impacts, ts = (a + b) / 2;
+  check(J.length >= 5 && Math.abs(J[0].t - ts) < 1e-5 && Math.abs(J[0].du - dx(ts)) < 1e-6,
+    `impact oscillator: first impact at t = ${J[0]?.t} with du = ${J[0]?.du} (closed form ${ts.toFixed(7)}, ${dx(ts).toFixed(7)})`);
+  check(J.every((o) => Math.abs(o.u + 0.5) < 1e-12 && o.du < 0 && Math.abs(o.du_after + 0.7 * o.du) < 1e-12 * Math.abs(o.du)),
+    `impact oscillator: all ${J.length} impacts at the stop x = -0.5, each rebounding at -0.7 times the incoming rate`);
+  check(Math.abs(osc.view.x[0] + 0.5) < 1e-12 && osc.samples.every((s) => s.x[0] >= -0.5 - 1e-12),
+    `impact oscillator: x never below the stop beyond rounding (page: min x ${osc.view.x[0]})`);
+  await screenshot(page, 'page-impact-oscillator');
+}
+
 const out = base.endsWith('/') ? base : base + '/';
 try {
   // ---- the page at / ----
@@ -425,6 +502,8 @@ try {
     `burridge-knopoff: velocity weakening on ${relaxed} blocks sustains the stick-slip (sticks per third of the run: ` +
     `${third(0, 1)}, ${third(1, 2)}, ${third(2, 3.01)})`);
   await screenshot(page, 'page-burridge-knopoff');
+  // ---- contacts and impacts (web/contact.js) ----
+  await checkContacts(page, out);
   // ---- friction with motion-dependent normal force (web/right_hand.js) ----
   await runRightHandPreset(page, 'page', 'piston-hinge', out, false);
   await screenshot(page, 'page-piston-hinge');
