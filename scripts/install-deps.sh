@@ -9,7 +9,8 @@ set -euo pipefail
 list=0
 [ "${1:-}" = "--list" ] && { list=1; shift; }
 pkgs=(build-essential pkg-config libgsl-dev libcjson-dev libmicrohttpd-dev)   # build and run (the image's build stage)
-test_pkgs=(python3 python3-yaml libcmocka-dev liblapack-dev curl)            # the tests add these (LAPACK: test_modes.c's reference)
+test_pkgs=(python3 python3-yaml libcmocka-dev liblapack-dev curl               # the tests add these (LAPACK: test_modes.c's
+           libsiconos-kernel-dev g++)                                        # reference; Siconos: tests/test_siconos.sh)
 [ "${1:-}" = "--run" ] || pkgs+=("${test_pkgs[@]}")
 [ "${1:-}" = "--bench" ] && pkgs+=(wrk python3-numpy python3-scipy valgrind)
 [ "${1:-}" = "--fuzz" ] && pkgs+=(clang libclang-rt-14-dev)
