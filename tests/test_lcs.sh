@@ -223,7 +223,8 @@ simbad() { # simbad NAME DOC POINTER: dashpot simulate exits 2 naming the pointe
 LCSM='"A": [[0, 1], [-4, -0.5]], "B": [[0], [1]], "C": [[0, 1]]'
 check "simulate lcs: B of another size named" simbad B '{"model": {"lcs": {"A": [[0, 1], [-4, -0.5]], "B": [[0, 1]], "C": [[0, 1]]}, "laws": [{"law": "complementarity"}]}}' /model/lcs/B
 check "simulate lcs: a law list of the wrong length shows at C" simbad laws "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}, {\"law\": \"complementarity\"}]}}" /model/lcs/C
-check "simulate lcs: an unknown law named" simbad law "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\"}]}}" /model/laws/0/law
+check "simulate lcs: an unknown law named" simbad law "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graf\"}]}}" /model/laws/0/law
+check "simulate lcs: a graph law without points named" simbad nopoints "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\"}]}}" /model/laws/0/points
 check "simulate lcs: an interval with min > max named" simbad interval "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"interval\", \"min\": 1, \"max\": 0}]}}" /model/laws/0/max
 check "simulate lcs: a backward current through an ideal diode is outside the laws" simbad domain "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0, -1]}}" /initial/x
 check "simulate lcs: initial x of another length named" simbad x0 "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0]}}" /initial/x
