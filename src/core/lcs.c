@@ -64,8 +64,28 @@ int dp_lcs_law_is_graph(const dp_lcs_law *law)
     return law->kind == DP_LCS_GRAPH || law->kind == DP_LCS_COULOMB || law->kind == DP_LCS_ROPE;
 }
 
-/* A law's pieces into out (NULL: only count them), its start u0 and domain [lo, hi]; the number of pieces. */
-static size_t law_pieces(const dp_lcs_law *law, size_t comp, piece *out, double *u0, double *lo, double *hi)
+/* The direction of the graph into vertex v (from v - 1, or the left ray) and out of it. */
+static void directions(const dp_graph *g, size_t v, double in[2], double out[2])
+{
+    size_t k = g->n;
+    in[0] = v ? g->y[v] - g->y[v - 1] : g->left[0], in[1] = v ? g->f[v] - g->f[v - 1] : g->left[1];
+    out[0] = v + 1 < k ? g->y[v + 1] - g->y[v] : g->right[0];
+    out[1] = v + 1 < k ? g->f[v + 1] - g->f[v] : g->right[1];
+}
+
+/* Whether the graph turns at vertex v. A user graph's end points only set its rays' directions (the ray
+ * continues the end segment), so they never are; merging straight runs keeps one row per real piece. */
+static int turns(const dp_graph *g, size_t v)
+{
+    double in[2], out[2];
+    directions(g, v, in, out);
+    return in[0] * out[1] - in[1] * out[0] != 0;
+}
+
+/* A law's pieces into out (NULL: only count them), its start u0 and domain [lo, hi]; the number of pieces,
+ * *bounded of them bounded (each a second row). */
+static size_t law_pieces(const dp_lcs_law *law, size_t comp, piece *out, double *u0, double *lo, double *hi,
+                         size_t *bounded)
 {
     if (!dp_lcs_law_is_graph(law)) {
         int iv = law->kind == DP_LCS_INTERVAL;
@@ -73,36 +93,46 @@ static size_t law_pieces(const dp_lcs_law *law, size_t comp, piece *out, double 
         *hi = iv ? law->hi : INFINITY;
         if (out)
             out[0] = (piece){ comp, 0, 1.0, 0.0, 0.0, iv ? law->hi - law->lo : INFINITY };
+        *bounded = iv;
         return 1;
     }
     const dp_graph *g = &law->graph;
-    size_t k = g->n, np = 0;
-    *u0 = g->y[0];
-    *lo = g->left[0] > 0 ? -INFINITY : g->y[0];
-    *hi = g->right[0] > 0 ? INFINITY : g->y[k - 1];
-    if (g->left[0] > 0 && out)
-        out[np] = (piece){ comp, 0, -1.0, g->f[0], g->left[1] / g->left[0], INFINITY };
-    np += g->left[0] > 0;
-    for (size_t v = 0; v + 1 < k; v++) {
-        double dy = g->y[v + 1] - g->y[v];
+    size_t k = g->n, np = 0, first = k, last = 0;
+    for (size_t v = 0; v < k; v++)
+        if (turns(g, v))
+            first = first < k ? first : v, last = v;
+    if (first == k)
+        first = last = 0;     /* a straight line: anchored at its first point */
+    double in[2], dir[2];
+    directions(g, first, in, dir);
+    *u0 = g->y[first];
+    *lo = g->left[0] > 0 ? -INFINITY : g->y[first];
+    *hi = g->right[0] > 0 ? INFINITY : g->y[last];
+    *bounded = 0;
+    if (in[0] > 0 && out)
+        out[np] = (piece){ comp, 0, -1.0, g->f[first], in[1] / in[0], INFINITY };
+    np += in[0] > 0;
+    for (size_t v = first, next = first + 1; v < last; v = next++) {
+        while (next < last && !turns(g, next))
+            next++;
+        double dy = g->y[next] - g->y[v];
         if (dy > 0 && out)
-            out[np] = (piece){ comp, 0, 1.0, g->f[v], (g->f[v + 1] - g->f[v]) / dy, dy };
-        np += dy > 0;
+            out[np] = (piece){ comp, 0, 1.0, g->f[v], (g->f[next] - g->f[v]) / dy, dy };
+        np += dy > 0, *bounded += dy > 0;
     }
-    if (g->right[0] > 0 && out)
-        out[np] = (piece){ comp, 0, 1.0, g->f[k - 1], g->right[1] / g->right[0], INFINITY };
-    return np + (g->right[0] > 0);
+    directions(g, last, in, dir);
+    if (dir[0] > 0 && out)
+        out[np] = (piece){ comp, 0, 1.0, g->f[last], dir[1] / dir[0], INFINITY };
+    return np + (dir[0] > 0);
 }
 
 size_t dp_lcs_law_rows(const dp_lcs_law *law)
 {
-    if (!dp_lcs_law_is_graph(law))
-        return law->kind == DP_LCS_INTERVAL ? 2 : 1;
-    const dp_graph *g = &law->graph;
-    size_t rows = (g->n > 0 && g->left[0] > 0) + (g->n > 0 && g->right[0] > 0);
-    for (size_t v = 0; v + 1 < g->n; v++)
-        rows += 2 * (g->y[v + 1] > g->y[v]);
-    return rows;
+    if (dp_lcs_law_is_graph(law) && law->graph.n == 0)
+        return 0;
+    double u0, lo, hi;
+    size_t bounded, np = law_pieces(law, 0, NULL, &u0, &lo, &hi, &bounded);
+    return np + bounded;
 }
 
 static int finite_all(const double *a, size_t k)
@@ -178,7 +208,8 @@ static size_t layout(dp_lcs_stepper *st, const dp_lcs *s)
     size_t np = 0, ma;
     for (size_t i = 0; i < s->m; i++) {
         double u0, lo, hi;
-        np += law_pieces(&s->law[i], i, st->pc + np, &u0, &lo, &hi);
+        size_t bounded;
+        np += law_pieces(&s->law[i], i, st->pc + np, &u0, &lo, &hi, &bounded);
         gsl_vector_set(st->u0, i, u0);
         gsl_vector_set(st->lo, i, lo);
         gsl_vector_set(st->hi, i, hi);
@@ -225,7 +256,8 @@ dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *s, double h, double theta, in
     size_t n = s->n, m = s->m, np = 0, ma = 0;
     for (size_t i = 0; i < m; i++) {
         double u0, lo, hi;
-        np += law_pieces(&s->law[i], i, NULL, &u0, &lo, &hi);
+        size_t bounded;
+        np += law_pieces(&s->law[i], i, NULL, &u0, &lo, &hi, &bounded);
         ma += dp_lcs_law_rows(&s->law[i]);
     }
     size_t ka = ma ? ma : 1;     /* GSL allocates no empty matrix: a dummy row when every u is fixed */
