@@ -210,8 +210,6 @@ static void test_three_vertex_graphs_against_enumeration(void **state)
     }
     for (int i = 0; i < 8; i++)
         CHECK(seen[i] > 50, "piece class %d visited %d times", i, seen[i]);
-    printf("pieces visited: %d %d %d %d | %d %d %d %d\n", seen[0], seen[1], seen[2], seen[3], seen[4], seen[5],
-           seen[6], seen[7]);
     dp_lcs_stepper_free(st);
     dp_graph_clear(&law[0].graph);
     dp_graph_clear(&law[1].graph);
