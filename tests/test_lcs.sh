@@ -232,6 +232,55 @@ check "simulate lcs: another solver named" simbad kind "{\"model\": {\"lcs\": {$
 # A step without solution: D = -1, q = -1 at x = (0, 0.5)... w = x2 - 1 - u: the initial state already fails.
 check "simulate lcs: no u at the initial state (w = x2 - 1 - u < 0 for all u >= 0)" simbad nosol "{\"model\": {\"lcs\": {$LCSM, \"D\": [[-1]], \"q\": [-1]}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0, 0.5]}}" /initial/x
 
+# ---- graph laws for LCS components: -w ∈ G(u), the interval's convention (docs/lcs.md) ----
+# The ideal diode's cone N_R+ through (0, -1), (0, 0), (1, 0) and the breakdown diode's N_[-0.5, 0] as graphs:
+# the same rows as the named laws (u, w and x at every sample).
+sed 's|{"law": "complementarity"}|{"law": "graph", "points": [[0, -1], [0, 0], [1, 0]]}|' "$T/rlc.json" >"$T/rlc_graph.json"
+sed 's|{"law": "interval", "min": -0.5, "max": 0}|{"law": "graph", "points": [[-0.5, -1], [-0.5, 0], [0, 0], [0, 1]]}|' \
+    "$T/breakdown.json" >"$T/breakdown_graph.json"
+same_rows() { # same_rows A.json B.json: the CSV rows agree to 1e-12 and there are more than 2
+    "$BIN" simulate "$1" --format csv >"$T/a.csv" && "$BIN" simulate "$2" --format csv >"$T/b.csv" || return 1
+    python3 -c "
+import csv, sys
+a = list(csv.reader(open('$T/a.csv'))); b = list(csv.reader(open('$T/b.csv')))
+assert a[0] == b[0] and len(a) == len(b) > 3, (len(a), len(b))
+d = max(abs(float(p) - float(q)) for r, s in zip(a[1:], b[1:]) for p, q in zip(r, s))
+assert d <= 1e-12, d
+"
+}
+check "graph law = complementarity: the ideal-diode RLC's rows to 1e-12" same_rows "$T/rlc.json" "$T/rlc_graph.json"
+check "graph law = interval: the breakdown diode's rows to 1e-12" same_rows "$T/breakdown.json" "$T/breakdown_graph.json"
+# The Jenkins element x = (s, e), s' = u, e' = cos t, -w = 2 (e - s) ∈ 0.5 Sgn(u): "coulomb" is the graph
+# through (-1, -0.5), (0, -0.5), (0, 0.5), (1, 0.5); a rope (k = 2, length 0.2) is the graph through
+# (0, 0), (0.2, 0.4), (0.2, 1.4). The driven force stays within [-0.5, 0.5] (checked on the rows).
+jenkins() { # jenkins LAW: the Jenkins element's document with that law
+    echo "{\"model\": {\"lcs\": {\"A\": [[0, 0], [0, 0]], \"B\": [[1], [0]], \"C\": [[2, -2]],
+      \"p\": [0, {\"kind\": \"harmonic\", \"amplitude\": 1, \"omega\": 1}]}, \"laws\": [$1]},
+      \"initial\": {\"x\": [0, 0]}, \"solver\": {\"kind\": \"stick-slip\", \"dt\": 0.01, \"t_end\": 10, \"theta\": 0.5},
+      \"output\": {\"every\": 10}}"
+}
+jenkins '{"law": "coulomb", "phi0": 0.5}' >"$T/jc.json"
+jenkins '{"law": "graph", "points": [[-1, -0.5], [0, -0.5], [0, 0.5], [1, 0.5]]}' >"$T/jg.json"
+jenkins '{"law": "rope", "k": 2, "length": 0.2}' >"$T/jr.json"
+jenkins '{"law": "graph", "points": [[0, 0], [0.2, 0.4], [0.2, 1.4]]}' >"$T/jrg.json"
+check "graph law = coulomb (the damper's builder): the Jenkins element's rows to 1e-12" same_rows "$T/jc.json" "$T/jg.json"
+check "coulomb: the force -w stays in [-0.5, 0.5] and reaches both ends (slips both ways)" python3 -c "
+import csv
+r = list(csv.DictReader(open('$T/a.csv'))); F = [-float(x['w0']) for x in r]
+assert max(abs(f) for f in F) <= 0.5 + 1e-12 and max(F) > 0.5 - 1e-12 and min(F) < -0.5 + 1e-12, (min(F), max(F))"
+check "graph law = rope (the spring's builder): the Jenkins element's rows to 1e-12" same_rows "$T/jr.json" "$T/jrg.json"
+"$BIN" simulate "$T/jg.json" --format ndjson | head -1 >"$T/jg_meta.json"
+check "the meta line names a graph law with its points and the LCP rows it adds (coulomb: 2)" pyjson "$T/jg_meta.json" "
+d['laws'] == [{'law': 'graph', 'points': [[-1, -0.5], [0, -0.5], [0, 0.5], [1, 0.5]], 'lcp_rows': 2}]"
+"$BIN" simulate "$T/jr.json" --format ndjson | head -1 >"$T/jr_meta.json"
+check "the meta line names a rope law with its parameters (1 row: the slack ray)" pyjson "$T/jr_meta.json" "
+d['laws'] == [{'law': 'rope', 'k': 2, 'length': 0.2, 'lcp_rows': 1}]"
+check "simulate lcs: a non-monotone graph point named" simbad nonmono "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\", \"points\": [[0, -1], [0, 0], [1, -0.5]]}]}}" /model/laws/0/points/2
+check "simulate lcs: a negative Coulomb threshold named" simbad phi "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"coulomb\", \"phi0\": -1}]}}" /model/laws/0/phi0
+check "simulate lcs: a rope without length named" simbad rope "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"rope\", \"k\": 1}]}}" /model/laws/0/length
+ZIG=$(python3 -c "print(','.join('[%d, %g]' % (i, (i * i if i % 2 else i * i + 0.5))  for i in range(300)))")
+check "simulate lcs: a graph whose step LCP exceeds 500 rows named at the law list" simbad rows "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\", \"points\": [$ZIG]}]}}" /model/laws
+
 start_daemon lcp || finish
 U=$URL_lcp
 post() { # post PATH FILE -> status and content type in $T/ct, body in $T/body
@@ -253,6 +302,13 @@ check "POST /v1/wellposedness with an LCS model: the CLI's answer" python3 -c "
 import json; assert json.load(open('$T/body')) == json.load(open('$T/wp_pd.json'))"
 hcurl -X POST -H 'Accept: application/x-ndjson' --data-binary @"$T/rlc.json" -o "$T/body" "$U/v1/simulate"
 check "POST /v1/simulate with an LCS model: the CLI's NDJSON byte for byte" cmp -s "$T/body" "$T/rlc.ndjson"
+echo "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\", \"points\": [[0, -1], [0, 0], [1, -0.5]]}]}}" >"$T/nonmono.json"
+post /v1/simulate "$T/nonmono.json"
+check "POST /v1/simulate, a non-monotone graph law: 422 problem+json at /model/laws/0/points/2" pyjson "$T/body" "
+d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/model/laws/0/points/2'] and
+'non-decreasing' in d['errors'][0]['detail']" && grep -q '^422 application/problem+json' "$T/ct"
+hcurl -X POST -H 'Accept: application/x-ndjson' --data-binary @"$T/jg.json" -o "$T/body" "$U/v1/simulate"
+check "POST /v1/simulate with a graph law: the CLI's NDJSON byte for byte" bash -c "'$BIN' simulate '$T/jg.json' --format ndjson | cmp -s - '$T/body'"
 stop_daemon lcp
 check "SIGTERM: exit 0" [ "$RC_lcp" = 0 ]
 finish
