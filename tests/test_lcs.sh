@@ -250,6 +250,34 @@ assert d <= 1e-12, d
 }
 check "graph law = complementarity: the ideal-diode RLC's rows to 1e-12" same_rows "$T/rlc.json" "$T/rlc_graph.json"
 check "graph law = interval: the breakdown diode's rows to 1e-12" same_rows "$T/breakdown.json" "$T/breakdown_graph.json"
+# docs/lcs.md's diode with a forward voltage V_f = 0.2 and on-resistance r = 0.4 in the ideal diode's RLC:
+# -i ∈ G(-v_D), G through (-1, -2), (-0.2, 0), (1, 0) (slope 1/r, then blocked). While it conducts,
+# y = q + C V_f obeys y'' + ((R + r)/L) y' + y/(LC) = 0, y(0) = C V_f, y'(0) = 1, until i = y' = 0 at t*;
+# then blocked for good with u = -v_D = q*/C. O(h) while u != 0 (measured 1.2e-4, q* 4.5e-5).
+cat >"$T/diode.json" <<'JSON'
+{"model": {"lcs": {"A": [[0, 1], [-4, -0.5]], "B": [[0], [1]], "C": [[0, 1]], "D": [[0]]},
+           "laws": [{"law": "graph", "points": [[-1, -2], [-0.2, 0], [1, 0]]}]},
+ "initial": {"x": [0, 1]},
+ "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 3, "theta": 0.5}}
+JSON
+"$BIN" simulate "$T/diode.json" --format ndjson >"$T/diode.ndjson"
+cat >"$T/diode_check.py" <<'PY'
+import json, math, sys
+s = [r for r in map(json.loads, open(sys.argv[1])) if r['type'] == 'sample']
+R, L, C, Vf, r = 0.5, 1.0, 0.25, 0.2, 0.4
+a = (R + r) / (2 * L); wd = math.sqrt(1 / (L * C) - a * a); y0 = C * Vf; B = (1 + a * y0) / wd
+y = lambda t: math.exp(-a * t) * (y0 * math.cos(wd * t) + B * math.sin(wd * t))
+yp = lambda t: math.exp(-a * t) * ((B * wd - a * y0) * math.cos(wd * t) - (y0 * wd + a * B) * math.sin(wd * t))
+ts = math.atan2(B * wd - a * y0, y0 * wd + a * B) / wd; qs = y(ts) - y0
+before = [x for x in s if x['t'] < ts - 0.002]; after = [x for x in s if x['t'] > ts + 0.002]
+assert len(s) == 3001 and len(before) > 600 and len(after) > 2300
+e1 = max(max(abs(x['x'][0] - (y(x['t']) - y0)), abs(x['x'][1] - yp(x['t']))) for x in before)
+assert e1 < 5e-4, e1
+assert max(abs(x['u'][0] + Vf + r * x['x'][1]) for x in before) < 1e-12  # on the conducting piece
+assert all(x['x'][1] == 0 and abs(x['x'][0] - qs) < 2e-4 and abs(x['u'][0] - qs / C) < 1e-3 for x in after)
+PY
+check "a graph law: the diode with forward voltage and on-resistance, the RLC's closed form, then blocked" \
+    python3 "$T/diode_check.py" "$T/diode.ndjson"
 # The Jenkins element x = (s, e), s' = u, e' = cos t, -w = 2 (e - s) ∈ 0.5 Sgn(u): "coulomb" is the graph
 # through (-1, -0.5), (0, -0.5), (0, 0.5), (1, 0.5); a rope (k = 2, length 0.2) is the graph through
 # (0, 0), (0.2, 0.4), (0.2, 1.4). The driven force stays within [-0.5, 0.5] (checked on the rows).
