@@ -8,7 +8,8 @@
  * convention of the interval (whose G is the normal cone N_[lo,hi]). The θ-step takes u at the step's end:
  * x+ = E x + h W p + h W B u+, W = (I - hθA)^-1, E = W (I + h(1-θ)A), and u+ solves one LCP with matrix
  * D + h C W B per step (an interval as a pair of complementarity rows, a graph as one row per non-vertical
- * ray and two per non-vertical segment: docs/lcs.md), exactly, by Lemke's method (lcp.h).
+ * ray and two per non-vertical segment between the vertices where it turns: docs/lcs.md), exactly, by
+ * Lemke's method (lcp.h).
  */
 #ifndef DASHPOT_LCS_H
 #define DASHPOT_LCS_H
@@ -35,7 +36,8 @@ typedef struct dp_lcs_law {
 /* Whether the stepper takes the law's graph (kind GRAPH, COULOMB or ROPE). */
 int dp_lcs_law_is_graph(const dp_lcs_law *law);
 /* The LCP rows a law adds to a step: 1 for complementarity, 2 for an interval, for a graph one per
- * non-vertical end ray and two per non-vertical segment (0 for a vertical line: u fixed). */
+ * non-vertical end ray and two per non-vertical segment between the vertices where it turns (a user graph's
+ * end points only set its rays; 0 for a vertical line: u fixed). */
 size_t dp_lcs_law_rows(const dp_lcs_law *law);
 
 /* The system; the caller owns the arrays (row-major: A n x n, B n x m, C m x n, D m x m, p n, q m). */
