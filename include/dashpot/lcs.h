@@ -39,6 +39,9 @@ int dp_lcs_law_is_graph(const dp_lcs_law *law);
  * non-vertical end ray and two per non-vertical segment between the vertices where it turns (a user graph's
  * end points only set its rays; 0 for a vertical line: u fixed). */
 size_t dp_lcs_law_rows(const dp_lcs_law *law);
+/* Whether the stepper takes the law: an interval with lo <= hi, a non-empty graph whose pieces have finite
+ * slopes (points near the ends of the double range can overflow one). */
+int dp_lcs_law_valid(const dp_lcs_law *law);
 
 /* The system; the caller owns the arrays (row-major: A n x n, B n x m, C m x n, D m x m, p n, q m). */
 typedef struct dp_lcs {

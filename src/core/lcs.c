@@ -117,7 +117,7 @@ static size_t law_pieces(const dp_lcs_law *law, size_t comp, piece *out, double 
             next++;
         double dy = g->y[next] - g->y[v];
         if (dy > 0 && out)
-            out[np] = (piece){ comp, 0, 1.0, g->f[v], (g->f[next] - g->f[v]) / dy, dy };
+            out[np] = (piece){ comp, 0, 1.0, g->f[v], isfinite(dy) ? (g->f[next] - g->f[v]) / dy : NAN, dy };
         np += dy > 0, *bounded += dy > 0;
     }
     directions(g, last, in, dir);
@@ -143,10 +143,26 @@ static int finite_all(const double *a, size_t k)
     return 1;
 }
 
-static int law_valid(const dp_lcs_law *l)
+/* Every piece of a graph law has a finite start force, slope and length (or is a ray): a graph spanning
+ * nearly the whole double range can overflow a slope even though its points are finite. */
+static int pieces_finite(const dp_lcs_law *l)
+{
+    double u0, lo, hi;
+    size_t bounded, np = law_pieces(l, 0, NULL, &u0, &lo, &hi, &bounded), ok = 1;
+    piece *pc = malloc((np ? np : 1) * sizeof *pc);
+    if (pc == NULL)
+        return 1;     /* not decided here: the stepper's own allocation reports the lack of memory */
+    law_pieces(l, 0, pc, &u0, &lo, &hi, &bounded);
+    for (size_t a = 0; a < np; a++)
+        ok &= isfinite(pc[a].f) && isfinite(pc[a].slope);   /* a segment too long for a double has a NaN slope */
+    free(pc);
+    return (int)ok;
+}
+
+int dp_lcs_law_valid(const dp_lcs_law *l)
 {
     if (dp_lcs_law_is_graph(l))
-        return l->graph.n > 0 && l->graph.y && l->graph.f;
+        return l->graph.n > 0 && l->graph.y && l->graph.f && pieces_finite(l);
     return l->kind == DP_LCS_COMPLEMENTARITY ||
            (l->kind == DP_LCS_INTERVAL && isfinite(l->lo) && isfinite(l->hi) && l->lo <= l->hi);
 }
@@ -161,7 +177,7 @@ static int valid(const dp_lcs *s, double h, double theta)
         !finite_all(s->D, m * m) || !finite_all(s->p, n) || !finite_all(s->q, m))
         return 0;
     for (size_t i = 0; i < m; i++) {
-        if (!law_valid(&s->law[i]))
+        if (!dp_lcs_law_valid(&s->law[i]))
             return 0;
         rows += dp_lcs_law_rows(&s->law[i]);
     }
