@@ -74,12 +74,16 @@ static void directions(const dp_graph *g, size_t v, double in[2], double out[2])
 }
 
 /* Whether the graph turns at vertex v. A user graph's end points only set its rays' directions (the ray
- * continues the end segment), so they never are; merging straight runs keeps one row per real piece. */
+ * continues the end segment), so they never are; merging straight runs keeps one row per real piece. The
+ * directions are scaled to a largest component of 1 first, so that tiny ones do not underflow to "parallel". */
 static int turns(const dp_graph *g, size_t v)
 {
     double in[2], out[2];
     directions(g, v, in, out);
-    return in[0] * out[1] - in[1] * out[0] != 0;
+    double si = fmax(in[0], in[1]), so = fmax(out[0], out[1]);
+    if (!(si > 0 && so > 0))
+        return 1;     /* a repeated vertex: kept, it adds no piece */
+    return (in[0] / si) * (out[1] / so) != (in[1] / si) * (out[0] / so);
 }
 
 /* A law's pieces into out (NULL: only count them), its start u0 and domain [lo, hi]; the number of pieces,
