@@ -223,13 +223,91 @@ simbad() { # simbad NAME DOC POINTER: dashpot simulate exits 2 naming the pointe
 LCSM='"A": [[0, 1], [-4, -0.5]], "B": [[0], [1]], "C": [[0, 1]]'
 check "simulate lcs: B of another size named" simbad B '{"model": {"lcs": {"A": [[0, 1], [-4, -0.5]], "B": [[0, 1]], "C": [[0, 1]]}, "laws": [{"law": "complementarity"}]}}' /model/lcs/B
 check "simulate lcs: a law list of the wrong length shows at C" simbad laws "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}, {\"law\": \"complementarity\"}]}}" /model/lcs/C
-check "simulate lcs: an unknown law named" simbad law "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\"}]}}" /model/laws/0/law
+check "simulate lcs: an unknown law named" simbad law "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graf\"}]}}" /model/laws/0/law
+check "simulate lcs: a graph law without points named" simbad nopoints "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\"}]}}" /model/laws/0/points
 check "simulate lcs: an interval with min > max named" simbad interval "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"interval\", \"min\": 1, \"max\": 0}]}}" /model/laws/0/max
 check "simulate lcs: a backward current through an ideal diode is outside the laws" simbad domain "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0, -1]}}" /initial/x
 check "simulate lcs: initial x of another length named" simbad x0 "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0]}}" /initial/x
 check "simulate lcs: another solver named" simbad kind "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"complementarity\"}]}, \"solver\": {\"kind\": \"analytic\"}}" /solver/kind
 # A step without solution: D = -1, q = -1 at x = (0, 0.5)... w = x2 - 1 - u: the initial state already fails.
 check "simulate lcs: no u at the initial state (w = x2 - 1 - u < 0 for all u >= 0)" simbad nosol "{\"model\": {\"lcs\": {$LCSM, \"D\": [[-1]], \"q\": [-1]}, \"laws\": [{\"law\": \"complementarity\"}]}, \"initial\": {\"x\": [0, 0.5]}}" /initial/x
+
+# ---- graph laws for LCS components: -w ∈ G(u), the interval's convention (docs/lcs.md) ----
+# The ideal diode's cone N_R+ through (0, -1), (0, 0), (1, 0) and the breakdown diode's N_[-0.5, 0] as graphs:
+# the same rows as the named laws (u, w and x at every sample).
+sed 's|{"law": "complementarity"}|{"law": "graph", "points": [[0, -1], [0, 0], [1, 0]]}|' "$T/rlc.json" >"$T/rlc_graph.json"
+sed 's|{"law": "interval", "min": -0.5, "max": 0}|{"law": "graph", "points": [[-0.5, -1], [-0.5, 0], [0, 0], [0, 1]]}|' \
+    "$T/breakdown.json" >"$T/breakdown_graph.json"
+same_rows() { # same_rows A.json B.json: the CSV rows agree to 1e-12 and there are more than 2
+    "$BIN" simulate "$1" --format csv >"$T/a.csv" && "$BIN" simulate "$2" --format csv >"$T/b.csv" || return 1
+    python3 -c "
+import csv, sys
+a = list(csv.reader(open('$T/a.csv'))); b = list(csv.reader(open('$T/b.csv')))
+assert a[0] == b[0] and len(a) == len(b) > 3, (len(a), len(b))
+d = max(abs(float(p) - float(q)) for r, s in zip(a[1:], b[1:]) for p, q in zip(r, s))
+assert d <= 1e-12, d
+"
+}
+check "graph law = complementarity: the ideal-diode RLC's rows to 1e-12" same_rows "$T/rlc.json" "$T/rlc_graph.json"
+check "graph law = interval: the breakdown diode's rows to 1e-12" same_rows "$T/breakdown.json" "$T/breakdown_graph.json"
+# docs/lcs.md's diode with a forward voltage V_f = 0.2 and on-resistance r = 0.4 in the ideal diode's RLC:
+# -i ∈ G(-v_D), G through (-1, -2), (-0.2, 0), (1, 0) (slope 1/r, then blocked). While it conducts,
+# y = q + C V_f obeys y'' + ((R + r)/L) y' + y/(LC) = 0, y(0) = C V_f, y'(0) = 1, until i = y' = 0 at t*;
+# then blocked for good with u = -v_D = q*/C. O(h) while u != 0 (measured 1.2e-4, q* 4.5e-5).
+cat >"$T/diode.json" <<'JSON'
+{"model": {"lcs": {"A": [[0, 1], [-4, -0.5]], "B": [[0], [1]], "C": [[0, 1]], "D": [[0]]},
+           "laws": [{"law": "graph", "points": [[-1, -2], [-0.2, 0], [1, 0]]}]},
+ "initial": {"x": [0, 1]},
+ "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 3, "theta": 0.5}}
+JSON
+"$BIN" simulate "$T/diode.json" --format ndjson >"$T/diode.ndjson"
+cat >"$T/diode_check.py" <<'PY'
+import json, math, sys
+s = [r for r in map(json.loads, open(sys.argv[1])) if r['type'] == 'sample']
+R, L, C, Vf, r = 0.5, 1.0, 0.25, 0.2, 0.4
+a = (R + r) / (2 * L); wd = math.sqrt(1 / (L * C) - a * a); y0 = C * Vf; B = (1 + a * y0) / wd
+y = lambda t: math.exp(-a * t) * (y0 * math.cos(wd * t) + B * math.sin(wd * t))
+yp = lambda t: math.exp(-a * t) * ((B * wd - a * y0) * math.cos(wd * t) - (y0 * wd + a * B) * math.sin(wd * t))
+ts = math.atan2(B * wd - a * y0, y0 * wd + a * B) / wd; qs = y(ts) - y0
+before = [x for x in s if x['t'] < ts - 0.002]; after = [x for x in s if x['t'] > ts + 0.002]
+assert len(s) == 3001 and len(before) > 600 and len(after) > 2300
+e1 = max(max(abs(x['x'][0] - (y(x['t']) - y0)), abs(x['x'][1] - yp(x['t']))) for x in before)
+assert e1 < 5e-4, e1
+assert max(abs(x['u'][0] + Vf + r * x['x'][1]) for x in before) < 1e-12  # on the conducting piece
+assert all(x['x'][1] == 0 and abs(x['x'][0] - qs) < 2e-4 and abs(x['u'][0] - qs / C) < 1e-3 for x in after)
+PY
+check "a graph law: the diode with forward voltage and on-resistance, the RLC's closed form, then blocked" \
+    python3 "$T/diode_check.py" "$T/diode.ndjson"
+# The Jenkins element x = (s, e), s' = u, e' = cos t, -w = 2 (e - s) ∈ 0.5 Sgn(u): "coulomb" is the graph
+# through (-1, -0.5), (0, -0.5), (0, 0.5), (1, 0.5); a rope (k = 2, length 0.2) is the graph through
+# (0, 0), (0.2, 0.4), (0.2, 1.4). The driven force stays within [-0.5, 0.5] (checked on the rows).
+jenkins() { # jenkins LAW: the Jenkins element's document with that law
+    echo "{\"model\": {\"lcs\": {\"A\": [[0, 0], [0, 0]], \"B\": [[1], [0]], \"C\": [[2, -2]],
+      \"p\": [0, {\"kind\": \"harmonic\", \"amplitude\": 1, \"omega\": 1}]}, \"laws\": [$1]},
+      \"initial\": {\"x\": [0, 0]}, \"solver\": {\"kind\": \"stick-slip\", \"dt\": 0.01, \"t_end\": 10, \"theta\": 0.5},
+      \"output\": {\"every\": 10}}"
+}
+jenkins '{"law": "coulomb", "phi0": 0.5}' >"$T/jc.json"
+jenkins '{"law": "graph", "points": [[-1, -0.5], [0, -0.5], [0, 0.5], [1, 0.5]]}' >"$T/jg.json"
+jenkins '{"law": "rope", "k": 2, "length": 0.2}' >"$T/jr.json"
+jenkins '{"law": "graph", "points": [[0, 0], [0.2, 0.4], [0.2, 1.4]]}' >"$T/jrg.json"
+check "graph law = coulomb (the damper's builder): the Jenkins element's rows to 1e-12" same_rows "$T/jc.json" "$T/jg.json"
+check "coulomb: the force -w stays in [-0.5, 0.5] and reaches both ends (slips both ways)" python3 -c "
+import csv
+r = list(csv.DictReader(open('$T/a.csv'))); F = [-float(x['w0']) for x in r]
+assert max(abs(f) for f in F) <= 0.5 + 1e-12 and max(F) > 0.5 - 1e-12 and min(F) < -0.5 + 1e-12, (min(F), max(F))"
+check "graph law = rope (the spring's builder): the Jenkins element's rows to 1e-12" same_rows "$T/jr.json" "$T/jrg.json"
+"$BIN" simulate "$T/jg.json" --format ndjson | head -1 >"$T/jg_meta.json"
+check "the meta line names a graph law with its points and the LCP rows it adds (coulomb: 2)" pyjson "$T/jg_meta.json" "
+d['laws'] == [{'law': 'graph', 'points': [[-1, -0.5], [0, -0.5], [0, 0.5], [1, 0.5]], 'lcp_rows': 2}]"
+"$BIN" simulate "$T/jr.json" --format ndjson | head -1 >"$T/jr_meta.json"
+check "the meta line names a rope law with its parameters (1 row: the slack ray)" pyjson "$T/jr_meta.json" "
+d['laws'] == [{'law': 'rope', 'k': 2, 'length': 0.2, 'lcp_rows': 1}]"
+check "simulate lcs: a non-monotone graph point named" simbad nonmono "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\", \"points\": [[0, -1], [0, 0], [1, -0.5]]}]}}" /model/laws/0/points/2
+check "simulate lcs: a negative Coulomb threshold named" simbad phi "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"coulomb\", \"phi0\": -1}]}}" /model/laws/0/phi0
+check "simulate lcs: a rope without length named" simbad rope "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"rope\", \"k\": 1}]}}" /model/laws/0/length
+ZIG=$(python3 -c "print(','.join('[%d, %g]' % (i, (i * i if i % 2 else i * i + 0.5))  for i in range(300)))")
+check "simulate lcs: a graph whose step LCP exceeds 500 rows named at the law list" simbad rows "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\", \"points\": [$ZIG]}]}}" /model/laws
 
 start_daemon lcp || finish
 U=$URL_lcp
@@ -252,6 +330,13 @@ check "POST /v1/wellposedness with an LCS model: the CLI's answer" python3 -c "
 import json; assert json.load(open('$T/body')) == json.load(open('$T/wp_pd.json'))"
 hcurl -X POST -H 'Accept: application/x-ndjson' --data-binary @"$T/rlc.json" -o "$T/body" "$U/v1/simulate"
 check "POST /v1/simulate with an LCS model: the CLI's NDJSON byte for byte" cmp -s "$T/body" "$T/rlc.ndjson"
+echo "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\", \"points\": [[0, -1], [0, 0], [1, -0.5]]}]}}" >"$T/nonmono.json"
+post /v1/simulate "$T/nonmono.json"
+check "POST /v1/simulate, a non-monotone graph law: 422 problem+json at /model/laws/0/points/2" pyjson "$T/body" "
+d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/model/laws/0/points/2'] and
+'non-decreasing' in d['errors'][0]['detail']" && grep -q '^422 application/problem+json' "$T/ct"
+hcurl -X POST -H 'Accept: application/x-ndjson' --data-binary @"$T/jg.json" -o "$T/body" "$U/v1/simulate"
+check "POST /v1/simulate with a graph law: the CLI's NDJSON byte for byte" bash -c "'$BIN' simulate '$T/jg.json' --format ndjson | cmp -s - '$T/body'"
 stop_daemon lcp
 check "SIGTERM: exit 0" [ "$RC_lcp" = 0 ]
 finish

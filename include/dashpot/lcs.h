@@ -4,9 +4,12 @@
  *
  * a law being complementarity 0 <= u_i ⊥ w_i >= 0 (an ideal diode: u the current or minus its voltage) or an
  * interval w_i ∈ -N_[lo,hi](u_i) (u = lo: w >= 0; u = hi: w <= 0; between: w = 0; a diode with breakdown,
- * a relay). The θ-step takes u at the step's end: x+ = E x + h W p + h W B u+, W = (I - hθA)^-1,
- * E = W (I + h(1-θ)A), and u+ solves one LCP with matrix D + h C W B per step (interval components as a
- * pair of complementarity rows), exactly, by Lemke's method (lcp.h).
+ * a relay), or any maximal monotone piecewise-linear graph G in the (u, -w) plane: -w_i ∈ G(u_i), the
+ * convention of the interval (whose G is the normal cone N_[lo,hi]). The θ-step takes u at the step's end:
+ * x+ = E x + h W p + h W B u+, W = (I - hθA)^-1, E = W (I + h(1-θ)A), and u+ solves one LCP with matrix
+ * D + h C W B per step (an interval as a pair of complementarity rows, a graph as one row per non-vertical
+ * ray and two per non-vertical segment between the vertices where it turns: docs/lcs.md), exactly, by
+ * Lemke's method (lcp.h).
  */
 #ifndef DASHPOT_LCS_H
 #define DASHPOT_LCS_H
@@ -16,12 +19,29 @@
 #include "dashpot/model.h"
 #include "dashpot/spec.h"
 
-typedef enum dp_lcs_law_kind { DP_LCS_COMPLEMENTARITY = 0, DP_LCS_INTERVAL = 1 } dp_lcs_law_kind;
+/* GRAPH, COULOMB and ROPE are graph laws: `graph` holds their (u, -w) graph (the one-mass model's builders:
+ * the damper's Coulomb graph, the spring's rope, user points) and the stepper uses nothing else. */
+typedef enum dp_lcs_law_kind {
+    DP_LCS_COMPLEMENTARITY = 0, DP_LCS_INTERVAL = 1, DP_LCS_GRAPH = 2, DP_LCS_COULOMB = 3, DP_LCS_ROPE = 4
+} dp_lcs_law_kind;
 
 typedef struct dp_lcs_law {
     dp_lcs_law_kind kind;
     double lo, hi;       /* interval laws: lo <= hi */
+    double phi0;         /* coulomb: -w ∈ phi0 Sgn(u) */
+    double k, length;    /* rope: -w = k u for u < length, >= k length at u = length */
+    dp_graph graph;      /* graph laws (an empty graph for the others) */
 } dp_lcs_law;
+
+/* Whether the stepper takes the law's graph (kind GRAPH, COULOMB or ROPE). */
+int dp_lcs_law_is_graph(const dp_lcs_law *law);
+/* The LCP rows a law adds to a step: 1 for complementarity, 2 for an interval, for a graph one per
+ * non-vertical end ray and two per non-vertical segment between the vertices where it turns (a user graph's
+ * end points only set its rays; 0 for a vertical line: u fixed). */
+size_t dp_lcs_law_rows(const dp_lcs_law *law);
+/* Whether the stepper takes the law: an interval with lo <= hi, a non-empty graph whose pieces have finite
+ * slopes (points near the ends of the double range can overflow one). */
+int dp_lcs_law_valid(const dp_lcs_law *law);
 
 /* The system; the caller owns the arrays (row-major: A n x n, B n x m, C m x n, D m x m, p n, q m). */
 typedef struct dp_lcs {
@@ -59,8 +79,9 @@ int dp_lcs_wellposedness(const dp_spec *s, struct dp_wp_report *rep);
 typedef struct dp_lcs_stepper dp_lcs_stepper;
 
 /* A stepper for step h >= 0 and θ in [0, 1]; h = 0 is the algebraic part alone (M = D: a step leaves x and
- * finds u, w at it). NULL with *status DP_EINVAL (sizes, non-finite data, an interval with lo > hi, I - hθA
- * singular) or DP_ENOMEM. The system's arrays are copied. */
+ * finds u, w at it). NULL with *status DP_EINVAL (sizes, non-finite data, an interval with lo > hi, an empty
+ * graph, an LCP of more than DP_LCP_MAX rows, I - hθA singular) or DP_ENOMEM. The system's arrays are
+ * copied (a graph law's pieces too). */
 dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *sys, double h, double theta, int *status);
 void dp_lcs_stepper_free(dp_lcs_stepper *st);
 

@@ -94,6 +94,9 @@ typedef struct dp_model {
 
 /* Builds the graphs of the named laws (idempotent for user graphs). DP_OK, DP_EINVAL or DP_ENOMEM. */
 int dp_model_prepare(dp_model *m);
+/* The same for one spring or one damper (an LCS component's law reuses them, docs/lcs.md). */
+int dp_spring_prepare(dp_spring *s);
+int dp_damper_prepare(dp_damper *d);
 
 /* Frees everything the model owns; accepts a zeroed model. */
 void dp_model_clear(dp_model *m);

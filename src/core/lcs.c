@@ -7,6 +7,16 @@
  * z2 ⊥ (hi - lo) - z1, z2 = max(-w, 0) (u strictly inside forces z2 = 0 and w = 0; u = hi lets w = -z2 <= 0;
  * u = lo keeps w + z2 >= 0 with z2 = 0). The augmented matrix [[M, J], [-Jᵀ, 0]] adds a skew block, so a
  * positive (semi)definite M stays so and Lemke still decides.
+ *
+ * A graph law -w ∈ G(u) (G maximal monotone, piecewise linear: docs/lcs.md) is the same construction piece
+ * by piece: G = ∂φ with φ convex, and φ(u) = min Σ_p φ_p(τ_p) over the splittings u = u0 + Σ_p σ_p τ_p of u
+ * into the graph's non-vertical pieces (a piece p runs from its first vertex, σ_p = -1 for the left ray,
+ * τ_p in [0, len_p], its force g_p(τ) = f_p + σ_p κ_p τ), because the pieces' forces increase along the
+ * graph. The KKT conditions of that minimum at F = -w are one complementarity row per piece,
+ * τ_p ⊥ σ_p (g_p(τ_p) - F) + μ_p, and one more per bounded piece, μ_p ⊥ len_p - τ_p: vertical pieces (force
+ * jumps) are the multipliers' work and need no row. The matrix is Sᵀ M S + diag(κ) plus a skew block, so a
+ * positive semidefinite M still makes it so. Complementarity (one ray, u0 = 0) and the interval (one bounded
+ * piece, u0 = lo) are the special cases, with the LCP they always had.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -18,14 +28,20 @@
 #include "dashpot/lcs.h"
 #include "dashpot/status.h"
 
+/* One LCP row per non-vertical piece of a component's graph (see above). */
+typedef struct piece {
+    size_t comp, upper;         /* the component; a bounded piece's second row (its μ), 0 for a ray */
+    double sign, f, slope, len; /* σ, the force at its first vertex, κ >= 0, len (INFINITY for a ray) */
+} piece;
+
 struct dp_lcs_stepper {
-    size_t n, m, ma;            /* states, components, LCP size (m + interval components) */
+    size_t n, m, ma, np;        /* states, components, LCP size, pieces (the first np rows) */
     gsl_matrix *E, *WB, *C, *D, *M, *Ma, *W;
     double h;
-    gsl_vector *Whp, *q, *lo, *hi;
-    size_t *slot;               /* interval component i's second row, or 0 for complementarity */
+    gsl_vector *Whp, *q, *u0, *lo, *hi;  /* u at the start of each graph, its domain [lo, hi] */
+    piece *pc;
     gsl_vector *xh, *r, *qa, *za, *wa, *u;
-    dp_lcp *lcp;
+    dp_lcp *lcp;                /* NULL when no component has a row (every u fixed by its law) */
 };
 
 void dp_lcs_stepper_free(dp_lcs_stepper *st)
@@ -33,14 +49,94 @@ void dp_lcs_stepper_free(dp_lcs_stepper *st)
     if (st == NULL)
         return;
     gsl_matrix *mats[] = { st->E, st->WB, st->C, st->D, st->M, st->Ma, st->W };
-    gsl_vector *vecs[] = { st->Whp, st->q, st->lo, st->hi, st->xh, st->r, st->qa, st->za, st->wa, st->u };
+    gsl_vector *vecs[] = { st->Whp, st->q, st->u0, st->lo, st->hi, st->xh, st->r, st->qa, st->za, st->wa, st->u };
     for (size_t i = 0; i < sizeof mats / sizeof mats[0]; i++)
         gsl_matrix_free(mats[i]);
     for (size_t i = 0; i < sizeof vecs / sizeof vecs[0]; i++)
         gsl_vector_free(vecs[i]);
-    free(st->slot);
+    free(st->pc);
     dp_lcp_free(st->lcp);
     free(st);
+}
+
+int dp_lcs_law_is_graph(const dp_lcs_law *law)
+{
+    return law->kind == DP_LCS_GRAPH || law->kind == DP_LCS_COULOMB || law->kind == DP_LCS_ROPE;
+}
+
+/* The direction of the graph into vertex v (from v - 1, or the left ray) and out of it. */
+static void directions(const dp_graph *g, size_t v, double in[2], double out[2])
+{
+    size_t k = g->n;
+    in[0] = v ? g->y[v] - g->y[v - 1] : g->left[0], in[1] = v ? g->f[v] - g->f[v - 1] : g->left[1];
+    out[0] = v + 1 < k ? g->y[v + 1] - g->y[v] : g->right[0];
+    out[1] = v + 1 < k ? g->f[v + 1] - g->f[v] : g->right[1];
+}
+
+/* Whether the graph turns at vertex v. A user graph's end points only set its rays' directions (the ray
+ * continues the end segment), so they never are; merging straight runs keeps one row per real piece. The
+ * directions are scaled to a largest component of 1 first, so that tiny ones do not underflow to "parallel". */
+static int turns(const dp_graph *g, size_t v)
+{
+    double in[2], out[2];
+    directions(g, v, in, out);
+    double si = fmax(in[0], in[1]), so = fmax(out[0], out[1]);
+    if (!(si > 0 && so > 0))
+        return 1;     /* a repeated vertex: kept, it adds no piece */
+    return (in[0] / si) * (out[1] / so) != (in[1] / si) * (out[0] / so);
+}
+
+/* A law's pieces into out (NULL: only count them), its start u0 and domain [lo, hi]; the number of pieces,
+ * *bounded of them bounded (each a second row). */
+static size_t law_pieces(const dp_lcs_law *law, size_t comp, piece *out, double *u0, double *lo, double *hi,
+                         size_t *bounded)
+{
+    if (!dp_lcs_law_is_graph(law)) {
+        int iv = law->kind == DP_LCS_INTERVAL;
+        *u0 = *lo = iv ? law->lo : 0.0;
+        *hi = iv ? law->hi : INFINITY;
+        if (out)
+            out[0] = (piece){ comp, 0, 1.0, 0.0, 0.0, iv ? law->hi - law->lo : INFINITY };
+        *bounded = iv;
+        return 1;
+    }
+    const dp_graph *g = &law->graph;
+    size_t k = g->n, np = 0, first = k, last = 0;
+    for (size_t v = 0; v < k; v++)
+        if (turns(g, v))
+            first = first < k ? first : v, last = v;
+    if (first == k)
+        first = last = 0;     /* a straight line: anchored at its first point */
+    double in[2], dir[2];
+    directions(g, first, in, dir);
+    *u0 = g->y[first];
+    *lo = g->left[0] > 0 ? -INFINITY : g->y[first];
+    *hi = g->right[0] > 0 ? INFINITY : g->y[last];
+    *bounded = 0;
+    if (in[0] > 0 && out)
+        out[np] = (piece){ comp, 0, -1.0, g->f[first], in[1] / in[0], INFINITY };
+    np += in[0] > 0;
+    for (size_t v = first, next = first + 1; v < last; v = next++) {
+        while (next < last && !turns(g, next))
+            next++;
+        double dy = g->y[next] - g->y[v];
+        if (dy > 0 && out)
+            out[np] = (piece){ comp, 0, 1.0, g->f[v], isfinite(dy) ? (g->f[next] - g->f[v]) / dy : NAN, dy };
+        np += dy > 0, *bounded += dy > 0;
+    }
+    directions(g, last, in, dir);
+    if (dir[0] > 0 && out)
+        out[np] = (piece){ comp, 0, 1.0, g->f[last], dir[1] / dir[0], INFINITY };
+    return np + (dir[0] > 0);
+}
+
+size_t dp_lcs_law_rows(const dp_lcs_law *law)
+{
+    if (dp_lcs_law_is_graph(law) && law->graph.n == 0)
+        return 0;
+    double u0, lo, hi;
+    size_t bounded, np = law_pieces(law, 0, NULL, &u0, &lo, &hi, &bounded);
+    return np + bounded;
 }
 
 static int finite_all(const double *a, size_t k)
@@ -51,20 +147,45 @@ static int finite_all(const double *a, size_t k)
     return 1;
 }
 
+/* Every piece of a graph law has a finite start force, slope and length (or is a ray): a graph spanning
+ * nearly the whole double range can overflow a slope even though its points are finite. */
+static int pieces_finite(const dp_lcs_law *l)
+{
+    double u0, lo, hi;
+    size_t bounded, np = law_pieces(l, 0, NULL, &u0, &lo, &hi, &bounded), ok = 1;
+    piece *pc = malloc((np ? np : 1) * sizeof *pc);
+    if (pc == NULL)
+        return 1;     /* not decided here: the stepper's own allocation reports the lack of memory */
+    law_pieces(l, 0, pc, &u0, &lo, &hi, &bounded);
+    for (size_t a = 0; a < np; a++)
+        ok &= isfinite(pc[a].f) && isfinite(pc[a].slope);   /* a segment too long for a double has a NaN slope */
+    free(pc);
+    return (int)ok;
+}
+
+int dp_lcs_law_valid(const dp_lcs_law *l)
+{
+    if (dp_lcs_law_is_graph(l))
+        return l->graph.n > 0 && l->graph.y && l->graph.f && pieces_finite(l);
+    return l->kind == DP_LCS_COMPLEMENTARITY ||
+           (l->kind == DP_LCS_INTERVAL && isfinite(l->lo) && isfinite(l->hi) && l->lo <= l->hi);
+}
+
 static int valid(const dp_lcs *s, double h, double theta)
 {
     if (s->n == 0 || s->m == 0 || s->m > DP_LCP_MAX / 2 || s->n > 4096 || !(h >= 0) || !isfinite(h) ||
         !(theta >= 0 && theta <= 1))
         return 0;
-    size_t n = s->n, m = s->m;
+    size_t n = s->n, m = s->m, rows = 0;
     if (!finite_all(s->A, n * n) || !finite_all(s->B, n * m) || !finite_all(s->C, m * n) ||
         !finite_all(s->D, m * m) || !finite_all(s->p, n) || !finite_all(s->q, m))
         return 0;
-    for (size_t i = 0; i < m; i++)
-        if (s->law[i].kind == DP_LCS_INTERVAL &&
-            !(isfinite(s->law[i].lo) && isfinite(s->law[i].hi) && s->law[i].lo <= s->law[i].hi))
+    for (size_t i = 0; i < m; i++) {
+        if (!dp_lcs_law_valid(&s->law[i]))
             return 0;
-    return 1;
+        rows += dp_lcs_law_rows(&s->law[i]);
+    }
+    return rows <= DP_LCP_MAX;
 }
 
 /* W = (I - hθA)^-1, E = W (I + h(1-θ)A), WB = h W B, Whp = h W p. 0 when I - hθA is singular. */
@@ -101,25 +222,44 @@ static int discretize(dp_lcs_stepper *st, const dp_lcs *s, double h, double thet
     return ok;
 }
 
-/* M = D + C WB, and the augmented matrix with each interval's pair of rows. */
-static void assemble(dp_lcs_stepper *st, const dp_lcs *s)
+/* Every component's pieces, rows first, then the second rows of the bounded ones; returns the LCP size. */
+static size_t layout(dp_lcs_stepper *st, const dp_lcs *s)
 {
-    size_t m = s->m, k = m;
+    size_t np = 0, ma;
+    for (size_t i = 0; i < s->m; i++) {
+        double u0, lo, hi;
+        size_t bounded;
+        np += law_pieces(&s->law[i], i, st->pc + np, &u0, &lo, &hi, &bounded);
+        gsl_vector_set(st->u0, i, u0);
+        gsl_vector_set(st->lo, i, lo);
+        gsl_vector_set(st->hi, i, hi);
+    }
+    ma = np;
+    for (size_t a = 0; a < np; a++)
+        if (isfinite(st->pc[a].len))
+            st->pc[a].upper = ma++;
+    st->np = np;
+    return ma;
+}
+
+/* M = D + C WB, and the augmented matrix Sᵀ M S + diag(κ) with each bounded piece's skew pair of rows. */
+static void assemble(dp_lcs_stepper *st)
+{
     gsl_matrix_memcpy(st->M, st->D);
     gsl_blas_dgemm(CblasNoTrans, CblasNoTrans, 1.0, st->C, st->WB, 1.0, st->M);
+    if (st->ma == 0)
+        return;
     gsl_matrix_set_zero(st->Ma);
-    for (size_t i = 0; i < m; i++)
-        for (size_t j = 0; j < m; j++)
-            gsl_matrix_set(st->Ma, i, j, gsl_matrix_get(st->M, i, j));
-    for (size_t i = 0; i < m; i++) {
-        int interval = s->law[i].kind == DP_LCS_INTERVAL;
-        gsl_vector_set(st->lo, i, interval ? s->law[i].lo : 0.0);
-        gsl_vector_set(st->hi, i, interval ? s->law[i].hi : INFINITY);
-        st->slot[i] = interval ? k : 0;
-        if (interval) {
-            gsl_matrix_set(st->Ma, i, k, 1.0);
-            gsl_matrix_set(st->Ma, k, i, -1.0);
-            k++;
+    for (size_t a = 0; a < st->np; a++) {
+        const piece *pa = &st->pc[a];
+        for (size_t b = 0; b < st->np; b++) {
+            const piece *pb = &st->pc[b];
+            double mab = pa->sign * pb->sign * gsl_matrix_get(st->M, pa->comp, pb->comp);
+            gsl_matrix_set(st->Ma, a, b, a == b ? mab + pa->slope : mab);
+        }
+        if (pa->upper) {
+            gsl_matrix_set(st->Ma, a, pa->upper, 1.0);
+            gsl_matrix_set(st->Ma, pa->upper, a, -1.0);
         }
     }
 }
@@ -133,19 +273,26 @@ dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *s, double h, double theta, in
     dp_lcs_stepper *st = calloc(1, sizeof *st);
     if (st == NULL)
         return NULL;
-    size_t n = s->n, m = s->m, ma = m;
-    for (size_t i = 0; i < m; i++)
-        ma += s->law[i].kind == DP_LCS_INTERVAL;
+    size_t n = s->n, m = s->m, np = 0, ma = 0;
+    for (size_t i = 0; i < m; i++) {
+        double u0, lo, hi;
+        size_t bounded;
+        np += law_pieces(&s->law[i], i, NULL, &u0, &lo, &hi, &bounded);
+        ma += dp_lcs_law_rows(&s->law[i]);
+    }
+    size_t ka = ma ? ma : 1;     /* GSL allocates no empty matrix: a dummy row when every u is fixed */
     st->n = n, st->m = m, st->ma = ma;
     st->E = gsl_matrix_alloc(n, n), st->WB = gsl_matrix_alloc(n, m), st->C = gsl_matrix_alloc(m, n);
-    st->D = gsl_matrix_alloc(m, m), st->M = gsl_matrix_alloc(m, m), st->Ma = gsl_matrix_alloc(ma, ma);
+    st->D = gsl_matrix_alloc(m, m), st->M = gsl_matrix_alloc(m, m), st->Ma = gsl_matrix_alloc(ka, ka);
     st->W = gsl_matrix_alloc(n, n), st->h = h;
-    st->Whp = gsl_vector_alloc(n), st->q = gsl_vector_alloc(m), st->lo = gsl_vector_alloc(m);
-    st->hi = gsl_vector_alloc(m), st->xh = gsl_vector_alloc(n), st->r = gsl_vector_alloc(m);
-    st->qa = gsl_vector_alloc(ma), st->za = gsl_vector_alloc(ma), st->wa = gsl_vector_alloc(ma);
-    st->u = gsl_vector_alloc(m), st->slot = calloc(m, sizeof *st->slot), st->lcp = dp_lcp_alloc(ma);
-    if (!st->E || !st->WB || !st->W || !st->C || !st->D || !st->M || !st->Ma || !st->Whp || !st->q || !st->lo || !st->hi ||
-        !st->xh || !st->r || !st->qa || !st->za || !st->wa || !st->u || !st->slot || !st->lcp) {
+    st->Whp = gsl_vector_alloc(n), st->q = gsl_vector_alloc(m), st->u0 = gsl_vector_alloc(m);
+    st->lo = gsl_vector_alloc(m), st->hi = gsl_vector_alloc(m), st->xh = gsl_vector_alloc(n);
+    st->r = gsl_vector_alloc(m), st->qa = gsl_vector_alloc(ka), st->za = gsl_vector_alloc(ka);
+    st->wa = gsl_vector_alloc(ka), st->u = gsl_vector_alloc(m), st->pc = calloc(np ? np : 1, sizeof *st->pc);
+    st->lcp = ma ? dp_lcp_alloc(ma) : NULL;
+    if (!st->E || !st->WB || !st->W || !st->C || !st->D || !st->M || !st->Ma || !st->Whp || !st->q || !st->u0 ||
+        !st->lo || !st->hi || !st->xh || !st->r || !st->qa || !st->za || !st->wa || !st->u || !st->pc ||
+        (ma && !st->lcp)) {
         dp_lcs_stepper_free(st);
         return NULL;
     }
@@ -157,7 +304,8 @@ dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *s, double h, double theta, in
         dp_lcs_stepper_free(st);
         return NULL;
     }
-    assemble(st, s);
+    layout(st, s);
+    assemble(st);
     *status = DP_OK;
     return st;
 }
@@ -173,35 +321,60 @@ const gsl_matrix *dp_lcs_step_matrix(const dp_lcs_stepper *st)
     return st->M;
 }
 
+/* The LCP's q from r: σ_p (f_p + r_i + (M u0)_i) in a piece's row, len_p in its second row. */
+static void offsets(dp_lcs_stepper *st)
+{
+    size_t m = st->m;
+    for (size_t i = 0; i < m; i++) {
+        double s = gsl_vector_get(st->r, i);
+        for (size_t j = 0; j < m; j++)
+            s += gsl_matrix_get(st->M, i, j) * gsl_vector_get(st->u0, j);
+        gsl_vector_set(st->u, i, s);        /* scratch: r + M u0 */
+    }
+    for (size_t a = 0; a < st->np; a++) {
+        const piece *pa = &st->pc[a];
+        gsl_vector_set(st->qa, a, pa->sign * (pa->f + gsl_vector_get(st->u, pa->comp)));
+        if (pa->upper)
+            gsl_vector_set(st->qa, pa->upper, pa->len);
+    }
+}
+
+/* u+ from one LCP (none when every u is fixed by its law): u0 + Σ σ_p τ_p, kept in the law's domain against
+ * rounding. DP_ESOLVE when Lemke ends on a ray. */
+static int solve_pieces(dp_lcs_stepper *st, dp_lcp_result *res)
+{
+    *res = (dp_lcp_result){ DP_LCP_SOLVED, 0, 0.0 };
+    if (st->ma > 0) {
+        offsets(st);
+        int s = dp_lcp_lemke(st->lcp, st->Ma, st->qa, st->za, st->wa, res);
+        if (s != DP_OK)
+            return s;
+        if (res->outcome != DP_LCP_SOLVED)
+            return DP_ESOLVE;
+    }
+    gsl_vector_memcpy(st->u, st->u0);
+    for (size_t a = 0; a < st->np; a++) {
+        const piece *pa = &st->pc[a];
+        gsl_vector_set(st->u, pa->comp, gsl_vector_get(st->u, pa->comp) + pa->sign * gsl_vector_get(st->za, a));
+    }
+    for (size_t i = 0; i < st->m; i++)
+        gsl_vector_set(st->u, i, fmax(fmin(gsl_vector_get(st->u, i), gsl_vector_get(st->hi, i)),
+                                      gsl_vector_get(st->lo, i)));
+    return DP_OK;
+}
+
 int dp_lcs_step(dp_lcs_stepper *st, double *x, double *u, double *w, dp_lcp_result *res)
 {
     size_t n = st->n, m = st->m;
+    int s;
     gsl_vector_view xv = gsl_vector_view_array(x, n);
     /* x^ = E x + h W p; r = C x^ + q */
     gsl_blas_dgemv(CblasNoTrans, 1.0, st->E, &xv.vector, 0.0, st->xh);
     gsl_vector_add(st->xh, st->Whp);
     gsl_vector_memcpy(st->r, st->q);
     gsl_blas_dgemv(CblasNoTrans, 1.0, st->C, st->xh, 1.0, st->r);
-    /* the LCP's q: r + M lo in the rows of u, hi - lo in the second rows of intervals */
-    for (size_t i = 0; i < m; i++) {
-        double s = gsl_vector_get(st->r, i);
-        for (size_t j = 0; j < m; j++)
-            s += gsl_matrix_get(st->M, i, j) * gsl_vector_get(st->lo, j);
-        gsl_vector_set(st->qa, i, s);
-        if (st->slot[i])
-            gsl_vector_set(st->qa, st->slot[i], gsl_vector_get(st->hi, i) - gsl_vector_get(st->lo, i));
-    }
-    int s = dp_lcp_lemke(st->lcp, st->Ma, st->qa, st->za, st->wa, res);
-    if (s != DP_OK)
+    if ((s = solve_pieces(st, res)) != DP_OK)
         return s;
-    if (res->outcome != DP_LCP_SOLVED)
-        return DP_ESOLVE;
-    for (size_t i = 0; i < m; i++) {
-        double ui = gsl_vector_get(st->za, i) + gsl_vector_get(st->lo, i);
-        if (st->slot[i])
-            ui = fmin(ui, gsl_vector_get(st->hi, i)); /* rounding past the end of the interval */
-        gsl_vector_set(st->u, i, ui);
-    }
     /* x+ = x^ + h W B u+, w+ = C x+ + D u+ + q */
     gsl_vector_memcpy(&xv.vector, st->xh);
     gsl_blas_dgemv(CblasNoTrans, 1.0, st->WB, st->u, 1.0, &xv.vector);

@@ -22,6 +22,8 @@ void dp_lcs_model_free(dp_lcs_model *lm)
     free(lm->p);
     free(lm->q);
     free(lm->x0);
+    for (size_t i = 0; lm->law && i < lm->m; i++)
+        dp_graph_clear(&lm->law[i].graph);
     free(lm->law);
     if (lm->pf)
         for (size_t i = 0; i < lm->n; i++)
@@ -53,9 +55,13 @@ dp_lcs_model *dp_lcs_model_copy(const dp_lcs_model *src)
     d->A = dup(src->A, n * n, &fail), d->B = dup(src->B, n * m, &fail), d->C = dup(src->C, m * n, &fail);
     d->D = dup(src->D, m * m, &fail), d->p = dup(src->p, n, &fail), d->q = dup(src->q, m, &fail);
     d->x0 = dup(src->x0, n, &fail);
-    d->law = malloc((m ? m : 1) * sizeof *d->law);
-    if (d->law)
-        memcpy(d->law, src->law, m * sizeof *d->law);
+    d->law = calloc(m ? m : 1, sizeof *d->law);
+    for (size_t i = 0; d->law && i < m; i++) {
+        d->law[i] = src->law[i];
+        memset(&d->law[i].graph, 0, sizeof d->law[i].graph);
+        if (src->law[i].graph.n > 0)
+            fail |= dp_graph_copy(&d->law[i].graph, &src->law[i].graph) != DP_OK;
+    }
     if (src->pf && !fail && (d->pf = calloc(n, sizeof *d->pf)) == NULL)
         fail = 1;
     for (size_t i = 0; src->pf && d->pf && i < n; i++)
@@ -163,7 +169,8 @@ int dp_lcs_wellposedness(const dp_spec *s, dp_wp_report *rep)
     if (st != DP_OK)
         return st;
     char *d = add_check(rep, "the laws are maximal monotone (complementarity and intervals: normal cones of convex "
-                        "sets, seed 002 Proposition 1.7 for their product)", 1);
+                        "sets, seed 002 Proposition 1.7 for their product; graph laws: monotone curves unbounded "
+                        "at both ends)", 1);
     snprintf(d, DP_WP_TEXT, "holds for every law this model takes");
     d = add_check(rep, "D has a positive definite symmetric part (seed 002 Lemma 2.5)", td.pd_symmetric);
     snprintf(d, DP_WP_TEXT, td.pd_symmetric ? "mu = lambda_min((D + D^T)/2) = %.6g > 0: u is Lipschitz in x"

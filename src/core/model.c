@@ -28,7 +28,7 @@ static int threshold_graph(dp_graph *g, double phi)
     return dp_graph_init(g, 2, y, f, RIGHT, RIGHT);
 }
 
-static int prepare_spring(dp_spring *s)
+int dp_spring_prepare(dp_spring *s)
 {
     if (s->law == DP_SPRING_GRAPH)
         return s->graph.n > 0 ? DP_OK : DP_EINVAL;
@@ -47,7 +47,7 @@ static int prepare_spring(dp_spring *s)
     return dp_graph_init(&s->graph, 1, &y, &f, left, UP);
 }
 
-static int prepare_damper(dp_damper *d)
+int dp_damper_prepare(dp_damper *d)
 {
     switch (d->law) {
     case DP_DAMPER_GRAPH:
@@ -69,10 +69,10 @@ static int prepare_damper(dp_damper *d)
 
 int dp_model_prepare(dp_model *m)
 {
-    int s = prepare_spring(&m->spring);
+    int s = dp_spring_prepare(&m->spring);
     if (s != DP_OK)
         return s;
-    return prepare_damper(&m->damper);
+    return dp_damper_prepare(&m->damper);
 }
 
 void dp_model_clear(dp_model *m)

@@ -328,6 +328,36 @@ static int put_matrix_theory(dp_buf *b, const char *key, const gsl_matrix *M)
     return s || put(b, ",\"uniqueness\":") || dp_json_quote(b, u) || put(b, "}");
 }
 
+/* A law as the document gave it; a graph law with its points, and the LCP rows it adds to a step. */
+static int put_law(dp_buf *b, const dp_lcs_law *l)
+{
+    int s;
+    switch (l->kind) {
+    case DP_LCS_COMPLEMENTARITY:
+        s = put(b, "{\"law\":\"complementarity\"");
+        break;
+    case DP_LCS_INTERVAL:
+        s = put(b, "{\"law\":\"interval\",\"min\":") || put_num(b, l->lo) || put(b, ",\"max\":") || put_num(b, l->hi);
+        break;
+    case DP_LCS_COULOMB:
+        s = put(b, "{\"law\":\"coulomb\",\"phi0\":") || put_num(b, l->phi0);
+        break;
+    case DP_LCS_ROPE:
+        s = put(b, "{\"law\":\"rope\",\"k\":") || put_num(b, l->k) || put(b, ",\"length\":") || put_num(b, l->length);
+        break;
+    default:
+        s = put(b, "{\"law\":\"graph\",\"points\":[");
+        for (size_t v = 0; v < l->graph.n && !s; v++) {
+            double pt[2] = { l->graph.y[v], l->graph.f[v] };
+            s = (v ? put(b, ",") : DP_OK) || put_vec(b, pt, 2);
+        }
+        s = s || put(b, "]");
+    }
+    if (dp_lcs_law_is_graph(l))
+        s = s || put_kv(b, "lcp_rows", (double)dp_lcs_law_rows(l));
+    return s || put(b, "}");
+}
+
 int dp_lcs_meta_json(const struct dp_spec *sp, dp_buf *b)
 {
     const dp_lcs_model *lm = sp->lcs;
@@ -338,13 +368,8 @@ int dp_lcs_meta_json(const struct dp_spec *sp, dp_buf *b)
     int s = put(b, head) || put_kv(b, "theta", sv->theta) || put_kv(b, "dt", sv->dt) || put_kv(b, "t_end", sv->t_end);
     s = s || put_kv(b, "steps", dp_spec_steps(sp)) || put_kv(b, "every", (double)sp->output.every);
     s = s || put_kv(b, "states", (double)lm->n) || put_kv(b, "components", (double)lm->m) || put(b, ",\"laws\":[");
-    for (size_t i = 0; i < lm->m && !s; i++) {
-        const dp_lcs_law *l = &lm->law[i];
-        s = put(b, i ? "," : "") || put(b, l->kind == DP_LCS_INTERVAL ? "{\"law\":\"interval\",\"min\":"
-                                                                  : "{\"law\":\"complementarity\"}");
-        if (l->kind == DP_LCS_INTERVAL)
-            s = s || put_num(b, l->lo) || put(b, ",\"max\":") || put_num(b, l->hi) || put(b, "}");
-    }
+    for (size_t i = 0; i < lm->m && !s; i++)
+        s = put(b, i ? "," : "") || put_law(b, &lm->law[i]);
     s = s || put(b, "]");
     gsl_matrix_const_view D = gsl_matrix_const_view_array(lm->D, lm->m, lm->m);
     s = s || put_matrix_theory(b, "D", &D.matrix);
