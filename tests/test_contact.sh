@@ -5,31 +5,8 @@
 # refused with 422 and the exact JSON Pointer, and the examples of docs/contact.md print what it shows.
 # The JSON checks are python3 so that nothing here trusts the program's own parser. Env BUILD (default build).
 source "$(dirname "$0")/lib/daemon.bash"
+source "$(dirname "$0")/lib/post.bash"
 CLI=$BUILD/dashpot
-BODY=$SCRATCH/body
-HDRS=$SCRATCH/headers
-
-req() {
-    printf '%s' "$3" >"$SCRATCH/request"
-    STATUS=$(hcurl -D "$HDRS" -o "$BODY" -w '%{http_code}' -H "Accept: $2" --data-binary @"$SCRATCH/request" "$1")
-}
-header() { grep -i "^$1:" "$HDRS" | head -1 | cut -d: -f2- | tr -d '\r' | sed 's/^ *//'; }
-is() { [ "$1" = "$2" ] || { echo "    got '$1', expected '$2'"; return 1; }; }
-py() {
-    python3 - "$1" "$2" <<'PY' || return 1
-import json, math, sys
-text = open(sys.argv[1]).read()
-def no_constant(c):
-    raise ValueError("JSON holds " + c)
-loads = lambda s: json.loads(s, parse_constant=no_constant)
-try:
-    exec(sys.argv[2])
-except AssertionError as e:
-    print("    " + (str(e) or "assertion failed")[:600]); sys.exit(1)
-except Exception as e:
-    print("    " + type(e).__name__ + ": " + str(e)[:600]); sys.exit(1)
-PY
-}
 
 # The ball of docs/contact.md: dropped from 1 m on a table, e = 0.5, rows every 100 steps.
 BALL='{"model": {"masses": [1],
@@ -188,32 +165,7 @@ badone "rigid and compliant at once" /model/contact/compliance 'd["model"]["cont
 badone "the newmark solver" /model/contact 'd["solver"] = {"kind": "newmark", "dt": 0.001, "t_end": 1}'
 
 # ---- the examples of docs/contact.md ----
-DOC=$SCRATCH/doc
-mkdir -p "$DOC/build"
-ln -s "$CLI" "$DOC/build/dashpot"
-python3 - "$ROOT/docs/contact.md" "$DOC" <<'PY'
-import os, re, sys
-text, out = open(sys.argv[1]).read(), sys.argv[2]
-n = 0
-for kind, name, body in re.findall(r'<!-- (example|file: ([^ ]+)) -->\n```[a-z]*\n(.*?)```', text, re.S):
-    if kind.startswith('file'):
-        open(os.path.join(out, name), 'w').write(body)
-        continue
-    cmd, _, expected = body.partition('\n')
-    n += 1
-    open(os.path.join(out, 'cmd%02d' % n), 'w').write(cmd[2:] + '\n')
-    open(os.path.join(out, 'want%02d' % n), 'w').write(expected)
-open(os.path.join(out, 'count'), 'w').write(str(n))
-PY
-count=$(cat "$DOC/count")
-check "docs/contact.md has examples ($count)" test "$count" -ge 2
-for i in $(seq -f %02g "$count"); do
-    cmd=$(sed "s/localhost:8080/127.0.0.1:$PORT_contact/g" "$DOC/cmd$i")
-    (cd "$DOC" && timeout 30 bash -c "$cmd") >"$DOC/got$i" 2>&1
-    if ! check "docs/contact.md example $i: $(head -c 70 "$DOC/cmd$i")" cmp -s "$DOC/got$i" "$DOC/want$i"; then
-        diff "$DOC/want$i" "$DOC/got$i" | head -10 | sed 's/^/    /'
-    fi
-done
+doc_examples "$ROOT/docs/contact.md" contact
 
 stop_daemon contact
 check "SIGTERM: exit 0" is "$RC_contact" 0

@@ -8,33 +8,9 @@
 # method's error with it), and the examples of docs/networks.md print what it shows. The JSON checks are python3 so that nothing here trusts the
 # program's own parser. Env BUILD (default build).
 source "$(dirname "$0")/lib/daemon.bash"
+source "$(dirname "$0")/lib/post.bash"
 CLI=$BUILD/dashpot
-BODY=$SCRATCH/body
-HDRS=$SCRATCH/headers
 
-# req URL ACCEPT DATA: the request with body DATA; status in STATUS, body in $BODY, headers in $HDRS.
-req() {
-    printf '%s' "$3" >"$SCRATCH/request" # a file, not an argument: a 201-node matrix is over ARG_MAX
-    STATUS=$(hcurl -D "$HDRS" -o "$BODY" -w '%{http_code}' -H "Accept: $2" --data-binary @"$SCRATCH/request" "$1")
-}
-header() { grep -i "^$1:" "$HDRS" | head -1 | cut -d: -f2- | tr -d '\r' | sed 's/^ *//'; }
-is() { [ "$1" = "$2" ] || { echo "    got '$1', expected '$2'"; return 1; }; }
-# py FILE CODE: the python CODE (asserts) holds with `text` = the file's content; prints the failed assert.
-py() {
-    python3 - "$1" "$2" <<'PY' || return 1
-import json, math, sys
-text = open(sys.argv[1]).read()
-def no_constant(c):
-    raise ValueError("JSON holds " + c)
-loads = lambda s: json.loads(s, parse_constant=no_constant)
-try:
-    exec(sys.argv[2])
-except AssertionError as e:
-    print("    " + (str(e) or "assertion failed")[:600]); sys.exit(1)
-except Exception as e:
-    print("    " + type(e).__name__ + ": " + str(e)[:600]); sys.exit(1)
-PY
-}
 
 # The chain of docs/networks.md: 3 masses, a Coulomb element to the ground, a spring and a viscous damper
 # between masses, a harmonic load on node 2; nodes 0 and 2 and element 0 written, every 2000 steps.
@@ -380,32 +356,7 @@ assert max(abs(x["t"] - y["t"]) for x, y in zip(got, want)) < 1e-6, [(x["t"], y[
 '
 
 # ---- docs/networks.md: its examples print what it shows (the README's conventions, tests/test_readme.sh) ----
-DOC=$SCRATCH/doc
-mkdir -p "$DOC/build"
-ln -s "$CLI" "$DOC/build/dashpot"
-python3 - "$ROOT/docs/networks.md" "$DOC" <<'PY'
-import os, re, sys
-text, out = open(sys.argv[1]).read(), sys.argv[2]
-n = 0
-for kind, name, body in re.findall(r'<!-- (example|file: ([^ ]+)) -->\n```[a-z]*\n(.*?)```', text, re.S):
-    if kind.startswith('file'):
-        open(os.path.join(out, name), 'w').write(body)
-        continue
-    cmd, _, expected = body.partition('\n')
-    n += 1
-    open(os.path.join(out, 'cmd%02d' % n), 'w').write(cmd[2:] + '\n')
-    open(os.path.join(out, 'want%02d' % n), 'w').write(expected)
-open(os.path.join(out, 'count'), 'w').write(str(n))
-PY
-count=$(cat "$DOC/count")
-check "docs/networks.md has examples ($count)" test "$count" -ge 4
-for i in $(seq -f %02g "$count"); do
-    cmd=$(sed "s/localhost:8080/127.0.0.1:$PORT_net/g" "$DOC/cmd$i")
-    (cd "$DOC" && timeout 30 bash -c "$cmd") >"$DOC/got$i" 2>&1
-    if ! check "docs/networks.md example $i: $(head -c 70 "$DOC/cmd$i")" cmp -s "$DOC/got$i" "$DOC/want$i"; then
-        diff "$DOC/want$i" "$DOC/got$i" | head -10 | sed 's/^/    /'
-    fi
-done
+doc_examples "$ROOT/docs/networks.md" net
 
 stop_daemon net
 check "SIGTERM: exit 0" is "$RC_net" 0

@@ -6,31 +6,9 @@
 # with its record, /v1/wellposedness for the rod, and every kind of bad input refused with 422 at its JSON
 # Pointer (and by the CLI with exit 2). The JSON checks are python3, not the program's own parser.
 source "$(dirname "$0")/lib/daemon.bash"
+source "$(dirname "$0")/lib/post.bash"
 CLI=$BUILD/dashpot
-BODY=$SCRATCH/body
-HDRS=$SCRATCH/headers
 
-req() {
-    printf '%s' "$3" >"$SCRATCH/request"
-    STATUS=$(hcurl -D "$HDRS" -o "$BODY" -w '%{http_code}' -H "Accept: $2" --data-binary @"$SCRATCH/request" "$1")
-}
-header() { grep -i "^$1:" "$HDRS" | head -1 | cut -d: -f2- | tr -d '\r' | sed 's/^ *//'; }
-is() { [ "$1" = "$2" ] || { echo "    got '$1', expected '$2'"; return 1; }; }
-py() {
-    python3 - "$1" "$2" <<'PY' || return 1
-import json, math, sys
-text = open(sys.argv[1]).read()
-def no_constant(c):
-    raise ValueError("JSON holds " + c)
-loads = lambda s: json.loads(s, parse_constant=no_constant)
-try:
-    exec(sys.argv[2])
-except AssertionError as e:
-    print("    " + (str(e) or "assertion failed")[:600]); sys.exit(1)
-except Exception as e:
-    print("    " + type(e).__name__ + ": " + str(e)[:600]); sys.exit(1)
-PY
-}
 
 PISTON='{"model": {"kind": "piston-hinge", "m1": 1, "m2": 1, "J_C": 0.1, "r": 0.5, "alpha": 0.3, "f1": 0.2, "f2": 0.02},
  "initial": {"x": [0, 0.8], "v": [0, 0]},
