@@ -1,13 +1,21 @@
 /* src/core/lemke.c - Lemke's complementary pivoting for w = Mz + q, 0 <= z ⊥ w >= 0 (seed 002 (1.10);
  * Cottle, Pang & Stone, The Linear Complementarity Problem, §4.4), with the lexicographic ratio test.
  *
- * The tableau holds w - M z - e z0 = q in m rows of 2m + 2 columns: w (0..m), z (m..2m), z0 (2m), rhs
- * (2m + 1). Its w columns are the basis inverse, so the lexicographic rule compares rows of [rhs, B^-1]
- * divided by the pivot column: each row stays lexicographically positive, no basis repeats, and a degenerate
- * problem cannot cycle. The problem is scaled by 1/max|M_ij| first (z is unchanged, w scales), so the pivot
- * tolerances below are relative. The solution is read from the final basis and recomputed from its linear
- * system M_aa z_a = -q_a by LU with one step of refinement, so it is exact to rounding whatever the pivots did.
- * The problem is copied once into plain arrays: the loops read contiguous memory, not GSL accessors.
+ * The system w - M z - e z0 = q has 2m + 1 variables: w (0..m), z (m..2m), z0 (2m). The tableau is stored
+ * compactly (Tucker's form): m rows, one per basic variable, of m + 1 columns for the non-basic variables
+ * (slots) and the right-hand side, x_B + T x_N = rhs. A pivot swaps one basic and one non-basic variable in
+ * place and is one contiguous rank-one update of the whole tableau: no index lists, no unit columns. The
+ * basis inverse, which the lexicographic rule compares row by row ([rhs, B^-1] divided by the pivot column),
+ * is the original w columns: a basic w_j's column is a unit vector, a non-basic one's is its slot. Each row
+ * stays lexicographically positive, no basis repeats, and a degenerate problem cannot cycle. The problem is
+ * scaled by the power of two at or above max|M_ij| first (exact: z is unchanged, w scales), so the pivot
+ * tolerances below are relative.
+ *
+ * The answer is read from the final tableau and checked (w = Mz + q recomputed, complementarity, signs);
+ * only when that residual is above rounding level is it recomputed from the basis' linear system
+ * M_aa z_a = -q_a by LU with one step of refinement, and the better of the two kept. The problem is copied
+ * once into plain arrays: the loops read contiguous memory, not GSL accessors. The workspace is allocated
+ * once per size and reused: a solve does not allocate.
  */
 #include <float.h>
 #include <math.h>
@@ -23,18 +31,25 @@
 #define PIVOT_ABS 1e-13
 /* Two ratios are a tie when they agree to this relative tolerance; the next column then decides. */
 #define TIE_REL 1e-12
+/* The tableau's answer is accepted when its residual is at most this many times 64 eps (|q| + |M| |z|). */
+#ifndef FAST_OK
+#define FAST_OK 1.0
+#endif
 
 struct dp_lcp {
-    size_t m, cols;
+    size_t m, cols;      /* cols = m + 2: m + 1 slots and the right-hand side */
     double *T;           /* m x cols, row-major */
-    size_t *basis;       /* basis[r] = the column basic in row r */
+    size_t *basis;       /* basis[r] = the variable basic in row r */
+    size_t *slot;        /* slot[s] = the variable non-basic in column s */
+    size_t *where;       /* per variable: its row when basic, its slot when not */
+    char *isbasic;       /* per variable */
     double *a, *b, *x, *res; /* m x m LU scratch, rhs, solution, residual */
-    double *z1, *w1;     /* the refined candidate */
+    double *z1, *w1;     /* the answer read from the tableau */
+    double *z2, *w2;     /* the answer recomputed from the basis by LU, when the first fails its check */
+    double mmax;         /* max |M_ij| of the problem being solved */
     double *M, *q;       /* the problem, row-major */
     size_t *idx;         /* the basic z's */
-    char *isbasic;       /* per column of w, z, z0 */
     char *zbasic;        /* per z: basic at the end */
-    size_t *cols_live;   /* the columns a pivot changes */
     size_t *perm;
 };
 
@@ -46,9 +61,12 @@ dp_lcp *dp_lcp_alloc(size_t m)
     if (w == NULL)
         return NULL;
     w->m = m;
-    w->cols = 2 * m + 2;
+    w->cols = m + 2;
     w->T = malloc(m * w->cols * sizeof *w->T);
     w->basis = malloc(m * sizeof *w->basis);
+    w->slot = malloc((m + 1) * sizeof *w->slot);
+    w->where = malloc((2 * m + 1) * sizeof *w->where);
+    w->isbasic = malloc(2 * m + 1);
     w->a = malloc(m * m * sizeof *w->a);
     w->b = malloc(m * sizeof *w->b);
     w->x = malloc(m * sizeof *w->x);
@@ -56,15 +74,14 @@ dp_lcp *dp_lcp_alloc(size_t m)
     w->perm = malloc(m * sizeof *w->perm);
     w->z1 = malloc(m * sizeof *w->z1);
     w->w1 = malloc(m * sizeof *w->w1);
+    w->z2 = malloc(m * sizeof *w->z2);
+    w->w2 = malloc(m * sizeof *w->w2);
     w->M = malloc(m * m * sizeof *w->M);
     w->q = malloc(m * sizeof *w->q);
     w->idx = malloc(m * sizeof *w->idx);
-    w->isbasic = malloc(2 * m + 1);
     w->zbasic = malloc(m);
-    w->cols_live = malloc((2 * m + 2) * sizeof *w->cols_live);
-    if (!w->isbasic || !w->zbasic || !w->cols_live ||
-        !w->T || !w->basis || !w->a || !w->b || !w->x || !w->res || !w->perm || !w->z1 || !w->w1 || !w->M || !w->q ||
-        !w->idx) {
+    if (!w->T || !w->basis || !w->slot || !w->where || !w->isbasic || !w->a || !w->b || !w->x || !w->res ||
+        !w->perm || !w->z1 || !w->w1 || !w->z2 || !w->w2 || !w->M || !w->q || !w->idx || !w->zbasic) {
         dp_lcp_free(w);
         return NULL;
     }
@@ -77,6 +94,9 @@ void dp_lcp_free(dp_lcp *w)
         return;
     free(w->T);
     free(w->basis);
+    free(w->slot);
+    free(w->where);
+    free(w->isbasic);
     free(w->a);
     free(w->b);
     free(w->x);
@@ -84,20 +104,21 @@ void dp_lcp_free(dp_lcp *w)
     free(w->perm);
     free(w->z1);
     free(w->w1);
+    free(w->z2);
+    free(w->w2);
     free(w->M);
     free(w->q);
     free(w->idx);
-    free(w->isbasic);
     free(w->zbasic);
-    free(w->cols_live);
     free(w);
 }
 
 /* The problem as plain row-major arrays (M may be a view with a row stride): one copy, O(m^2), then every
- * loop below reads contiguous memory. 0 when an entry is not finite. */
-static int load(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q)
+ * loop below reads contiguous memory. Also max|M_ij| in *mmax. 0 when an entry is not finite. */
+static int load(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, double *mmax)
 {
     size_t m = w->m;
+    double big = 0;
     for (size_t i = 0; i < m; i++) {
         const double *row = M->data + i * M->tda;
         double *dst = w->M + i * m;
@@ -105,40 +126,38 @@ static int load(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q)
             if (!isfinite(row[j]))
                 return 0;
             dst[j] = row[j];
+            big = fmax(big, fabs(row[j]));
         }
         w->q[i] = q->data[i * q->stride];
         if (!isfinite(w->q[i]))
             return 0;
     }
+    *mmax = big;
     return 1;
 }
 
-/* Gauss-Jordan pivot on (r, e): column e becomes the unit vector e_r. Only the columns that change are
- * touched: the non-basic ones, the leaving variable's (a unit vector until now) and the right-hand side; the
- * other basic columns are unit vectors with a zero in row r, which the pivot leaves as they are. That is
- * m + 3 columns of the 2m + 2, half the work of a full tableau pivot. */
-static void pivot(dp_lcp *w, size_t r, size_t e)
+/* Tucker's exchange on (row r, slot s): the basic variable of row r and the non-basic one of slot s trade
+ * places. Row r is divided by the pivot (its slot entry becoming 1/p); every other row i loses f_i times it,
+ * f_i its slot entry, which is first set to 0 so that the same contiguous loop leaves -f_i / p there. */
+static void pivot(dp_lcp *w, size_t r, size_t s)
 {
-    size_t m = w->m, c = w->cols, n = 0, leave = w->basis[r], *J = w->cols_live;
-    for (size_t j = 0; j <= 2 * m; j++)
-        if ((!w->isbasic[j] || j == leave) && j != e)
-            J[n++] = j;
-    J[n++] = c - 1;
-    double *pr = w->T + r * c, inv = 1.0 / pr[e];
-    for (size_t k = 0; k < n; k++)
-        pr[J[k]] *= inv;
+    size_t m = w->m, c = w->cols;
+    double *restrict pr = w->T + r * c, inv = 1.0 / pr[s];
+    pr[s] = 1.0;
+    for (size_t k = 0; k < c; k++)
+        pr[k] *= inv;
     for (size_t i = 0; i < m; i++) {
-        double *pi = w->T + i * c, f = pi[e];
+        double *restrict pi = w->T + i * c, f = pi[s];
         if (i == r || f == 0.0)
             continue;
-        for (size_t k = 0; k < n; k++)
-            pi[J[k]] -= f * pr[J[k]];
-        pi[e] = 0.0;
+        pi[s] = 0.0;
+        for (size_t k = 0; k < c; k++)
+            pi[k] -= f * pr[k];
     }
-    pr[e] = 1.0;
-    w->isbasic[leave] = 0;
-    w->isbasic[e] = 1;
-    w->basis[r] = e;
+    size_t leave = w->basis[r], enter = w->slot[s];
+    w->basis[r] = enter, w->slot[s] = leave;
+    w->isbasic[enter] = 1, w->where[enter] = r;
+    w->isbasic[leave] = 0, w->where[leave] = s;
 }
 
 static int tie(double x, double y)
@@ -146,55 +165,63 @@ static int tie(double x, double y)
     return fabs(x - y) <= TIE_REL * (1.0 + fmax(fabs(x), fabs(y)));
 }
 
-/* Is row i's [rhs, B^-1] / sign-scale lexicographically smaller than row k's? (da, db the divisors.) */
+/* Row i's entry of B^-1's column j: w_j's column of the full tableau, a unit vector while w_j is basic. */
+static double binv(const dp_lcp *w, size_t i, size_t j)
+{
+    if (w->isbasic[j])
+        return w->where[j] == i ? 1.0 : 0.0;
+    return w->T[i * w->cols + w->where[j]];
+}
+
+/* Is row i's [rhs, B^-1] / da lexicographically smaller than row k's / db? */
 static int lex_less(const dp_lcp *w, size_t i, double da, size_t k, double db)
 {
-    const double *pi = w->T + i * w->cols, *pk = w->T + k * w->cols;
-    double x = pi[w->cols - 1] / da, y = pk[w->cols - 1] / db;
+    size_t rhs = w->cols - 1;
+    double x = w->T[i * w->cols + rhs] / da, y = w->T[k * w->cols + rhs] / db;
     if (!tie(x, y))
         return x < y;
     for (size_t j = 0; j < w->m; j++) {
-        x = pi[j] / da;
-        y = pk[j] / db;
+        x = binv(w, i, j) / da;
+        y = binv(w, k, j) / db;
         if (!tie(x, y))
             return x < y;
     }
     return i < k; /* identical rows cannot happen (B^-1 is regular); a stable choice anyway */
 }
 
-/* The lexicographic minimum ratio row for entering column e, or m when the column gives a ray. */
-static size_t ratio_test(const dp_lcp *w, size_t e)
+/* The lexicographic minimum ratio row for the variable in slot s, or m when its column gives a ray. */
+static size_t ratio_test(const dp_lcp *w, size_t s)
 {
     size_t m = w->m, c = w->cols, best = m;
+    const double *col = w->T + s;
     double colmax = 0;
     for (size_t i = 0; i < m; i++)
-        if (w->T[i * c + e] > colmax)
-            colmax = w->T[i * c + e];
+        colmax = col[i * c] > colmax ? col[i * c] : colmax;
     double tol = PIVOT_REL * colmax > PIVOT_ABS ? PIVOT_REL * colmax : PIVOT_ABS;
     for (size_t i = 0; i < m; i++) {
-        double a = w->T[i * c + e];
-        if (a > tol && (best == m || lex_less(w, i, a, best, w->T[best * c + e])))
+        double a = col[i * c];
+        if (a > tol && (best == m || lex_less(w, i, a, best, col[best * c])))
             best = i;
     }
     return best;
 }
 
+/* The starting tableau: w basic (row i holds w_i), z_j in slot j, z0 in slot m; scaled by 1/scale. */
 static void fill_tableau(dp_lcp *w, double scale)
 {
     size_t m = w->m, c = w->cols;
-    memset(w->T, 0, m * c * sizeof *w->T);
+    double inv = 1.0 / scale; /* a power of two: exact */
     for (size_t i = 0; i < m; i++) {
         double *p = w->T + i * c;
         const double *Mi = w->M + i * m;
-        p[i] = 1.0;
         for (size_t j = 0; j < m; j++)
-            p[m + j] = -Mi[j] / scale;
-        p[2 * m] = -1.0;
-        p[c - 1] = w->q[i] / scale;
-        w->basis[i] = i;
+            p[j] = -Mi[j] * inv;
+        p[m] = -1.0;
+        p[c - 1] = w->q[i] * inv;
+        w->basis[i] = i, w->where[i] = i, w->isbasic[i] = 1;
     }
-    for (size_t j = 0; j <= 2 * m; j++)
-        w->isbasic[j] = j < m;
+    for (size_t j = 0; j <= m; j++)
+        w->slot[j] = m + j, w->where[m + j] = j, w->isbasic[m + j] = 0;
 }
 
 /* The residual of (z, wv) as a solution, in the units of the problem. */
@@ -303,7 +330,7 @@ static int basis_solve(dp_lcp *w, const char *zbasic, double *z, double *wv)
     return 1;
 }
 
-/* The tableau's own values of z and w (used when the basis system is singular). */
+/* The tableau's own values of z and w, basic ones below zero (rounding) set to 0. */
 static void tableau_values(const dp_lcp *w, double scale, double *z, double *wv)
 {
     size_t m = w->m, c = w->cols;
@@ -324,7 +351,43 @@ static void store(const double *src, gsl_vector *dst)
         dst->data[i * dst->stride] = src[i];
 }
 
-/* Reads the solution from the final basis, refines it and clears rounding-size negatives. */
+/* Rounding-size negatives of a degenerate basis' zero-valued variables are cleared; tol is the bound. */
+static void clear_negatives(size_t m, double tol, double *z, double *wv)
+{
+    for (size_t i = 0; i < m; i++) {
+        if (z[i] < 0 && z[i] >= -tol)
+            z[i] = 0.0;
+        if (wv[i] < 0 && wv[i] >= -tol)
+            wv[i] = 0.0;
+    }
+}
+
+/* The tableau's z with w recomputed as Mz + q (0 where z is basic), in place in z1, w1; its residual. */
+static double tableau_answer(dp_lcp *w, double scale, double *tol)
+{
+    size_t m = w->m;
+    double *z = w->z1, *wv = w->w1;
+    tableau_values(w, scale, z, wv);
+    double qmax = 0, zmax = 0;
+    for (size_t i = 0; i < m; i++)
+        qmax = fmax(qmax, fabs(w->q[i])), zmax = fmax(zmax, z[i]);
+    *tol = 64 * DBL_EPSILON * (qmax + w->mmax * zmax);
+    double r = 0;
+    for (size_t i = 0; i < m; i++) {
+        const double *Mi = w->M + i * m;
+        double s = w->q[i];
+        for (size_t j = 0; j < m; j++)
+            s += Mi[j] * z[j];
+        wv[i] = w->zbasic[i] ? 0.0 : (s < 0 && s >= -*tol ? 0.0 : s);
+        r = fmax(r, fabs(s - wv[i]));
+        r = fmax(r, -wv[i]);
+    }
+    return r; /* z >= 0 and z ⊥ w hold by construction */
+}
+
+/* The answer from the final basis. The tableau's is kept when its residual is at rounding level (FAST_OK
+ * times the tolerance that clears negatives); otherwise z_a is recomputed from M_aa z_a = -q_a by LU with
+ * refinement, and the better of the two answers is kept. */
 static void finish(dp_lcp *w, double scale, gsl_vector *z, gsl_vector *wv, dp_lcp_result *res)
 {
     size_t m = w->m;
@@ -333,32 +396,17 @@ static void finish(dp_lcp *w, double scale, gsl_vector *z, gsl_vector *wv, dp_lc
     for (size_t r = 0; r < m; r++)
         if (w->basis[r] >= m && w->basis[r] < 2 * m)
             zbasic[w->basis[r] - m] = 1;
+    double tol, r0 = tableau_answer(w, scale, &tol);
     double *z1 = w->z1, *w1 = w->w1;
-    if (basis_solve(w, zbasic, z1, w1)) {
-        /* Degenerate bases give basic variables at zero: their rounding noise below zero is cleared. */
-        double qmax = 0, zmax = 0;
+    res->residual = r0;
+    if (r0 > FAST_OK * tol && basis_solve(w, zbasic, w->z2, w->w2)) {
+        double zmax = 0;
         for (size_t i = 0; i < m; i++)
-            qmax = fmax(qmax, fabs(w->q[i])), zmax = fmax(zmax, z1[i]);
-        double tol = 64 * DBL_EPSILON * (qmax + scale * zmax);
-        for (size_t i = 0; i < m; i++) {
-            if (z1[i] < 0 && z1[i] >= -tol)
-                z1[i] = 0.0;
-            if (w1[i] < 0 && w1[i] >= -tol)
-                w1[i] = 0.0;
-        }
-        res->residual = residual(w, z1, w1);
-        /* The basis' own solution is exact to rounding unless M_aa is badly conditioned: then the
-         * tableau's values may be better, and the better of the two is kept. */
-        if (res->residual > 1e-12 * (qmax + scale * zmax + 1)) {
-            double *z0 = w->b, *w0 = w->res; /* free again after basis_solve */
-            tableau_values(w, scale, z0, w0);
-            double r0 = residual(w, z0, w0);
-            if (r0 < res->residual)
-                z1 = z0, w1 = w0, res->residual = r0;
-        }
-    } else {
-        tableau_values(w, scale, z1, w1);
-        res->residual = residual(w, z1, w1);
+            zmax = fmax(zmax, w->z2[i]);
+        clear_negatives(m, tol + 64 * DBL_EPSILON * w->mmax * zmax, w->z2, w->w2);
+        double r2 = residual(w, w->z2, w->w2);
+        if (r2 < r0)
+            z1 = w->z2, w1 = w->w2, res->residual = r2;
     }
     store(z1, z);
     store(w1, wv);
@@ -370,7 +418,8 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
     size_t m = w->m;
     if (M->size1 != m || M->size2 != m || q->size != m || z->size != m || wv->size != m)
         return DP_EINVAL;
-    if (!load(w, M, q))
+    double mmax;
+    if (!load(w, M, q, &mmax))
         return DP_EINVAL;
     *res = (dp_lcp_result){ DP_LCP_SOLVED, 0, 0.0 };
     size_t r = 0;
@@ -383,26 +432,23 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
         store(w->q, wv);
         return DP_OK;
     }
-    double scale = 0;
-    for (size_t i = 0; i < m * m; i++)
-        scale = fmax(scale, fabs(w->M[i]));
-    if (!(scale > 0))
-        scale = 1.0;
+    w->mmax = mmax;
+    int e2;
+    double scale = mmax > 0 ? ldexp(1.0, (frexp(mmax, &e2), e2)) : 1.0; /* 2^e >= mmax: exact scaling */
     fill_tableau(w, scale);
     /* First pivot: z0 enters at the lexicographically smallest row of [q, I] (all its column entries are -1,
      * so after it every row is lexicographically positive). */
     for (size_t i = 0; i < m; i++)
         if (i != r && lex_less(w, i, 1.0, r, 1.0))
             r = i;
-    size_t z0 = 2 * m, entering;
-    size_t leaving = w->basis[r];
-    pivot(w, r, z0);
+    size_t z0 = 2 * m, leaving = w->basis[r];
+    pivot(w, r, m); /* z0's slot */
     res->pivots = 1;
     /* A lexicographic run visits each basis at most once; this guard only bounds a pathological input. */
     size_t limit = 1000 + 200 * m;
     while (leaving != z0) {
-        entering = leaving < m ? leaving + m : leaving - m;
-        r = ratio_test(w, entering);
+        size_t entering = leaving < m ? leaving + m : leaving - m, s = w->where[entering];
+        r = ratio_test(w, s);
         if (r == m) {
             res->outcome = DP_LCP_RAY;
             tableau_values(w, scale, w->z1, w->w1);
@@ -411,7 +457,7 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
             return DP_OK;
         }
         leaving = w->basis[r];
-        pivot(w, r, entering);
+        pivot(w, r, s);
         if (++res->pivots > limit)
             return DP_ELIMIT;
     }
