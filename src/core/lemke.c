@@ -154,16 +154,18 @@ static int load(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, double *mma
  * f_i its slot entry, which is first set to 0 so that the same contiguous loop leaves -f_i / p there. */
 static void pivot(dp_lcp *w, size_t r, size_t s)
 {
-    size_t m = w->m, n2 = w->cols / 2;
-    pair *pr = (pair *)(w->T + r * w->cols);
-    double inv = 1.0 / w->T[r * w->cols + s];
-    w->T[r * w->cols + s] = 1.0;
+    /* Locals, not w's fields, in the loops: a may_alias store could otherwise change them. */
+    size_t m = w->m, c = w->cols, n2 = c / 2;
+    double *T = w->T;
+    pair *pr = (pair *)(T + r * c);
+    double inv = 1.0 / T[r * c + s];
+    T[r * c + s] = 1.0;
     for (size_t k = 0; k < n2; k += 2) {
         pr[k] *= inv;
         pr[k + 1] *= inv;
     }
     for (size_t i = 0; i < m; i++) {
-        double *ti = w->T + i * w->cols, f = ti[s];
+        double *ti = T + i * c, f = ti[s];
         if (i == r || f == 0.0)
             continue;
         ti[s] = 0.0;
@@ -472,8 +474,9 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
     fill_tableau(w, scale);
     /* First pivot: z0 enters at the lexicographically smallest row of [q, I] (all its column entries are -1,
      * so after it every row is lexicographically positive). */
+    const double *rhs = w->T + w->rhs;
     for (size_t i = 0; i < m; i++)
-        if (i != r && lex_less(w, i, 1.0, r, 1.0))
+        if (i != r && tie(rhs[i * w->cols], rhs[r * w->cols]) && lex_less(w, i, 1.0, r, 1.0))
             r = i;
     size_t z0 = 2 * m, leaving = w->basis[r];
     pivot(w, r, m); /* z0's slot */
