@@ -19,6 +19,7 @@
  */
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -131,22 +132,36 @@ static inline double maxd(double a, double b)
 static int load(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, double *mmax)
 {
     size_t m = w->m;
-    double big = 0;
+    double big = 0, nan_if_any = 0; /* x - x is NaN exactly when x is not finite: no branch per entry */
     for (size_t i = 0; i < m; i++) {
         const double *row = M->data + i * M->tda;
         double *dst = w->M + i * m;
         for (size_t j = 0; j < m; j++) {
-            if (!isfinite(row[j]))
-                return 0;
-            dst[j] = row[j];
-            big = maxd(big, fabs(row[j]));
+            double x = row[j];
+            dst[j] = x;
+            nan_if_any += x - x;
+            big = maxd(big, fabs(x));
         }
         w->q[i] = q->data[i * q->stride];
-        if (!isfinite(w->q[i]))
-            return 0;
+        nan_if_any += w->q[i] - w->q[i];
     }
     *mmax = big;
-    return 1;
+    return nan_if_any == 0.0;
+}
+
+/* The power of two at or above x > 0 (scaling by it is exact). */
+static double power_of_two_above(double x)
+{
+    if (!(x >= DBL_MIN)) {
+        int e;
+        return ldexp(1.0, (frexp(x, &e), e));
+    }
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    bits &= 0x7ff0000000000000u; /* the exponent alone: 2^floor(log2 x) */
+    double p;
+    memcpy(&p, &bits, sizeof p);
+    return p == x ? p : 2 * p;
 }
 
 /* Tucker's exchange on (row r, slot s): the basic variable of row r and the non-basic one of slot s trade
@@ -505,8 +520,7 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
         return DP_OK;
     }
     w->mmax = mmax;
-    int e2;
-    double scale = mmax > 0 ? ldexp(1.0, (frexp(mmax, &e2), e2)) : 1.0; /* 2^e >= mmax: exact scaling */
+    double scale = mmax > 0 ? power_of_two_above(mmax) : 1.0; /* exact scaling */
     fill_tableau(w, scale);
     /* First pivot: z0 enters at the lexicographically smallest row of [q, I] (all its column entries are -1,
      * so after it every row is lexicographically positive). */
