@@ -124,7 +124,7 @@ void dp_lcp_free(dp_lcp *w)
 /* max of two finite numbers: fmax's NaN rules cost a library call per use in the loops below. */
 static inline double maxd(double a, double b)
 {
-    return a > b ? a : b;
+    return b > a ? b : a; /* a when equal: maxd(0.0, -0.0) is +0 */
 }
 
 /* The problem as plain row-major arrays (M may be a view with a row stride): one copy, O(m^2), then every
