@@ -11,11 +11,11 @@
  * scaled by the power of two at or above max|M_ij| first (exact: z is unchanged, w scales), so the pivot
  * tolerances below are relative.
  *
- * The answer is read from the final tableau and checked (w = Mz + q recomputed, complementarity, signs);
- * only when that residual is above rounding level is it recomputed from the basis' linear system
- * M_aa z_a = -q_a by LU with one step of refinement, and the better of the two kept. The problem is copied
- * once into plain arrays: the loops read contiguous memory, not GSL accessors. The workspace is allocated
- * once per size and reused: a solve does not allocate.
+ * The answer is read from the final tableau after one step of iterative refinement that uses the basis
+ * inverse the tableau already holds (O(m^2), no factorization: it takes the pivots' accumulated rounding out)
+ * and checked: w = Mz + q recomputed, complementarity and signs (res->residual). The problem is copied once
+ * into plain arrays: the loops read contiguous memory, not GSL accessors. The workspace is allocated once
+ * per size and reused: a solve does not allocate.
  */
 #include <float.h>
 #include <math.h>
@@ -32,10 +32,6 @@
 #define PIVOT_ABS 1e-13
 /* Two ratios are a tie when they agree to this relative tolerance; the next column then decides. */
 #define TIE_REL 1e-12
-/* The tableau's answer is accepted when its residual is at most this many times 64 eps (|q| + |M| |z|). */
-#ifndef FAST_OK
-#define FAST_OK 1.0
-#endif
 
 /* Two doubles of a tableau row: the pivot's loops work on these (one SSE2 operation on baseline x86-64;
  * the compiler does not vectorize the plain loop at -O2). Rows start on 32-byte boundaries (aligned_alloc,
@@ -50,14 +46,14 @@ struct dp_lcp {
     size_t *slot;        /* slot[s] = the variable non-basic in column s */
     size_t *where;       /* per variable: its row when basic, its slot when not */
     char *isbasic;       /* per variable */
-    double *a, *b, *x, *res; /* m x m LU scratch, rhs, solution, residual */
-    double *z1, *w1;     /* the answer read from the tableau */
-    double *z2, *w2;     /* the answer recomputed from the basis by LU, when the first fails its check */
+    double *ratio;       /* the ratio test's quotients */
+    double *rho;         /* the refinement's residual */
+    double *saved;       /* the right-hand side before refinement */
+    double *z1, *w1;     /* the answer read from the refined tableau */
+    double *z2, *w2;     /* the unrefined one, when the first fails its check */
     double mmax;         /* max |M_ij| of the problem being solved */
     double *M, *q;       /* the problem, row-major */
-    size_t *idx;         /* the basic z's */
     char *zbasic;        /* per z: basic at the end */
-    size_t *perm;
 };
 
 dp_lcp *dp_lcp_alloc(size_t m)
@@ -75,21 +71,13 @@ dp_lcp *dp_lcp_alloc(size_t m)
     w->slot = malloc((m + 1) * sizeof *w->slot);
     w->where = malloc((2 * m + 1) * sizeof *w->where);
     w->isbasic = malloc(2 * m + 1);
-    w->a = malloc(m * m * sizeof *w->a);
-    w->b = malloc(m * sizeof *w->b);
-    w->x = malloc(m * sizeof *w->x);
-    w->res = malloc(m * sizeof *w->res);
-    w->perm = malloc(m * sizeof *w->perm);
-    w->z1 = malloc(m * sizeof *w->z1);
-    w->w1 = malloc(m * sizeof *w->w1);
-    w->z2 = malloc(m * sizeof *w->z2);
-    w->w2 = malloc(m * sizeof *w->w2);
+    double **vec[] = { &w->ratio, &w->rho, &w->saved, &w->z1, &w->w1, &w->z2, &w->w2, &w->q };
+    int ok = 1;
+    for (size_t k = 0; k < sizeof vec / sizeof *vec; k++)
+        ok &= (*vec[k] = malloc(m * sizeof(double))) != NULL;
     w->M = malloc(m * m * sizeof *w->M);
-    w->q = malloc(m * sizeof *w->q);
-    w->idx = malloc(m * sizeof *w->idx);
     w->zbasic = malloc(m);
-    if (!w->T || !w->basis || !w->slot || !w->where || !w->isbasic || !w->a || !w->b || !w->x || !w->res ||
-        !w->perm || !w->z1 || !w->w1 || !w->z2 || !w->w2 || !w->M || !w->q || !w->idx || !w->zbasic) {
+    if (!ok || !w->T || !w->basis || !w->slot || !w->where || !w->isbasic || !w->M || !w->zbasic) {
         dp_lcp_free(w);
         return NULL;
     }
@@ -100,24 +88,10 @@ void dp_lcp_free(dp_lcp *w)
 {
     if (w == NULL)
         return;
-    free(w->T);
-    free(w->basis);
-    free(w->slot);
-    free(w->where);
-    free(w->isbasic);
-    free(w->a);
-    free(w->b);
-    free(w->x);
-    free(w->res);
-    free(w->perm);
-    free(w->z1);
-    free(w->w1);
-    free(w->z2);
-    free(w->w2);
-    free(w->M);
-    free(w->q);
-    free(w->idx);
-    free(w->zbasic);
+    void *all[] = { w->T, w->basis, w->slot, w->where, w->isbasic, w->ratio, w->rho, w->saved,
+                    w->z1, w->w1, w->z2, w->w2, w->q, w->M, w->zbasic };
+    for (size_t k = 0; k < sizeof all / sizeof *all; k++)
+        free(all[k]);
     free(w);
 }
 
@@ -263,13 +237,12 @@ static int lex_less(const dp_lcp *w, size_t i, double da, size_t k, double db)
 
 /* The lexicographic minimum ratio row for the variable in slot s, or m when its column gives a ray: the
  * minimum ratio rhs_i / a_i over the rows that block (a_i above the pivot tolerance), and only among rows
- * whose ratios tie with it (a degenerate step) the lexicographic rule. The ratios are kept in w->x, which
- * the LU solve uses only after the pivoting. */
+ * whose ratios tie with it (a degenerate step) the lexicographic rule. */
 static size_t ratio_test(dp_lcp *w, size_t s)
 {
     size_t m = w->m, c = w->cols, best = m;
     const double *col = w->T + s, *rhs = w->T + w->rhs;
-    double colmax = 0, theta = 0, *ratio = w->x;
+    double colmax = 0, theta = 0, *ratio = w->ratio;
     for (size_t i = 0; i < m; i++)
         colmax = maxd(colmax, col[i * c]);
     double tol = maxd(PIVOT_REL * colmax, PIVOT_ABS);
@@ -311,112 +284,6 @@ static void fill_tableau(dp_lcp *w, double scale)
         w->slot[j] = m + j, w->where[m + j] = j, w->isbasic[m + j] = 0;
 }
 
-/* The residual of (z, wv) as a solution, in the units of the problem. */
-static double residual(const dp_lcp *w, const double *z, const double *wv)
-{
-    size_t m = w->m;
-    double r = 0;
-    for (size_t i = 0; i < m; i++) {
-        const double *Mi = w->M + i * m;
-        double s = w->q[i];
-        for (size_t j = 0; j < m; j++)
-            s += Mi[j] * z[j];
-        r = maxd(r, fabs(s - wv[i]));
-        r = maxd(r, maxd(-z[i], -wv[i]));
-        r = maxd(r, fabs(z[i] < wv[i] ? z[i] : wv[i]));
-    }
-    return r;
-}
-
-/* x = A^-1 b for the k x k matrix in w->a (overwritten by its LU factors, partial pivoting), b in w->b.
- * 0 when a pivot is below 1e-13 of the largest: singular to working precision. */
-static int lu_solve(dp_lcp *w, size_t k)
-{
-    double *A = w->a, *x = w->x, amax = 0;
-    memcpy(x, w->b, k * sizeof *x);
-    for (size_t i = 0; i < k * k; i++)
-        amax = maxd(amax, fabs(A[i]));
-    for (size_t c = 0; c < k; c++) {
-        size_t p = c;
-        for (size_t i = c + 1; i < k; i++)
-            if (fabs(A[i * k + c]) > fabs(A[p * k + c]))
-                p = i;
-        if (!(fabs(A[p * k + c]) > 1e-13 * amax))
-            return 0;
-        w->perm[c] = p;
-        if (p != c) {
-            for (size_t j = 0; j < k; j++) {
-                double t = A[c * k + j];
-                A[c * k + j] = A[p * k + j], A[p * k + j] = t;
-            }
-        }
-        for (size_t i = c + 1; i < k; i++) {
-            double f = A[i * k + c] /= A[c * k + c];
-            for (size_t j = c + 1; j < k; j++)
-                A[i * k + j] -= f * A[c * k + j];
-        }
-    }
-    return 1;
-}
-
-/* Solves with the factors of lu_solve: v = A^-1 v in place. */
-static void lu_apply(const dp_lcp *w, size_t k, double *v)
-{
-    const double *A = w->a;
-    for (size_t c = 0; c < k; c++) {
-        size_t p = w->perm[c];
-        if (p != c) {
-            double t = v[c];
-            v[c] = v[p], v[p] = t;
-        }
-        for (size_t i = c + 1; i < k; i++)
-            v[i] -= A[i * k + c] * v[c];
-    }
-    for (size_t c = k; c-- > 0;) {
-        for (size_t j = c + 1; j < k; j++)
-            v[c] -= A[c * k + j] * v[j];
-        v[c] /= A[c * k + c];
-    }
-}
-
-/* z from the final basis: z_a solves M_aa z_a = -q_a (a = the z's that are basic), with one refinement step
- * against the original entries; w = M z + q, w_a = 0. 0 when M_aa is singular to working precision. */
-static int basis_solve(dp_lcp *w, const char *zbasic, double *z, double *wv)
-{
-    size_t m = w->m, k = 0, *idx = w->idx;
-    for (size_t i = 0; i < m; i++)
-        if (zbasic[i])
-            idx[k++] = i;
-    memset(z, 0, m * sizeof *z);
-    if (k > 0) {
-        for (size_t i = 0; i < k; i++) {
-            w->b[i] = -w->q[idx[i]];
-            for (size_t j = 0; j < k; j++)
-                w->a[i * k + j] = w->M[idx[i] * m + idx[j]];
-        }
-        if (!lu_solve(w, k))
-            return 0;
-        lu_apply(w, k, w->x);
-        for (size_t i = 0; i < k; i++) {
-            double s = -w->b[i];
-            for (size_t j = 0; j < k; j++)
-                s += w->M[idx[i] * m + idx[j]] * w->x[j];
-            w->res[i] = s;
-        }
-        lu_apply(w, k, w->res);
-        for (size_t i = 0; i < k; i++)
-            z[idx[i]] = w->x[i] - w->res[i];
-    }
-    for (size_t i = 0; i < m; i++) {
-        const double *Mi = w->M + i * m;
-        double s = w->q[i];
-        for (size_t j = 0; j < m; j++)
-            s += Mi[j] * z[j];
-        wv[i] = zbasic[i] ? 0.0 : s;
-    }
-    return 1;
-}
-
 /* The tableau's own values of z and w, basic ones below zero (rounding) set to 0. */
 static void tableau_values(const dp_lcp *w, double scale, double *z, double *wv)
 {
@@ -438,22 +305,46 @@ static void store(const double *src, gsl_vector *dst)
         dst->data[i * dst->stride] = src[i];
 }
 
-/* Rounding-size negatives of a degenerate basis' zero-valued variables are cleared; tol is the bound. */
-static void clear_negatives(size_t m, double tol, double *z, double *wv)
+/* One step of iterative refinement of the basic variables' values (the rhs column, overwritten), with the
+ * basis inverse the tableau already holds: rho = q/scale - B x_B against the original columns (w_j: e_j,
+ * z_j: -M e_j / scale), then x_B += B^-1 rho, B^-1's column j being w_j's (a unit vector while w_j is
+ * basic). O(m^2) and no factorization: it takes the pivots' accumulated rounding out of the answer. */
+static void refine_values(dp_lcp *w, double scale)
 {
-    for (size_t i = 0; i < m; i++) {
-        if (z[i] < 0 && z[i] >= -tol)
-            z[i] = 0.0;
-        if (wv[i] < 0 && wv[i] >= -tol)
-            wv[i] = 0.0;
+    size_t m = w->m, c = w->cols;
+    double inv = 1.0 / scale, *rho = w->rho, *T = w->T, *rhs = w->T + w->rhs;
+    for (size_t i = 0; i < m; i++)
+        rho[i] = w->q[i] * inv;
+    for (size_t r = 0; r < m; r++) {
+        size_t v = w->basis[r];
+        double x = rhs[r * c];
+        if (v < m) {
+            rho[v] -= x;
+        } else if (v < 2 * m) {
+            const double *Mj = w->M + (v - m);
+            for (size_t i = 0; i < m; i++)
+                rho[i] += Mj[i * m] * inv * x;
+        }
+    }
+    for (size_t j = 0; j < m; j++) {
+        if (w->isbasic[j]) {
+            rhs[w->where[j] * c] += rho[j];
+            continue;
+        }
+        const double *col = T + w->where[j];
+        for (size_t r = 0; r < m; r++)
+            rhs[r * c] += col[r * c] * rho[j];
     }
 }
 
-/* The tableau's z with w recomputed as Mz + q (0 where z is basic), in place in z1, w1; its residual. */
-static double tableau_answer(dp_lcp *w, double scale, double *tol)
+/* The tableau's z (refined first when asked) with w recomputed as Mz + q, 0 where z is basic, into z, wv;
+ * its residual (z >= 0 and z ⊥ w hold by construction). *tol: the rounding level, 64 eps (|q| + |M| |z|);
+ * w's rounding-size negatives are cleared against it. */
+static double tableau_answer(dp_lcp *w, double scale, int refine, double *z, double *wv, double *tol)
 {
     size_t m = w->m;
-    double *z = w->z1, *wv = w->w1;
+    if (refine)
+        refine_values(w, scale);
     tableau_values(w, scale, z, wv);
     double qmax = 0, zmax = 0;
     for (size_t i = 0; i < m; i++)
@@ -469,30 +360,28 @@ static double tableau_answer(dp_lcp *w, double scale, double *tol)
         r = maxd(r, fabs(s - wv[i]));
         r = maxd(r, -wv[i]);
     }
-    return r; /* z >= 0 and z ⊥ w hold by construction */
+    return r;
 }
 
-/* The answer from the final basis. The tableau's is kept when its residual is at rounding level (FAST_OK
- * times the tolerance that clears negatives); otherwise z_a is recomputed from M_aa z_a = -q_a by LU with
- * refinement, and the better of the two answers is kept. */
+/* The answer from the final basis: the tableau's values after one step of refinement, checked. Should the
+ * check fail (an ill-conditioned basis, where the refinement's own basis inverse is poor), the unrefined
+ * values are tried as well and the better of the two is kept; res->residual says what was reached. */
 static void finish(dp_lcp *w, double scale, gsl_vector *z, gsl_vector *wv, dp_lcp_result *res)
 {
-    size_t m = w->m;
-    char *zbasic = w->zbasic;
-    memset(zbasic, 0, m);
-    for (size_t r = 0; r < m; r++)
+    size_t m = w->m, c = w->cols;
+    memset(w->zbasic, 0, m);
+    for (size_t r = 0; r < m; r++) {
         if (w->basis[r] >= m && w->basis[r] < 2 * m)
-            zbasic[w->basis[r] - m] = 1;
-    double tol, r0 = tableau_answer(w, scale, &tol);
-    double *z1 = w->z1, *w1 = w->w1;
-    res->residual = r0;
-    if (r0 > FAST_OK * tol && basis_solve(w, zbasic, w->z2, w->w2)) {
-        double zmax = 0;
-        for (size_t i = 0; i < m; i++)
-            zmax = maxd(zmax, w->z2[i]);
-        clear_negatives(m, tol + 64 * DBL_EPSILON * w->mmax * zmax, w->z2, w->w2);
-        double r2 = residual(w, w->z2, w->w2);
-        if (r2 < r0)
+            w->zbasic[w->basis[r] - m] = 1;
+        w->saved[r] = w->T[r * c + w->rhs];
+    }
+    double tol, *z1 = w->z1, *w1 = w->w1;
+    res->residual = tableau_answer(w, scale, 1, z1, w1, &tol);
+    if (res->residual > tol) {
+        for (size_t r = 0; r < m; r++)
+            w->T[r * c + w->rhs] = w->saved[r];
+        double r2 = tableau_answer(w, scale, 0, w->z2, w->w2, &tol);
+        if (r2 < res->residual)
             z1 = w->z2, w1 = w->w2, res->residual = r2;
     }
     store(z1, z);
