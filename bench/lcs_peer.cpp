@@ -5,8 +5,12 @@
 // x+ = x + h (theta A x+ + (1 - theta) A x) + h B u+ and w+ = C x+ + D u+: dashpot's θ-step exactly, so the
 // two trajectories must agree to rounding.
 //
+// With the offsets p and q of dashpot's model (x' = A x + B u + p, w = C x + D u + q) as the system's
+// constant b (FirstOrderLinearTIDS(x0, A, b)) and the relation's e (FirstOrderLinearTIR::setePtr), both
+// given to Siconos only when non-zero, so the circuits' runs are what they were.
+//
 // Usage: lcs_peer FILE   where FILE holds whitespace-separated numbers:
-//     n m  A (n x n, by rows)  B (n x m)  C (m x n)  D (m x m)  x0 (n)  h  steps  theta
+//     n m  A (n x n, by rows)  B (n x m)  C (m x n)  D (m x m)  x0 (n)  h  steps  theta  p (n)  q (m)
 // Prints every step's t, x (n), u (m) on one line (%.17g), then "ns_per_step N" on stderr.
 #include "SiconosKernel.hpp"
 #include "SolverOptions.h"
@@ -56,12 +60,20 @@ int main(int argc, char **argv)
     double h = num();
     long long steps = (long long)num();
     double theta = num();
+    SP::SiconosVector p(new SiconosVector(n)), q(new SiconosVector(m));
+    bool has_p = false, has_q = false;
+    for (unsigned i = 0; i < n; i++)
+        has_p |= ((*p)(i) = num()) != 0.0;
+    for (unsigned i = 0; i < m; i++)
+        has_q |= ((*q)(i) = num()) != 0.0;
     std::fclose(in);
 
     try {
-        SP::FirstOrderLinearTIDS ds(new FirstOrderLinearTIDS(x0, A));
+        SP::FirstOrderLinearTIDS ds(has_p ? new FirstOrderLinearTIDS(x0, A, p) : new FirstOrderLinearTIDS(x0, A));
         SP::FirstOrderLinearTIR rel(new FirstOrderLinearTIR(C, B));
         rel->setDPtr(D);
+        if (has_q)
+            rel->setePtr(q);
         SP::NonSmoothLaw law(new ComplementarityConditionNSL(m));
         SP::Interaction inter(new Interaction(law, rel));
         SP::NonSmoothDynamicalSystem nsds(new NonSmoothDynamicalSystem(0.0, (double)(steps + 1) * h));

@@ -38,8 +38,9 @@ void dp_lcp_free(dp_lcp *w);
 
 /* Lemke's method with the covering vector e = (1, ..., 1) and the lexicographic ratio test (no cycling on
  * degenerate problems). M is m x m, q, z, wv of length m (z and wv written). On DP_OK, res->outcome says
- * whether z, wv solve the problem; a solution is refined by solving its basis' linear system with LU, so it
- * is exact to rounding (res->residual). DP_EINVAL: sizes differ from the workspace or a non-finite entry;
+ * whether z, wv solve the problem; a solution is read from the final tableau after one step of iterative
+ * refinement with the tableau's basis inverse, so it is exact to rounding unless the basis is ill-conditioned,
+ * and checked (res->residual, in the problem's units). The workspace makes a solve allocation-free. DP_EINVAL: sizes differ from the workspace or a non-finite entry;
  * DP_ELIMIT: the pivot limit (a number of pivots no lexicographic run reaches on the problems of this
  * project, kept as a guard) was reached; z, wv are then unspecified. */
 int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector *z, gsl_vector *wv,
