@@ -2,7 +2,8 @@
 # tests/test_siconos.sh - dashpot against Siconos, its independent reference, to rounding, in `make test`
 # (the benchmarks add the timing): the contact step (bench/contact.sh: the bouncing ball for e = 0.9, 0.5, 0,
 # two stacked masses, 100 blocks on stops, theta 1/2 and 1, every step and node against Siconos'
-# MoreauJeanOSI + NewtonImpactNSL) with AGREEMENT_ONLY=1. The peer (libsiconos-kernel-dev, g++) is a test
+# MoreauJeanOSI + NewtonImpactNSL) and the LCS step (bench/lcs.sh: the seed's diode circuits and random
+# passive LCS against EulerMoreauOSI + LCP), both with AGREEMENT_ONLY=1. The peer (libsiconos-kernel-dev, g++) is a test
 # dependency (scripts/install-deps.sh). Env BUILD (default build).
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -18,5 +19,7 @@ run() { # DESC SCRIPT
 }
 run "contacts: dashpot's Moreau-Jean equals Siconos' on the ball, the pair and 100 blocks on stops (bench/contact.sh)" \
   bench/contact.sh
+run "LCS: the diode circuits and six random passive LCS equal Siconos' EulerMoreauOSI at every step (bench/lcs.sh)" \
+  bench/lcs.sh
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]
