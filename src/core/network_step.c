@@ -15,6 +15,7 @@
  * Degenerate ties are broken by the lowest index; an iteration cap turns a cycle into DP_ESOLVE, never into
  * a silent wrong answer.
  */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -41,6 +42,7 @@ typedef struct elem_state {
     vertex lo, hi;        /* FREE: the piece's ends (z = -/+INFINITY on an end ray) */
     double zref, lam0, slope;
     double lam;           /* FIXED: the multiplier of the last solve */
+    double lam_err;       /* its rounding: eps times the forces it was computed from, over h */
 } elem_state;
 
 struct dp_net_ws {
@@ -59,6 +61,7 @@ struct dp_net_ws {
     long *kidx;           /* reduced unknown of each node's tree, -1 when the tree holds the ground */
     double *c;            /* v_i = y[kidx] + c_i */
     double *rhs_eff, *y, *vs, *d, *res;
+    double *res_err;      /* the residuals' rounding, for the multipliers' (multipliers) */
     long *head, *next_edge, *deg; /* the fixed forest's adjacency, for the multipliers */
     size_t *queue;
     /* relaxation: gamma per element (NULL: none), linearized at zk as g0 + g1 (z - zk) */
@@ -88,6 +91,7 @@ dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
     w->vs = calloc(n, sizeof *w->vs);
     w->d = calloc(n, sizeof *w->d);
     w->res = calloc(n + 1, sizeof *w->res);
+    w->res_err = calloc(n + 1, sizeof *w->res_err);
     w->head = calloc(n + 1, sizeof *w->head);
     w->next_edge = calloc(2 * m, sizeof *w->next_edge);
     w->deg = calloc(n + 1, sizeof *w->deg);
@@ -100,7 +104,7 @@ dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
     w->fac_slope = calloc(m, sizeof *w->fac_slope);
     if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
         !w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
-        !w->y || !w->vs || !w->d || !w->res || !w->head || !w->next_edge || !w->deg || !w->queue) {
+        !w->y || !w->vs || !w->d || !w->res || !w->res_err || !w->head || !w->next_edge || !w->deg || !w->queue) {
         dp_net_ws_free(w);
         return NULL;
     }
@@ -112,7 +116,7 @@ void dp_net_ws_free(dp_net_ws *w)
     if (w == NULL)
         return;
     free(w->W), free(w->H), free(w->R), free(w->es), free(w->parent), free(w->pot), free(w->kidx);
-    free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->head);
+    free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->res_err), free(w->head);
     free(w->next_edge), free(w->deg), free(w->queue);
     free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->fac_st), free(w->fac_slope);
     free(w);
@@ -467,8 +471,10 @@ static void multipliers(dp_net_ws *w, double h)
 {
     size_t n = w->n, nq = 0;
     band_mul(w, w->vs, w->res);
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {   /* a residual's rounding: eps times what it is the difference of */
+        w->res_err[i] = 8 * DBL_EPSILON * (fabs(w->rhs_eff[i]) + fabs(w->res[i]));
         w->res[i] = w->rhs_eff[i] - w->res[i];
+    }
     for (size_t i = 0; i <= n; i++)
         w->head[i] = -1, w->deg[i] = 0;
     for (size_t k = 0; k < w->ne; k++) {
@@ -497,8 +503,11 @@ static void multipliers(dp_net_ws *w, double h)
         double sign_i = (long)i == e->b ? 1 : -1;   /* b_e's entry at node i */
         double lam = w->res[i] / (h * sign_i);
         w->es[k].lam = lam;
+        w->es[k].lam_err = w->res_err[i] / h;
         size_t j = end_index(w, (long)i == e->b ? e->a : e->b);
         w->res[j] -= h * -sign_i * lam;
+        if (j < n)
+            w->res_err[j] += w->res_err[i];
         w->deg[i]--, w->deg[j]--;
         if (j < n && w->deg[j] == 1)
             w->queue[nq++] = j;
@@ -507,10 +516,12 @@ static void multipliers(dp_net_ws *w, double h)
 
 /* ---- the active-set iteration ---------------------------------------------------------------------- */
 
-/* Whether lam lies in [lo, hi] up to rounding of the forces involved. */
-static int inside(double lam, double lo, double hi)
+/* Whether a fixed element's multiplier lies in [lo, hi] up to rounding: of the forces involved, and of the
+ * multiplier itself, a residual over h (at a step of a billionth of dt that is most of its digits). */
+static int inside(const elem_state *s, double lo, double hi)
 {
-    double tol = 1e-12 * (1 + fabs(lam) + (isfinite(lo) ? fabs(lo) : 0) + (isfinite(hi) ? fabs(hi) : 0));
+    double lam = s->lam;
+    double tol = 1e-12 * (1 + fabs(lam) + (isfinite(lo) ? fabs(lo) : 0) + (isfinite(hi) ? fabs(hi) : 0)) + s->lam_err;
     return lam >= lo - tol && lam <= hi + tol;
 }
 
@@ -604,7 +615,7 @@ static int release(dp_net_ws *w, double h, const double *u)
             continue;
         double lo, hi;
         sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
-        if (inside(s->lam, lo, hi))
+        if (inside(s, lo, hi))
             continue;
         vertex at = s->fix;
         if (set_free(w, i, u[i], h, &at, s->lam > hi ? 1 : -1))
@@ -748,7 +759,7 @@ static size_t bulk_update(dp_net_ws *w, double h, const double *u)
         } else {
             double lo, hi;
             sigma_interval(w, i, u[i], h, &s->fix, &lo, &hi);
-            if (!inside(s->lam, lo, hi)) {
+            if (!inside(s, lo, hi)) {
                 vertex at = s->fix;
                 if (set_free(w, i, u[i], h, &at, s->lam > hi ? 1 : -1))
                     changed++;
