@@ -27,10 +27,16 @@
 
 #include "network_run.h"
 
-/* Impacts of one step after which the step's further impacts are plastic, whatever the restitution: a guard
- * for chatter the accumulation rule does not see (e = 1 against a contact that keeps closing), so that one
- * step stays a bounded amount of work (the accumulating ball of e = 0.9 makes about 200 in its last step). */
+/* Located impacts in one step after which the rest of the step is plain Moreau-Jean: a guard for chatter
+ * the accumulation rule does not see (a rattle between two stops, e = 1 against a contact that keeps
+ * closing), so that one step stays a bounded amount of work; Moreau-Jean keeps the restitution (the
+ * accumulating ball of e = 0.9 makes about 200 located impacts in its last step). */
 #define IMPACTS_PER_STEP 1000
+
+int nr_contacts_chattering(const struct dp_net_run *nr)
+{
+    return nr->impacts_step >= IMPACTS_PER_STEP;
+}
 
 /* The rigid cone (vertex (0, 0), a vertical ray down, a horizontal ray right) and a compliant contact's
  * graph in u (vertex (d, 0), slope k to the left, 0 to the right). */
@@ -180,8 +186,7 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double gd = nr_rel(e->a, e->b, nr->v), en = e->contact.restitution;
         int approaching = touch[c] && gd < 0;
-        if (approaching && en > 0 && (en * (t - nr->ct_last[c]) / (1 - en) <= 1e-9 * r->h ||
-                                      nr->impacts_step >= IMPACTS_PER_STEP))
+        if (approaching && en > 0 && en * (t - nr->ct_last[c]) / (1 - en) <= 1e-9 * r->h)
             en = 0;                                   /* accumulated (Zeno): the rest of it is plastic */
         nr->imp[c].A = touch[c] ? &nr->cone : NULL;
         nr->imp[c].vb = approaching ? -en * gd : 0;

@@ -160,11 +160,14 @@ static int breaks_away(dp_run *r, double t, double h)
  * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
  * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. */
 /* The rest of a step taken whole from t (no instant to split it at): contacts the solution carries through
- * their stops are armed and it is solved again. */
+ * their stops are armed and it is solved again; after too many impacts in the step (chatter) every contact
+ * is armed by Moreau-Jean's rule instead. */
 static int finish_step(dp_run *r, double t, double left)
 {
     struct dp_net_run *nr = r->net;
     dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+    if (nr_contacts_chattering(nr))
+        nr_contacts_arm_mj(nr, left);
     int s = nr_net_step_keep(r, t, left);
     if (s == DP_OK && nr_contacts_arm_closing(nr, left))
         s = nr_net_step_keep(r, t, left);
@@ -204,6 +207,10 @@ int nr_located_step(dp_run *r, double t, double h)
     double left = h;
     for (size_t sub = 0; left > 0; sub++) {
         memcpy(nr->phase_prev, nr->phase, nr->nel);
+        if (nr->nc && nr_contacts_chattering(nr)) {
+            dp_net_ws_pattern_save(nr->ws, nr->pattern);
+            return finish_step(r, t, left);
+        }
         int s = nr->nc ? contacts_at(r, t, left) : DP_OK;
         if (s != DP_OK)
             return s;

@@ -118,6 +118,7 @@ int nr_contacts_instant(dp_run *r, double t, double h);
 void nr_contacts_margins(struct dp_net_run *nr, double s);
 int nr_contacts_penetrate(struct dp_net_run *nr, double h);
 size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h);
+int nr_contacts_chattering(const struct dp_net_run *nr);
 void nr_contacts_forces(struct dp_net_run *nr, int stepped);
 /* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
 void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse);
