@@ -596,16 +596,13 @@ static void test_compliant_stick_slip_first_order(void **state)
     assert_true(a / b > 6 && a / b < 14);
 }
 
-/* BUG (impulse without an event): Newton's cradle (test_newtons_cradle), e = 1, located: the impact gives
- * the second contact ([1, 2], touching at relative velocity 0) the impulse (1 + e)/3 = 2/3 (mass 2 goes from
- * 0 to 2/3), but impact() in network_contact.c emits events only for contacts with du < 0, so only element
- * 0's impact (impulse 4/3) is reported and the events do not balance momentum. Expected: an impact event for
- * element 1 at t = 1 with du = 0, du_after = 0, impulse 2/3. */
-static void test_bug_cradle_second_impulse(void **state)
+/* The impulse passed on (review finding, fixed): Newton's cradle (test_newtons_cradle), e = 1, located: the
+ * impact gives the second contact ([1, 2], touching at relative velocity 0) the impulse (1 + e)/3 = 2/3 (mass
+ * 2 goes from 0 to 2/3). Every touching contact that takes an impulse is an event now (only approaching ones
+ * were), so the events balance momentum: element 1 at t = 1 with du = 0, du_after = 0, impulse 2/3. */
+static void test_cradle_second_impulse(void **state)
 {
     (void)state;
-    if (known_bug())
-        skip();
     const char *doc = "{\"model\":{\"masses\":[1,1,1],\"elements\":[{\"between\":[0,1],\"contact\":{\"distance\":0,"
                       "\"restitution\":1}},{\"between\":[1,2],\"contact\":{\"distance\":0,\"restitution\":1}}]},"
                       "\"initial\":{\"x\":[-1,0,0],\"v\":[1,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,"
@@ -665,7 +662,7 @@ int main(void)
         cmocka_unit_test(test_bug_initial_impact_event_mj),
         cmocka_unit_test(test_bug_initial_row_force),
         cmocka_unit_test(test_compliant_stick_slip_first_order),
-        cmocka_unit_test(test_bug_cradle_second_impulse),
+        cmocka_unit_test(test_cradle_second_impulse),
         cmocka_unit_test(test_bug_stack_rests_at_gap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -200,14 +200,19 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
     int s = dp_net_solve(nr->iws, 1, rhs, nr->u, nr->v, vplus, nr->iforce, &r->sum.iterations);
     if (s != DP_OK)
         return -s;
+    /* every touching contact that took an impulse (to rounding of the largest): the approaching ones and
+     * those that passed it on (Newton's cradle), so the events balance the momentum */
+    double most = 0;
+    for (size_t c = 0; c < nr->nc; c++)
+        most = touch[c] ? fmax(most, -nr->iforce[c].lambda) : most;
     for (size_t c = 0; c < nr->nc; c++) {
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double before = nr_rel(e->a, e->b, nr->v);
-        if (!touch[c] || !(before < 0))
+        double before = nr_rel(e->a, e->b, nr->v), impulse = -nr->iforce[c].lambda;
+        if (!touch[c] || !(impulse > 1e-12 * most))
             continue;
         nr->impacts_step++;
         nr->ct_last[c] = t;
-        nr_impact_event(r, t, nr->ct_el[c], before, nr->iforce[c].z, -nr->iforce[c].lambda);
+        nr_impact_event(r, t, nr->ct_el[c], before, nr->iforce[c].z, impulse);
     }
     memcpy(nr->v, vplus, n * sizeof *nr->v);
     return 1;
