@@ -526,36 +526,29 @@ static void test_elastic_rattle(void **state)
     free(o.d);
 }
 
-/* BUG (no impact event without location): a ball touching the table (x = 0) moving down at 1 (e = 1/2, no
- * force), "events": "none". The first step takes the impact (v = 1/2 after it, Fn = -150 = -1.5 / dt in its
- * row), but no impact event is emitted: the initial probe step (network_run.c, nr_contacts_arm_mj with h0)
- * arms the contact, so the first real step sees it as already armed and sets ct_pre = 0 (a "resting" contact).
- * Located mode reports it at t = 0. Expected: one impact event, du = -1, du_after = 1/2, impulse 3/2. */
-static void test_bug_initial_impact_event_mj(void **state)
+/* Touching and approaching at t = 0 (review finding, fixed), "events": "none": a ball at x = 0 moving down at
+ * 1 (e = 1/2, no force). The first step takes the impact (v = 1/2 after it) and reports it: the run's initial
+ * probe no longer leaves the contact counted as armed (nr_contacts_after_probe). One impact event, impulse 3/2. */
+static void test_initial_impact_event_mj(void **state)
 {
     (void)state;
-    if (known_bug())
-        skip();
     const char *doc = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"contact\":{\"distance\":0,"
                       "\"restitution\":0.5}}]},\"initial\":{\"x\":[0],\"v\":[-1]},\"solver\":{\"kind\":\"stick-slip\","
                       "\"dt\":0.01,\"t_end\":0.05,\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":1}}";
     run_out o;
     run_doc(doc, &o);
     assert_true(fabs(V(&o, o.n - 1, 0) - 0.5) <= 1e-12);   /* the impact is taken ... */
-    assert_int_equal(o.nev, 1);                            /* ... but not reported */
+    assert_int_equal(o.nev, 1);                            /* ... and reported */
     assert_true(fabs(o.ev[0].impulse - 1.5) <= 1e-12);
     free(o.d);
 }
 
-/* BUG (Fn at t = 0): the same ball with events located: the impact at t = 0 is right (event at 0, v = 1/2
- * after), but the t = 0 row's Fn is -1.5e11: the impulse 1.5 divided by the initial probe step 1e-9 dt
- * (nr_contacts_forces after the probe in dp_network_run_init). Expected: a finite force of the order of the
- * rows' (0, or the impulse over dt as a Moreau-Jean row shows it: |Fn| <= 1.5 / dt). */
-static void test_bug_initial_row_force(void **state)
+/* Fn at t = 0 (review finding, fixed): the same ball with events located: the impact at t = 0 (event at 0,
+ * v = 1/2 after). The t = 0 row's Fn was the impulse over the initial probe step (1e-9 dt), -1.5e11; a contact
+ * that approaches at t = 0 has no force before its impact: |Fn| <= 1.5 / dt covers 0 and a Moreau-Jean row. */
+static void test_initial_row_force(void **state)
 {
     (void)state;
-    if (known_bug())
-        skip();
     const char *doc = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"contact\":{\"distance\":0,"
                       "\"restitution\":0.5}}]},\"initial\":{\"x\":[0],\"v\":[-1]},\"solver\":{\"kind\":\"stick-slip\","
                       "\"dt\":0.01,\"t_end\":0.05,\"theta\":0.5},\"output\":{\"every\":1}}";
@@ -659,8 +652,8 @@ int main(void)
         cmocka_unit_test(test_impact_oscillator),
         cmocka_unit_test(test_stacked_zeno),
         cmocka_unit_test(test_elastic_rattle),
-        cmocka_unit_test(test_bug_initial_impact_event_mj),
-        cmocka_unit_test(test_bug_initial_row_force),
+        cmocka_unit_test(test_initial_impact_event_mj),
+        cmocka_unit_test(test_initial_row_force),
         cmocka_unit_test(test_compliant_stick_slip_first_order),
         cmocka_unit_test(test_cradle_second_impulse),
         cmocka_unit_test(test_bug_stack_rests_at_gap),

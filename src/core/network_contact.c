@@ -292,6 +292,20 @@ size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h)
     return m;
 }
 
+/* After the run's initial probe (a step of a billionth of dt from the initial state, which says what holds
+ * at t = 0): a contact that approaches at t = 0 takes an impact there, so its force before it is 0, not the
+ * probe's impulse over its billionth of a step; and no contact counts as armed before the first step, whose
+ * closing of it is then an impact (Moreau-Jean's events). */
+void nr_contacts_after_probe(struct dp_net_run *nr)
+{
+    for (size_t c = 0; c < nr->nc; c++) {
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        if (rigid(nr, c) && nr_rel(e->a, e->b, nr->v) < 0)
+            nr->Fn[nr->ct_el[c]] = 0;
+        nr->ct_on[c] = 0;
+    }
+}
+
 /* Each contact's force at the current state into Fn (per element): a rigid one's from the last solution
  * (in a Moreau-Jean step with an impact, the impulse over the step), a compliant one's from its gap. */
 void nr_contacts_forces(struct dp_net_run *nr, int stepped)

@@ -616,6 +616,7 @@ int dp_network_run_init(dp_run *r)
         nr_element_forces(nr, 1);
     else
         nr_element_forces(nr, 0);
+    nr_contacts_after_probe(nr);
     r->countdown = 1;
     nr_finalize_summary(r);
     nr_emit_row(r);     /* the initial state: queued, no block yet */

@@ -120,6 +120,7 @@ int nr_contacts_penetrate(struct dp_net_run *nr, double h);
 size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h);
 int nr_contacts_chattering(const struct dp_net_run *nr);
 void nr_contacts_forces(struct dp_net_run *nr, int stepped);
+void nr_contacts_after_probe(struct dp_net_run *nr);
 /* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
 void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse);
 
