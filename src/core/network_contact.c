@@ -228,8 +228,7 @@ int nr_contacts_instant(dp_run *r, double t, double h)
         return 0;
     unsigned char *touch = nr->ct_touch;
     for (size_t c = 0; c < nr->nc; c++)
-        touch[c] = rigid(nr, c) && (gap(nr, c, nr->x) <= touch_tol(nr, c, h) ||
-                                    (nr->ct_on[c] && dp_net_ws_fixed(nr->ws, nr->nact_el + c)));
+        touch[c] = rigid(nr, c) && gap(nr, c, nr->x) <= touch_tol(nr, c, h);
     int jumped = impact(r, t, touch);
     if (jumped < 0)
         return jumped;

@@ -159,6 +159,16 @@ static int breaks_away(dp_run *r, double t, double h)
  * the starting assignment is held up to the earliest instant where it fails, the step is taken to there,
  * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
  * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. */
+/* Whether the network has contacts and something other than a closing contact fails at the start of the
+ * held step (nr->fails): an element's assignment or a resting contact's release. */
+static int switches_at_once(const struct dp_net_run *nr)
+{
+    for (size_t j = 0; nr->nc && j < nr->nact; j++)
+        if (nr->fails[j] && (j < nr->nact_el || nr->ct_on[j - nr->nact_el]))
+            return 1;
+    return 0;
+}
+
 /* The rest of a step taken whole from t (no instant to split it at): contacts the solution carries through
  * their stops are armed and it is solved again; after too many impacts in the step (chatter) every contact
  * is armed by Moreau-Jean's rule instead. */
@@ -237,9 +247,16 @@ int nr_located_step(dp_run *r, double t, double h)
         if (sub > 2 * nr->nact + 4 + 2 * nr->impacts_step)
             return finish_step(r, t, left);
         double at = earliest_event(r, t, left, nr->fails);
-        if (!(at > 1e-9 * left) || at >= left)
-            return finish_step(r, t, left);  /* no instant to split at (a change at the very start, or none the
-                                                 held assignment sees) */
+        if (at >= left)
+            return finish_step(r, t, left);  /* no change the held assignment sees */
+        if (!(at > 1e-9 * left)) {
+            /* a change at the very start: the whole step is exact for elements, but it would carry contacts
+             * through their stops, so with contacts an element or a resting contact switches a billionth of
+             * the step on */
+            if (!switches_at_once(nr))
+                return finish_step(r, t, left);
+            at = 1e-9 * left;
+        }
         held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
         nr_take_velocity(nr, at);
         nr_element_forces(nr, 1);
