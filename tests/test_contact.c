@@ -3,8 +3,12 @@
  * e = 0.9, 0.5, 0 (theta = 1/2 integrates a constant force exactly, so located impacts are exact to rounding);
  * a block carried by a belt into a stop (its impacts, its slip, its rest pressed on the stop, no penetration,
  * no creep); e = 1 between two masses (energy conserved through every impact); unconnected systems that do
- * not disturb each other; plain Moreau-Jean (events "none") within a step of the closed form; and a compliant
- * contact through the regularized solver against the linear-spring closed form, converging to e = 1. */
+ * not disturb each other; plain Moreau-Jean (events "none") within a step of the closed form; a compliant
+ * contact through the regularized solver against the linear-spring closed form, converging to e = 1; and
+ * the review's cases: Newton's cradle against Moreau's law (momentum, energy, impulses), a chain with a gap,
+ * a mass lifted off a table (located at m g, cubic afterwards), an impact oscillator against its piecewise
+ * closed form, stacks that come to rest on their stops, an elastic rattle that keeps its energy, impacts at
+ * t = 0, and the compliant contact's first-order loss in the stick-slip solver. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
