@@ -1,6 +1,7 @@
 /* src/core/run.c - the pull iterator every solver is driven through (architecture.md, "Solvers are
  * iterators"): one allocation per run, records written straight into the caller's block, the few that do
- * not fit parked in a fixed queue. Dispatch on the solver happens once per block, not once per step. */
+ * not fit parked in a fixed queue. The solver is a type (dp_run_type, chosen once when the run is
+ * allocated), called once per block, not once per step. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -47,6 +48,33 @@ int dp_run_fail(dp_run *r, int status, const char *fmt, ...)
     return status;
 }
 
+/* The solvers. The one-mass stick-slip solver's variants differ in their step only. */
+static const dp_run_type lcs_type = { "lcs", dp_lcs_run_init, dp_lcs_run_advance };
+static const dp_run_type right_hand_type = { "right-hand", dp_rh_run_init, dp_rh_run_advance };
+static const dp_run_type network_type = { "network", dp_network_run_init, dp_network_run_advance };
+static const dp_run_type analytic_type = { "analytic", dp_analytic_init, dp_analytic_advance };
+static const dp_run_type regularized_type = { "regularized", dp_regularized_init, dp_regularized_advance };
+static const dp_run_type newmark_type = { "newmark", dp_newmark_init, dp_newmark_advance };
+static const dp_run_type thesis_type = { "thesis", dp_stick_slip_init, dp_thesis_advance };
+static const dp_run_type stick_slip_type = { "stick-slip", dp_stick_slip_init, dp_stick_slip_advance };
+
+/* The solver of a spec: its model's (LCS, right-hand, network), else the one-mass solver it names. */
+static const dp_run_type *run_type(const dp_spec *spec)
+{
+    if (spec->lcs)
+        return &lcs_type;
+    if (spec->rh)
+        return &right_hand_type;
+    if (spec->net)
+        return &network_type;
+    switch (spec->solver.kind) {
+    case DP_SOLVER_ANALYTIC: return &analytic_type;
+    case DP_SOLVER_REGULARIZED: return &regularized_type;
+    case DP_SOLVER_NEWMARK: return &newmark_type;
+    default: return spec->solver.variant == DP_VARIANT_THESIS ? &thesis_type : &stick_slip_type;
+    }
+}
+
 dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int *status)
 {
     int s = dp_spec_check(spec, max_steps, errs);
@@ -68,48 +96,21 @@ dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int
     r->max_steps = max_steps > 0 && max_steps < DP_SPEC_MAX_STEPS ? max_steps : DP_SPEC_MAX_STEPS;
     r->nsteps = (unsigned long long)dp_spec_steps(spec);
     r->countdown = 1; /* the initial state is always a sample */
-    if (spec->lcs)
-        s = dp_lcs_run_init(r);
-    else if (spec->rh)
-        s = dp_rh_run_init(r);
-    else if (spec->net)
-        s = dp_network_run_init(r);
-    else switch (spec->solver.kind) {
-    case DP_SOLVER_ANALYTIC: s = dp_analytic_init(r); break;
-    case DP_SOLVER_REGULARIZED: s = dp_regularized_init(r); break;
-    case DP_SOLVER_NEWMARK: s = dp_newmark_init(r); break;
-    default: s = dp_stick_slip_init(r); break;
-    }
+    r->type = run_type(spec);
+    s = r->type->init(r);
     if (s != DP_OK) {
         dp_errors_add(errs, r->error_pointer, "%s", r->error[0] ? r->error : dp_strerror(s));
         dp_run_free(r);
         *status = s;
         return NULL;
     }
+    if (dp_network_run_is_one_mass(r))  /* a network of one mass steps on the one-mass solver itself */
+        r->type = &stick_slip_type;
     r->sum.final = r->cur;
     if ((r->net == NULL && r->lcs == NULL && r->rh == NULL) || dp_network_run_is_one_mass(r))
         dp_run_emit_state(r); /* queued in `pending`: no block yet */
     *status = DP_OK;
     return r;
-}
-
-static int advance(dp_run *r)
-{
-    if (r->lcs)
-        return dp_lcs_run_advance(r);
-    if (r->rh)
-        return dp_rh_run_advance(r);
-    if (r->net && !dp_network_run_is_one_mass(r))
-        return dp_network_run_advance(r);
-    if (r->spec.solver.kind == DP_SOLVER_ANALYTIC)
-        return dp_analytic_advance(r);
-    if (r->spec.solver.kind == DP_SOLVER_REGULARIZED)
-        return dp_regularized_advance(r);
-    if (r->spec.solver.kind == DP_SOLVER_NEWMARK)
-        return dp_newmark_advance(r);
-    if (r->spec.solver.variant == DP_VARIANT_THESIS)
-        return dp_thesis_advance(r);
-    return dp_stick_slip_advance(r);
 }
 
 int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
@@ -125,7 +126,7 @@ int dp_run_next(dp_run *r, dp_record *buf, size_t cap, size_t *n)
     if (r->ipending == r->npending)
         r->npending = r->ipending = 0;
     if (dp_run_room(r) || (((r->net && dp_network_run_pending(r)) || dp_rh_run_pending(r)) && r->status == DP_OK)) {
-        int s = advance(r);
+        int s = r->type->advance(r);
         if (s < 0 && r->status == DP_OK)
             dp_run_fail(r, s, "%s", dp_strerror(s));
     }

@@ -33,7 +33,17 @@ typedef struct dp_ss_law {
     dp_ss_coef nominal;  /* its coefficients */
 } dp_ss_law;
 
+/* A kind of solver, as GSL's stepper types (gsl_odeiv2_step_type): its name, how a run of it starts (state,
+ * workspaces, the first records) and how it goes on (records into the caller's block until the block is full
+ * or the run ends). Chosen once, when the run is allocated (run.c). */
+typedef struct dp_run_type {
+    const char *name;
+    int (*init)(dp_run *r);
+    int (*advance)(dp_run *r);
+} dp_run_type;
+
 struct dp_run {
+    const dp_run_type *type;    /* the solver (run.c); a network of one mass steps as the stick-slip one */
     dp_spec spec;               /* deep copy: the run owns it */
     double h;                   /* nominal step */
     unsigned long long nsteps;  /* steps to t_end */
