@@ -506,6 +506,67 @@ static void test_relaxation_step_bound(void **state)
     }
 }
 
+/* A ring of 60 blocks (springs around it, friction and a spring to the ground each) written once numbered
+ * around the ring (half-bandwidth 59: the run renumbers it, network_order.c) and once with its nodes
+ * shuffled: node k of the first is node perm[k] of the second, and every row must say so, written in the
+ * user's numbering. Without event location the two runs differ only by the rounding of their orderings. */
+static char *ring_doc(const size_t *perm, size_t n)
+{
+    size_t cap = 400 * n + 4096, len = 0;
+    char *d = malloc(cap);
+    assert_non_null(d);
+    double *x = calloc(n, sizeof *x), *m = calloc(n, sizeof *m);
+    assert_non_null(x), assert_non_null(m);
+    for (size_t k = 0; k < n; k++)
+        m[perm[k]] = 1 + 0.01 * (double)(k % 7);
+    len += (size_t)snprintf(d + len, cap - len, "{\"model\":{\"masses\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(d + len, cap - len, "%s%g", i ? "," : "", m[i]);
+    len += (size_t)snprintf(d + len, cap - len, "],\"elements\":[");
+    for (size_t k = 0; k < n; k++) {
+        len += (size_t)snprintf(d + len, cap - len, "%s{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":50}},"
+                                "{\"between\":[\"ground\",%zu],\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":"
+                                "{\"law\":\"coulomb\",\"phi0\":0.3,\"belt_velocity\":0.1}}", k ? "," : "", perm[k],
+                                perm[(k + 1) % n], perm[k]);
+        x[perm[k]] = 0.01 * (double)((k * 37) % 11) - 0.05;
+    }
+    len += (size_t)snprintf(d + len, cap - len, "]},\"initial\":{\"x\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(d + len, cap - len, "%s%.17g", i ? "," : "", x[i]);
+    snprintf(d + len, cap - len, "]},\"solver\":{\"dt\":0.01,\"t_end\":3,\"theta\":0.5,\"events\":\"none\"},"
+             "\"output\":{\"every\":10}}");
+    free(x), free(m);
+    return d;
+}
+
+static void test_ring_renumbered(void **state)
+{
+    (void)state;
+    enum { N = 60 };
+    size_t ident[N], perm[N];
+    for (size_t k = 0; k < N; k++)
+        ident[k] = perm[k] = k;
+    for (size_t k = N - 1; k > 0; k--) {     /* a fixed shuffle */
+        size_t j = (k * 7919 + 13) % (k + 1), t = perm[k];
+        perm[k] = perm[j], perm[j] = t;
+    }
+    char *a_doc = ring_doc(ident, N), *b_doc = ring_doc(perm, N);
+    rows a, b;
+    rows_run(a_doc, 257, &a);
+    rows_run(b_doc, 257, &b);
+    assert_int_equal(a.n, b.n);
+    double moved = 0;
+    for (size_t i = 0; i < a.n; i++)
+        for (size_t k = 0; k < N; k++) {
+            const double *ra = a.d + i * a.width, *rb = b.d + i * b.width;
+            assert_true(fabs(ra[1 + k] - rb[1 + perm[k]]) <= 1e-12);
+            assert_true(fabs(ra[1 + N + k] - rb[1 + N + perm[k]]) <= 1e-12);
+            moved = fmax(moved, fabs(ra[1 + k] - a.d[1 + k]));
+        }
+    assert_true(moved > 0.01);   /* the blocks did move: the comparison means something */
+    free(a.d), free(b.d), free(a_doc), free(b_doc);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -521,6 +582,7 @@ int main(void)
         cmocka_unit_test(test_network_wellposedness),
         cmocka_unit_test(test_parallel_stick_intervals_share_the_load),
         cmocka_unit_test(test_regularized_converges_at_rate_one_over_n),
+        cmocka_unit_test(test_ring_renumbered),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

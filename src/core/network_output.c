@@ -16,7 +16,7 @@ dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data)
 {
     size_t nn = nr->cols.nodes, ne = nr->cols.elements;
     for (size_t j = 0; j < nn; j++) {
-        size_t i = nr->cols.node[j];
+        size_t i = nr->node_pos ? nr->node_pos[nr->cols.node[j]] : nr->cols.node[j];
         data[j] = nr->x[i], data[nn + j] = nr->v[i];
     }
     for (size_t j = 0; j < ne; j++) {

@@ -275,7 +275,7 @@ void dp_network_run_free(struct dp_net_run *nr)
         dp_graph_clear(&nr->static_A[i]);
     dp_nm_free(nr->nm);
     nr_contacts_free(nr);
-    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
@@ -557,8 +557,11 @@ int dp_network_run_init(dp_run *r)
     nr->net = r->spec.net;
     r->cols = &nr->cols;
     nr->n = nr->net->n, nr->nel = nr->net->nel, nr->theta = r->spec.solver.theta;
+    int s = nr_reorder(nr, r->spec.net, r->spec.x0v, r->spec.v0v);
+    if (s != DP_OK)
+        return s;
     nr->p = bandwidth(nr->net);
-    int s = alloc_all(nr);
+    s = alloc_all(nr);
     s = s ? s : setup_laws(nr);
     s = s ? s : setup_columns(nr, &r->spec.output);
     if (s == DP_OK && (nr->ws = dp_net_ws_alloc(nr->n, nr->p, nr->nact, nr->act)) == NULL)

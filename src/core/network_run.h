@@ -42,6 +42,7 @@ struct dp_net_run {
     unsigned char *phase, *phase_prev, *can_stick;
     dp_columns cols;
     size_t *all_nodes, *all_elements;
+    size_t *node_pos;           /* user node -> the run's (network_order.c), NULL when not renumbered */
     size_t row_len, rows_cap, rows_used;
     double *rows;               /* rows_cap rows of row_len (= cols.width) numbers */
     double *final_row;          /* the summary's row */
@@ -129,6 +130,10 @@ void nr_plastic_events(dp_run *r, double t);
 
 /* A row over the columns from the current state, its numbers written to data and ph. */
 dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data);
+
+/* Renumbers the run's copy of the network (and its initial state) for a narrow band, where that at least
+ * halves it; sets nr->node_pos then (network_order.c). DP_OK or DP_ENOMEM. */
+int nr_reorder(struct dp_net_run *nr, dp_network *net, double *x0, double *v0);
 
 /* One mass on one element [ground, 0] (network_one_mass.c): stepped by the one-mass solver, its records
  * rewritten as rows and element events. */
