@@ -3,7 +3,8 @@
  * shorter step, stops being consistent (a bracketed root of the candidates' smallest margin); the elements
  * that fail there switch (a stick, a release, or a reversal through the belt speed without a stick) and the
  * rest of the step goes on from that instant. So theta = 1/2 stays second order through stick-slip, as the
- * one-mass solver's event location keeps it. */
+ * one-mass solver's event location keeps it. A contact that is not armed joins as one more margin, its gap,
+ * and its impact is taken at the next sub-step's start (network_contact.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -155,10 +156,6 @@ static int breaks_away(dp_run *r, double t, double h)
     return 0;
 }
 
-/* A step split at its phase changes: while the exact step over what is left changes some element's phase,
- * the starting assignment is held up to the earliest instant where it fails, the step is taken to there,
- * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
- * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. */
 /* Whether the network has contacts and something other than a closing contact fails at the start of the
  * held step (nr->fails): an element's assignment or a resting contact's release. */
 static int switches_at_once(const struct dp_net_run *nr)
@@ -211,6 +208,11 @@ static int contacts_at(dp_run *r, double t, double left)
     return DP_OK;
 }
 
+/* A step split at its phase changes: while the exact step over what is left changes some element's phase,
+ * the starting assignment is held up to the earliest instant where it fails, the step is taken to there,
+ * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
+ * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. Contacts: impacts
+ * at each sub-step's start (contacts_at), a closing gap is one more margin to split at. */
 int nr_located_step(dp_run *r, double t, double h)
 {
     struct dp_net_run *nr = r->net;
