@@ -111,6 +111,11 @@ void nr_contacts_free(struct dp_net_run *nr)
         free(p[i]);
 }
 
+double nr_compliant_force(const dp_contact *c, double u)
+{
+    return -c->compliance * fmax(c->distance - u, 0);
+}
+
 static int rigid(const struct dp_net_run *nr, size_t c)
 {
     return nr->net->el[nr->ct_el[c]].contact.compliance == 0;
@@ -128,7 +133,7 @@ static double touch_tol(const struct dp_net_run *nr, size_t c, double h)
 {
     const dp_element *e = &nr->net->el[nr->ct_el[c]];
     double xs = fabs(e->contact.distance) + (e->a >= 0 ? fabs(nr->x[e->a]) : 0) + (e->b >= 0 ? fabs(nr->x[e->b]) : 0);
-    return 1e-9 * h * fabs(nr_rel(e->a, e->b, nr->v)) + 64 * 2.2204460492503131e-16 * xs;
+    return 1e-9 * h * fabs(nr_rel(e->a, e->b, nr->v)) + 64 * DBL_EPSILON * xs;
 }
 
 /* Arms contact c for the coming step with the cone at v_c, or disarms it (a zero law). */
@@ -174,9 +179,9 @@ void nr_contacts_mj_events(dp_run *r, double t, double h)
     }
 }
 
-/* The velocity jump at time t for the touching contacts (located events); `plastic` where the impacts have
- * accumulated. Emits the events; returns 1 when some contact was approaching (v changed), 0 if none, or an
- * error. */
+/* The velocity jump at time t for the touching contacts (located events), plastic where the impacts have
+ * accumulated. Emits the events; returns 1 when some contact was approaching (v changed), 0 if none, or
+ * -status. The impact problem's elements have no spring graph, so the elongations it is given are unused. */
 static int impact(dp_run *r, double t, const unsigned char *touch)
 {
     struct dp_net_run *nr = r->net;
@@ -218,9 +223,10 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
     return 1;
 }
 
-/* At a sub-step's start t (events located): the impacts of the touching contacts, then which contacts are
- * armed for the sub-step: those that rest (kept closed by the last solution, or closed by a plastic impact
- * now). Returns 1 when velocities jumped (the caller refreshes the assignment), 0, or -status. */
+/* At a sub-step's start t (events located; h the run's step): the impacts of the touching contacts (a gap
+ * within rounding), then which contacts are armed for the sub-step: the touching ones that do not separate
+ * (they rest, or a plastic impact just closed them). Returns 1 when velocities jumped (the caller renews
+ * the assignment), 0, or -status. */
 int nr_contacts_instant(dp_run *r, double t, double h)
 {
     struct dp_net_run *nr = r->net;
@@ -236,7 +242,7 @@ int nr_contacts_instant(dp_run *r, double t, double h)
     for (size_t c = 0; c < nr->nc; c++) {
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double gd = nr_rel(e->a, e->b, nr->v);
-        changed |= arm(nr, c, touch[c] && gd <= touch_tol(nr, c, h) / (h > 0 ? h : 1), 0);
+        changed |= arm(nr, c, touch[c] && gd <= touch_tol(nr, c, h) / h, 0);
     }
     if (changed)
         dp_net_ws_W_changed(nr->ws);
@@ -313,7 +319,7 @@ void nr_contacts_forces(struct dp_net_run *nr, int stepped)
         size_t i = nr->ct_el[c], k = nr->nact_el + c;
         const dp_contact *ct = &nr->net->el[i].contact;
         if (ct->compliance > 0)
-            nr->Fn[i] = -ct->compliance * fmax(ct->distance - nr_rel(nr->net->el[i].a, nr->net->el[i].b, nr->x), 0);
+            nr->Fn[i] = nr_compliant_force(ct, nr_rel(nr->net->el[i].a, nr->net->el[i].b, nr->x));
         else
             nr->Fn[i] = stepped && nr->ct_on[c] ? nr->force[k].lambda : 0;
     }

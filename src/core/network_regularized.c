@@ -28,12 +28,6 @@ struct dp_net_reg {
     unsigned long long fevals;
 };
 
-/* A compliant contact's force -k max(d - u, 0) (network_contact.c). */
-static double contact_force(const dp_element *e, double u)
-{
-    return e->has_contact ? -e->contact.compliance * fmax(e->contact.distance - u, 0) : 0;
-}
-
 /* An element's regularized force at elongation u and rate z, and (slopes) its derivatives in u and z. */
 static double element_force(const struct dp_net_run *nr, size_t i, double u, double z, double lam, double *du,
                             double *dz)
@@ -44,7 +38,7 @@ static double element_force(const struct dp_net_run *nr, size_t i, double u, dou
     if (e->has_spring && e->spring.law != DP_SPRING_LINEAR)
         f += dp_graph_yosida_slope(&e->spring.graph, lam, u, du);
     if (e->has_contact && u < e->contact.distance) {   /* compliant (rigid ones are refused) */
-        f += contact_force(e, u);
+        f += nr_compliant_force(&e->contact, u);
         *du += e->contact.compliance;
     }
     if (e->has_damper) {
@@ -181,7 +175,7 @@ static void row_forces(struct dp_net_reg *g)
             s = dp_graph_yosida_slope(&e->spring.graph, g->lam, u, &du);
         if (e->has_damper) {
             vb = e->damper.belt_velocity;
-            d = element_force(nr, i, u, z, g->lam, &du, &dz) - s - contact_force(e, u);
+            d = element_force(nr, i, u, z, g->lam, &du, &dz) - s - (e->has_contact ? nr_compliant_force(&e->contact, u) : 0);
         }
         nr->Fs[i] = nr->k[i] * u + s;
         nr->Fd[i] = nr->c[i] * (z - vb) + d;

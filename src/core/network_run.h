@@ -122,6 +122,8 @@ size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h);
 int nr_contacts_chattering(const struct dp_net_run *nr);
 void nr_contacts_forces(struct dp_net_run *nr, int stepped);
 void nr_contacts_after_probe(struct dp_net_run *nr);
+/* A compliant contact's force at elongation u, -k max(d - u, 0) (0 for a rigid one: k = 0). */
+double nr_compliant_force(const dp_contact *c, double u);
 /* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
 void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse);
 
