@@ -64,6 +64,9 @@ int dp_element_can_stick(const dp_element *e);
  * (linear and Bingham dampers) b b^T. Any of the outputs may be NULL. */
 void dp_network_linear_parts(const dp_network *net, double *M, double *K, double *C);
 
+/* Whether the element's spring and damper are linear (or absent), its contact aside. */
+int dp_element_laws_linear(const dp_element *e);
+
 /* The elements whose laws are not linear (set-valued or nonlinear springs and dampers, relaxation, contacts):
  * what a linear analysis leaves out. Writes their indices into `out` (room for net->nel; NULL: only counts)
  * and returns how many. */

@@ -164,16 +164,20 @@ void dp_network_linear_parts(const dp_network *net, double *M, double *K, double
     }
 }
 
+int dp_element_laws_linear(const dp_element *e)
+{
+    int nonlinear_spring = e->has_spring && e->spring.law != DP_SPRING_LINEAR;
+    int nonlinear_damper = e->has_damper && e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR;
+    int relaxed = e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE;
+    return !nonlinear_spring && !nonlinear_damper && !relaxed;
+}
+
 size_t dp_network_nonlinear_elements(const dp_network *net, size_t *out)
 {
     size_t m = 0;
     for (size_t i = 0; i < net->nel; i++) {
         const dp_element *e = &net->el[i];
-        int nonlinear_spring = e->has_spring && e->spring.law != DP_SPRING_LINEAR;
-        int nonlinear_damper = e->has_damper && e->damper.law != DP_DAMPER_NONE &&
-                               e->damper.law != DP_DAMPER_LINEAR;
-        int relaxed = e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE;
-        if (nonlinear_spring || nonlinear_damper || relaxed || e->has_contact) {
+        if (!dp_element_laws_linear(e) || e->has_contact) {
             if (out)
                 out[m] = i;
             m++;

@@ -66,9 +66,7 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
         const dp_element *e = &net->el[i];
         if (e->has_contact)
             e->contact.compliance > 0 ? soft++ : rigid++;
-        other += (e->has_spring && e->spring.law != DP_SPRING_LINEAR) ||
-                 (e->has_damper && ((e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR) ||
-                                    e->damper.relaxation.kind != DP_RELAX_NONE));
+        other += !dp_element_laws_linear(e);
     }
     if (rigid + soft) {
         snprintf(d, sizeof d, "%zu rigid contacts (Newton's law, restitution in [0, 1], so no impact gains energy), "
