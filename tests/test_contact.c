@@ -21,83 +21,22 @@
 
 #include "dashpot/json.h"
 #include "dashpot/run.h"
+#include "rows.h"
 
 #define G 9.81
-#define MAX_EV 8192
 
-/* Every row flattened as t, then the row's numbers; events kept. */
-typedef struct run_out {
-    double *d;
-    size_t n, cap, width;
-    size_t nn, ne;          /* nodes and elements written */
-    dp_event ev[MAX_EV];
-    size_t nev;
-    int status;
-} run_out;
-
-static void push_row(run_out *o, const dp_row *w)
+/* Runs the document to its end (rows.h); it must finish. */
+static void run_doc(const char *json, rows *o)
 {
-    if (o->n == o->cap) {
-        o->cap = o->cap ? 2 * o->cap : 1024;
-        o->d = realloc(o->d, o->cap * o->width * sizeof *o->d);
-        assert_non_null(o->d);
-    }
-    double *p = o->d + o->n++ * o->width;
-    p[0] = w->t;
-    memcpy(p + 1, w->val, (o->width - 1) * sizeof *p);
-}
-
-/* Runs the document to its end and returns the run's last status (DP_DONE when it finished). */
-static int run_doc_status(const char *json, run_out *o);
-
-static void run_doc(const char *json, run_out *o)
-{
-    assert_int_equal(run_doc_status(json, o), DP_DONE);
-}
-
-static int run_doc_status(const char *json, run_out *o)
-{
-    memset(o, 0, sizeof *o);
-    dp_spec spec;
-    dp_errors errs;
-    dp_spec_init(&spec);
-    dp_errors_init(&errs);
-    int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
-    if (s != DP_OK && errs.n)
-        fprintf(stderr, "spec error %s: %s\n", errs.item[0].pointer, errs.item[0].message);
-    assert_int_equal(s, DP_OK);
-    dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
-    if (run == NULL && errs.n)
-        fprintf(stderr, "run error %s: %s\n", errs.item[0].pointer, errs.item[0].message);
-    dp_spec_clear(&spec);
-    assert_non_null(run);
-    const dp_columns *c = dp_run_columns(run);
-    assert_non_null(c);
-    o->nn = c->nodes, o->ne = c->elements, o->width = 1 + c->width;
-    dp_record buf[64];
-    size_t n;
-    do {
-        s = dp_run_next(run, buf, 64, &n);
-        for (size_t i = 0; i < n; i++) {
-            if (buf[i].type == DP_RECORD_ROW)
-                push_row(o, &buf[i].u.row);
-            else if (o->nev < MAX_EV)
-                o->ev[o->nev++] = buf[i].u.event;
-        }
-    } while (s == DP_MORE);
-    o->status = s;
-    if (s != DP_DONE)
-        fprintf(stderr, "run failed: %s\n", dp_run_error(run));
-    dp_run_free(run);
-    return s;
+    assert_int_equal(rows_collect(json, 64, o), DP_DONE);
 }
 
 /* Row i's x of node j, v of node j, Fn of element j. */
-static double X(const run_out *o, size_t i, size_t j) { return o->d[i * o->width + 1 + j]; }
-static double V(const run_out *o, size_t i, size_t j) { return o->d[i * o->width + 1 + o->nn + j]; }
-static double FN(const run_out *o, size_t i, size_t j)
+static double X(const rows *o, size_t i, size_t j) { return o->d[i * o->width + 1 + j]; }
+static double V(const rows *o, size_t i, size_t j) { return o->d[i * o->width + 1 + o->nx + j]; }
+static double FN(const rows *o, size_t i, size_t j)
 {
-    return o->d[i * o->width + 1 + 2 * o->nn + 3 * o->ne + j];
+    return o->d[i * o->width + 1 + 2 * o->nx + 3 * o->ne + j];
 }
 
 static void ball_doc(char *buf, size_t cap, double e, double dt, double t_end, const char *events)
@@ -114,12 +53,12 @@ static void ball_doc(char *buf, size_t cap, double e, double dt, double t_end, c
 static void ball_closed_form(double e)
 {
     static char doc[1024];
-    run_out o;
+    rows o;
     double v1 = sqrt(2 * G), t = sqrt(2 / G), speed = v1, t_inf = t + 2 * e * v1 / (G * (1 - e));
     ball_doc(doc, sizeof doc, e, 1e-3, ceil(t_inf) + 1, "locate");
     run_doc(doc, &o);
     size_t k = 0;
-    for (size_t i = 0; i < o.nev; i++) {
+    for (size_t i = 0; i < o.events; i++) {
         const dp_event *ev = &o.ev[i];
         assert_int_equal(ev->kind, DP_EVENT_IMPACT);
         if (speed > 1e-6) {        /* the first impacts, each against the closed form */
@@ -134,8 +73,8 @@ static void ball_closed_form(double e)
     }
     assert_true(k >= 1);
     /* finitely many, the last at the accumulation point (to a billionth of a step and rounding) */
-    assert_true(o.nev < (e > 0 ? (size_t)(log(1e-13) / log(e)) + 20 : 2));
-    assert_true(fabs(o.ev[o.nev - 1].t - t_inf) <= 1e-9);
+    assert_true(o.events < (e > 0 ? (size_t)(log(1e-13) / log(e)) + 20 : 2));
+    assert_true(fabs(o.ev[o.events - 1].t - t_inf) <= 1e-9);
     for (size_t i = 0; i < o.n; i++) {
         assert_true(X(&o, i, 0) >= -1e-12);                       /* never below the table */
         if (o.d[i * o.width] > t_inf + 1e-3) {                    /* at rest on it, pressed by m g */
@@ -157,11 +96,11 @@ static void test_ball_moreau_jean(void **state)
 {
     (void)state;
     static char doc[1024];
-    run_out o;
+    rows o;
     double h = 1e-3, t1 = sqrt(2 / G), v1 = sqrt(2 * G);
     ball_doc(doc, sizeof doc, 0.5, h, 3, "none");
     run_doc(doc, &o);
-    assert_true(o.nev >= 3);
+    assert_true(o.events >= 3);
     assert_int_equal(o.ev[0].kind, DP_EVENT_IMPACT);
     assert_true(o.ev[0].t >= t1 && o.ev[0].t <= t1 + 2 * h + 1e-12);
     assert_true(fabs(o.ev[0].v + v1) <= G * h);
@@ -182,9 +121,9 @@ static void test_belt_into_stop(void **state)
                       "\"coulomb\",\"phi0\":1,\"belt_velocity\":0.5}},{\"between\":[0,\"ground\"],\"contact\":"
                       "{\"distance\":-0.3,\"restitution\":0.5}}]},\"initial\":{\"x\":[0],\"v\":[0]},\"solver\":"
                       "{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":2.5,\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out o;
+    rows o;
     run_doc(doc, &o);
-    assert_true(o.nev >= 4);
+    assert_true(o.events >= 4);
     assert_int_equal(o.ev[0].kind, DP_EVENT_STICK);
     assert_true(fabs(o.ev[0].t - 0.5) <= 1e-12 && fabs(o.ev[0].x - 0.125) <= 1e-12);
     assert_int_equal(o.ev[1].kind, DP_EVENT_IMPACT);                  /* the impact, then the slip it makes */
@@ -196,7 +135,7 @@ static void test_belt_into_stop(void **state)
     assert_true(o.ev[2].t == o.ev[1].t);
     double t = 0.85, dt = 0.5;
     size_t impacts = 0;
-    for (size_t i = 1; i < o.nev; i++) {
+    for (size_t i = 1; i < o.events; i++) {
         if (o.ev[i].kind != DP_EVENT_IMPACT)
             continue;
         if (dt > 1e-6)
@@ -204,7 +143,7 @@ static void test_belt_into_stop(void **state)
         t += dt, dt /= 2, impacts++;
     }
     assert_true(impacts > 10 && impacts < 80);
-    assert_true(fabs(o.ev[o.nev - 1].t - 1.85) <= 1e-9);
+    assert_true(fabs(o.ev[o.events - 1].t - 1.85) <= 1e-9);
     for (size_t i = 0; i < o.n; i++) {
         assert_true(X(&o, i, 0) <= 0.3 + 1e-12);                      /* no penetration */
         if (o.d[i * o.width] > 1.86) {                                 /* no creep */
@@ -226,10 +165,10 @@ static void test_two_masses_elastic(void **state)
                       "\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-9.81},{\"node\":1,\"kind\":"
                       "\"constant\",\"value\":-4.905}]},\"initial\":{\"x\":[0.5,1.2],\"v\":[0,0]},\"solver\":{\"kind\":"
                       "\"stick-slip\",\"dt\":0.001,\"t_end\":4,\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     size_t impacts = 0;
-    for (size_t i = 0; i < o.nev; i++)
+    for (size_t i = 0; i < o.events; i++)
         impacts += o.ev[i].kind == DP_EVENT_IMPACT;
     assert_true(impacts >= 3);
     double E0 = 0;
@@ -261,7 +200,7 @@ static void test_unconnected_parts(void **state)
                        "\"coulomb\",\"phi0\":1,\"belt_velocity\":0.5}},{\"between\":[0,\"ground\"],\"contact\":"
                        "{\"distance\":-0.3,\"restitution\":0.5}}]},\"initial\":{\"x\":[0],\"v\":[0]},\"solver\":"
                        "{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":2.5,\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out a, b, c;
+    rows a, b, c;
     run_doc(both, &a);
     run_doc(ball, &b);
     run_doc(belt, &c);
@@ -271,7 +210,7 @@ static void test_unconnected_parts(void **state)
         assert_true(fabs(X(&a, i, 0) - X(&b, i, 0)) <= 1e-9 && fabs(V(&a, i, 0) - V(&b, i, 0)) <= 1e-9);
         assert_true(fabs(X(&a, i, 1) - X(&c, i, 0)) <= 1e-9 && fabs(V(&a, i, 1) - V(&c, i, 0)) <= 1e-9);
     }
-    assert_int_equal(a.nev, b.nev + c.nev);
+    assert_int_equal(a.events, b.events + c.events);
     free(a.d), free(b.d), free(c.d);
 }
 
@@ -286,7 +225,7 @@ static double compliant_error(double k, double *pen_err)
              "{\"distance\":0,\"compliance\":%g}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-9.81}]},"
              "\"initial\":{\"x\":[1],\"v\":[0]},\"solver\":{\"kind\":\"regularized\",\"n\":1,\"dt\":1e-5,"
              "\"t_end\":1.2,\"rtol\":1e-10,\"atol\":1e-12},\"output\":{\"every\":1}}", k);
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     double v1 = sqrt(2 * G), xs = G / k, pen = xs + sqrt(xs * xs + v1 * v1 / k), lowest = 0;
     for (size_t i = 0; i < o.n; i++)
@@ -331,7 +270,7 @@ static void test_newtons_cradle(void **state)
                      "\"restitution\":%g}}]},\"initial\":{\"x\":[-1,0,0],\"v\":[1,0,0]},\"solver\":{\"kind\":"
                      "\"stick-slip\",\"dt\":0.01,\"t_end\":2,\"theta\":0.5,\"events\":\"%s\"},\"output\":{\"every\":1}}",
                      e, e, modes[m]);
-            run_out o;
+            rows o;
             run_doc(doc, &o);
             size_t last = o.n - 1;
             double v0 = V(&o, last, 0), v1 = V(&o, last, 1), v2 = V(&o, last, 2);
@@ -340,7 +279,7 @@ static void test_newtons_cradle(void **state)
             assert_true(fabs(v0 + v1 + v2 - 1) <= 1e-12);
             if (e == 1)
                 assert_true(fabs(0.5 * (v0 * v0 + v1 * v1 + v2 * v2) - 0.5) <= 1e-12);
-            assert_true(o.nev >= 1);
+            assert_true(o.events >= 1);
             assert_int_equal(o.ev[0].kind, DP_EVENT_IMPACT);
             assert_int_equal(o.ev[0].element, 0);
             assert_true(fabs(o.ev[0].t - (m == 0 ? 1 : 1.01)) <= 1e-12);      /* located, or a step's end */
@@ -359,9 +298,9 @@ static void test_chain_with_gap(void **state)
                       "\"restitution\":1}},{\"between\":[1,2],\"contact\":{\"distance\":0,\"restitution\":1}}]},"
                       "\"initial\":{\"x\":[-1,0,0.5],\"v\":[1,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,"
                       "\"t_end\":3,\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out o;
+    rows o;
     run_doc(doc, &o);
-    assert_int_equal(o.nev, 2);
+    assert_int_equal(o.events, 2);
     assert_true(o.ev[0].element == 0 && fabs(o.ev[0].t - 1) <= 1e-12 && fabs(o.ev[0].impulse - 1) <= 1e-12);
     assert_true(o.ev[1].element == 1 && fabs(o.ev[1].t - 1.5) <= 1e-12 && fabs(o.ev[1].impulse - 1) <= 1e-12);
     size_t last = o.n - 1;
@@ -381,7 +320,7 @@ static double liftoff_error(double dt, int *crept)
              "{\"distance\":0,\"restitution\":0}}],\"forcing\":[{\"node\":0,\"kind\":\"table\",\"points\":[[0,%.17g],"
              "[10,%.17g]]}]},\"initial\":{\"x\":[0],\"v\":[0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,"
              "\"t_end\":2,\"theta\":0.5},\"output\":{\"every\":1}}", -G, -G + 100, dt);
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     double a = 10, ts = G / a;
     *crept = 0;
@@ -452,10 +391,10 @@ static double osc_error(double dt, double theta, const double *times, size_t nim
              "\"restitution\":0.8}}],\"forcing\":[{\"node\":0,\"kind\":\"harmonic\",\"amplitude\":0.5,\"omega\":0.8}]},"
              "\"initial\":{\"x\":[0],\"v\":[0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":20,"
              "\"theta\":%g},\"output\":{\"every\":1}}", dt, theta);
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     size_t k = 0;
-    for (size_t i = 0; i < o.nev; i++)
+    for (size_t i = 0; i < o.events; i++)
         if (o.ev[i].kind == DP_EVENT_IMPACT) {
             assert_true(k < nimp && o.ev[i].element == 1);
             if (theta == 0.5)
@@ -498,8 +437,8 @@ static void test_stacked_zeno(void **state)
                       "\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-9.81},{\"node\":1,\"kind\":\"constant\","
                       "\"value\":-19.62}]},\"initial\":{\"x\":[0.5,1],\"v\":[0,0]},\"solver\":{\"kind\":\"stick-slip\","
                       "\"dt\":0.001,\"t_end\":2,\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out o;
-    int s = run_doc_status(doc, &o);
+    rows o;
+    int s = rows_collect(doc, 64, &o);
     assert_int_equal(s, DP_DONE);
     size_t last = o.n - 1;
     assert_true(fabs(X(&o, last, 0)) <= 1e-9 && fabs(X(&o, last, 1) - 0.1) <= 1e-9);
@@ -519,7 +458,7 @@ static void test_elastic_rattle(void **state)
                       "\"restitution\":1}},{\"between\":[0,\"ground\"],\"contact\":{\"distance\":-1e-5,\"restitution\":1}}]},"
                       "\"initial\":{\"x\":[5e-6],\"v\":[1]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.1,\"t_end\":1,"
                       "\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     assert_true(fabs(fabs(V(&o, o.n - 1, 0)) - 1) <= 1e-9);
     free(o.d);
@@ -534,10 +473,10 @@ static void test_initial_impact_event_mj(void **state)
     const char *doc = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"contact\":{\"distance\":0,"
                       "\"restitution\":0.5}}]},\"initial\":{\"x\":[0],\"v\":[-1]},\"solver\":{\"kind\":\"stick-slip\","
                       "\"dt\":0.01,\"t_end\":0.05,\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":1}}";
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     assert_true(fabs(V(&o, o.n - 1, 0) - 0.5) <= 1e-12);   /* the impact is taken ... */
-    assert_int_equal(o.nev, 1);                            /* ... and reported */
+    assert_int_equal(o.events, 1);                            /* ... and reported */
     assert_true(fabs(o.ev[0].impulse - 1.5) <= 1e-12);
     free(o.d);
 }
@@ -551,7 +490,7 @@ static void test_initial_row_force(void **state)
     const char *doc = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"contact\":{\"distance\":0,"
                       "\"restitution\":0.5}}]},\"initial\":{\"x\":[0],\"v\":[-1]},\"solver\":{\"kind\":\"stick-slip\","
                       "\"dt\":0.01,\"t_end\":0.05,\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     assert_true(fabs(V(&o, o.n - 1, 0) - 0.5) <= 1e-12);
     assert_true(fabs(FN(&o, 0, 0)) <= 1.5 / 0.01 * (1 + 1e-12));
@@ -571,7 +510,7 @@ static double compliant_backward_euler_loss(double dt)
              "{\"distance\":0,\"compliance\":1e4}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-9.81}]},"
              "\"initial\":{\"x\":[1],\"v\":[0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":0.7,"
              "\"theta\":1},\"output\":{\"every\":1}}", dt);
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     double vmax = 0;
     for (size_t i = 0; i < o.n; i++)
@@ -599,9 +538,9 @@ static void test_cradle_second_impulse(void **state)
                       "\"restitution\":1}},{\"between\":[1,2],\"contact\":{\"distance\":0,\"restitution\":1}}]},"
                       "\"initial\":{\"x\":[-1,0,0],\"v\":[1,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,"
                       "\"t_end\":2,\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out o;
+    rows o;
     run_doc(doc, &o);
-    assert_int_equal(o.nev, 2);
+    assert_int_equal(o.events, 2);
     assert_true(o.ev[1].element == 1 && fabs(o.ev[1].t - 1) <= 1e-12 && fabs(o.ev[1].impulse - 2.0 / 3) <= 1e-12);
     free(o.d);
 }
@@ -621,7 +560,7 @@ static void test_stack_rests_on_the_stops(void **state)
                       "\"kind\":\"constant\",\"value\":-9.81},{\"node\":1,\"kind\":\"constant\",\"value\":-9.81},{\"node\":2,"
                       "\"kind\":\"constant\",\"value\":-9.81}]},\"initial\":{\"x\":[0.5,1,1.5],\"v\":[0,0,0]},\"solver\":"
                       "{\"kind\":\"stick-slip\",\"dt\":0.001,\"t_end\":2,\"theta\":0.5},\"output\":{\"every\":1}}";
-    run_out o;
+    rows o;
     run_doc(doc, &o);
     size_t last = o.n - 1;
     assert_true(fabs(FN(&o, last, 0) + 3 * G) <= 1e-9 && fabs(FN(&o, last, 2) + G) <= 1e-9);   /* resting */

@@ -13,64 +13,14 @@
 #include <cmocka.h>
 #include <gsl/gsl_errno.h>
 
+#include "rows.h"
 #include "trajectory.h"
 
-/* Every row of a network run, flattened: t, x[nx], v[nx], Fs[ne], Fd[ne], phase[ne]. */
-typedef struct rows {
-    double *d;
-    size_t n, cap, width, nx, ne;
-    size_t events;
-    dp_event ev[4096];
-    int status;
-} rows;
-
-static void rows_push(rows *r, const dp_row *w)
-{
-    if (r->n == r->cap) {
-        r->cap = r->cap ? 2 * r->cap : 256;
-        r->d = realloc(r->d, r->cap * r->width * sizeof *r->d);
-        assert_non_null(r->d);
-    }
-    double *o = r->d + r->n++ * r->width;
-    o[0] = w->t;
-    memcpy(o + 1, w->val, (r->width - 1) * sizeof *o);   /* x, v, Fs, Fd, phase */
-}
-
-/* Runs a network document with blocks of `cap` records. */
+/* Runs a network document with blocks of `cap` records; its rows are x, v, Fs, Fd, phase (no contacts). */
 static void rows_run(const char *json, size_t cap, rows *r)
 {
-    memset(r, 0, sizeof *r);
-    dp_spec spec;
-    dp_errors errs;
-    dp_spec_init(&spec);
-    dp_errors_init(&errs);
-    int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
-    if (s != DP_OK && errs.n)
-        fprintf(stderr, "spec error %s: %s\n", errs.item[0].pointer, errs.item[0].message);
-    assert_int_equal(s, DP_OK);
-    dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
-    dp_spec_clear(&spec);
-    assert_non_null(run);
-    const dp_columns *c = dp_run_columns(run);
-    assert_non_null(c);
-    r->nx = c->nodes, r->ne = c->elements, r->width = 1 + c->width;
-    assert_int_equal(c->width, 2 * r->nx + 3 * r->ne);
-    dp_record *buf = malloc(cap * sizeof *buf);
-    size_t n;
-    do {
-        s = dp_run_next(run, buf, cap, &n);
-        for (size_t i = 0; i < n; i++) {
-            if (buf[i].type == DP_RECORD_ROW)
-                rows_push(r, &buf[i].u.row);
-            else if (r->events < 4096)
-                r->ev[r->events++] = buf[i].u.event;
-        }
-    } while (s == DP_MORE);
-    r->status = s;
-    if (s != DP_DONE)
-        fprintf(stderr, "run failed: %s\n", dp_run_error(run));
-    free(buf);
-    dp_run_free(run);
+    rows_collect(json, cap, r);
+    assert_int_equal(r->width - 1, 2 * r->nx + 3 * r->ne);
 }
 
 static const char *const springs[] = {

@@ -1,0 +1,79 @@
+/* tests/rows.h - test helper: run a network (or any run with columns) given as JSON text and keep its rows
+ * flattened and its events, for test programs that use cmocka (include it after <cmocka.h>).
+ * Header-only, as trajectory.h is for one-mass samples. */
+#ifndef DASHPOT_TESTS_ROWS_H
+#define DASHPOT_TESTS_ROWS_H
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dashpot/json.h"
+#include "dashpot/run.h"
+
+#define ROWS_MAX_EVENTS 8192
+
+/* Every row flattened: t, then the row's numbers (width - 1 of them: x[nx], v[nx], the element groups);
+ * the first ROWS_MAX_EVENTS events. */
+typedef struct rows {
+    double *d;
+    size_t n, cap, width, nx, ne;
+    size_t events;
+    dp_event ev[ROWS_MAX_EVENTS];
+    int status;
+} rows;
+
+static void rows_push(rows *r, const dp_row *w)
+{
+    if (r->n == r->cap) {
+        r->cap = r->cap ? 2 * r->cap : 256;
+        r->d = realloc(r->d, r->cap * r->width * sizeof *r->d);
+        assert_non_null(r->d);
+    }
+    double *o = r->d + r->n++ * r->width;
+    o[0] = w->t;
+    memcpy(o + 1, w->val, (r->width - 1) * sizeof *o);
+}
+
+/* Runs the document to its end with blocks of `cap` records (the spec must parse and the run start) and
+ * returns the run's last status, also in r->status (DP_DONE when it finished). */
+static int rows_collect(const char *json, size_t cap, rows *r)
+{
+    memset(r, 0, sizeof *r);
+    dp_spec spec;
+    dp_errors errs;
+    dp_spec_init(&spec);
+    dp_errors_init(&errs);
+    int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
+    if (s != DP_OK && errs.n)
+        fprintf(stderr, "spec error %s: %s\n", errs.item[0].pointer, errs.item[0].message);
+    assert_int_equal(s, DP_OK);
+    dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
+    if (run == NULL && errs.n)
+        fprintf(stderr, "run error %s: %s\n", errs.item[0].pointer, errs.item[0].message);
+    dp_spec_clear(&spec);
+    assert_non_null(run);
+    const dp_columns *c = dp_run_columns(run);
+    assert_non_null(c);
+    r->nx = c->nodes, r->ne = c->elements, r->width = 1 + c->width;
+    dp_record *buf = malloc(cap * sizeof *buf);
+    assert_non_null(buf);
+    size_t n;
+    do {
+        s = dp_run_next(run, buf, cap, &n);
+        for (size_t i = 0; i < n; i++) {
+            if (buf[i].type == DP_RECORD_ROW)
+                rows_push(r, &buf[i].u.row);
+            else if (r->events < ROWS_MAX_EVENTS)
+                r->ev[r->events++] = buf[i].u.event;
+        }
+    } while (s == DP_MORE);
+    r->status = s;
+    if (s != DP_DONE)
+        fprintf(stderr, "run failed: %s\n", dp_run_error(run));
+    free(buf);
+    dp_run_free(run);
+    return s;
+}
+
+#endif
