@@ -20,10 +20,8 @@ trap 'rm -rf "$tmp"' EXIT
 
 bash scripts/install-deps.sh --siconos || { echo "contact.sh: FAIL: the peer is not installed" >&2; exit 1; }
 make -s BUILD="$build" "$build/dashpot"
-mkdir -p "$build/bench"
-c++ -O2 -std=c++17 -Wall -Wextra -Werror -isystem /usr/include/siconos -isystem /usr/include/siconos/kernel \
-  -isystem /usr/include/siconos/numerics bench/contact_peer.cpp -o "$build/bench/contact_peer" \
-  -lsiconos_kernel -lsiconos_numerics
+source bench/siconos_peer.bash
+build_siconos_peer contact_peer
 peer="$build/bench/contact_peer" dp=${DASHPOT:-$build/dashpot} cases=bench/contact_cases.py
 
 peer_run() { OPENBLAS_NUM_THREADS=1 timeout 600 "$peer" "$@"; } # one thread, as dashpot

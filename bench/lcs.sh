@@ -18,10 +18,8 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 bash scripts/install-deps.sh --siconos || { echo "lcs.sh: FAIL: the peer is not installed" >&2; exit 1; }
 make -s BUILD="$build" "$build/dashpot"
-mkdir -p "$build/bench"
-c++ -O2 -std=c++17 -Wall -Wextra -Werror -isystem /usr/include/siconos -isystem /usr/include/siconos/kernel \
-  -isystem /usr/include/siconos/numerics bench/lcs_peer.cpp -o "$build/bench/lcs_peer" \
-  -lsiconos_kernel -lsiconos_numerics
+source bench/siconos_peer.bash
+build_siconos_peer lcs_peer
 
 python3 - "$build" "$tmp" <<'PY'
 import json, os, random, subprocess, sys, time

@@ -25,9 +25,8 @@ cflags=(-std=c17 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-pr
         -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE)
 cc "${cflags[@]}" bench/network_bench.c -o "$build/bench/network_bench" "$build/libdashpot.a" \
   -lcjson -lgsl -lgslcblas -lm
-c++ -O2 -std=c++17 -Wall -Wextra -Werror -isystem /usr/include/siconos -isystem /usr/include/siconos/kernel \
-  -isystem /usr/include/siconos/numerics bench/siconos_chain_peer.cpp -o "$build/bench/siconos_chain_peer" \
-  -lsiconos_kernel -lsiconos_numerics
+source bench/siconos_peer.bash
+build_siconos_peer siconos_chain_peer
 dp="$build/bench/network_bench" sic="$build/bench/siconos_chain_peer"
 
 # Single-threaded programs, best of several runs where affordable; every Siconos run is bounded.

@@ -33,9 +33,8 @@ cflags=(-std=c17 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing-pr
 cc "${cflags[@]}" bench/stick_slip_bench.c -o "$build/bench/stick_slip_bench" "$build/libdashpot.a" \
   -lcjson -lgsl -lgslcblas -lm
 cc "${cflags[@]}" bench/floor.c -o "$build/bench/floor" -lm
-c++ -O2 -std=c++17 -Wall -Wextra -Werror -isystem /usr/include/siconos -isystem /usr/include/siconos/kernel \
-  -isystem /usr/include/siconos/numerics bench/siconos_peer.cpp -o "$build/bench/siconos_peer" \
-  -lsiconos_kernel -lsiconos_numerics
+source bench/siconos_peer.bash
+build_siconos_peer siconos_peer
 dp="$build/bench/stick_slip_bench" sic="$build/bench/siconos_peer" flo="$build/bench/floor"
 
 # Every program is single-threaded. Not pinned to a core: on a shared machine the scheduler finds the idle
