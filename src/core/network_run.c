@@ -83,8 +83,10 @@ static void build_W(struct dp_net_run *nr, double h)
 
 static int alloc_all(struct dp_net_run *nr)
 {
-    /* arrays over the convex problem's elements hold every element's laws and every contact: 2 per element */
-    size_t n = nr->n, ne = nr->nel ? nr->nel : 1, na = 2 * ne, band = n * (nr->p + 1);
+    /* arrays over the convex problem's elements hold every element's laws and then every contact */
+    size_t n = nr->n, ne = nr->nel ? nr->nel : 1, na = ne, band = n * (nr->p + 1);
+    for (size_t i = 0; i < nr->nel; i++)
+        na += nr->net->el[i].has_contact;
     nr->M = calloc(band, sizeof(double));
     nr->K = calloc(band, sizeof(double));
     nr->C = calloc(band, sizeof(double));
