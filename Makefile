@@ -18,7 +18,7 @@ WARN    := -std=c17 -Wall -Wextra -Werror -Wshadow -Wstrict-prototypes -Wmissing
            -Wno-missing-field-initializers
 ASAN_UBSAN := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 SANFLAGS := $(if $(SAN),$(ASAN_UBSAN))
-CPPFLAGS += -Iinclude -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
+CPPFLAGS += -Iinclude -Isrc/core -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -MMD -MP
 ALL_CFLAGS = $(WARN) $(CFLAGS) $(SANFLAGS)
 LDLIBS_CORE := -lgsl -lgslcblas -lm
 # The unit tests alone also link LAPACK: an independent reference for the eigensolvers (test_modes.c).
@@ -27,7 +27,7 @@ LDLIBS_JSON := -lcjson
 LDLIBS_HTTP := -lmicrohttpd -lpthread
 LDFLAGS += $(SANFLAGS)
 
-CORE_SRC := $(wildcard src/core/*.c)
+CORE_SRC := $(shell find src/core -name '*.c' | sort)
 JSON_SRC := $(wildcard src/json/*.c)
 HTTP_SRC := $(wildcard src/http/*.c)
 CLI_SRC  := $(wildcard src/cli/*.c)

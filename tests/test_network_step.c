@@ -17,7 +17,7 @@
 
 #include "dashpot/model.h"
 #include "dashpot/status.h"
-#include "../src/core/network_step.h"
+#include "network/network_step.h"
 
 #define NMAX 4
 #define EMAX 5

@@ -24,7 +24,7 @@
 #include "dashpot/encode.h"
 #include "dashpot/regularized.h"
 #include "trajectory.h"
-#include "../src/core/dense.h"
+#include "base/dense.h"
 
 #define COULOMB "{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":1}"
 #define DECADES "[10,100,1000,10000]"

@@ -23,7 +23,7 @@
 #include <gsl/gsl_linalg.h>
 
 #include "dashpot/status.h"
-#include "network_step.h"
+#include "network/network_step.h"
 
 enum { FREE = 0, FIXED = 1 };
 enum { SRC_NONE = 0, SRC_A = 1, SRC_S = 2 };

@@ -15,7 +15,7 @@
 #include <gsl/gsl_linalg.h>
 
 #include "dashpot/regularized.h"
-#include "network_run.h"
+#include "solvers/network/network_run.h"
 
 struct dp_net_reg {
     struct dp_net_run *nr;

@@ -3,8 +3,8 @@
 #ifndef DASHPOT_CORE_STICK_SLIP_STEP_H
 #define DASHPOT_CORE_STICK_SLIP_STEP_H
 
-#include "inclusion.h"
-#include "run_internal.h"
+#include "laws/inclusion.h"
+#include "record/run_internal.h"
 
 static inline double sgn(double x)
 {

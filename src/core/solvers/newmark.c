@@ -14,8 +14,8 @@
 #include <gsl/gsl_linalg.h>
 
 #include "dashpot/newmark.h"
-#include "newmark_step.h"
-#include "run_internal.h"
+#include "network/newmark_step.h"
+#include "record/run_internal.h"
 
 void dp_newmark_coef_init(double beta, double gamma, double h, dp_newmark_coef *c)
 {

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "network_run.h"
+#include "solvers/network/network_run.h"
 
 int dp_network_is_one_mass(const dp_spec *s)
 {

@@ -9,8 +9,8 @@
 #include <math.h>
 
 #include "dashpot/status.h"
-#include "inclusion.h"
-#include "root.h"
+#include "laws/inclusion.h"
+#include "base/root.h"
 
 static double gamma_at(const dp_inclusion *p, double w)
 {

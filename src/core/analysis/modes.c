@@ -20,7 +20,7 @@
 #include <gsl/gsl_matrix.h>
 
 #include "dashpot/modes.h"
-#include "tridiag.h"
+#include "base/tridiag.h"
 
 #define RIGID_TOL 1e-12
 #define SYMMETRY_TOL 1e-12

@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "run_internal.h"
+#include "record/run_internal.h"
 
 void dp_run_emit(dp_run *r, const dp_record *rec)
 {

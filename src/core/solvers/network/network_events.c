@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "network_run.h"
-#include "root.h"
+#include "solvers/network/network_run.h"
+#include "base/root.h"
 
 typedef struct held_ctx {
     dp_run *r;

@@ -11,7 +11,7 @@
  */
 #include <math.h>
 
-#include "run_internal.h"
+#include "record/run_internal.h"
 
 int dp_thesis_advance(dp_run *r)
 {

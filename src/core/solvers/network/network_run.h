@@ -3,8 +3,8 @@
 #ifndef DASHPOT_CORE_NETWORK_RUN_H
 #define DASHPOT_CORE_NETWORK_RUN_H
 
-#include "network_step.h"
-#include "run_internal.h"
+#include "network/network_step.h"
+#include "record/run_internal.h"
 
 struct dp_net_reg;
 

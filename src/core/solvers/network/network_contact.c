@@ -25,7 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "network_run.h"
+#include "solvers/network/network_run.h"
 
 /* Located impacts in one step after which the rest of the step is plain Moreau-Jean: a guard for chatter
  * the accumulation rule does not see (a rattle between two stops, e = 1 against a contact that keeps

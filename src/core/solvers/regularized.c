@@ -33,8 +33,8 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "dashpot/regularized.h"
-#include "dense.h"
-#include "run_internal.h"
+#include "base/dense.h"
+#include "record/run_internal.h"
 
 /* Integrator steps taken per dp_run_next call at most, so that a front end can cancel a hard run between
  * blocks (~10 ms of msbdf work); the run resumes where it stopped. */

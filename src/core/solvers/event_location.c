@@ -9,8 +9,8 @@
  */
 #include <math.h>
 
-#include "root.h"
-#include "stick_slip_step.h"
+#include "base/root.h"
+#include "solvers/stick_slip_step.h"
 
 /* How close to its root an event instant inside a step of length h from t is found: a few ulps of the time. */
 static double instant_tol(double t, double h)

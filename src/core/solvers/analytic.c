@@ -7,7 +7,7 @@
 #include <math.h>
 
 #include "dashpot/analytic.h"
-#include "run_internal.h"
+#include "record/run_internal.h"
 
 dp_coulomb_arc dp_coulomb_arc_from(const dp_coulomb_problem *p, double t0, double x0, double v0)
 {

@@ -4,7 +4,7 @@
  * 1971); a bisection every third step without halving the bracket bounds the worst case. */
 #include <math.h>
 
-#include "root.h"
+#include "base/root.h"
 
 double dp_root_bracket(dp_root_fn g, void *ctx, double a, double b, double ga, double gb, double tol,
                        unsigned long long *evals)

@@ -21,9 +21,9 @@
 
 #include <gsl/gsl_linalg.h>
 
-#include "network_run.h"
-#include "newmark_step.h"
-#include "root.h"
+#include "solvers/network/network_run.h"
+#include "network/newmark_step.h"
+#include "base/root.h"
 
 
 

@@ -15,7 +15,7 @@
 #include <string.h>
 
 #include "dashpot/status.h"
-#include "network_run.h"
+#include "solvers/network/network_run.h"
 
 /* The graph of the nodes' couplings in compressed rows: off-diagonal nonzeros of M, K, C and elements. */
 typedef struct coupling {

@@ -6,7 +6,7 @@
  *   - the polynomial through the last accepted values, which is what a BDF step of that order is built on:
  *     no derivatives, so a stiff step (h |J| >> 1, where f(y) carries the step's error times |J|) loses
  *     nothing (docs/regularized.md, "Samples between steps"). */
-#include "dense.h"
+#include "base/dense.h"
 
 void dp_hermite5(const dp_hermite_end *a, const dp_hermite_end *b, size_t dim, double t, double out[])
 {

@@ -12,7 +12,7 @@
 #include <math.h>
 
 #include "dashpot/regularized.h"
-#include "root.h"
+#include "base/root.h"
 
 double dp_graph_rotation(const dp_graph *g, double s)
 {

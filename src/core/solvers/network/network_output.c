@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "network_run.h"
+#include "solvers/network/network_run.h"
 
 /* Row storage per block: the block holds at most this many numbers of rows. */
 #define ROW_BUDGET (1u << 20)

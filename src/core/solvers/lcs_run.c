@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "dashpot/lcs.h"
-#include "run_internal.h"
+#include "record/run_internal.h"
 
 #define ROW_BUDGET (1u << 20)
 

@@ -18,7 +18,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "dashpot/right_hand.h"
-#include "run_internal.h"
+#include "record/run_internal.h"
 
 #define MAX_WIDTH 16
 #define QCAP0 64

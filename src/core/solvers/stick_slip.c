@@ -17,7 +17,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "stick_slip_step.h"
+#include "solvers/stick_slip_step.h"
 
 /* ---- the closed form ------------------------------------------------------------------------------ */
 

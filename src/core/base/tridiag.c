@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "tridiag.h"
+#include "base/tridiag.h"
 
 #define CLUSTER 1e-3
 #define SWEEPS 3
