@@ -141,6 +141,8 @@ void server_free(server *s);
 unsigned server_port(const server *s);
 double now_seconds(void);
 
+/* A request of server s (request.c): one reference, its start time taken; NULL if out of memory. */
+request *request_new(server *s, const char *method, const char *url);
 /* Drops a reference; the last one frees the request (and logs it). */
 void request_release(request *r);
 

@@ -29,42 +29,6 @@
 /* Connections MHD accepts beyond --max-connections, to tell them "503" rather than drop them silently. */
 #define OVERLOAD_HEADROOM 64u
 
-double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* snprintf(dst, cap, "%s", src) without printf: src cut to cap - 1 bytes. */
-static void copy_cut(char *dst, size_t cap, const char *src)
-{
-    size_t n = strnlen(src, cap - 1);
-    memcpy(dst, src, n);
-    dst[n] = '\0';
-}
-
-static request *request_new(server *s, const char *method, const char *url)
-{
-    request *r = calloc(1, sizeof *r);
-    if (r == NULL)
-        return NULL;
-    r->srv = s;
-    atomic_init(&r->refs, 1);
-    r->t_start = now_seconds();
-    copy_cut(r->method, sizeof r->method, method);
-    copy_cut(r->path, sizeof r->path, url);
-    return r;
-}
-
-void request_release(request *r)
-{
-    if (r == NULL || atomic_fetch_sub(&r->refs, 1) != 1)
-        return;
-    dp_buf_free(&r->body);
-    free(r);
-}
-
 /* Content-Length above the limit: known before any byte of the body is read. */
 static int declared_too_large(struct MHD_Connection *c, size_t limit)
 {

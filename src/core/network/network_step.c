@@ -23,6 +23,7 @@
 #include <gsl/gsl_linalg.h>
 
 #include "dashpot/status.h"
+#include "base/band.h"
 #include "network/network_step.h"
 
 enum { FREE = 0, FIXED = 1 };
@@ -434,15 +435,7 @@ static int factor_reduced(dp_net_ws *w)
 /* y = H x for the symmetric band H. */
 static void band_mul(const dp_net_ws *w, const double *x, double *y)
 {
-    size_t n = w->n, p1 = w->p + 1;
-    for (size_t i = 0; i < n; i++)
-        y[i] = w->H[i * p1] * x[i];
-    for (size_t i = 0; i < n; i++)
-        for (size_t d = 1; d < p1 && i + d < n; d++) {
-            double h = w->H[i * p1 + d];
-            y[i] += h * x[i + d];
-            y[i + d] += h * x[i];
-        }
+    dp_band_symv(w->H, w->n, w->p, x, y);
 }
 
 /* The minimizer of the current assignment into vs: v = T y + c with R y = T^T (rhs_eff - H c). */

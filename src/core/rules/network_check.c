@@ -16,6 +16,7 @@
 #include "dashpot/newmark.h"
 
 #include "dashpot/spec.h"
+#include "rules/rules.h"
 
 /* Whether the n x n matrix A is symmetric to rounding; the first asymmetric pair in *i, *j. */
 static int symmetric(const double *A, size_t n, size_t *i, size_t *j)
@@ -198,4 +199,17 @@ void dp_network_check(const dp_spec *s, dp_errors *e)
                       "one mass)");
     else if (s->solver.branch != DP_BRANCH_REST)
         dp_errors_add(e, "/solver/branch", "networks follow the rest branch only");
+}
+
+/* One mass on one element [ground, 0], stepped by the one-mass solver (solvers/network/network_one_mass.c):
+ * the same answers, bit for bit, at the one-mass solver's speed. */
+int dp_network_is_one_mass(const dp_spec *s)
+{
+    const dp_network *n = s->net;
+    if (n == NULL || n->n != 1 || n->nel != 1 || n->mass == NULL || n->M || n->K || n->C)
+        return 0;
+    if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
+        return 0;
+    /* an elastoplastic spring steps on the network solver, which writes its "p" columns */
+    return s->solver.kind == DP_SOLVER_STICK_SLIP && n->el[0].spring.law != DP_SPRING_ELASTOPLASTIC;
 }

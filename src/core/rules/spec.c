@@ -13,6 +13,7 @@
 #include "dashpot/right_hand.h"
 #include "dashpot/spec.h"
 #include "dashpot/lcs.h"
+#include "rules/rules.h"
 
 void dp_spec_init(dp_spec *s)
 {
@@ -200,38 +201,22 @@ static void check_domain(const dp_graph *g, double y, const char *ptr, const cha
                       g->y[0], y);
 }
 
-int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
+/* The one-mass model's domain: the initial state inside the graphs' vertical ends (a rope bounds x). */
+static void check_one_mass_domain(const dp_spec *s, dp_errors *e)
 {
-    if (s->lcs)
-        return dp_lcs_check(s, max_steps, e);
-    size_t before = e->n + e->dropped;
     const dp_model *m = &s->model;
-    if (s->rh || s->solver.kind == DP_SOLVER_RIGHT_HAND)
-        dp_rh_check(s, e);
-    else if (s->net)
-        dp_network_check(s, e);
-    else if (m->spring.law == DP_SPRING_ROPE && s->x0 > m->spring.length)
+    if (m->spring.law == DP_SPRING_ROPE && s->x0 > m->spring.length)
         dp_errors_add(e, "/initial/x", "the rope is inextensible: x must be <= length = %g, got %g",
                       m->spring.length, s->x0);
     else
         check_domain(&m->spring.graph, s->x0, "/initial/x", "x", e);
-    if (!s->net && !s->rh && s->solver.kind != DP_SOLVER_RIGHT_HAND)
-        check_domain(&m->damper.graph, s->v0 - m->damper.belt_velocity, "/initial/v", "v - belt_velocity", e);
-    if (s->net || s->rh || s->solver.kind == DP_SOLVER_RIGHT_HAND)
-        ; /* the network's and right-hand solver's rules are in their own checks */
-    else if (s->solver.kind == DP_SOLVER_ANALYTIC)
-        check_analytic(s, e);
-    else if (s->solver.kind == DP_SOLVER_NEWMARK)
-        dp_newmark_check(s, e);
-    else if (s->solver.kind == DP_SOLVER_REGULARIZED && m->spring.law == DP_SPRING_ELASTOPLASTIC)
-        dp_errors_add(e, "/model/spring/law", "the elastoplastic spring has memory (its plastic offset), which the "
-                      "regularized schemes' memoryless laws do not: use the stick-slip or the newmark solver");
-    else if (s->solver.kind == DP_SOLVER_REGULARIZED)
-        dp_regularized_check(s, e);
-    else if (s->solver.variant == DP_VARIANT_THESIS)
-        check_thesis(s, e);
-    else
-        check_exact(s, e);
+    check_domain(&m->damper.graph, s->v0 - m->damper.belt_velocity, "/initial/v", "v - belt_velocity", e);
+}
+
+/* What every run type ends its rules with: DP_EINVAL if they added errors, else the step limit (node-steps
+ * for a network: a step costs about a unit per node and element). */
+static int finish(const dp_spec *s, double max_steps, dp_errors *e, size_t before)
+{
     if (e->n + e->dropped > before)
         return DP_EINVAL;
     if (max_steps <= 0 || max_steps > DP_SPEC_MAX_STEPS)
@@ -247,7 +232,38 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
                       n, max_steps);
         return DP_ELIMIT;
     }
-    double arcs = s->solver.kind == DP_SOLVER_ANALYTIC ? analytic_arcs(s) : 0;
+    return DP_OK;
+}
+
+/* One function per run type (solvers/run_types.h), each named in its type. */
+
+int dp_rules_stick_slip(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    check_one_mass_domain(s, e);
+    check_exact(s, e);
+    return finish(s, max_steps, e, before);
+}
+
+int dp_rules_thesis(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    check_one_mass_domain(s, e);
+    check_thesis(s, e);
+    return finish(s, max_steps, e, before);
+}
+
+int dp_rules_analytic(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    check_one_mass_domain(s, e);
+    check_analytic(s, e);
+    int st = finish(s, max_steps, e, before);
+    if (st != DP_OK)
+        return st;
+    if (max_steps <= 0 || max_steps > DP_SPEC_MAX_STEPS)
+        max_steps = DP_SPEC_MAX_STEPS;
+    double arcs = analytic_arcs(s);
     if (!(arcs <= max_steps)) {
         dp_errors_add(e, "/model/spring/k", "the closed form passes up to %.3g turning points by t_end, over the "
                       "limit of %.6g per run (the half-period pi sqrt(m/k) is %.3g)", arcs, max_steps,
@@ -255,4 +271,38 @@ int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
         return DP_ELIMIT;
     }
     return DP_OK;
+}
+
+int dp_rules_newmark(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    check_one_mass_domain(s, e);
+    dp_newmark_check(s, e);
+    return finish(s, max_steps, e, before);
+}
+
+int dp_rules_regularized(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    check_one_mass_domain(s, e);
+    if (s->model.spring.law == DP_SPRING_ELASTOPLASTIC)
+        dp_errors_add(e, "/model/spring/law", "the elastoplastic spring has memory (its plastic offset), which the "
+                      "regularized schemes' memoryless laws do not: use the stick-slip or the newmark solver");
+    else
+        dp_regularized_check(s, e);
+    return finish(s, max_steps, e, before);
+}
+
+int dp_rules_network(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    dp_network_check(s, e);
+    return finish(s, max_steps, e, before);
+}
+
+int dp_rules_right_hand(const dp_spec *s, double max_steps, dp_errors *e)
+{
+    size_t before = e->n + e->dropped;
+    dp_rh_check(s, e);
+    return finish(s, max_steps, e, before);
 }

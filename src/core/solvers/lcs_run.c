@@ -11,7 +11,8 @@
 #include <string.h>
 
 #include "dashpot/lcs.h"
-#include "record/run_internal.h"
+#include "record/sink.h"
+#include "solvers/run_types.h"
 
 #define ROW_BUDGET (1u << 20)
 
@@ -26,8 +27,9 @@ struct dp_lcs_run {
     dp_columns cols;
 };
 
-void dp_lcs_run_free(struct dp_lcs_run *lr)
+static void lcs_run_free(void *state)
 {
+    struct dp_lcs_run *lr = state;
     if (lr == NULL)
         return;
     dp_lcs_stepper_free(lr->step);
@@ -65,13 +67,13 @@ static int initial_algebraic(struct dp_lcs_run *lr, const dp_lcs *sys)
     return s;
 }
 
-int dp_lcs_run_init(dp_run *r)
+static int lcs_run_init(dp_run *r)
 {
     const dp_lcs_model *lm = r->spec.lcs;
     struct dp_lcs_run *lr = calloc(1, sizeof *lr);
     if (lr == NULL)
         return DP_ENOMEM;
-    r->lcs = lr;
+    r->state = lr;
     size_t n = lm->n, m = lm->m, k = n > m ? n : m;
     lr->n = n, lr->m = m, lr->width = n + 2 * m;
     lr->x = malloc(n * sizeof *lr->x), lr->u = malloc(m * sizeof *lr->u), lr->w = malloc(m * sizeof *lr->w);
@@ -159,9 +161,9 @@ static void set_offsets(const dp_run *r, struct dp_lcs_run *lr, dp_lcs_stepper *
     dp_lcs_stepper_set_p(st, lr->p);
 }
 
-int dp_lcs_run_advance(dp_run *r)
+static int lcs_run_advance(dp_run *r)
 {
-    struct dp_lcs_run *lr = r->lcs;
+    struct dp_lcs_run *lr = r->state;
     if (reserve_rows(r, lr) != DP_OK)
         return dp_run_fail(r, DP_ENOMEM, "out of memory for the rows of a block");
     if (!lr->started) {
@@ -196,3 +198,7 @@ int dp_lcs_run_advance(dp_run *r)
         r->finished = 1;
     return DP_OK;
 }
+
+const dp_run_type dp_run_lcs = {
+    .name = "lcs", .check = dp_lcs_check, .init = lcs_run_init, .advance = lcs_run_advance, .free = lcs_run_free,
+};

@@ -34,7 +34,10 @@
 
 #include "dashpot/regularized.h"
 #include "base/dense.h"
-#include "record/run_internal.h"
+#include "record/sink.h"
+#include "rules/rules.h"
+#include "solvers/regularized.h"
+#include "solvers/run_types.h"
 
 /* Integrator steps taken per dp_run_next call at most, so that a front end can cancel a hard run between
  * blocks (~10 ms of msbdf work); the run resumes where it stopped. */
@@ -73,6 +76,11 @@ struct dp_regularized {
 /* ---- the law ------------------------------------------------------------------------------------------- */
 
 /* gamma'(u); power relaxation is rejected by dp_regularized_check (unbounded slope at 0). */
+static struct dp_regularized *reg_of(const dp_run *r)
+{
+    return r->state;
+}
+
 static double relaxation_rate(const dp_relaxation *r, double u)
 {
     if (r->kind == DP_RELAX_RATIONAL) {
@@ -196,37 +204,6 @@ static int set_law(struct dp_regularized *g, const dp_spec *spec)
     return DP_OK;
 }
 
-/* ---- the rules ------------------------------------------------------------------------------------------ */
-
-void dp_regularized_check(const dp_spec *s, dp_errors *e)
-{
-    const dp_solver_spec *sv = &s->solver;
-    const dp_damper *d = &s->model.damper;
-    const char *np = sv->scheme == DP_SCHEME_PI ? "/solver/k" : "/solver/n";
-    if (sv->n_count < 1 || sv->n_count > DP_SPEC_MAX_NLIST)
-        dp_errors_add(e, np, "needs 1..%d values, got %zu", DP_SPEC_MAX_NLIST, sv->n_count);
-    for (size_t i = 0; i < sv->n_count && i < DP_SPEC_MAX_NLIST; i++) {
-        if (!(sv->n_list[i] > 0) || !isfinite(sv->n_list[i]))
-            dp_errors_add(e, np, "must be finite numbers > 0, got %g", sv->n_list[i]);
-        else if (i > 0 && !(sv->n_list[i] > sv->n_list[i - 1]))
-            dp_errors_add(e, np, "a study's values must be strictly increasing: %g after %g", sv->n_list[i],
-                          sv->n_list[i - 1]);
-    }
-    if (!(sv->rtol >= 0 && sv->atol >= 0 && sv->rtol + sv->atol > 0) || !isfinite(sv->rtol + sv->atol))
-        dp_errors_add(e, "/solver/rtol", "rtol and atol must be finite, >= 0 and not both 0");
-    if ((unsigned)sv->stepper > DP_STEPPER_RK8PD)
-        dp_errors_add(e, "/solver/stepper", "unknown stepper");
-    if (d->law == DP_DAMPER_GENERALIZED_COULOMB)
-        dp_errors_add(e, "/model/damper/law", "the regularized schemes need a maximal monotone damper graph "
-                      "(seed 001 Lemma 1); generalized-coulomb (phi1 > phi0) is not monotone");
-    if (d->relaxation.kind == DP_RELAX_POWER)
-        dp_errors_add(e, "/model/damper/relaxation", "power relaxation is not Lipschitz at 0 (seed 001 (26)): "
-                      "the regularized ODE has no unique solution and no bounded Jacobian");
-    else if (sv->scheme == DP_SCHEME_PI && d->relaxation.kind != DP_RELAX_NONE)
-        dp_errors_add(e, "/model/damper/relaxation", "scheme PI (thesis ch. 2, x' = g(F_d)) has no relaxation; "
-                      "use scheme PC");
-}
-
 /* ---- the run ------------------------------------------------------------------------------------------- */
 
 const gsl_odeiv2_step_type *dp_regularized_step_type(dp_stepper s)
@@ -244,7 +221,7 @@ const gsl_odeiv2_step_type *dp_regularized_step_type(dp_stepper s)
 /* The state (x, v) at time t as the current sample: forces from the regularized laws, no phase. */
 static void set_sample(dp_run *r, double t, const double y[])
 {
-    const struct dp_regularized *g = r->reg;
+    const struct dp_regularized *g = r->state;
     dp_sample *c = &r->cur;
     double u = y[1] - g->vb;
     c->t = t, c->x = y[0], c->v = y[1];
@@ -276,12 +253,12 @@ static void bdf_interp(const struct dp_regularized *g, double ts, double y[])
     dp_poly_interp(t, v[0], n, 2, ts, y);
 }
 
-int dp_regularized_init(dp_run *r)
+static int regularized_init(dp_run *r)
 {
     struct dp_regularized *g = calloc(1, sizeof *g);
     if (g == NULL)
         return DP_ENOMEM;
-    r->reg = g; /* from here on dp_run_free releases whatever was built */
+    r->state = g; /* from here on dp_run_free releases whatever was built */
     if (set_law(g, &r->spec) != DP_OK)
         return dp_run_fail(r, DP_ENOMEM, "out of memory building the regularized damper graph");
     const dp_solver_spec *sv = &r->spec.solver;
@@ -313,6 +290,7 @@ int dp_regularized_init(dp_run *r)
     set_sample(r, g->b.t, g->b.y);
     if (!isfinite(r->cur.Fs) || !isfinite(r->cur.Fc))
         return dp_run_fail(r, DP_ENONFINITE, "the regularized forces are not finite at the initial state");
+    dp_run_emit_state(r); /* the initial state: queued, no block yet */
     return DP_OK;
 }
 
@@ -328,7 +306,7 @@ static int gsl_failure(dp_run *r, int s, double t)
  * the old b, b the new state. DP_OK or the run's error. */
 static int step_to(dp_run *r, double t1)
 {
-    struct dp_regularized *g = r->reg;
+    struct dp_regularized *g = r->state;
     gsl_odeiv2_driver *d = g->drv;
     /* The front end's step limit bounds the integrator's own steps too: a stiff enough model (k ~ 1e97
      * from the fuzzer) would otherwise integrate for hours. */
@@ -373,18 +351,18 @@ static int stiff_step(const struct dp_regularized *g)
 /* The next step: towards t_end, or to the sample ts for the steppers that land on every sample. */
 static int step(dp_run *r, double ts)
 {
-    return step_to(r, r->reg->land ? ts : r->spec.solver.t_end);
+    return step_to(r, reg_of(r)->land ? ts : r->spec.solver.t_end);
 }
 
 /* Steps until the last accepted step holds ts (b.t >= ts). DP_OK, DP_MORE when *budget ran out first, or the
  * run's error. */
 static int integrate_past(dp_run *r, double ts, unsigned long long *budget)
 {
-    while (r->reg->b.t < ts) {
+    while (reg_of(r)->b.t < ts) {
         if (*budget == 0)
             return DP_MORE;
         (*budget)--;
-        if (dp_run_stopped(r, r->n + r->reg->fevals + r->reg->jevals))
+        if (dp_run_stopped(r, r->n + reg_of(r)->fevals + reg_of(r)->jevals))
             return r->status == DP_OK ? DP_MORE : r->status; /* a yield: as if the budget ran out */
         int s = step(r, ts);
         if (s != DP_OK)
@@ -398,7 +376,7 @@ static int integrate_past(dp_run *r, double ts, unsigned long long *budget)
  * Hermite interpolant, its end derivatives evaluated once per step. */
 static int sample_at(dp_run *r, double ts)
 {
-    struct dp_regularized *g = r->reg;
+    struct dp_regularized *g = r->state;
     if (ts == g->b.t) {
         set_sample(r, ts, g->b.y);
         return DP_OK;
@@ -420,19 +398,19 @@ static int sample_at(dp_run *r, double ts)
 
 static void update_summary(dp_run *r)
 {
-    const struct dp_regularized *g = r->reg;
+    const struct dp_regularized *g = r->state;
     r->sum.steps = g->drv->e->count;
     r->sum.rejected = g->drv->e->failed_steps;
     r->sum.fevals = g->fevals;
     r->sum.iterations = g->jevals;
 }
 
-int dp_regularized_advance(dp_run *r)
+static int regularized_advance(dp_run *r)
 {
     unsigned long long budget = REG_STEPS_PER_CALL, every = (unsigned long long)r->spec.output.every;
     double t_end = r->spec.solver.t_end;
     while (dp_run_room(r)) {
-        if (dp_run_stopped(r, r->n + r->reg->fevals + r->reg->jevals)) /* samples count as work too */
+        if (dp_run_stopped(r, r->n + reg_of(r)->fevals + reg_of(r)->jevals)) /* samples count as work too */
             return r->status;
         /* The next sample that is kept: decimated grid points are never computed. */
         unsigned long long next = r->nsteps - r->n > every ? r->n + every : r->nsteps;
@@ -454,8 +432,9 @@ int dp_regularized_advance(dp_run *r)
     return DP_OK;
 }
 
-void dp_regularized_free(struct dp_regularized *g)
+static void regularized_free(void *state)
 {
+    struct dp_regularized *g = state;
     if (g == NULL)
         return;
     if (g->drv != NULL)
@@ -463,3 +442,8 @@ void dp_regularized_free(struct dp_regularized *g)
     dp_graph_clear(&g->DI);
     free(g);
 }
+
+const dp_run_type dp_run_regularized = {
+    .name = "regularized", .check = dp_rules_regularized, .init = regularized_init, .advance = regularized_advance,
+    .free = regularized_free,
+};

@@ -17,8 +17,12 @@
 
 #include <gsl/gsl_errno.h>
 
+#include <gsl/gsl_odeiv2.h>
+
 #include "dashpot/right_hand.h"
-#include "record/run_internal.h"
+#include "record/sink.h"
+#include "rules/rules.h"
+#include "solvers/run_types.h"
 
 #define MAX_WIDTH 16
 #define QCAP0 64
@@ -163,7 +167,7 @@ static void locate(struct dp_rh_run *rr, double t0, const double y0[4], double h
 
 static int queue(dp_run *r, const dp_record *rec, const double *row)
 {
-    struct dp_rh_run *rr = r->rh;
+    struct dp_rh_run *rr = r->state;
     size_t w = rr->cols.width;
     if (rr->nq == rr->qcap) {
         size_t cap = rr->qcap ? 2 * rr->qcap : QCAP0;
@@ -185,7 +189,7 @@ static int queue(dp_run *r, const dp_record *rec, const double *row)
 
 static void flush(dp_run *r)
 {
-    struct dp_rh_run *rr = r->rh;
+    struct dp_rh_run *rr = r->state;
     size_t w = rr->cols.width;
     while (rr->iq < rr->nq && r->out_n < r->out_cap && rr->block_used < rr->block_cap) {
         dp_record rec = rr->q[rr->iq];
@@ -229,7 +233,7 @@ static void fill_row(const struct dp_rh_run *rr, double *row)
 
 static int emit_row(dp_run *r)
 {
-    struct dp_rh_run *rr = r->rh;
+    struct dp_rh_run *rr = r->state;
     double row[MAX_WIDTH];
     fill_row(rr, row);
     memcpy(rr->final_row, row, sizeof row);
@@ -274,7 +278,7 @@ static void paradox(struct dp_rh_run *rr, const dp_rh_result *res)
  * stick/slip changed); 0 when the run must stop (a paradox, the rod lifting off). */
 static int classify(dp_run *r, int initial)
 {
-    struct dp_rh_run *rr = r->rh;
+    struct dp_rh_run *rr = r->state;
     if (rr->m.kind == DP_RH_ROD && !(rr->y[1] > 0 && rr->y[1] < M_PI)) {
         snprintf(rr->why, sizeof rr->why, "the rod reaches the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
                  "an impact this model (end A on the floor, 0 < theta < pi) does not follow", rr->t, rr->y[0],
@@ -327,7 +331,7 @@ static double ahead(struct dp_rh_run *rr, double t0, const double y0[4])
 /* Integrates the phases up to t1 (the next sample), locating and crossing the events on the way. */
 static int segment(dp_run *r, double t1)
 {
-    struct dp_rh_run *rr = r->rh;
+    struct dp_rh_run *rr = r->state;
     while (rr->t < t1) {
         double t0 = rr->t, y0[4], hb = fmin(rr->h, t1 - t0), hi;
         memcpy(y0, rr->y, sizeof y0);
@@ -366,7 +370,7 @@ static int segment(dp_run *r, double t1)
 /* Row slots for this block: one per record the caller can take (rows are narrow). */
 static int reserve(dp_run *r)
 {
-    struct dp_rh_run *rr = r->rh;
+    struct dp_rh_run *rr = r->state;
     rr->block_used = 0;
     if (r->out_cap <= rr->block_cap)
         return DP_OK;
@@ -377,9 +381,9 @@ static int reserve(dp_run *r)
     return DP_OK;
 }
 
-int dp_rh_run_advance(dp_run *r)
+static int rh_run_advance(dp_run *r)
 {
-    struct dp_rh_run *rr = r->rh;
+    struct dp_rh_run *rr = r->state;
     if (reserve(r) != DP_OK)
         return dp_run_fail(r, DP_ENOMEM, "out of memory for a block's rows");
     rr->call_steps = 0;
@@ -417,9 +421,10 @@ int dp_rh_run_advance(dp_run *r)
     return DP_OK;
 }
 
-int dp_rh_run_pending(const dp_run *r)
+static int rh_run_pending(const dp_run *r)
 {
-    return r->rh && r->rh->nq > r->rh->iq;
+    const struct dp_rh_run *rr = r->state;
+    return rr->nq > rr->iq;
 }
 
 static void setup_columns(struct dp_rh_run *rr)
@@ -436,12 +441,12 @@ static void setup_columns(struct dp_rh_run *rr)
     }
 }
 
-int dp_rh_run_init(dp_run *r)
+static int rh_run_init(dp_run *r)
 {
     struct dp_rh_run *rr = calloc(1, sizeof *rr);
     if (rr == NULL)
         return DP_ENOMEM;
-    r->rh = rr;
+    r->state = rr;
     rr->m = *r->spec.rh;
     memcpy(rr->y, r->spec.x0v, 2 * sizeof *rr->y);
     memcpy(rr->y + 2, r->spec.v0v, 2 * sizeof *rr->y);
@@ -460,8 +465,9 @@ int dp_rh_run_init(dp_run *r)
     return DP_OK;
 }
 
-void dp_rh_run_free(struct dp_rh_run *rr)
+static void rh_run_free(void *state)
 {
+    struct dp_rh_run *rr = state;
     if (rr == NULL)
         return;
     if (rr->ev)
@@ -475,3 +481,8 @@ void dp_rh_run_free(struct dp_rh_run *rr)
     free(rr->block);
     free(rr);
 }
+
+const dp_run_type dp_run_right_hand = {
+    .name = "right-hand", .check = dp_rules_right_hand, .init = rh_run_init, .advance = rh_run_advance,
+    .pending = rh_run_pending, .free = rh_run_free,
+};

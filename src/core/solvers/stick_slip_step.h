@@ -1,10 +1,13 @@
-/* src/core/stick_slip_step.h - internal: one step of the stick-slip theta-method, shared by the stepper
- * (stick_slip.c) and event location (event_location.c). */
+/* src/core/solvers/stick_slip_step.h - internal: one step of the stick-slip theta-method (stick_slip_step.c),
+ * shared by the stepper (stick_slip.c) and event location (event_location.c). */
 #ifndef DASHPOT_CORE_STICK_SLIP_STEP_H
 #define DASHPOT_CORE_STICK_SLIP_STEP_H
 
 #include "laws/inclusion.h"
-#include "record/run_internal.h"
+#include "record/sink.h"
+
+/* The coefficients of the closed-form step for step length h (stick_slip_step.c). */
+void dp_ss_coef_init(const dp_ss_law *L, double h, dp_ss_coef *c);
 
 static inline double sgn(double x)
 {
@@ -43,6 +46,11 @@ int dp_ss_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double 
  * the time spent sticking (-1: the general step has no solution). */
 double dp_ss_located_step(dp_run *r, step_state *s, double h, double *force);
 double dp_ss_located_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs);
+
+/* The one-mass stick-slip run (stick_slip.c): prepares the law's constants and the initial state (the thesis
+ * variant and a one-mass network start the same way), then steps. */
+int dp_stick_slip_init(dp_run *r);
+int dp_stick_slip_advance(dp_run *r);
 
 /* The damper forces possible at rest: the static interval of a generalized Coulomb law, else A(0). */
 void dp_ss_stick_interval(const dp_ss_law *L, double *lo, double *hi);

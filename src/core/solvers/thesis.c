@@ -1,4 +1,4 @@
-/* src/core/thesis.c - algorithm 4.1 of seed 000 (the thesis' MATLAB algorithm), step for step.
+/* src/core/solvers/thesis.c - algorithm 4.1 of Babováková 2012 (the thesis' MATLAB algorithm), step for step.
  *
  *   p1 = m/dt; p2 = p1 + k dt; F~ = p1 v^n + F^{n+1} - F_s^n;
  *   if |F~| < phi0:  v^{n+1} = 0, F_c = F~                                   (4.11), (4.6)
@@ -11,9 +11,12 @@
  */
 #include <math.h>
 
-#include "record/run_internal.h"
+#include "record/sink.h"
+#include "rules/rules.h"
+#include "solvers/run_types.h"
+#include "solvers/stick_slip_step.h"
 
-int dp_thesis_advance(dp_run *r)
+static int thesis_advance(dp_run *r)
 {
     const dp_ss_law *L = &r->law;
     const dp_solver_spec *sv = &r->spec.solver;
@@ -63,3 +66,7 @@ int dp_thesis_advance(dp_run *r)
     }
     return DP_OK;
 }
+
+const dp_run_type dp_run_thesis = {
+    .name = "stick-slip", .check = dp_rules_thesis, .init = dp_stick_slip_init, .advance = thesis_advance,
+};

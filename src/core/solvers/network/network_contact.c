@@ -25,6 +25,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/band.h"
 #include "solvers/network/network_run.h"
 
 /* Located impacts in one step after which the rest of the step is plain Moreau-Jean: a guard for chatter
@@ -171,7 +172,7 @@ void nr_contacts_arm_mj(struct dp_net_run *nr, double h)
  * (armed now, not in the step before) while approaching, that took an impulse. */
 void nr_contacts_mj_events(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     for (size_t c = 0; c < nr->nc; c++) {
         size_t k = nr->nact_el + c;
         if (nr->ct_on[c] && nr->ct_pre[c] < 0 && nr->force[k].lambda < 0)
@@ -184,7 +185,7 @@ void nr_contacts_mj_events(dp_run *r, double t, double h)
  * -status. The impact problem's elements have no spring graph, so the elongations it is given are unused. */
 static int impact(dp_run *r, double t, const unsigned char *touch)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     size_t n = nr->n;
     int any = 0;
     for (size_t c = 0; c < nr->nc; c++) {
@@ -200,7 +201,7 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
     if (!any)
         return 0;
     double *rhs = nr->iv, *vplus = nr->iv + n;
-    nr_band_symv(nr->M, n, nr->p, nr->v, rhs);
+    dp_band_symv(nr->M, n, nr->p, nr->v, rhs);
     dp_net_ws_W_changed(nr->iws);
     int s = dp_net_solve(nr->iws, 1, rhs, nr->u, nr->v, vplus, nr->iforce, &r->sum.iterations);
     if (s != DP_OK)
@@ -229,7 +230,7 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
  * the assignment), 0, or -status. */
 int nr_contacts_instant(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     if (nr->nc == 0)
         return 0;
     unsigned char *touch = nr->ct_touch;

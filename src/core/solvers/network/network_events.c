@@ -23,7 +23,7 @@ typedef struct held_ctx {
 static double held_margin(void *vctx, double s)
 {
     held_ctx *c = vctx;
-    struct dp_net_run *nr = c->r->net;
+    struct dp_net_run *nr = c->r->state;
     dp_net_ws_pattern_restore(nr->ws, nr->pattern);
     nr_step_rhs(nr, c->t, s);
     if (dp_net_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
@@ -55,7 +55,7 @@ static double held_root(dp_run *r, double t, double s0, double s1, const unsigne
  * once. */
 static double earliest_event(dp_run *r, double t, double h, unsigned char *fails)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     size_t m = nr->nact;
     held_ctx c = { r, t, NULL };
     double th = nr->theta, s0 = 1e-9 * h, *start = nr->roots, *scale = nr->scale;
@@ -112,7 +112,7 @@ static double earliest_event(dp_run *r, double t, double h, unsigned char *fails
  * no stick, as for one mass). Returns the element's phase after. */
 static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     double s0 = 1e-9 * (left > 0 ? left : 1);
     if (dp_net_ws_fixed(nr->ws, k)) {
         int dir = dp_net_ws_violation(nr->ws, k, s0, nr->u);
@@ -140,7 +140,7 @@ static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
  * fixed; the assignment is left as it was.) */
 static int breaks_away(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     if (nr->theta == 1)
         return 0;
     int any = 0;
@@ -171,7 +171,7 @@ static int switches_at_once(const struct dp_net_run *nr)
  * is armed by Moreau-Jean's rule instead. */
 static int finish_step(dp_run *r, double t, double left)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     dp_net_ws_pattern_restore(nr->ws, nr->pattern);
     if (nr_contacts_chattering(nr))
         nr_contacts_arm_mj(nr, left);
@@ -193,7 +193,7 @@ static int finish_step(dp_run *r, double t, double left)
  * billionth of a step (as at the run's start) and the phase changes it made are events at t. */
 static int contacts_at(dp_run *r, double t, double left)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     int jumped = nr_contacts_instant(r, t, r->h);
     if (jumped < 0)
         return -jumped;
@@ -215,7 +215,7 @@ static int contacts_at(dp_run *r, double t, double left)
  * at each sub-step's start (contacts_at), a closing gap is one more margin to split at. */
 int nr_located_step(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     double left = h;
     for (size_t sub = 0; left > 0; sub++) {
         memcpy(nr->phase_prev, nr->phase, nr->nel);

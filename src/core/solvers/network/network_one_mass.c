@@ -1,4 +1,4 @@
-/* src/core/network_one_mass.c - a network that is one mass on one element [ground, 0] is the one-mass model
+/* src/core/solvers/network/network_one_mass.c - a network that is one mass on one element [ground, 0] is the one-mass model
  * (systems.md §1), so it is stepped by the one-mass solver: the same answers, bit for bit, at the same speed
  * (a general network step costs some 20 times the soft threshold's few nanoseconds). Its samples and events
  * are rewritten as the network's rows and element events on their way out.
@@ -6,18 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rules/rules.h"
 #include "solvers/network/network_run.h"
-
-int dp_network_is_one_mass(const dp_spec *s)
-{
-    const dp_network *n = s->net;
-    if (n == NULL || n->n != 1 || n->nel != 1 || n->mass == NULL || n->M || n->K || n->C)
-        return 0;
-    if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
-        return 0;
-    /* an elastoplastic spring steps on the network solver, which writes its "p" columns */
-    return s->solver.kind == DP_SOLVER_STICK_SLIP && n->el[0].spring.law != DP_SPRING_ELASTOPLASTIC;
-}
 
 /* The network's laws and loads as the run's one-mass model (deep copies: the run owns them). */
 static int as_model(dp_run *r)
@@ -51,12 +41,15 @@ static int as_model(dp_run *r)
     return dp_model_prepare(&r->spec.model);
 }
 
-int dp_network_one_mass_init(dp_run *r)
+static int one_mass_init(dp_run *r)
 {
-    int s = as_model(r);
+    int s = dp_network_run_setup(r);
     if (s != DP_OK)
         return s;
-    r->net->one_mass = 1;
+    s = as_model(r);
+    if (s != DP_OK)
+        return s;
+    nr_of(r)->one_mass = 1;
     return dp_stick_slip_init(r);
 }
 
@@ -70,9 +63,9 @@ static void take_sample(struct dp_net_run *nr, const dp_sample *s)
 
 /* Rewrites the block's one-mass records as network records: samples as rows in the run's row slots,
  * events with their element (0; u = x, du = v on [ground, 0]). */
-int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n)
+static int one_mass_rows(dp_run *r, dp_record *buf, size_t n)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     r->out_cap = n;
     if (nr_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
@@ -93,3 +86,10 @@ int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n)
     r->sum.final_row = nr_fill_row(nr, r->sum.final.t, nr->final_row);
     return DP_OK;
 }
+
+/* The network's own setup (rows, columns, the reordering), then the one-mass solver's steps, each block
+ * rewritten as the network's rows. */
+const dp_run_type dp_run_network_one_mass = {
+    .name = "stick-slip", .check = dp_rules_network, .init = one_mass_init, .advance = dp_stick_slip_advance,
+    .pending = dp_network_run_pending, .block = one_mass_rows, .free = dp_network_run_free,
+};

@@ -33,7 +33,7 @@ dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data)
 /* Queues a record for the caller: into its block while it has room and nothing waits, else the queue. */
 void nr_put(dp_run *r, const dp_record *rec)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     if (nr->nq == 0 && r->out && r->out_n < r->out_cap) {
         r->out[r->out_n++] = *rec;
         return;
@@ -51,7 +51,7 @@ void nr_put(dp_run *r, const dp_record *rec)
 
 void nr_emit_row(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     r->countdown = r->spec.output.every;
     if (!r->spec.output.samples)
         return;
@@ -68,7 +68,7 @@ void nr_emit_row(dp_run *r)
 
 void nr_finalize_summary(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     r->sum.final_row = nr_fill_row(nr, r->cur.t, nr->final_row);
 }
 
@@ -77,7 +77,7 @@ void nr_finalize_summary(dp_run *r)
  * rate du. */
 static void element_event(dp_run *r, dp_event_kind kind, double t, size_t i, double du)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     r->sum.events++;
     if (!r->spec.output.events)
         return;
@@ -89,7 +89,7 @@ static void element_event(dp_run *r, dp_event_kind kind, double t, size_t i, dou
 
 void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     r->sum.events++, r->sum.impacts++;
     if (!r->spec.output.events)
         return;
@@ -103,7 +103,7 @@ void nr_impact_event(dp_run *r, double t, size_t i, double before, double after,
 /* Events at time t for the elements whose phase differs from `before`. */
 void nr_step_events(dp_run *r, const unsigned char *before, double t)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     for (size_t i = 0; i < nr->nel; i++) {
         if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
             continue;
@@ -119,7 +119,7 @@ void nr_step_events(dp_run *r, const unsigned char *before, double t)
  * yield force) or stopping (unload), at the end of the step that did it. */
 void nr_plastic_events(dp_run *r, double t)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     for (size_t i = 0; nr->has_ep && i < nr->nel; i++) {
         int before = nr->ep_flow_prev[i], now = nr->ep_flow[i];
         if (nr->ep_graph[i] == NULL || before == now)
@@ -132,7 +132,7 @@ void nr_plastic_events(dp_run *r, double t)
 /* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
 void nr_stick_time(dp_run *r, const unsigned char *ph, double h)
 {
-    for (size_t i = 0; i < r->net->nel; i++)
+    for (size_t i = 0; i < nr_of(r)->nel; i++)
         if (ph[i] == DP_PHASE_STICK)
             r->sum.stick_time += h;
 }
@@ -152,7 +152,7 @@ int nr_state_finite(const struct dp_net_run *nr)
 /* Moves queued records into the caller's block (a queued row into a block slot of its own). */
 void nr_flush(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     while (nr->iq < nr->nq && r->out_n < r->out_cap) {
         dp_record rec = nr->queue[nr->iq];
         if (rec.type == DP_RECORD_ROW) {
@@ -173,7 +173,7 @@ void nr_flush(dp_run *r)
 /* Row slots for this block: one per record the caller can take, within ROW_BUDGET numbers. */
 int nr_reserve_rows(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     size_t want = r->out_cap, fit = ROW_BUDGET / (nr->row_len ? nr->row_len : 1);
     if (want > fit)
         want = fit ? fit : 1;

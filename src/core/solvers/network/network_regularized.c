@@ -15,7 +15,9 @@
 #include <gsl/gsl_linalg.h>
 
 #include "dashpot/regularized.h"
+#include "base/band.h"
 #include "solvers/network/network_run.h"
+#include "solvers/regularized.h"
 
 struct dp_net_reg {
     struct dp_net_run *nr;
@@ -58,8 +60,8 @@ static void forces(struct dp_net_reg *g, double t, const double y[])
     struct dp_net_run *nr = g->nr;
     size_t n = nr->n;
     const double *x = y, *v = y + n;
-    nr_band_symv(nr->K, n, nr->p, x, g->F);
-    nr_band_symv(nr->C, n, nr->p, v, g->acc);
+    dp_band_symv(nr->K, n, nr->p, x, g->F);
+    dp_band_symv(nr->C, n, nr->p, v, g->acc);
     for (size_t i = 0; i < n; i++)
         g->F[i] = -g->F[i] - g->acc[i];
     for (size_t i = 0; i < nr->net->nforce; i++)
@@ -203,7 +205,7 @@ static int invert_mass(struct dp_net_reg *g)
 
 int dp_network_regularized_init(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     const dp_solver_spec *sv = &r->spec.solver;
     size_t n = nr->n;
     struct dp_net_reg *g = calloc(1, sizeof *g);
@@ -248,9 +250,9 @@ void dp_network_regularized_free(struct dp_net_reg *g)
  * deadline or a hang-up ends even a long stretch without samples. GSL_CONTINUE when the hook said so. */
 static int integrate_to(dp_run *r, double t1)
 {
-    struct dp_net_reg *g = r->net->reg;
+    struct dp_net_reg *g = nr_of(r)->reg;
     gsl_odeiv2_driver *d = g->drv;
-    unsigned long long size = (unsigned long long)(r->net->n * r->net->n + r->net->nel + 1);
+    unsigned long long size = (unsigned long long)(nr_of(r)->n * nr_of(r)->n + nr_of(r)->nel + 1);
     while (g->t < t1) {
         if (dp_run_stopped(r, r->n + g->fevals * size))
             return GSL_CONTINUE;
@@ -266,7 +268,7 @@ static int integrate_to(dp_run *r, double t1)
 /* Integrates to the next output instant (the next sample due, or t_end), one row there. */
 int dp_network_regularized_advance(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     struct dp_net_reg *g = nr->reg;
     size_t n = nr->n;
     if (nr_reserve_rows(r) != DP_OK)

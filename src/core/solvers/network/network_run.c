@@ -21,6 +21,8 @@
 
 #include <gsl/gsl_linalg.h>
 
+#include "base/band.h"
+#include "rules/rules.h"
 #include "solvers/network/network_run.h"
 #include "network/newmark_step.h"
 #include "base/root.h"
@@ -41,42 +43,6 @@ static size_t bandwidth(const dp_network *net)
         if (net->el[e].a >= 0 && net->el[e].b >= 0 && (size_t)labs(net->el[e].a - net->el[e].b) > p)
             p = (size_t)labs(net->el[e].a - net->el[e].b);
     return p;
-}
-
-/* Dense row-major n x n into band storage. */
-static void to_band(const double *A, size_t n, size_t p, double *B)
-{
-    for (size_t i = 0; i < n; i++)
-        for (size_t d = 0; d <= p && i + d < n; d++)
-            B[i * (p + 1) + d] = A[(i + d) * n + i];
-}
-
-/* y = A x for symmetric band A (n, p). */
-void nr_band_symv(const double *A, size_t n, size_t p, const double *x, double *y)
-{
-    for (size_t i = 0; i < n; i++)
-        y[i] = A[i * (p + 1)] * x[i];
-    for (size_t i = 0; i < n; i++)
-        for (size_t d = 1; d <= p && i + d < n; d++) {
-            double a = A[i * (p + 1) + d];
-            y[i] += a * x[i + d];
-            y[i + d] += a * x[i];
-        }
-}
-
-double nr_rel(long a, long b, const double *x)
-{
-    return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
-}
-
-static void build_W(struct dp_net_run *nr, double h)
-{
-    size_t len = nr->n * (nr->p + 1);
-    double *W = dp_net_ws_W(nr->ws), th = nr->theta;
-    for (size_t i = 0; i < len; i++)
-        W[i] = nr->M[i] + h * th * nr->C[i] + h * h * th * th * nr->K[i];
-    dp_net_ws_W_changed(nr->ws);
-    nr->h_W = h;
 }
 
 /* ---- allocation ------------------------------------------------------------------------------------- */
@@ -131,16 +97,8 @@ static int alloc_all(struct dp_net_run *nr)
 /* B += w b b^T in band storage for an element's incidence vector b. */
 static void band_add_incidence(double *B, size_t p, long a, long b, double w)
 {
-    if (w == 0)
-        return;
-    if (a >= 0)
-        B[(size_t)a * (p + 1)] += w;
-    if (b >= 0)
-        B[(size_t)b * (p + 1)] += w;
-    if (a >= 0 && b >= 0) {
-        size_t lo = (size_t)(a < b ? a : b), d = (size_t)labs(a - b);
-        B[lo * (p + 1) + d] -= w;
-    }
+    if (w != 0)
+        dp_band_add_incidence(B, p, a, b, w);
 }
 
 static int is_ep(const dp_element *e)
@@ -165,24 +123,6 @@ static void ep_init(struct dp_net_run *nr, dp_network *net, const double *x0)
     }
 }
 
-/* After a step (x moved to x+): each elastoplastic spring's return mapping at its new elongation. */
-static void ep_update(struct dp_net_run *nr)
-{
-    if (!nr->has_ep)
-        return;
-    for (size_t i = 0; i < nr->nel; i++) {
-        if (nr->ep_graph[i] == NULL)
-            continue;
-        const dp_element *e = &nr->net->el[i];
-        int flow;
-        nr->ep_flow_prev[i] = nr->ep_flow[i];
-        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, nr_rel(e->a, e->b, nr->x), &nr->ep_p[i], &flow);
-        nr->ep_flow[i] = (signed char)flow;
-        if (flow)
-            dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
-    }
-}
-
 /* The linear parts straight into band storage (a dense n x n copy would not fit a chain of 10^4 blocks);
  * the elements' nonlinear laws into the convex problem's list. */
 static int setup_laws(struct dp_net_run *nr)
@@ -190,14 +130,14 @@ static int setup_laws(struct dp_net_run *nr)
     const dp_network *net = nr->net;
     size_t n = nr->n, p = nr->p;
     if (net->M)
-        to_band(net->M, n, p, nr->M);
+        dp_band_from_dense(net->M, n, p, nr->M);
     else
         for (size_t i = 0; i < n; i++)
             nr->M[i * (p + 1)] = net->mass[i];
     if (net->K)
-        to_band(net->K, n, p, nr->K);
+        dp_band_from_dense(net->K, n, p, nr->K);
     if (net->C)
-        to_band(net->C, n, p, nr->C);
+        dp_band_from_dense(net->C, n, p, nr->C);
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
         int lin_spring = !e->has_spring || e->spring.law == DP_SPRING_LINEAR;
@@ -267,8 +207,9 @@ static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
     return nr->final_row && nr->pending_row ? DP_OK : DP_ENOMEM;
 }
 
-void dp_network_run_free(struct dp_net_run *nr)
+void dp_network_run_free(void *state)
 {
+    struct dp_net_run *nr = state;
     if (nr == NULL)
         return;
     dp_net_ws_free(nr->ws);
@@ -283,165 +224,6 @@ void dp_network_run_free(struct dp_net_run *nr)
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
     free(nr);
-}
-
-/* ---- the state's forces and rows ------------------------------------------------------------------- */
-
-/* Each element's forces and phase at the current state; `stepped`: after a step (forces from its
- * solution), else the initial state (set-valued forces taken closest to zero). */
-void nr_element_forces(struct dp_net_run *nr, int stepped)
-{
-    for (size_t i = 0; i < nr->nel; i++) {
-        const dp_element *e = &nr->net->el[i];
-        double u = nr_rel(e->a, e->b, nr->x), z = nr_rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
-        /* no linear part: 0, not the -0 of 0 * (a negative elongation) */
-        double fs = nr->k[i] != 0 ? nr->k[i] * u : 0, fd = nr->c[i] != 0 ? nr->c[i] * (z - vb) : 0, lo, hi;
-        long k = nr->act_of[i];
-        int rest = z == vb;
-        if (k >= 0 && nr->ep_graph[i]) {   /* the return mapping's force, not the step's weighted one */
-            fs = nr->ep_F[i];
-            if (stepped && nr->act[k].A)   /* without a damper the split's rounding is not a force */
-                fd += nr->force[k].a, rest = nr->force[k].at_rest;
-            else if (nr->act[k].A) {
-                dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
-                fd += fmin(fmax(0.0, lo), hi);
-            }
-        } else if (k >= 0 && stepped) {
-            const dp_net_force *f = &nr->force[k];
-            fs += f->s, fd += f->a, rest = f->at_rest;
-        } else if (k >= 0) {
-            if (nr->act[k].S) {
-                dp_graph_force(nr->act[k].S, u, &lo, &hi);
-                fs += fmin(fmax(0.0, lo), hi);
-            }
-            if (nr->act[k].A) {
-                dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
-                fd += fmin(fmax(0.0, lo), hi);
-            }
-        }
-        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
-            fd -= dp_relaxation_eval(&e->damper.relaxation, z - vb);
-        nr->Fs[i] = fs, nr->Fd[i] = fd;
-        nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
-    }
-    nr_contacts_forces(nr, stepped);
-}
-
-/* ---- stepping --------------------------------------------------------------------------------------- */
-
-/* Generalized Coulomb (the rest branch, as one mass takes it): an element at rest at the step's start, or
- * one whose kinetic solution reverses, is held by its static interval [-phi1, phi1] if that holds it; one
- * that slips under the static graph has broken away and steps on its kinetic graph (phi0). Each pass
- * moves at least one element for good, so this ends after at most 2 x elements solves. */
-static int static_solve(dp_run *r, double h)
-{
-    struct dp_net_run *nr = r->net;
-    for (size_t k = 0; k < nr->nact; k++) {
-        nr->held[k] = nr->static_A[k].n > 0 && nr->phase[nr->act_el[k]] == DP_PHASE_STICK;
-        nr->broke[k] = 0;
-    }
-    for (size_t pass = 0; pass <= 2 * nr->nact; pass++) {
-        for (size_t k = 0; k < nr->nact; k++)
-            if (nr->static_A[k].n > 0)
-                nr->act[k].A = nr->held[k] ? &nr->static_A[k] : &nr->net->el[nr->act_el[k]].damper.graph;
-        dp_net_ws_W_changed(nr->ws);
-        int s = dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
-        if (s != DP_OK)
-            return s;
-        int changed = 0;
-        for (size_t k = 0; k < nr->nact; k++) {
-            if (nr->static_A[k].n == 0)
-                continue;
-            double vb = nr->act[k].vb, z0 = nr_rel(nr->act[k].a, nr->act[k].b, nr->v) - vb, z1 = nr->force[k].z - vb;
-            if (nr->held[k] && !nr->force[k].at_rest) {
-                nr->held[k] = 0, nr->broke[k] = 1, changed = 1;
-            } else if (!nr->held[k] && !nr->broke[k] && z0 != 0 && z1 != 0 && (z0 > 0) != (z1 > 0)) {
-                nr->held[k] = 1, changed = 1;
-            }
-        }
-        if (!changed)
-            return DP_OK;
-    }
-    return DP_ESOLVE;
-}
-
-/* The right side of a step of length h from the current state at time t, W for h, and the elongations the
- * spring graphs see (network_step.h for the problem they define). */
-void nr_step_rhs(struct dp_net_run *nr, double t, double h)
-{
-    size_t n = nr->n, p = nr->p;
-    double th = nr->theta;
-    if (h != nr->h_W)
-        build_W(nr, h);
-    nr_band_symv(nr->M, n, p, nr->v, nr->rhs);
-    nr_band_symv(nr->C, n, p, nr->v, nr->tmp);
-    for (size_t i = 0; i < n; i++) {
-        nr->rhs[i] -= h * (1 - th) * nr->tmp[i];
-        nr->v1[i] = nr->x[i] + h * th * (1 - th) * nr->v[i];
-    }
-    nr_band_symv(nr->K, n, p, nr->v1, nr->tmp);
-    for (size_t i = 0; i < n; i++)
-        nr->rhs[i] -= h * nr->tmp[i];
-    for (size_t i = 0; i < nr->net->nforce; i++)
-        nr->rhs[nr->net->force[i].node] += h * dp_forcing_eval(&nr->net->force[i].f, t + th * h);
-    for (size_t i = 0; i < nr->nel; i++) {
-        const dp_element *e = &nr->net->el[i];
-        double g = e->has_damper ? h * nr->c[i] * e->damper.belt_velocity : 0;
-        if (g != 0 && e->b >= 0)
-            nr->rhs[e->b] += g;
-        if (g != 0 && e->a >= 0)
-            nr->rhs[e->a] -= g;
-    }
-    for (size_t k = 0; k < nr->nact; k++)
-        nr->u[k] = nr_rel(nr->act[k].a, nr->act[k].b, nr->x);
-    if (!nr->has_ep)
-        return;
-    for (size_t k = 0; k < nr->nact; k++) {
-        const dp_net_elem *e = &nr->act[k];
-        if (e->ep_theta == 0)
-            continue;
-        /* u+ = u + h (1-theta) u' + h theta z+; the force's (1-theta) part is known */
-        double g = h * (1 - th) * nr->ep_F[nr->act_el[k]];
-        nr->u[k] += h * (1 - th) * nr_rel(e->a, e->b, nr->v);
-        if (e->b >= 0)
-            nr->rhs[e->b] -= g;
-        if (e->a >= 0)
-            nr->rhs[e->a] += g;
-    }
-}
-
-/* x+ = x + h ((1-theta) v + theta v+), v = v+. */
-void nr_take_velocity(struct dp_net_run *nr, double h)
-{
-    for (size_t i = 0; i < nr->n; i++) {
-        nr->x[i] += h * ((1 - nr->theta) * nr->v[i] + nr->theta * nr->v1[i]);
-        nr->v[i] = nr->v1[i];
-    }
-    ep_update(nr);
-}
-
-/* The exact solution of a step of length h from time t into v1 and the forces; the state is not moved. */
-int nr_net_step_keep(dp_run *r, double t, double h)
-{
-    struct dp_net_run *nr = r->net;
-    nr_step_rhs(nr, t, h);
-    int s = nr->has_static ? static_solve(r, h)
-                           : dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
-    nr->solved = s == DP_OK;
-    return s;
-}
-
-/* One theta-step of length h from time t, solved exactly; contacts armed by Moreau-Jean's rule. */
-static int net_step(dp_run *r, double t, double h)
-{
-    if (r->net->nc)
-        nr_contacts_arm_mj(r->net, h);
-    int s = nr_net_step_keep(r, t, h);
-    if (s == DP_OK)
-        nr_take_velocity(r->net, h);
-    if (s == DP_OK && r->net->nc)
-        nr_contacts_mj_events(r, t, h);
-    return s;
 }
 
 /* ---- the newmark solver ------------------------------------------------------------------------------ */
@@ -471,7 +253,7 @@ static void nm_gather(struct dp_net_run *nr)
 
 static int newmark_init(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     size_t m = nr->nel ? nr->nel : 1;
     nr->nm_ea = calloc(m, sizeof *nr->nm_ea), nr->nm_eb = calloc(m, sizeof *nr->nm_eb);
     nr->nm_ek = calloc(m, sizeof *nr->nm_ek), nr->nm_F = calloc(m, sizeof *nr->nm_F);
@@ -498,12 +280,12 @@ static int newmark_init(dp_run *r)
 /* One step of Höschl's incremental form to t + h, the elastoplastic springs' return mappings after it. */
 static int newmark_step(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     nm_load(nr, t + h, nr->nm_P);
     nm_gather(nr);
     if (dp_nm_step(nr->nm, h, nr->nm_P, nr->nm_flow, nr->x, nr->v) != DP_OK)
         return DP_ESOLVE;
-    ep_update(nr);
+    nr_ep_update(nr);
     nm_gather(nr);
     dp_nm_accel(nr->nm, nr->x, nr->v, nr->nm_P, nr->nm_F);
     return DP_OK;
@@ -522,7 +304,7 @@ static double relaxation_rise(const dp_relaxation *g)
  * checked for the nominal and the last step by GSL's band Cholesky. */
 static int check_step_bound(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     if (!nr->relaxed)
         return DP_OK;
     size_t len = nr->n * (nr->p + 1);
@@ -550,12 +332,13 @@ static int check_step_bound(dp_run *r)
                        "smaller dt", r->h);
 }
 
-int dp_network_run_init(dp_run *r)
+/* The state, the laws, the columns and the workspace: what the network run and the one-mass network share. */
+int dp_network_run_setup(dp_run *r)
 {
     struct dp_net_run *nr = calloc(1, sizeof *nr);
     if (nr == NULL)
         return DP_ENOMEM;
-    r->net = nr;
+    r->state = nr;
     nr->net = r->spec.net;
     r->cols = &nr->cols;
     nr->n = nr->net->n, nr->nel = nr->net->nel, nr->theta = r->spec.solver.theta;
@@ -587,10 +370,16 @@ int dp_network_run_init(dp_run *r)
         nr->force_keep == NULL)
         return DP_ENOMEM;
     nr->locate = dp_network_locates(&r->spec);
-    if ((s = check_step_bound(r)) != DP_OK)
+    return check_step_bound(r);
+}
+
+/* The network run: its setup, then the initial forces and the first row. */
+static int network_run_init(dp_run *r)
+{
+    int s = dp_network_run_setup(r);
+    if (s != DP_OK)
         return s;
-    if (dp_network_is_one_mass(&r->spec))
-        return dp_network_one_mass_init(r);
+    struct dp_net_run *nr = r->state;
     memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
     memcpy(nr->v, r->spec.v0v, nr->n * sizeof *nr->v);
     if (r->spec.solver.kind == DP_SOLVER_REGULARIZED) {
@@ -610,7 +399,7 @@ int dp_network_run_init(dp_run *r)
         nr_emit_row(r);
         return DP_OK;
     }
-    build_W(nr, r->h);
+    nr_build_W(nr, r->h);
     /* The initial forces and phases: an exact step of a billionth of dt from the initial state says which
      * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
      * leaves its assignment for the first located step. */
@@ -628,9 +417,9 @@ int dp_network_run_init(dp_run *r)
     return DP_OK;
 }
 
-int dp_network_run_advance(dp_run *r)
+static int network_run_advance(dp_run *r)
 {
-    struct dp_net_run *nr = r->net;
+    struct dp_net_run *nr = r->state;
     if (nr->reg)
         return dp_network_regularized_advance(r);
     if (nr_reserve_rows(r) != DP_OK)
@@ -653,7 +442,7 @@ int dp_network_run_advance(dp_run *r)
             s = nr_located_step(r, t, h);
         } else {
             memcpy(nr->phase_prev, nr->phase, nr->nel);
-            if ((s = net_step(r, t, h)) == DP_OK) {
+            if ((s = nr_net_step(r, t, h)) == DP_OK) {
                 nr_element_forces(nr, 1);
                 nr_step_events(r, nr->phase_prev, t + h);
                 nr_plastic_events(r, t + h);
@@ -699,17 +488,12 @@ int dp_network_locates(const dp_spec *s)
     return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }
 
-const dp_columns *dp_run_columns(const dp_run *r)
-{
-    return r->cols;
-}
-
 int dp_network_run_pending(const dp_run *r)
 {
-    return r->net->nq > r->net->iq;
+    return nr_of(r)->nq > nr_of(r)->iq;
 }
 
-int dp_network_run_is_one_mass(const dp_run *r)
-{
-    return r->net != NULL && r->net->one_mass;
-}
+const dp_run_type dp_run_network = {
+    .name = "network", .check = dp_rules_network, .init = network_run_init, .advance = network_run_advance,
+    .pending = dp_network_run_pending, .free = dp_network_run_free,
+};

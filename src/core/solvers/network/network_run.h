@@ -1,10 +1,14 @@
-/* src/core/network_run.h - internal: a network run's state, shared by the exact stepping (network_run.c)
- * and the regularized scheme (network_regularized.c), which write the same rows and events. */
+/* src/core/solvers/network/network_run.h - internal: a network run's state, shared by the files of the
+ * network run (the run, its exact step, located events, contacts, output, the regularized scheme and the
+ * one-mass path), which write the same rows and events. */
 #ifndef DASHPOT_CORE_NETWORK_RUN_H
 #define DASHPOT_CORE_NETWORK_RUN_H
 
 #include "network/network_step.h"
-#include "record/run_internal.h"
+#include "record/sink.h"
+#include "rules/rules.h"
+#include "solvers/run_types.h"
+#include "solvers/stick_slip_step.h"
 
 struct dp_net_reg;
 
@@ -95,17 +99,23 @@ void nr_finalize_summary(dp_run *r);
 /* Every position, velocity and force finite (and not absurdly large). */
 int nr_state_finite(const struct dp_net_run *nr);
 /* x_b - x_a with the ground at 0. */
-double nr_rel(long a, long b, const double *x);
-/* y = A x for a symmetric band matrix A (n, bandwidth p) in GSL's storage. */
-void nr_band_symv(const double *A, size_t n, size_t p, const double *x, double *y);
+static inline double nr_rel(long a, long b, const double *x)
+{
+    return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
+}
 
-/* The stepping pieces located events are made of (network_run.c): the right side of a step of length h
+/* The stepping pieces located events are made of (network_stepping.c): the right side of a step of length h
  * from time t, its exact solution into v1 and the forces (state unmoved), moving the state by it, and the
  * elements' forces and phases (`stepped`: from the last solution; else the initial state). */
 void nr_step_rhs(struct dp_net_run *nr, double t, double h);
 int nr_net_step_keep(dp_run *r, double t, double h);
 void nr_take_velocity(struct dp_net_run *nr, double h);
 void nr_element_forces(struct dp_net_run *nr, int stepped);
+/* W for step length h into the workspace; one whole step from t (the state moved, the forces set). */
+void nr_build_W(struct dp_net_run *nr, double h);
+int nr_net_step(dp_run *r, double t, double h);
+/* The elastoplastic springs' offsets and forces after a step (network_stepping.c). */
+void nr_ep_update(struct dp_net_run *nr);
 /* One step of length h from t split at its phase changes (network_events.c). */
 int nr_located_step(dp_run *r, double t, double h);
 
@@ -137,9 +147,17 @@ dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data);
  * halves it; sets nr->node_pos then (network_order.c). DP_OK or DP_ENOMEM. */
 int nr_reorder(struct dp_net_run *nr, dp_network *net, double *x0, double *v0);
 
-/* One mass on one element [ground, 0] (network_one_mass.c): stepped by the one-mass solver, its records
- * rewritten as rows and element events. */
-int dp_network_one_mass_init(dp_run *r);
+/* The network run (network_run.c), whose setup, queue and state the one-mass network's type shares
+ * (network_one_mass.c). */
+int dp_network_run_setup(dp_run *r);
+int dp_network_run_pending(const dp_run *r);
+void dp_network_run_free(void *state);
+
+/* The run's state. */
+static inline struct dp_net_run *nr_of(const dp_run *r)
+{
+    return r->state;
+}
 
 /* The regularized scheme on networks (network_regularized.c). */
 int dp_network_regularized_init(dp_run *r);

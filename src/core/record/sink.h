@@ -1,11 +1,9 @@
-/* src/core/run_internal.h - internal: the run object shared by the iterator plumbing (run.c) and the
- * solvers (stick_slip.c, thesis.c, analytic.c). Not part of the public API. */
-#ifndef DASHPOT_CORE_RUN_INTERNAL_H
-#define DASHPOT_CORE_RUN_INTERNAL_H
+/* src/core/record/sink.h - internal: the run object and the record sink every solver writes into (rows,
+ * samples, events, errors, stop polling). It sits below the solvers and above the models, so that the solvers
+ * call down into it and the run-type table (runs/) calls down into the solvers: no circle. Not public API. */
+#ifndef DASHPOT_CORE_RECORD_SINK_H
+#define DASHPOT_CORE_RECORD_SINK_H
 
-#include <gsl/gsl_odeiv2.h>
-
-#include "dashpot/analytic.h"
 #include "dashpot/run.h"
 
 #define DP_RUN_PENDING 8
@@ -33,17 +31,27 @@ typedef struct dp_ss_law {
     dp_ss_coef nominal;  /* its coefficients */
 } dp_ss_law;
 
-/* A kind of solver, as GSL's stepper types (gsl_odeiv2_step_type): its name, how a run of it starts (state,
- * workspaces, the first records) and how it goes on (records into the caller's block until the block is full
- * or the run ends). Chosen once, when the run is allocated (run.c). */
+/* A kind of run, as GSL's stepper types (gsl_odeiv2_step_type): everything the iterator needs to know of
+ * it, so that adding one is its own file plus a row of the run-type table (runs/run_table.c).
+ *   name     the solver as the meta line names it
+ *   check    its cross-field rules and limits (dp_spec_check calls it; DP_OK, DP_EINVAL or DP_ELIMIT)
+ *   init     allocates its state (r->state), prepares, queues the first records
+ *   advance  writes records into the caller's block until the block is full or the run ends
+ *   pending  whether records wait in its own queue (NULL: it has none)
+ *   block    rewrites a finished block in place (NULL: nothing to do)
+ *   free     releases r->state (accepts NULL) */
 typedef struct dp_run_type {
     const char *name;
+    int (*check)(const dp_spec *s, double max_steps, dp_errors *e);
     int (*init)(dp_run *r);
     int (*advance)(dp_run *r);
+    int (*pending)(const dp_run *r);
+    int (*block)(dp_run *r, dp_record *buf, size_t n);
+    void (*free)(void *state);
 } dp_run_type;
 
 struct dp_run {
-    const dp_run_type *type;    /* the solver (run.c); a network of one mass steps as the stick-slip one */
+    const dp_run_type *type;    /* chosen once from the run-type table (runs/run_table.c) */
     dp_spec spec;               /* deep copy: the run owns it */
     double h;                   /* nominal step */
     unsigned long long nsteps;  /* steps to t_end */
@@ -52,7 +60,7 @@ struct dp_run {
     long countdown;             /* steps until the next decimated sample */
     dp_sample cur;              /* state at t = cur.t */
     dp_summary sum;
-    dp_ss_law law;
+    dp_ss_law law;              /* the one-mass model's stepping constants (stick-slip, thesis, analytic) */
     size_t kink_hint[2];        /* stick-slip: the damper's and the spring graph's last kink (inclusion.c) */
     int finished, status;
     char error[256];
@@ -62,24 +70,12 @@ struct dp_run {
     size_t out_n, out_cap;
     dp_record pending[DP_RUN_PENDING];
     size_t npending, ipending;
-    /* analytic solver */
-    double an_F0;
-    dp_coulomb_arc an_arc;
-    /* regularized solver (regularized.c): its GSL workspace */
-    struct dp_regularized *reg;
-    /* one mass on an elastoplastic spring (stick_slip.c): its plastic offset and force after the last
-     * step, whether its slider slid in it (+1/-1, 0) */
+    /* one mass on an elastoplastic spring (stick_slip.c, newmark.c): its plastic offset and force after the
+     * last step, whether its slider slid in it (+1/-1, 0) */
     int ep, ep_flow;
     double ep_p, ep_F;
-    /* the one-mass newmark run (newmark.c): its stepper and 1 x 1 band matrices */
-    struct dp_nm *nm;
-    double nm_M, nm_C, nm_K;
-    /* network solver (network_run.c) */
-    struct dp_net_run *net;
-    /* linear complementarity system (lcs_run.c) */
-    struct dp_lcs_run *lcs;
-    /* right-hand friction solver (right_hand_run.c) */
-    struct dp_rh_run *rh;
+    /* the run type's own state: init allocates it, free releases it */
+    void *state;
     /* the columns of a run whose samples are rows (dp_run_columns); NULL for one-mass samples */
     const dp_columns *cols;
     /* the stop hook (dp_run_set_stop) and the work count at which it is polled next */
@@ -117,7 +113,7 @@ static inline unsigned long long dp_run_work(const dp_run *r)
     return r->n + r->sum.iterations;
 }
 
-/* Asks the stop hook (run.c); on stop fails the run with DP_ECANCEL and returns 1; on a yield returns 1
+/* Asks the stop hook (sink.c); on stop fails the run with DP_ECANCEL and returns 1; on a yield returns 1
  * with r->status still DP_OK. */
 int dp_run_poll_stop(dp_run *r, unsigned long long work);
 
@@ -128,37 +124,6 @@ static inline int dp_run_stopped(dp_run *r, unsigned long long work)
 {
     return r->stop != NULL && work >= r->poll_at && dp_run_poll_stop(r, work);
 }
-
-/* Solver entry points: prepare at allocation, then advance until the block is full or the run ends. */
-int dp_stick_slip_init(dp_run *r);
-void dp_ss_coef_init(const dp_ss_law *L, double h, dp_ss_coef *c);
-int dp_stick_slip_advance(dp_run *r);
-int dp_thesis_advance(dp_run *r);
-int dp_analytic_init(dp_run *r);
-int dp_analytic_advance(dp_run *r);
-int dp_regularized_init(dp_run *r);
-int dp_regularized_advance(dp_run *r);
-void dp_regularized_free(struct dp_regularized *reg);
-/* The GSL odeiv2 stepper of a dp_stepper (regularized.c). */
-const gsl_odeiv2_step_type *dp_regularized_step_type(dp_stepper s);
-int dp_newmark_init(dp_run *r);
-int dp_newmark_advance(dp_run *r);
-void dp_nm_free(struct dp_nm *w);
-int dp_network_run_init(dp_run *r);
-int dp_network_run_advance(dp_run *r);
-void dp_network_run_free(struct dp_net_run *nr);
-/* A network stepped by the one-mass solver (network_one_mass.c): its block rewritten as rows. */
-int dp_network_run_is_one_mass(const dp_run *r);
-int dp_network_one_mass_rows(dp_run *r, dp_record *buf, size_t n);
-int dp_lcs_run_init(dp_run *r);
-int dp_lcs_run_advance(dp_run *r);
-void dp_lcs_run_free(struct dp_lcs_run *lr);
-int dp_rh_run_init(dp_run *r);
-int dp_rh_run_advance(dp_run *r);
-int dp_rh_run_pending(const dp_run *r);
-void dp_rh_run_free(struct dp_rh_run *rr);
-/* Whether records wait in the network run's queue. */
-int dp_network_run_pending(const dp_run *r);
 
 /* The step length of step n (the last one ends exactly at t_end). */
 static inline double dp_run_step_length(const dp_run *r)

@@ -1,0 +1,19 @@
+/* src/core/rules/rules.h - internal: the cross-field rules of each run type, the check member of its type
+ * (solvers/run_types.h). Each adds every error it finds to e and returns DP_OK, DP_EINVAL or DP_ELIMIT. */
+#ifndef DASHPOT_CORE_RULES_RULES_H
+#define DASHPOT_CORE_RULES_RULES_H
+
+#include "dashpot/spec.h"
+
+int dp_rules_stick_slip(const dp_spec *s, double max_steps, dp_errors *e);
+int dp_rules_thesis(const dp_spec *s, double max_steps, dp_errors *e);
+int dp_rules_analytic(const dp_spec *s, double max_steps, dp_errors *e);
+int dp_rules_newmark(const dp_spec *s, double max_steps, dp_errors *e);
+int dp_rules_regularized(const dp_spec *s, double max_steps, dp_errors *e);
+int dp_rules_network(const dp_spec *s, double max_steps, dp_errors *e);
+int dp_rules_right_hand(const dp_spec *s, double max_steps, dp_errors *e);
+
+/* Whether a network document is one mass on one element [ground, 0] with a solver the one-mass run steps. */
+int dp_network_is_one_mass(const dp_spec *s);
+
+#endif
