@@ -195,7 +195,7 @@ a2.set_xlabel("ω")
 a2.set_title("|H₀₀(ω)|: resonances (red), antiresonances (blue)")
 save(fig, "modes.png")
 
-# 7. A stability map of the thesis' model (1.2), F_V + λ F_V' = μ1 x + μ2 x', against its condition (1.10).
+# 7. A stability map of the model of the thesis' §1.2, F_V + λ F_V' = μ1 x + μ2 x', against its condition (1.10).
 doc = {"mass": 1, "law": {"lambda": [1, 0.5], "mu": [1, 1]},
        "map": {"x": {"param": "mu[1]", "from": 0, "to": 3, "steps": 240},
                "y": {"param": "lambda[1]", "from": 0.05, "to": 2, "steps": 160}}}
@@ -212,7 +212,7 @@ ax.set_xlabel("μ2")
 ax.set_ylabel("λ")
 ax.grid(False)
 ax.legend(loc="upper left")
-ax.set_title("Stability of F_V + λ F_V' = x + μ2 x' (the thesis' model (1.2), m = 1)")
+ax.set_title("Stability of F_V + λ F_V' = x + μ2 x' (the model of the thesis' §1.2, m = 1)")
 save(fig, "stability.png")
 
 # 8. Friction whose normal force depends on the motion: Matrosov & Finogenko's piston and hinge.
