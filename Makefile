@@ -87,6 +87,11 @@ run: deps-run
 thesis-figures: $(BUILD)/dashpot
 	bash scripts/thesis-figures.sh $(BUILD)/dashpot data/thesis
 
+# The README's pictures, docs/images/*.png, redrawn from the CLI (scripts/gallery.sh).
+.PHONY: gallery
+gallery: $(BUILD)/dashpot
+	bash scripts/gallery.sh $(BUILD)/dashpot docs/images
+
 # libFuzzer targets (tests/fuzz/fuzz_*.c) over an instrumented build of the library in build-fuzz/; each runs
 # FUZZ_SECONDS from its seed corpus, tests/fuzz/corpus-NAME for fuzz_NAME if there is one, else
 # tests/fuzz/corpus (copied, so new finds do not dirty the tree; tests/fuzz/seeds.py writes the seeds), and

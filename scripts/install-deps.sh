@@ -17,6 +17,7 @@ test_pkgs=(python3 python3-yaml libcmocka-dev liblapack-dev curl               #
 [ "${1:-}" = "--robustness" ] && pkgs+=(wrk valgrind)
 [ "${1:-}" = "--siconos" ] && pkgs+=(libsiconos-kernel-dev g++)
 [ "${1:-}" = "--image" ] && pkgs+=(podman debootstrap)
+[ "${1:-}" = "--gallery" ] && pkgs+=(python3-matplotlib)                    # scripts/gallery.sh
 [ $list = 1 ] && { echo "${pkgs[*]}"; exit 0; }
 missing=()
 for p in "${pkgs[@]}"; do

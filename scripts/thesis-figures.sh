@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/thesis-figures.sh - the data behind seed 000 Figs. 4.2-4.5: m = k = phi0 = 1, T = 10, dt = 1e-3,
+# scripts/thesis-figures.sh - the data behind the thesis' (Babováková 2012) Figs. 4.2-4.5: m = k = phi0 = 1, T = 10, dt = 1e-3,
 # x0 in {0..5}, x1 = 0, F = 0, algorithm 4.1 (Z = 100, eps = 1e-4), without and with gamma = 0.5 v/(1+|v|).
 # Usage: thesis-figures.sh DASHPOT_BINARY OUT_DIR. Writes OUT_DIR/x0_<x0>_<plain|relaxed>.csv (t,x,v,Fs,Fd,Fc,
 # phase: Fig. 4.2 is v against x, 4.3 F_d against v, 4.4 x and v against t, 4.5 F_d and F_s against t) and
