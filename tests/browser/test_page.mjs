@@ -603,22 +603,41 @@ try {
   d = await press(page, 'panel-modes');
   const mv = await page.evaluate(() => {
     const ds = document.getElementById('panel-modes').dataset;
-    const canvases = [...document.querySelectorAll('#panel-modes canvas')];
-    const ink = canvases.map((c) => {
-      const px = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-      let n = 0;
-      for (let i = 0; i < px.length; i += 4) if (px[i + 3] > 160) n++;
-      return n;
-    });
+    const charts = [...document.querySelectorAll('#panel-modes svg.chart')];
+    const ticks = (id, which) => [...document.querySelectorAll(`#${id} .axis.${which} text.tick`)].map((t) => t.textContent);
+    const inside = (a, b) => a.x >= b.x && a.y >= b.y && a.x + a.width <= b.x + b.width && a.y + a.height <= b.y + b.height;
+    const frame = document.querySelector('#modes-bars rect.frame').getBBox();
     return { state: ds.state, modes: ds.modes, res: ds.resonances, anti: ds.antiresonances,
-      points: canvases.map((c) => c.dataset.points), ink, info: document.getElementById('modes-info').textContent };
+      points: charts.map((c) => c.dataset.points),
+      drawn: [document.querySelectorAll('#modes-bars rect.bar').length, document.querySelectorAll('#modes-shapes circle.node').length,
+        (document.querySelector('#modes-response path.curve')?.getAttribute('d').match(/[ML]/g) || []).length],
+      barsY: ticks('modes-bars', 'y'), barsX: ticks('modes-bars', 'x'), shapesX: ticks('modes-shapes', 'x'), shapesY: ticks('modes-shapes', 'y'),
+      respX: ticks('modes-response', 'x'), respY: ticks('modes-response', 'y'),
+      titles: [...document.querySelectorAll('#panel-modes .axis text.title')].map((t) => t.textContent),
+      text: [...document.querySelectorAll('#panel-modes svg text')].map((t) => t.textContent).join(' | '),
+      valuesInside: [...document.querySelectorAll('#modes-bars text.value')].map((t) => inside(t.getBBox(), frame)),
+      legends: ['modes-bars-legend', 'modes-shapes-legend', 'modes-response-legend'].map((id) => document.getElementById(id).children.length),
+      shapesLegend: document.getElementById('modes-shapes-legend').textContent, info: document.getElementById('modes-info').textContent };
   });
   // three masses, the Coulomb element left out: 3 modes, 3 resonances, and a point receptance has an
   // antiresonance between each pair of resonances: 2
   check(d.state === 'done' && mv.modes === '3' && mv.res === '3' && mv.anti === '2',
     'the modes tab: 3 modes, 3 resonances and 2 antiresonances of the point receptance', JSON.stringify(mv));
-  check(JSON.stringify(mv.points) === '["3","9","400"]' && mv.ink.every((n) => n > 200),
+  check(JSON.stringify(mv.points) === '["3","9","400"]' && JSON.stringify(mv.drawn) === '[3,9,400]',
     'the modes tab draws 3 bars, 3 shapes of 3 nodes and the 400-point response curve', JSON.stringify(mv));
+  const plain = (l) => /^\u2212?\d+(\.\d+)?$/.test(l);
+  check(mv.barsY.length >= 3 && mv.barsY.every(plain) && mv.barsX.join() === '1,2,3' && mv.respX.length >= 3 && mv.respY.length >= 3,
+    `the modes tab: the \u03c9 axes have tick labels (bars: ${mv.barsY.join(' ')}; response: ${mv.respX.join(' ')}), the bars are numbered`,
+    JSON.stringify(mv));
+  check(mv.shapesX.join() === '0,1,2' && mv.shapesY.length >= 3 && mv.shapesY.every(plain) && mv.legends[1] === 3 &&
+    /mode 1, \u03c9 = 0\.3889/.test(mv.shapesLegend) && mv.legends[0] === 3 && mv.legends[2] === 3,
+    'the modes tab: the shapes have node and amplitude ticks and a legend naming each mode and its \u03c9', JSON.stringify(mv));
+  check(!mv.text.includes('^') && [...mv.respX, ...mv.respY].every((l) => plain(l) || /^(\d\u00d7)?10\u2212?\d+$/.test(l)) &&
+    mv.respY.includes('1') && mv.respY.includes('10'),
+    `the modes tab: log axes labelled as numbers (|H|: ${mv.respY.join(' ')}), never "10^2.0"`, mv.text);
+  check(mv.valuesInside.length === 3 && mv.valuesInside.every(Boolean), 'the modes tab: each bar\'s value is drawn inside the frame',
+    JSON.stringify(mv.valuesInside));
+  check(mv.titles.join() === 'ω (rad/s),mode,amplitude,node,ω (rad/s),|H(ω)|', 'the modes tab: every axis has its title', mv.titles.join());
   check(/1 set-valued element\(s\) left out/.test(mv.info), 'the modes tab says the Coulomb element is left out', mv.info);
   extra = unexpected(from);
   check(extra.length === 0, 'the modes tab: no console error', extra.join('\n    '));
