@@ -9,7 +9,9 @@
 // data-events, data-bands (stick intervals shaded) and data-run (runs started so far), data-budget (the
 // output.max_samples the page asked for, empty when the request chose its own output) and data-every (the
 // meta line's every), data-stale ("true" while the plots are not the editor's request: after a refused
-// request or a new preset); each canvas carries data-points (the points its last drawing went through).
+// request or a new preset), data-end ("contact" when the run stopped where its model is built to end, shown
+// as a note, not a failure: web/right_hand.js); each canvas carries data-points (the points its last drawing
+// went through).
 // #panel-stability has data-state and data-run.
 //
 // The sample budget: a request without an "output" member is sent with output.max_samples of about the
@@ -25,7 +27,7 @@ import { Editor, pretty } from './editor.js';
 import { PRESETS } from './presets.js';
 import { NetworkView } from './network.js';
 import { runModes, renderModes } from './modes.js';
-import { RightHandView } from './right_hand.js';
+import { RightHandView, designedEnd } from './right_hand.js';
 import { LcsView, lcsReport } from './lcs.js';
 import { ContactPlots } from './contact.js';
 
@@ -123,7 +125,17 @@ function showTab(tab, fromPreset = false) {
 
 // ---- problems: errors[].pointer marked in the editor, every message listed under it ----
 
+// The end a run was built to reach (web/right_hand.js: Painlevé's rod at the floor): a note, not a failure.
+function showEnd(end, err) {
+  $('end-note').hidden = !end;
+  if (!end) return;
+  $('end-title').textContent = end.title;
+  $('end-text').textContent = end.text;
+  $('end-detail').textContent = err && err.detail ? err.detail : '';
+}
+
 function showProblem(problem, prefix = '') {
+  showEnd(null);
   const box = $('problem');
   box.hidden = !problem;
   $('token-form').hidden = !problem || problem.status !== 401;
@@ -152,7 +164,7 @@ let sim = newRun();
 
 function newRun() {
   return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, rh: null, lcs: null, events: [], stick: [], stickStart: null,
-    meta: null, summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
+    meta: null, summary: null, error: null, end: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
     label: '', preset: null, spec: null };
 }
 // The run held by a view of its own (network, right-hand, LCS), or null for the one-mass plots.
@@ -198,6 +210,7 @@ function setSimState(state) {
   d.run = ui.runs;
   d.budget = sim.budget || '';
   d.every = sim.meta ? sim.meta.every : '';
+  d.end = sim.end ? sim.end.kind : '';
 }
 
 // About the plots' width in device pixels: more samples than that cannot be told apart on the canvas.
@@ -294,9 +307,11 @@ async function runSimulation() {
     }
     buf += dec.decode();
     if (buf.trim()) onRecord(JSON.parse(buf));
-    if (sim.error) showProblem(sim.error, 'The run stopped: ');
+    sim.end = sim.error && sim.rh ? designedEnd(sim.meta, sim.error) : null;
+    if (sim.end) showEnd(sim.end, sim.error);
+    else if (sim.error) showProblem(sim.error, 'The run stopped: ');
     else if (!sim.summary) showProblem({ title: 'The stream ended without its summary line' });
-    state = sim.summary && !sim.error ? 'done' : 'error';
+    state = (sim.summary && !sim.error) || sim.end ? 'done' : 'error';
   } catch (e) {
     if (e.name === 'AbortError') state = 'stopped';
     else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
@@ -346,7 +361,8 @@ function renderStats(state) {
   if (state === 'done') {
     const secs = (performance.now() - sim.started) / 1000;
     const ev = sim.events.length;
-    $('status').textContent = `${num(sim.samples)} samples \u00b7 ${ev} event${ev === 1 ? '' : 's'} \u00b7 ${secs.toFixed(2)} s`;
+    $('status').textContent = `${num(sim.samples)} samples \u00b7 ${ev} event${ev === 1 ? '' : 's'} \u00b7 ${secs.toFixed(2)} s` +
+      (sim.end && sim.rh && sim.rh.stopAt !== null ? ` \u00b7 ended at contact, t = ${num(sim.rh.stopAt)}` : '');
   } else if (state === 'stopped') $('status').textContent = 'stopped';
   else if (state === 'error') $('status').textContent = 'failed';
 }

@@ -243,7 +243,10 @@ async function runNetworkPreset(page, name, id, origin) {
 // Runs a right-hand friction preset (web/right_hand.js) and checks the page against the daemon's own stream:
 // the samples held and drawn on its two plots (the one-mass plots hidden), the events, and for a run that
 // stops (a Painlevé paradox, the rod at the floor) the stop time the view shades from, read from the record.
-async function runRightHandPreset(page, name, id, origin, stops) {
+// end: 'summary' (runs to t_end), 'error' (a paradox: a failure, shown as the problem) or 'contact' (the
+// rod reaching the floor, the end its model is built for: a note, no failure shown anywhere).
+async function runRightHandPreset(page, name, id, origin, end) {
+  const stops = end !== 'summary';
   const from = problems.length;
   await page.selectOption('#preset', id);
   const d = await press(page, 'panel-simulate');
@@ -252,8 +255,20 @@ async function runRightHandPreset(page, name, id, origin, stops) {
   const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
   const samples = lines.filter((o) => o.type === 'sample'), events = lines.filter((o) => o.type === 'event');
   const last = lines[lines.length - 1];
-  check(d.state === (stops ? 'error' : 'done') && last.type === (stops ? 'error' : 'summary'),
-    `${name}: right-hand preset ${id} ${stops ? 'stops with its record' : 'streams to its end'}`, JSON.stringify(d));
+  check(d.state === (end === 'error' ? 'error' : 'done') && last.type === (stops ? 'error' : 'summary') && d.end === (end === 'contact' ? 'contact' : ''),
+    `${name}: right-hand preset ${id} ${{ summary: 'streams to its end', error: 'stops with its record', contact: 'ends at contact' }[end]}`,
+    JSON.stringify(d));
+  const shown = await page.evaluate(() => ({ status: document.getElementById('status').textContent,
+    problem: !document.getElementById('problem').hidden, end: document.getElementById('end-note').hidden ? null : document.getElementById('end-note').textContent.trim(),
+    failureClass: [...document.querySelectorAll('.problem')].filter((e) => e.offsetParent !== null).map((e) => e.className) }));
+  if (end === 'contact')
+    check(!shown.problem && shown.failureClass.length === 0 && !/fail/i.test(shown.status) && /ended at contact/.test(shown.status) &&
+      /^Ended at contact/.test(shown.end || '') && shown.end.includes(last.detail),
+      `${name}: ${id}: reaching the floor is shown as the designed end (a note with the record, "${shown.status}"), not as a failure`,
+      JSON.stringify({ shown, last }));
+  if (end === 'error')
+    check(shown.problem && shown.end === null && shown.status === 'failed', `${name}: ${id}: a paradox is still shown as the run's failure`,
+      JSON.stringify(shown));
   check(+d.samples === samples.length && d.canvases.length === 2 && d.canvases.every((n) => n === samples.length),
     `${name}: ${id}: both right-hand plots drew the ${samples.length} samples (one-mass plots hidden)`, JSON.stringify(d));
   check(+d.events === events.length, `${name}: ${id}: ${events.length} events`, `page: ${d.events}`);
@@ -505,11 +520,12 @@ try {
   // ---- contacts and impacts (web/contact.js) ----
   await checkContacts(page, out);
   // ---- friction with motion-dependent normal force (web/right_hand.js) ----
-  await runRightHandPreset(page, 'page', 'piston-hinge', out, false);
+  await runRightHandPreset(page, 'page', 'piston-hinge', out, 'summary');
   await screenshot(page, 'page-piston-hinge');
-  await runRightHandPreset(page, 'page', 'painleve-indeterminacy', out, true);
+  await runRightHandPreset(page, 'page', 'painleve-indeterminacy', out, 'error');
   await screenshot(page, 'page-painleve-indeterminacy');
-  await runRightHandPreset(page, 'page', 'painleve-rod', out, true);
+  await runRightHandPreset(page, 'page', 'painleve-rod', out, 'contact');
+  await screenshot(page, 'page-painleve-rod');
   // ---- circuits as linear complementarity systems (web/lcs.js) ----
   await checkCircuits(page, out);
   // back to one mass: the one-mass plots return, with the samples of the new run
