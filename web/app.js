@@ -192,6 +192,9 @@ function drawAll() {
   if (sim.lcs) { $('plots-one').hidden = true; lcsView.draw(sim.lcs); return; }
   if (sim.net) { network.draw(sim.net); return; }
   for (const p of plots) { p.setTable(sim.table); p.draw(); }
+  // the marker legend names the kinds this run's events have (stick/slip, or an elastoplastic yield/unload)
+  const kinds = new Set(sim.events.map((e) => e.kind));
+  for (const e of $('plots-one').querySelectorAll('.legend [data-kind]')) e.hidden = !kinds.has(e.dataset.kind);
 }
 
 let frame = 0;

@@ -1,5 +1,5 @@
 // web/plot.js - line plots on a plain <canvas>, no library: nice ticks, labelled axes, grid, shaded
-// intervals (stick phases), event markers. A Table holds the samples as growable columns; a Plot draws
+// intervals (stick phases), event markers (canvas.dataset.markers counts those drawn by kind). A Table holds the samples as growable columns; a Plot draws
 // some of its columns against another and records how many points it drew (canvas.dataset.points).
 
 export class Table {
@@ -167,15 +167,17 @@ export class Plot {
       if (t) line(ctx, t.col[opts.x.col], t.col[s.col], n, X, Y, opts.x.monotone, pw * dpr);
     }
     ctx.setLineDash([]);
+    const drawn = {};
     if (opts.markers) { // breakaways first: a stick at the same point stays visible inside its triangle
       const mks = opts.markers();
-      for (const kind of ['slip', 'stick', 'impact']) for (const mk of mks) if (mk.kind === kind) marker(ctx, X(mk.x), Y(mk.y), kind);
+      for (const kind of MARKER_KINDS) for (const mk of mks) if (mk.kind === kind) { marker(ctx, X(mk.x), Y(mk.y), kind); drawn[kind] = (drawn[kind] || 0) + 1; }
     }
     ctx.restore();
     ctx.strokeStyle = css('--frame');
     ctx.lineWidth = 1;
     ctx.strokeRect(m.l + 0.5, m.t + 0.5, pw - 1, ph - 1);
     canvas.dataset.points = String(n);
+    canvas.dataset.markers = Object.entries(drawn).map(([k, c]) => `${k}:${c}`).join(','); // e.g. "yield:16,unload:15"
     canvas.dataset.yrange = t && opts.series.length ? `${dlo},${dhi}` : ''; // the data's, before the ticks widen it
   }
 }
@@ -214,11 +216,27 @@ function line(ctx, xs, ys, n, X, Y, monotone, widthPx) {
   ctx.stroke();
 }
 
-// stick (slip -> stick): a filled dark circle; slip (breakaway): an open triangle; impact: a filled diamond.
+// The event kinds drawn as markers, in drawing order (docs/http.md, docs/contact.md; yield and unload are an
+// elastoplastic spring's: its slider starts sliding, and stops).
+const MARKER_KINDS = ['slip', 'stick', 'impact', 'yield', 'unload'];
+
+// stick (slip -> stick): a filled dark circle; slip (breakaway): an open triangle; impact: a filled diamond;
+// yield: a filled square; unload: an open square.
 export function marker(ctx, x, y, kind) {
   ctx.lineWidth = 1.5;
   ctx.beginPath();
-  if (kind === 'impact') {
+  if (kind === 'yield' || kind === 'unload') {
+    ctx.rect(x - 4.5, y - 4.5, 9, 9);
+    ctx.fillStyle = kind === 'yield' ? css('--ev-yield') : '#fff';
+    ctx.strokeStyle = kind === 'yield' ? '#fff' : css('--ev-yield');
+    ctx.fill();
+    ctx.stroke();
+    if (kind === 'yield') { // a white edge alone would vanish on the white background
+      ctx.strokeStyle = css('--ev-yield');
+      ctx.lineWidth = 1;
+      ctx.strokeRect(x - 5.5, y - 5.5, 11, 11);
+    }
+  } else if (kind === 'impact') {
     ctx.moveTo(x, y - 6); ctx.lineTo(x + 5, y); ctx.lineTo(x, y + 6); ctx.lineTo(x - 5, y); ctx.closePath();
     ctx.fillStyle = css('--ev-impact');
     ctx.strokeStyle = '#fff';

@@ -496,6 +496,22 @@ try {
   const offsets = new Set(ep.lines.filter((o) => o.type === 'sample').map((o) => o.p));
   check(yields >= 10 && offsets.size > 10,
     `elastoplastic: the spring yields (${yields} times) and its offset p moves (${offsets.size} values in the samples)`);
+  const unloads = ep.lines.filter((o) => o.type === 'event' && o.kind === 'unload').length;
+  const epView = await page.evaluate(() => {
+    const purple = (id) => { // pixels of the yield markers' colour (#6a3d9a), which no curve has
+      const c = document.getElementById(id), d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - 106) + Math.abs(d[i + 1] - 61) + Math.abs(d[i + 2] - 154) < 30) n++;
+      return n;
+    };
+    const legend = [...document.querySelectorAll('#plots-one .legend [data-kind]')].filter((e) => e.offsetParent !== null).map((e) => e.dataset.kind);
+    return { xv: document.getElementById('plot-xv').dataset.markers, phase: document.getElementById('plot-phase').dataset.markers,
+      ink: [purple('plot-xv'), purple('plot-phase')], legend: [...new Set(legend)].sort().join() };
+  });
+  const want = `yield:${yields},unload:${unloads}`;
+  check(epView.xv === want && epView.phase === want && epView.ink.every((n) => n > 20 * yields) && epView.legend === 'unload,yield',
+    `elastoplastic: the ${yields} yield and ${unloads} unload events are marked on x(t) and the phase portrait, with their legend`,
+    JSON.stringify(epView));
   await screenshot(page, 'page-elastoplastic');
 
   // ---- networks (web/network.js) ----
