@@ -69,8 +69,12 @@ function niceRange(lo, hi, count) {
 // A colour: a CSS variable of the page (--name) or a colour as it is (the network view's per-node curves).
 const css = (name) => (name.startsWith('--') ? getComputedStyle(document.documentElement).getPropertyValue(name).trim() || '#000' : name);
 
-// opts: { x: {col, label, range?: () => [lo, hi]}, y: {label}, series: [{col, color, dash?}],
-//         bands?: () => [[x0, x1], ...], markers?: () => [{x, y, kind}] }
+// opts: { x: {col, label, range?: () => [lo, hi]}, y: {label}, series: [{col, color, dash?, dashOffset?}],
+//         bands?: () => [[x0, x1], ...], markers?: () => [{x, y, kind}],
+//         stems?: {label, color, values: () => [{x, p}]} }
+// Stems are impulses (a force's Dirac mass at x, of weight p >= 0 pushing the contact's ends apart, the
+// side of the negative forces): vertical lines down from the zero line with a dot at the tip, their length
+// on a scale of their own, the right axis (labelled with `label`); canvas.dataset.stems counts them.
 export class Plot {
   constructor(canvas, opts) {
     this.canvas = canvas;
@@ -97,7 +101,8 @@ export class Plot {
     ctx.clearRect(0, 0, w, h);
     const t = this.table;
     const n = t ? t.n : 0;
-    const m = { l: 62, r: 14, t: 10, b: 42 };
+    const stems = opts.stems ? opts.stems.values() : [];
+    const m = { l: 62, r: opts.stems ? 58 : 14, t: 10, b: 42 };
     const pw = w - m.l - m.r, ph = h - m.t - m.b;
 
     // ranges
@@ -105,6 +110,10 @@ export class Plot {
     let ylo = Infinity, yhi = -Infinity;
     if (t) for (const s of opts.series) { ylo = Math.min(ylo, t.min[s.col]); yhi = Math.max(yhi, t.max[s.col]); }
     const [dlo, dhi] = [ylo, yhi];
+    if (stems.length) { // room below the zero line for the stems
+      ylo = Math.min(ylo, 0, -(Math.max(Math.abs(yhi), Math.abs(ylo)) || 1)); // a force that is 0 throughout: [-1, 0]
+      yhi = Math.max(yhi, 0);
+    }
     const xticks = Math.max(2, Math.round(pw / 90)), yticks = Math.max(2, Math.round(ph / 48));
     if (!opts.x.range) [xlo, xhi] = niceRange(xlo, xhi, xticks);
     [ylo, yhi] = niceRange(ylo, yhi, yticks);
@@ -164,15 +173,51 @@ export class Plot {
     for (const s of opts.series) {
       ctx.strokeStyle = css(s.color);
       ctx.setLineDash(s.dash || []);
+      ctx.lineDashOffset = s.dashOffset || 0;
       if (t) line(ctx, t.col[opts.x.col], t.col[s.col], n, X, Y, opts.x.monotone, pw * dpr);
     }
     ctx.setLineDash([]);
+    ctx.lineDashOffset = 0;
     const drawn = {};
     if (opts.markers) { // breakaways first: a stick at the same point stays visible inside its triangle
       const mks = opts.markers();
       for (const kind of MARKER_KINDS) for (const mk of mks) if (mk.kind === kind) { marker(ctx, X(mk.x), Y(mk.y), kind); drawn[kind] = (drawn[kind] || 0) + 1; }
     }
+    let stemScale = null;
+    if (stems.length) {
+      const top = Math.max(...stems.map((st) => st.p), 1e-300), y0 = Y(0), room = m.t + ph - y0;
+      stemScale = { top: top / 0.92, y0, room }; // the largest stem reaches 92% of the way down
+      const P = (p) => y0 + (p / stemScale.top) * room;
+      ctx.strokeStyle = ctx.fillStyle = css(opts.stems.color);
+      ctx.lineWidth = 2;
+      for (const st of stems) {
+        const px = Math.round(X(st.x)) + 0.5;
+        ctx.beginPath(); ctx.moveTo(px, y0); ctx.lineTo(px, P(st.p)); ctx.stroke();
+        ctx.beginPath(); ctx.arc(px, P(st.p), 3, 0, 2 * Math.PI); ctx.fill();
+      }
+    }
     ctx.restore();
+    if (stemScale) { // the stems' own axis, on the right, in their colour
+      const { top, y0, room } = stemScale, s = niceStep(0, top, Math.max(2, Math.round(room / 40)));
+      ctx.font = '12px system-ui, sans-serif';
+      ctx.fillStyle = ctx.strokeStyle = css(opts.stems.color);
+      ctx.lineWidth = 1;
+      ctx.textAlign = 'left';
+      ctx.textBaseline = 'middle';
+      for (let v = 0; v <= top + s * 1e-9; v += s) {
+        const py = Math.round(y0 + (v / top) * room) + 0.5;
+        ctx.beginPath(); ctx.moveTo(m.l + pw, py); ctx.lineTo(m.l + pw + 4, py); ctx.stroke();
+        ctx.fillText(tickLabel(v, s), m.l + pw + 6, py);
+      }
+      ctx.save();
+      ctx.translate(w - 8, y0 + room / 2);
+      ctx.rotate(-Math.PI / 2);
+      ctx.font = 'italic 13px system-ui, sans-serif';
+      ctx.textAlign = 'center';
+      ctx.fillText(opts.stems.label, 0, 0);
+      ctx.restore();
+    }
+    canvas.dataset.stems = String(stems.length);
     ctx.strokeStyle = css('--frame');
     ctx.lineWidth = 1;
     ctx.strokeRect(m.l + 0.5, m.t + 0.5, pw - 1, ph - 1);

@@ -418,8 +418,17 @@ async function runContactPreset(page, name, id, origin) {
     const box = document.getElementById('network-plots'), range = (i) => document.getElementById(i).dataset.yrange.split(',').map(Number);
     return { ...box.dataset, spaceTimeHidden: document.getElementById('plot-spacetime').closest('figure').hidden,
       x: range('plot-nodes-x'), v: range('plot-nodes-v'), phase: range('plot-contact-phase'), fn: range('plot-contact-fn'),
-      fnLegend: document.getElementById('legend-contact-fn').textContent };
+      fnLegend: document.getElementById('legend-contact-fn').textContent, stems: +document.getElementById('plot-contact-fn').dataset.stems,
+      stemInk: (() => { // pixels of the impact colour (#cc79a7) on the force plot: the stems (no force curve has it)
+        const c = document.getElementById('plot-contact-fn'), px = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        let n = 0;
+        for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - 204) + Math.abs(px[i + 1] - 121) + Math.abs(px[i + 2] - 167) < 30) n++;
+        return n;
+      })() };
   });
+  check(view.stems === impacts.length && view.stemInk > 20 * Math.min(impacts.length, 20) && /impulse at each impact/.test(view.fnLegend),
+    `${name}: ${id}: the ${impacts.length} impulses are drawn as stems on the contact-force plot (${view.stemInk} pixels), with a legend`,
+    JSON.stringify({ stems: view.stems, stemInk: view.stemInk, legend: view.fnLegend }));
   check(+d.samples === samples.length && +view.impacts === impacts.length && +view.impactRows === 2 * impacts.length &&
     +d.points === rows && d.canvases.length === 4 && d.canvases.every((k) => k === rows) && view.spaceTimeHidden,
     `${name}: ${id}: x(t), v(t), phase portrait and contact forces drew the ${samples.length} samples and 2 rows at each of ` +
