@@ -375,6 +375,20 @@ async function checkCircuits(page, out) {
   const load = Math.max(...br.samples.map((r) => Math.abs(r.u[2] + r.w[0] - Math.abs(r.x[0]))));
   check(vErr < 5e-4 && load < 1e-9 && br.samples.some((r) => r.x[0] > 1e-3) && br.samples.some((r) => r.x[0] < -1e-3),
     `bridge: v_C = -2e^{-t} sin t (error ${vErr.toExponential(2)}) changes sign, the load current is |v_C|/R (error ${load.toExponential(1)})`);
+  // Its curves pair up: u0 = u2 = w1 = w3 and u1 = u3 = w0 = w2 throughout; drawn one over another, the last
+  // drawn of each group would hide the rest (components 0 and 1 nowhere to be seen): each of the four
+  // components' colours must show on the complementarity plot, and the legend must say which coincide.
+  const bv = await page.evaluate(() => {
+    const c = document.getElementById('plot-lcs-uw'), px = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    const colours = [[0, 114, 178], [213, 94, 0], [0, 158, 115], [204, 121, 167]], n = [0, 0, 0, 0];
+    for (let i = 0; i < px.length; i += 4)
+      colours.forEach(([r, g, b], k) => { if (Math.abs(px[i] - r) + Math.abs(px[i + 1] - g) + Math.abs(px[i + 2] - b) < 40) n[k]++; });
+    return { coincide: document.getElementById('lcs-plots').dataset.coincide, legend: document.getElementById('lcs-uw-legend').textContent, n };
+  });
+  check(bv.coincide === 'u0=u2=w1=w3;u1=u3=w0=w2' && bv.legend.includes('coincide: u0 = u2 = w1 = w3; u1 = u3 = w0 = w2') &&
+    bv.n.every((k) => k > 150),
+    `bridge: the coinciding curves are told apart (alternating dashes, every component's colour shows: ${bv.n} pixels) and the legend says they coincide`,
+    JSON.stringify(bv));
   await screenshot(page, 'page-lcs-bridge');
 
   // An edited request with one state (x' = -x - 2 + u, 0 <= u ⊥ x >= 0, x(0) = 1): the preset's names no
