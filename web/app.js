@@ -2,7 +2,8 @@
 // (fetch + ReadableStream reader) and plotted as it arrives, the well-posedness report of the meta line,
 // problem+json errors shown at the member they point at, and the stability tab (POST v1/stability: the
 // map as SVG, its counts as JSON). Every URL is relative, so the page works behind a path prefix. A 401
-// (the daemon has a --token-file) asks for the bearer token, kept in sessionStorage for the tab.
+// (the daemon has a --token-file) asks for the bearer token, kept in sessionStorage for the tab. Picking a
+// preset runs it (stopping a run in progress); Run (Ctrl+Enter) runs what the editor holds.
 //
 // For tests and curious people, #panel-simulate carries data-state (idle, running, done, error, stopped),
 // data-samples (sample lines received), data-points (samples held for plotting), data-summary-samples and
@@ -69,7 +70,7 @@ function fillPresets() {
   }
   sel.prepend(new Option('(edited request)', ''));
   sel.options[0].disabled = true;
-  sel.addEventListener('change', () => loadPreset(sel.value));
+  sel.addEventListener('change', () => { loadPreset(sel.value); start(); }); // picking a preset runs it
 }
 
 // The preset menu names the preset only while the editor holds its request.
@@ -96,7 +97,7 @@ function loadPreset(id) {
   ui.text[p.kind] = presetText(p);
   showTab(p.kind, true);
   history.replaceState(null, '', '#' + p.id);
-  if (p.kind === 'simulate' && sim.meta) markStale(`Stale: these plots are from the previous run (${sim.label}); press Run for this preset.`);
+  if (p.kind === 'simulate' && sim.meta) markStale(`Stale: these plots are from the previous run (${sim.label}); this preset is starting.`);
 }
 
 function showTab(tab, fromPreset = false) {
@@ -267,7 +268,7 @@ function onRecord(o) {
 async function runSimulation() {
   const ctl = new AbortController();
   ui.controller = ctl;
-  ui.runs++;
+  const mine = ++ui.runs;
   showProblem(null);
   setSimState('running');
   setRunning(true);
@@ -323,9 +324,11 @@ async function runSimulation() {
       ui.controller = null;
       setRunning(false);
     }
-    drawAll();
-    renderStats(state);
-    setSimState(state);
+    if (mine === ui.runs) { // not when a newer run (a preset picked meanwhile) has taken over the page
+      drawAll();
+      renderStats(state);
+      setSimState(state);
+    }
   }
 }
 
@@ -397,7 +400,8 @@ async function runStability() {
   ui.controller = ctl;
   const panel = $('panel-stability');
   const text = editor.text;
-  panel.dataset.run = ++ui.runs;
+  const mine = ++ui.runs;
+  panel.dataset.run = mine;
   let hasMap = false;
   try { hasMap = !!JSON.parse(text).map; } catch { /* the daemon says where */ }
   showProblem(null);
@@ -430,8 +434,10 @@ async function runStability() {
     else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
   } finally {
     if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
-    panel.dataset.state = state;
-    if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    if (mine === ui.runs) {
+      panel.dataset.state = state;
+      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    }
   }
 }
 
@@ -471,7 +477,8 @@ async function runModesTab() {
   ui.controller = ctl;
   const panel = $('panel-modes');
   const text = editor.text;
-  panel.dataset.run = ++ui.runs;
+  const mine = ++ui.runs;
+  panel.dataset.run = mine;
   showProblem(null);
   panel.dataset.state = 'running';
   setRunning(true);
@@ -491,8 +498,10 @@ async function runModesTab() {
     else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
   } finally {
     if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
-    panel.dataset.state = state;
-    if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    if (mine === ui.runs) {
+      panel.dataset.state = state;
+      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    }
   }
 }
 
@@ -510,8 +519,17 @@ function stop() {
   if (ui.controller) ui.controller.abort();
 }
 
+// The Run button and Ctrl+Enter: stops a run in progress, else starts one.
 function run() {
   if (ui.controller) { stop(); return; }
+  start();
+}
+
+// Starts the editor's request on the open tab, stopping a run in progress (its ending then leaves the page
+// to this one: the runs' `mine === ui.runs` above).
+function start() {
+  stop();
+  ui.controller = null;
   ui.text[ui.tab] = editor.text;
   syncPresetMenu();
   if (ui.tab === 'simulate') runSimulation(); else if (ui.tab === 'modes') runModesTab(); else runStability();
@@ -532,4 +550,4 @@ $('format').addEventListener('click', () => {
 for (const t of ['simulate', 'stability', 'modes']) $('tab-' + t).addEventListener('click', () => { if (ui.tab !== t) showTab(t); });
 fillPresets();
 loadPreset(location.hash.slice(1) || 'thesis-5-gamma');
-if (ui.tab === 'simulate') runSimulation(); else if (ui.tab === 'modes') runModesTab(); else runStability();
+start();

@@ -124,6 +124,14 @@ async function press(page, panel) {
   return waitRun(page, panel, before);
 }
 
+// Picks a preset from the menu, which runs it (no Run pressed: web/app.js), and waits for that run's end.
+async function pick(page, id, panel = 'panel-simulate') {
+  const before = await page.evaluate(() => Math.max(...['panel-simulate', 'panel-stability', 'panel-modes']
+    .map((p) => +(document.getElementById(p).dataset.run || 0))));
+  await page.selectOption('#preset', id);
+  return waitRun(page, panel, before);
+}
+
 // Pixels of saturated colour (curves and markers, not the grey grid, frame and labels) per canvas.
 const inked = (page) => page.evaluate(() => [...document.querySelectorAll('#panel-simulate canvas')].filter((c) => c.offsetParent !== null).map((c) => {
   const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
@@ -144,8 +152,7 @@ async function screenshot(page, name) {
 // Runs a simulation preset and checks what the page shows against the daemon's own stream.
 async function runPreset(page, name, id, origin) {
   const from = problems.length;
-  await page.selectOption('#preset', id);
-  const d = await press(page, 'panel-simulate');
+  const d = await pick(page, id);
   const spec = await page.inputValue('#spec');
   // The page sends a request without "output" with output.max_samples = its sample budget (data-budget).
   const budget = +d.budget || 0;
@@ -196,8 +203,7 @@ async function runPreset(page, name, id, origin) {
 // the share of (sample, node) pairs stuck in the stream. Returns what it found for the caller's own checks.
 async function runNetworkPreset(page, name, id, origin) {
   const from = problems.length;
-  await page.selectOption('#preset', id);
-  const d = await press(page, 'panel-simulate');
+  const d = await pick(page, id);
   const spec = await page.inputValue('#spec');
   const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: spec, headers: { Accept: 'application/x-ndjson' } });
   const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
@@ -248,8 +254,7 @@ async function runNetworkPreset(page, name, id, origin) {
 async function runRightHandPreset(page, name, id, origin, end) {
   const stops = end !== 'summary';
   const from = problems.length;
-  await page.selectOption('#preset', id);
-  const d = await press(page, 'panel-simulate');
+  const d = await pick(page, id);
   const spec = await page.inputValue('#spec');
   const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: spec, headers: { Accept: 'application/x-ndjson' } });
   const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
@@ -293,8 +298,7 @@ function docsDocument(name) {
 // range equal to the stream's over the same columns. Returns the stream and the plots' ranges.
 async function runLcsPreset(page, name, id, origin, docFile) {
   const from = problems.length;
-  await page.selectOption('#preset', id);
-  const d = await press(page, 'panel-simulate');
+  const d = await pick(page, id);
   const spec = JSON.parse(await page.inputValue('#spec')), doc = docsDocument(docFile);
   delete doc.output;
   check(JSON.stringify(spec) === JSON.stringify(doc) && +d.budget > 0,
@@ -418,8 +422,7 @@ async function checkCircuits(page, out) {
 // samples and the impacts' states. Returns the stream and the plots' ranges for the closed-form checks.
 async function runContactPreset(page, name, id, origin) {
   const from = problems.length;
-  await page.selectOption('#preset', id);
-  const d = await press(page, 'panel-simulate');
+  const d = await pick(page, id);
   const spec = JSON.parse(await page.inputValue('#spec'));
   const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: JSON.stringify({ ...spec, output: { max_samples: +d.budget } }),
     headers: { Accept: 'application/x-ndjson' } });
@@ -567,7 +570,9 @@ try {
   await screenshot(page, 'page-painleve-rod');
   // ---- circuits as linear complementarity systems (web/lcs.js) ----
   await checkCircuits(page, out);
-  // back to one mass: the one-mass plots return, with the samples of the new run
+  // back to one mass: the one-mass plots return, with the samples of the new run. Picked while another
+  // preset (the 60-block chain) is still running: that run stops and the page is the new one's.
+  await page.selectOption('#preset', 'burridge-knopoff');
   const belt2 = await runPreset(page, 'page', 'belt', out);
   check(belt2.d.canvases.length === 5, 'after a network run a one-mass preset shows its five plots again');
 
@@ -621,20 +626,21 @@ try {
   check(extra.length === 0, 'the malformed spec causes no other console error', extra.join('\n    '));
   st = await stale();
   check(st.stale === 'true' && st.note.includes('(400)'), 'after a 400 the plots stay marked stale', JSON.stringify(st));
-  // A new preset: the menu names it, the old plots say they are old until Run; a run clears the mark.
-  await page.selectOption('#preset', 'forced');
+  // Picking a preset runs it (one POST, no Run pressed); its answer clears the stale mark.
+  const posts = [], onPost = (r) => { if (r.method() === 'POST' && r.url().endsWith('/v1/simulate')) posts.push(r.postData()); };
+  page.on('request', onPost);
+  d = await pick(page, 'forced');
+  page.off('request', onPost);
   st = await stale();
-  check(st.stale === 'true' && st.menu === 'forced' && st.note.includes('press Run'), 'a new preset keeps the old plots marked stale until Run',
-    JSON.stringify(st));
-  d = await press(page, 'panel-simulate');
-  st = await stale();
-  check(d.state === 'done' && st.stale === 'false' && st.note === '' && st.opacity === 1, 'a successful run clears the stale mark', JSON.stringify(st));
+  const sent = posts.map((b) => JSON.parse(b)), editorSpec = JSON.parse(await page.inputValue('#spec'));
+  check(d.state === 'done' && posts.length === 1 && JSON.stringify(sent[0].model) === JSON.stringify(editorSpec.model) && st.menu === 'forced',
+    `picking a preset runs it: ${posts.length} POST v1/simulate of the preset's request, no Run pressed`, JSON.stringify({ d, posts: posts.length }));
+  check(st.stale === 'false' && st.note === '' && st.opacity === 1, 'the picked preset\'s run clears the stale mark', JSON.stringify(st));
 
   // ---- the stability tab ----
   from = problems.length;
-  await page.selectOption('#preset', 'stability-1.2');
-  check(await page.isVisible('#panel-stability'), 'a stability preset opens the stability tab');
-  d = await press(page, 'panel-stability');
+  d = await pick(page, 'stability-1.2', 'panel-stability');
+  check(await page.isVisible('#panel-stability'), 'a stability preset opens the stability tab (and runs)');
   const map = await page.evaluate(() => {
     const img = document.getElementById('stab-img');
     return { complete: img.complete, w: img.naturalWidth, h: img.naturalHeight, src: img.src, info: document.getElementById('stab-info').textContent };
@@ -642,8 +648,7 @@ try {
   check(d.state === 'done' && map.complete && map.w > 500 && map.h > 400 && map.src.startsWith('blob:'),
     'the stability map (image/svg+xml) is drawn', JSON.stringify(map));
   check(/asymptotically stable/.test(map.info) && /unstable/.test(map.info), 'the map\'s verdict counts are shown (JSON)', map.info);
-  await page.selectOption('#preset', 'stability-one');
-  d = await press(page, 'panel-stability');
+  d = await pick(page, 'stability-one', 'panel-stability');
   const model = await page.textContent('#stab-model');
   check(d.state === 'done' && model.includes('stable iff (1.10) mu2 - lambda*mu1 > 0; here mu2 - lambda*mu1 = 0.5') && !/> 0 =/.test(model),
     'one law: the thesis condition and the value of its left side, not "> 0 = 0.5"', model);
@@ -653,9 +658,8 @@ try {
 
   // ---- the modes tab: frequencies as bars, the shapes, the point receptance with its located extrema ----
   from = problems.length;
-  await page.selectOption('#preset', 'modes-chain-3');
-  check(await page.isVisible('#panel-modes'), 'a modes preset opens the modes tab');
-  d = await press(page, 'panel-modes');
+  d = await pick(page, 'modes-chain-3', 'panel-modes');
+  check(await page.isVisible('#panel-modes'), 'a modes preset opens the modes tab (and runs)');
   const mv = await page.evaluate(() => {
     const ds = document.getElementById('panel-modes').dataset;
     const charts = [...document.querySelectorAll('#panel-modes svg.chart')];
