@@ -9,7 +9,7 @@
 // data-samples (sample lines received), data-points (samples held for plotting), data-summary-samples and
 // data-events, data-bands (stick intervals shaded) and data-run (runs started so far), data-budget (the
 // output.max_samples the page asked for, empty when the request chose its own output) and data-every (the
-// meta line's every), data-stale ("true" while the plots are not the editor's request: after a refused
+// meta line's every; its warnings, if any, are listed in #warnings), data-stale ("true" while the plots are not the editor's request: after a refused
 // request or a new preset), data-end ("contact" when the run stopped where its model is built to end, shown
 // as a note, not a failure: web/right_hand.js); each canvas carries data-points (the points its last drawing
 // went through).
@@ -24,7 +24,7 @@
 // with the column names of the preset the request came from.
 
 import { Table, Plot } from './plot.js';
-import { Editor, pretty } from './editor.js';
+import { Editor, pretty, locate } from './editor.js';
 import { PRESETS } from './presets.js';
 import { NetworkView } from './network.js';
 import { runModes, renderModes } from './modes.js';
@@ -121,10 +121,46 @@ function showTab(tab, fromPreset = false) {
   editor.text = ui.text[tab];
   syncPresetMenu();
   showProblem(null);
+  showWarnings(tab === 'simulate' && sim.meta ? sim.meta.warnings : null); // they belong to the simulate tab's run
   if (tab === 'simulate') drawAll();
 }
 
 // ---- problems: errors[].pointer marked in the editor, every message listed under it ----
+
+// The meta line's warnings (docs/http.md: [{code, detail, pointer}], e.g. a step longer than a tenth of the
+// shortest natural period at /solver/dt): a yellow note each under the run status, with a button to the
+// line of the member it points at; none when the meta line has none (or null: clear them).
+function showWarnings(warnings) {
+  const box = $('warnings'), list = Array.isArray(warnings) ? warnings.filter((w) => w && typeof w === 'object') : [];
+  box.hidden = list.length === 0;
+  const text = editor.text;
+  let where = null;
+  try { where = locate(text); } catch { /* the member's line is then not offered */ }
+  box.replaceChildren(...list.map((w) => {
+    const li = document.createElement('li'), head = document.createElement('b');
+    li.className = 'warning';
+    li.dataset.code = w.code || '';
+    head.textContent = '\u26a0 Warning' + (w.code ? ` (${w.code})` : '') + ': ';
+    li.append(head, String(w.detail || 'no detail'));
+    if (typeof w.pointer === 'string') {
+      const code = document.createElement('code');
+      code.textContent = w.pointer || '(the document)';
+      li.append(' \u2014 at ', code);
+      let p = w.pointer;
+      while (where && !where.has(p) && p !== '') p = p.slice(0, p.lastIndexOf('/'));
+      const loc = where && where.get(p);
+      if (loc) {
+        const [start, end] = [loc.key ? loc.key[0] : loc.value[0], loc.value[1]], b = document.createElement('button');
+        b.type = 'button';
+        b.className = 'link';
+        b.textContent = `line ${text.slice(0, start).split('\n').length}`;
+        b.addEventListener('click', () => editor.select({ start, end }));
+        li.append(' (', b, ')');
+      }
+    }
+    return li;
+  }));
+}
 
 // The end a run was built to reach (web/right_hand.js: Painlevé's rod at the floor): a note, not a failure.
 function showEnd(end, err) {
@@ -259,6 +295,7 @@ function onRecord(o) {
       if (RH_MODELS.includes(o.model)) sim.rh = rhView.start(o);
       if (o.model === 'lcs') sim.lcs = lcsView.start(o, sim.preset && sim.preset.columns);
       renderWellposedness(o.wellposedness, o);
+      showWarnings(o.warnings);
       break;
     case 'summary': sim.summary = o; break;
     case 'error': sim.error = o; if (sim.rh) sim.rh.stop(o, sim.lastT); break;
@@ -270,6 +307,7 @@ async function runSimulation() {
   ui.controller = ctl;
   const mine = ++ui.runs;
   showProblem(null);
+  showWarnings(null);
   setSimState('running');
   setRunning(true);
   $('status').textContent = 'sending\u2026';

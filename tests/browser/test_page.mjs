@@ -190,6 +190,9 @@ async function runPreset(page, name, id, origin) {
     shown.includes(wp.uniqueness.guaranteed ? wp.uniqueness.theorem : wp.uniqueness.reason) &&
     wp.checks.every((c) => shown.includes(`${c.hypothesis}: ${c.detail}`)) && !/Lipschitz\s+Lipschitz/.test(shown),
     `${name}: ${id}: the meta line's well-posedness report is shown, each check as "hypothesis: detail"`);
+  const warned = await page.evaluate(() => [...document.querySelectorAll('#warnings li.warning')].filter((e) => e.offsetParent !== null).length);
+  check(warned === (lines[0].warnings || []).length, `${name}: ${id}: the meta line's ${warned} warning(s) shown, no more`,
+    JSON.stringify(lines[0].warnings));
   const ink = await inked(page);
   check(ink.every((n) => n > 300), `${name}: ${id}: every canvas carries curves`, `saturated pixels per canvas: ${ink}`);
   const bad = unexpected(from);
@@ -704,6 +707,36 @@ try {
   check(urls.every((u) => u.startsWith(out) || u.startsWith('blob:') || u.startsWith('data:')),
     'every request of the page went to the daemon', urls.filter((u) => !u.startsWith(out)).join(' '));
   await page.close();
+
+  // ---- the meta line's warnings (a stubbed answer: the daemon may not send them yet) ----
+  from = problems.length;
+  const page4 = await browser.newPage();
+  watch(page4, 'warnings');
+  const warnings = [{ code: 'dt-vs-period', detail: 'the step 0.5 is longer than a tenth of the shortest natural period 6.28', pointer: '/solver/dt' },
+    { code: 'sample-budget', detail: 'every 7 chosen to keep 300 samples', pointer: '/output' }];
+  const stubbed = [{ type: 'meta', version: 'stub', solver: 'stick-slip', variant: 'exact', theta: 0.5, dt: 0.5, t_end: 3, steps: 6, every: 7,
+    spring: 'linear', damper: 'coulomb', warnings },
+  ...[0, 1, 2, 3].map((t) => ({ type: 'sample', t, x: 1 - t / 4, v: -0.25, Fs: 1 - t / 4, Fd: -0.25, Fc: -0.25, phase: 'slip' })),
+  { type: 'summary', final: { t: 3, x: 0.25, v: -0.25, Fs: 0.25, Fd: -0.25, Fc: -0.25, phase: 'slip' }, steps: 6, samples: 4, events: 0, stick_time: 0 }];
+  await page4.route((u) => u.pathname.endsWith('/v1/simulate'), (r) => r.fulfill({ status: 200, contentType: 'application/x-ndjson',
+    body: stubbed.map((o) => JSON.stringify(o)).join('\n') + '\n' }));
+  await page4.goto(out + '#belt');
+  d = await waitRun(page4, 'panel-simulate', 0);
+  const ws = await page4.evaluate(() => {
+    const items = [...document.querySelectorAll('#warnings li.warning')].filter((e) => e.offsetParent !== null);
+    const status = document.getElementById('status').getBoundingClientRect(), box = document.getElementById('warnings').getBoundingClientRect();
+    return { texts: items.map((e) => e.textContent), bg: items.map((e) => getComputedStyle(e).backgroundColor),
+      gap: box.top - status.bottom, lines: items.map((e) => e.querySelector('button')?.textContent || '') };
+  });
+  const yellow = (c) => { const [r, g, b] = c.match(/\d+/g).map(Number); return r > 230 && g > 220 && b < 210; };
+  check(d.state === 'done' && ws.texts.length === 2 && warnings.every((w, i) => ws.texts[i].includes(w.detail) && ws.texts[i].includes(w.pointer)) &&
+    ws.bg.every(yellow) && ws.gap >= 0 && ws.gap < 60 && /^line \d+$/.test(ws.lines[0]),
+    'the meta line\'s warnings: a yellow note each under the run status, with its detail, pointer and the member\'s line', JSON.stringify(ws));
+  await screenshot(page4, 'page-warnings');
+  await page4.unroute((u) => u.pathname.endsWith('/v1/simulate'));
+  await page4.close();
+  extra = unexpected(from);
+  check(extra.length === 0, 'the warnings page: no console error', extra.join('\n    '));
 
   // ---- behind a path prefix: a reverse proxy maps /prefix/ to the daemon, nothing else ----
   const target = new URL(out), strays = [], revalidated = [];
