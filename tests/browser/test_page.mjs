@@ -141,7 +141,15 @@ const inked = (page) => page.evaluate(() => [...document.querySelectorAll('#pane
   return n;
 }));
 
+// The sources by name, as the page must show them: the daemon's reports cite them by working labels ("seed"
+// and 000 .. 004); the page names them (web/sources.js), dropping a label its name already stands before.
+const SOURCES = ['Babov\u00e1kov\u00e1 2012', 'Pra\u017e\u00e1k & Rajagopal 2016', 'Cibulka 2014', 'H\u00f6schl 1983', 'Matrosov & Finogenko 1995'];
+const named = (s) => s.replace(/(Matrosov & Finogenko 1995),\s*seed 004\b/g, '$1').replace(/\b[Ss]eed 00([0-4])\b/g, (_, k) => SOURCES[+k]);
+
 async function screenshot(page, name) {
+  const text = await page.evaluate(() => document.body.innerText + ' ' + [...document.querySelectorAll('[title]')].map((e) => e.title).join(' '));
+  const labels = text.match(/.{0,30}\b(seed 00\d|issue #?\d+).{0,10}/gi) || [];
+  check(labels.length === 0, `${name}: the page names its sources (no "seed 00N", no issue numbers)`, labels.join(' | '));
   const file = path.join(shots, name + '.png');
   const png = await page.screenshot({ path: file });
   const { w, h, colours } = pngColours(png);
@@ -186,9 +194,9 @@ async function runPreset(page, name, id, origin) {
   check(+d.events === events, `${name}: ${id}: ${events} stick/slip events marked`, `page: ${d.events}`);
   const wp = lines[0].wellposedness;
   const shown = await page.textContent('#wp-body');
-  check(shown.includes(wp.existence.guaranteed ? wp.existence.theorem : wp.existence.reason) &&
-    shown.includes(wp.uniqueness.guaranteed ? wp.uniqueness.theorem : wp.uniqueness.reason) &&
-    wp.checks.every((c) => shown.includes(`${c.hypothesis}: ${c.detail}`)) && !/Lipschitz\s+Lipschitz/.test(shown),
+  check(shown.includes(named(wp.existence.guaranteed ? wp.existence.theorem : wp.existence.reason)) &&
+    shown.includes(named(wp.uniqueness.guaranteed ? wp.uniqueness.theorem : wp.uniqueness.reason)) &&
+    wp.checks.every((c) => shown.includes(named(`${c.hypothesis}: ${c.detail}`))) && !/Lipschitz\s+Lipschitz/.test(shown),
     `${name}: ${id}: the meta line's well-posedness report is shown, each check as "hypothesis: detail"`);
   const warned = await page.evaluate(() => [...document.querySelectorAll('#warnings li.warning')].filter((e) => e.offsetParent !== null).length);
   check(warned === (lines[0].warnings || []).length, `${name}: ${id}: the meta line's ${warned} warning(s) shown, no more`,
@@ -271,7 +279,8 @@ async function runRightHandPreset(page, name, id, origin, end) {
     failureClass: [...document.querySelectorAll('.problem')].filter((e) => e.offsetParent !== null).map((e) => e.className) }));
   if (end === 'contact')
     check(!shown.problem && shown.failureClass.length === 0 && !/fail/i.test(shown.status) && /ended at contact/.test(shown.status) &&
-      /^Ended at contact/.test(shown.end || '') && shown.end.includes(last.detail),
+      /^Ended at contact/.test(shown.end || '') && shown.end.includes(named(last.detail)) &&
+      (await page.textContent('#wp-body')).includes('Framework right-hand solutions (Matrosov & Finogenko 1995):'),
       `${name}: ${id}: reaching the floor is shown as the designed end (a note with the record, "${shown.status}"), not as a failure`,
       JSON.stringify({ shown, last }));
   if (end === 'error')
@@ -333,7 +342,7 @@ async function runLcsPreset(page, name, id, origin, docFile) {
   const want = { x: span(cols('x', meta.states)), uw: span([...cols('u', meta.components), ...cols('w', meta.components)]), phase: span([['x', 1]]) };
   check(view.finite === 'true' && ['x', 'uw', 'phase'].every((k) => view[k].every(Number.isFinite) && view[k].join() === want[k].join()),
     `${name}: ${id}: finite data, each plot's range that of its columns in the stream`, JSON.stringify({ view, want }));
-  check(view.wp.includes(meta.step.uniqueness), `${name}: ${id}: the step's uniqueness is reported (${meta.step.uniqueness})`, view.wp);
+  check(view.wp.includes(named(meta.step.uniqueness)), `${name}: ${id}: the step's uniqueness is reported (${meta.step.uniqueness})`, view.wp);
   const ink = await inked(page);
   check(ink.every((k) => k > 300), `${name}: ${id}: every LCS canvas carries curves`, `saturated pixels per canvas: ${ink}`);
   const bad = unexpected(from);
@@ -511,6 +520,10 @@ try {
   const first = await waitRun(page, 'panel-simulate', 0);
   check(first.state === 'done', 'the page loads and its default preset streams to its end', JSON.stringify(first));
   check((await page.title()).startsWith('dashpot'), 'the page has its title');
+  const presetTexts = await page.evaluate(async () => (await import('./presets.js')).PRESETS.map((p) => `${p.id}: ${p.label} ${p.note}`));
+  const unnamed = presetTexts.filter((t) => /seed 00\d|issue #?\d/i.test(t));
+  check(unnamed.length === 0 && presetTexts.some((t) => t.includes('Matrosov & Finogenko 1995')),
+    `the ${presetTexts.length} presets' notes name their sources (no "seed 00N", no issue numbers)`, unnamed.join('\n    '));
 
   const thesis = await runPreset(page, 'page', 'thesis-4-gamma', out);
   check(thesis.full.length > 10000 && thesis.lines.length < 1200, 'thesis x0 = 4 with gamma: 10001 samples of dt = 1e-3 over T = 10, ' +
@@ -537,6 +550,8 @@ try {
     return { xv: document.getElementById('plot-xv').dataset.markers, phase: document.getElementById('plot-phase').dataset.markers,
       ink: [purple('plot-xv'), purple('plot-phase')], legend: [...new Set(legend)].sort().join() };
   });
+  check(/H\u00f6schl 1983 section 15/.test(await page.textContent('#wp-body')),
+    'elastoplastic: the well-posedness check names its source (H\u00f6schl 1983 section 15)');
   const want = `yield:${yields},unload:${unloads}`;
   check(epView.xv === want && epView.phase === want && epView.ink.every((n) => n > 20 * yields) && epView.legend === 'unload,yield',
     `elastoplastic: the ${yields} yield and ${unloads} unload events are marked on x(t) and the phase portrait, with their legend`,
