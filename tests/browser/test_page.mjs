@@ -11,8 +11,12 @@
 // must not be blank (the PNG is decoded here: distinct colours) and every canvas must carry curves (pixels
 // of saturated colour). An invalid spec must show its problem+json error at the member its pointer names;
 // the stability tab must draw its map; and the page must work behind a path prefix (a small reverse proxy
-// below maps /prefix/ to the daemon and refuses everything else). Prints "ok"/"not ok" lines and writes
-// "PASSED FAILED" to COUNTS_FILE.
+// below maps /prefix/ to the daemon and refuses everything else). And what a new user found wrong stays
+// fixed: picking a preset runs it; the modes charts have ticks, tick labels (no "10^2.0") and legends;
+// Painlevé's rod reaching the floor is an ended-at-contact note, not a failure; elastoplastic yield/unload
+// events are marked; impulses are stems on the contact-force plot; the bridge's coinciding curves all
+// show; the meta line's warnings are shown (a stubbed answer); sources are named, never "seed 00N".
+// Prints "ok"/"not ok" lines and writes "PASSED FAILED" to COUNTS_FILE.
 import fs from 'node:fs';
 import http from 'node:http';
 import os from 'node:os';
