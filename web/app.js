@@ -2,14 +2,17 @@
 // (fetch + ReadableStream reader) and plotted as it arrives, the well-posedness report of the meta line,
 // problem+json errors shown at the member they point at, and the stability tab (POST v1/stability: the
 // map as SVG, its counts as JSON). Every URL is relative, so the page works behind a path prefix. A 401
-// (the daemon has a --token-file) asks for the bearer token, kept in sessionStorage for the tab.
+// (the daemon has a --token-file) asks for the bearer token, kept in sessionStorage for the tab. Picking a
+// preset runs it (stopping a run in progress); Run (Ctrl+Enter) runs what the editor holds.
 //
 // For tests and curious people, #panel-simulate carries data-state (idle, running, done, error, stopped),
 // data-samples (sample lines received), data-points (samples held for plotting), data-summary-samples and
 // data-events, data-bands (stick intervals shaded) and data-run (runs started so far), data-budget (the
 // output.max_samples the page asked for, empty when the request chose its own output) and data-every (the
-// meta line's every), data-stale ("true" while the plots are not the editor's request: after a refused
-// request or a new preset); each canvas carries data-points (the points its last drawing went through).
+// meta line's every; its warnings, if any, are listed in #warnings), data-stale ("true" while the plots are not the editor's request: after a refused
+// request or a new preset), data-end ("contact" when the run stopped where its model is built to end, shown
+// as a note, not a failure: web/right_hand.js); each canvas carries data-points (the points its last drawing
+// went through).
 // #panel-stability has data-state and data-run.
 //
 // The sample budget: a request without an "output" member is sent with output.max_samples of about the
@@ -21,13 +24,14 @@
 // with the column names of the preset the request came from.
 
 import { Table, Plot } from './plot.js';
-import { Editor, pretty } from './editor.js';
+import { Editor, pretty, locate } from './editor.js';
 import { PRESETS } from './presets.js';
 import { NetworkView } from './network.js';
 import { runModes, renderModes } from './modes.js';
-import { RightHandView } from './right_hand.js';
+import { RightHandView, designedEnd } from './right_hand.js';
 import { LcsView, lcsReport } from './lcs.js';
 import { ContactPlots } from './contact.js';
+import { named } from './sources.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
@@ -67,7 +71,7 @@ function fillPresets() {
   }
   sel.prepend(new Option('(edited request)', ''));
   sel.options[0].disabled = true;
-  sel.addEventListener('change', () => loadPreset(sel.value));
+  sel.addEventListener('change', () => { loadPreset(sel.value); start(); }); // picking a preset runs it
 }
 
 // The preset menu names the preset only while the editor holds its request.
@@ -94,7 +98,7 @@ function loadPreset(id) {
   ui.text[p.kind] = presetText(p);
   showTab(p.kind, true);
   history.replaceState(null, '', '#' + p.id);
-  if (p.kind === 'simulate' && sim.meta) markStale(`Stale: these plots are from the previous run (${sim.label}); press Run for this preset.`);
+  if (p.kind === 'simulate' && sim.meta) markStale(`Stale: these plots are from the previous run (${sim.label}); this preset is starting.`);
 }
 
 function showTab(tab, fromPreset = false) {
@@ -118,12 +122,58 @@ function showTab(tab, fromPreset = false) {
   editor.text = ui.text[tab];
   syncPresetMenu();
   showProblem(null);
+  showWarnings(tab === 'simulate' && sim.meta ? sim.meta.warnings : null); // they belong to the simulate tab's run
   if (tab === 'simulate') drawAll();
 }
 
 // ---- problems: errors[].pointer marked in the editor, every message listed under it ----
 
+// The meta line's warnings (docs/http.md: [{code, detail, pointer}], e.g. a step longer than a tenth of the
+// shortest natural period at /solver/dt): a yellow note each under the run status, with a button to the
+// line of the member it points at; none when the meta line has none (or null: clear them).
+function showWarnings(warnings) {
+  const box = $('warnings'), list = Array.isArray(warnings) ? warnings.filter((w) => w && typeof w === 'object') : [];
+  box.hidden = list.length === 0;
+  const text = editor.text;
+  let where = null;
+  try { where = locate(text); } catch { /* the member's line is then not offered */ }
+  box.replaceChildren(...list.map((w) => {
+    const li = document.createElement('li'), head = document.createElement('b');
+    li.className = 'warning';
+    li.dataset.code = w.code || '';
+    head.textContent = '\u26a0 Warning' + (w.code ? ` (${w.code})` : '') + ': ';
+    li.append(head, String(w.detail || 'no detail'));
+    if (typeof w.pointer === 'string') {
+      const code = document.createElement('code');
+      code.textContent = w.pointer || '(the document)';
+      li.append(' \u2014 at ', code);
+      let p = w.pointer;
+      while (where && !where.has(p) && p !== '') p = p.slice(0, p.lastIndexOf('/'));
+      const loc = where && where.get(p);
+      if (loc) {
+        const [start, end] = [loc.key ? loc.key[0] : loc.value[0], loc.value[1]], b = document.createElement('button');
+        b.type = 'button';
+        b.className = 'link';
+        b.textContent = `line ${text.slice(0, start).split('\n').length}`;
+        b.addEventListener('click', () => editor.select({ start, end }));
+        li.append(' (', b, ')');
+      }
+    }
+    return li;
+  }));
+}
+
+// The end a run was built to reach (web/right_hand.js: Painlevé's rod at the floor): a note, not a failure.
+function showEnd(end, err) {
+  $('end-note').hidden = !end;
+  if (!end) return;
+  $('end-title').textContent = end.title;
+  $('end-text').textContent = end.text;
+  $('end-detail').textContent = err && err.detail ? err.detail : '';
+}
+
 function showProblem(problem, prefix = '') {
+  showEnd(null);
   const box = $('problem');
   box.hidden = !problem;
   $('token-form').hidden = !problem || problem.status !== 401;
@@ -143,7 +193,7 @@ function showProblem(problem, prefix = '') {
 }
 
 async function problemOf(res) {
-  try { return await res.json(); } catch { return { status: res.status, title: res.statusText }; }
+  try { return named(await res.json()); } catch { return { status: res.status, title: res.statusText }; }
 }
 
 // ---- simulation ----
@@ -152,7 +202,7 @@ let sim = newRun();
 
 function newRun() {
   return { table: new Table(['t', 'x', 'v', 'Fs', 'Fd', 'Fc']), net: null, rh: null, lcs: null, events: [], stick: [], stickStart: null,
-    meta: null, summary: null, error: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
+    meta: null, summary: null, error: null, end: null, samples: 0, lastT: 0, tEnd: 1, vb: 0, started: performance.now(), budget: 0,
     label: '', preset: null, spec: null };
 }
 // The run held by a view of its own (network, right-hand, LCS), or null for the one-mass plots.
@@ -180,6 +230,9 @@ function drawAll() {
   if (sim.lcs) { $('plots-one').hidden = true; lcsView.draw(sim.lcs); return; }
   if (sim.net) { network.draw(sim.net); return; }
   for (const p of plots) { p.setTable(sim.table); p.draw(); }
+  // the marker legend names the kinds this run's events have (stick/slip, or an elastoplastic yield/unload)
+  const kinds = new Set(sim.events.map((e) => e.kind));
+  for (const e of $('plots-one').querySelectorAll('.legend [data-kind]')) e.hidden = !kinds.has(e.dataset.kind);
 }
 
 let frame = 0;
@@ -198,6 +251,7 @@ function setSimState(state) {
   d.run = ui.runs;
   d.budget = sim.budget || '';
   d.every = sim.meta ? sim.meta.every : '';
+  d.end = sim.end ? sim.end.kind : '';
 }
 
 // About the plots' width in device pixels: more samples than that cannot be told apart on the canvas.
@@ -236,23 +290,26 @@ function onRecord(o) {
       if (o.kind === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
       break;
     case 'meta':
+      o = named(o); // the sources by name in what the page shows (web/sources.js)
       sim.meta = o;
       sim.tEnd = o.t_end;
       if (o.model === 'network') sim.net = network.start(o, sim.spec);
       if (RH_MODELS.includes(o.model)) sim.rh = rhView.start(o);
       if (o.model === 'lcs') sim.lcs = lcsView.start(o, sim.preset && sim.preset.columns);
       renderWellposedness(o.wellposedness, o);
+      showWarnings(o.warnings);
       break;
     case 'summary': sim.summary = o; break;
-    case 'error': sim.error = o; if (sim.rh) sim.rh.stop(o, sim.lastT); break;
+    case 'error': sim.error = named(o); if (sim.rh) sim.rh.stop(o, sim.lastT); break;
   }
 }
 
 async function runSimulation() {
   const ctl = new AbortController();
   ui.controller = ctl;
-  ui.runs++;
+  const mine = ++ui.runs;
   showProblem(null);
+  showWarnings(null);
   setSimState('running');
   setRunning(true);
   $('status').textContent = 'sending\u2026';
@@ -294,9 +351,11 @@ async function runSimulation() {
     }
     buf += dec.decode();
     if (buf.trim()) onRecord(JSON.parse(buf));
-    if (sim.error) showProblem(sim.error, 'The run stopped: ');
+    sim.end = sim.error && sim.rh ? designedEnd(sim.meta, sim.error) : null;
+    if (sim.end) showEnd(sim.end, sim.error);
+    else if (sim.error) showProblem(sim.error, 'The run stopped: ');
     else if (!sim.summary) showProblem({ title: 'The stream ended without its summary line' });
-    state = sim.summary && !sim.error ? 'done' : 'error';
+    state = (sim.summary && !sim.error) || sim.end ? 'done' : 'error';
   } catch (e) {
     if (e.name === 'AbortError') state = 'stopped';
     else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
@@ -305,9 +364,11 @@ async function runSimulation() {
       ui.controller = null;
       setRunning(false);
     }
-    drawAll();
-    renderStats(state);
-    setSimState(state);
+    if (mine === ui.runs) { // not when a newer run (a preset picked meanwhile) has taken over the page
+      drawAll();
+      renderStats(state);
+      setSimState(state);
+    }
   }
 }
 
@@ -346,7 +407,8 @@ function renderStats(state) {
   if (state === 'done') {
     const secs = (performance.now() - sim.started) / 1000;
     const ev = sim.events.length;
-    $('status').textContent = `${num(sim.samples)} samples \u00b7 ${ev} event${ev === 1 ? '' : 's'} \u00b7 ${secs.toFixed(2)} s`;
+    $('status').textContent = `${num(sim.samples)} samples \u00b7 ${ev} event${ev === 1 ? '' : 's'} \u00b7 ${secs.toFixed(2)} s` +
+      (sim.end && sim.rh && sim.rh.stopAt !== null ? ` \u00b7 ended at contact, t = ${num(sim.rh.stopAt)}` : '');
   } else if (state === 'stopped') $('status').textContent = 'stopped';
   else if (state === 'error') $('status').textContent = 'failed';
 }
@@ -378,7 +440,8 @@ async function runStability() {
   ui.controller = ctl;
   const panel = $('panel-stability');
   const text = editor.text;
-  panel.dataset.run = ++ui.runs;
+  const mine = ++ui.runs;
+  panel.dataset.run = mine;
   let hasMap = false;
   try { hasMap = !!JSON.parse(text).map; } catch { /* the daemon says where */ }
   showProblem(null);
@@ -392,7 +455,7 @@ async function runStability() {
     const t0 = performance.now();
     const [jr, sr] = await Promise.all([post('application/json'), hasMap ? post('image/svg+xml') : null]);
     if (!jr.ok) { showProblem(await problemOf(jr)); return; }
-    const doc = await jr.json();
+    const doc = named(await jr.json());
     const img = $('stab-img');
     if (ui.mapUrl) URL.revokeObjectURL(ui.mapUrl);
     ui.mapUrl = null;
@@ -411,8 +474,10 @@ async function runStability() {
     else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
   } finally {
     if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
-    panel.dataset.state = state;
-    if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    if (mine === ui.runs) {
+      panel.dataset.state = state;
+      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    }
   }
 }
 
@@ -452,7 +517,8 @@ async function runModesTab() {
   ui.controller = ctl;
   const panel = $('panel-modes');
   const text = editor.text;
-  panel.dataset.run = ++ui.runs;
+  const mine = ++ui.runs;
+  panel.dataset.run = mine;
   showProblem(null);
   panel.dataset.state = 'running';
   setRunning(true);
@@ -464,7 +530,7 @@ async function runModesTab() {
     const { mr, rr } = await runModes(post, text);
     if (!mr.ok) { showProblem(await problemOf(mr)); return; }
     if (rr && !rr.ok) { showProblem(await problemOf(rr)); return; }
-    renderModes(await mr.json(), rr ? await rr.json() : null);
+    renderModes(named(await mr.json()), rr ? named(await rr.json()) : null);
     $('status').textContent = `done in ${((performance.now() - t0) / 1000).toFixed(2)} s`;
     state = 'done';
   } catch (e) {
@@ -472,8 +538,10 @@ async function runModesTab() {
     else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
   } finally {
     if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
-    panel.dataset.state = state;
-    if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    if (mine === ui.runs) {
+      panel.dataset.state = state;
+      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    }
   }
 }
 
@@ -491,8 +559,17 @@ function stop() {
   if (ui.controller) ui.controller.abort();
 }
 
+// The Run button and Ctrl+Enter: stops a run in progress, else starts one.
 function run() {
   if (ui.controller) { stop(); return; }
+  start();
+}
+
+// Starts the editor's request on the open tab, stopping a run in progress (its ending then leaves the page
+// to this one: the runs' `mine === ui.runs` above).
+function start() {
+  stop();
+  ui.controller = null;
   ui.text[ui.tab] = editor.text;
   syncPresetMenu();
   if (ui.tab === 'simulate') runSimulation(); else if (ui.tab === 'modes') runModesTab(); else runStability();
@@ -513,4 +590,4 @@ $('format').addEventListener('click', () => {
 for (const t of ['simulate', 'stability', 'modes']) $('tab-' + t).addEventListener('click', () => { if (ui.tab !== t) showTab(t); });
 fillPresets();
 loadPreset(location.hash.slice(1) || 'thesis-5-gamma');
-if (ui.tab === 'simulate') runSimulation(); else if (ui.tab === 'modes') runModesTab(); else runStability();
+start();

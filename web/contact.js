@@ -15,7 +15,8 @@
 //
 // For tests, #network-plots carries data-contacts (contact elements written), data-impacts (impact events
 // received), data-impact-rows (rows added at impacts) and data-finite ("false" once a non-finite number
-// arrived); the phase and force canvases data-points and data-yrange (web/plot.js).
+// arrived); the phase and force canvases data-points and data-yrange (web/plot.js), the force canvas
+// data-stems (the impulses drawn as stems at their impacts' times: a rigid contact's Fn is 0 between them).
 
 import { Plot } from './plot.js';
 import { NetworkRun } from './network.js';
@@ -70,9 +71,9 @@ export class ContactRun extends NetworkRun {
     if (o.kind !== 'impact') return;
     const c = this.contacts.find((k) => k.element === o.element), g = c && groundEnd(c);
     const j = g ? this.nodes.indexOf(g.node) : -1;
-    if (j < 0) { this.impacts.push({ t: o.t, x: null, v: null, element: o.element }); return; }
+    if (j < 0) { this.impacts.push({ t: o.t, x: null, v: null, element: o.element, impulse: o.impulse }); return; }
     const x = g.sign * o.u, v = g.sign * o.du_after;
-    this.impacts.push({ t: o.t, x, v, j, element: o.element });
+    this.impacts.push({ t: o.t, x, v, j, element: o.element, impulse: o.impulse });
     if (this.nodes.length !== 1 || this.table.n === 0 || this.table.n + 2 > this.maxRows) return;
     this.row.t = o.t;
     this.row['x' + j] = x;
@@ -105,15 +106,21 @@ export class ContactPlots {
       series: [{ col: 'v' + j, color: PALETTE[0] }],
       markers: () => run.impacts.filter((m) => m.j === j).map((m) => ({ x: m.x, y: m.v, kind: 'impact' })) });
     this.fn.opts.series = run.contacts.map((_, i) => ({ col: 'Fn' + i, color: PALETTE[i % PALETTE.length] }));
+    // a rigid contact's force is an impulse at each impact, not a finite Fn: a stem at its time (the right axis)
+    this.fn.opts.stems = { label: 'impulse', color: '--ev-impact',
+      values: () => run.impacts.filter((m) => Number.isFinite(m.impulse)).map((m) => ({ x: m.t, p: m.impulse })) };
     xPlot.opts.markers = () => run.impacts.filter((m) => m.x !== null).map((m) => ({ x: m.t, y: m.x, kind: 'impact' }));
     $('legend-contact-phase').textContent = `node ${name}; \u25c6 after each impact`;
+    const stem = document.createElement('span'), mk = document.createElement('i');
+    mk.className = 'mk stem';
+    stem.append(mk, 'impulse at each impact (right axis)');
     $('legend-contact-fn').replaceChildren(...run.contacts.map((c, i) => {
       const span = document.createElement('span'), sw = document.createElement('i');
       sw.className = 'sw';
       sw.style.color = PALETTE[i % PALETTE.length]; // CSSOM, not markup: the CSP refuses inline styles
       span.append(sw, `element ${c.element} (${c.rigid ? 'rigid' : 'compliant'}, u \u2265 ${c.distance})`);
       return span;
-    }));
+    }), stem);
     this.dataset(run);
   }
 

@@ -7,9 +7,12 @@
 // Three plots: the states against t, each complementarity pair against t (u_j solid, w_j dashed in
 // component j's colour: where one leaves zero the other is zero), and the phase portrait x1 against x0.
 //
+// Curves that coincide throughout (the bridge's currents and reverse voltages pair up in two groups of
+// four) are drawn in alternating dashes, each showing its colour, and the legend says they coincide.
+//
 // For tests, #lcs-plots carries data-states, data-components, data-named ("true" when the preset's names
-// are used) and data-finite ("false" once a non-finite number arrived); each canvas data-points and
-// data-yrange (web/plot.js).
+// are used), data-finite ("false" once a non-finite number arrived) and data-coincide (the coinciding
+// groups, "u0=u2=w1=w3;..."); each canvas data-points and data-yrange (web/plot.js).
 
 import { Table, Plot } from './plot.js';
 
@@ -51,6 +54,25 @@ export class LcsRun {
   }
 }
 
+// The groups (two or more) of columns equal at every row, to within 1e-9 of the columns' span, in the order
+// given (each group's u columns first); a long table is compared at up to 20000 rows spread over it.
+const byName = (a, b) => a[0].localeCompare(b[0]) || +a.slice(1) - +b.slice(1); // u before w, then by index
+function coinciding(table, cols) {
+  const n = table.n, stride = Math.max(1, Math.ceil(n / 20000)), groups = [], taken = new Set();
+  const span = Math.max(1e-300, ...cols.map((c) => table.max[c] - table.min[c]));
+  const same = (a, b) => {
+    const A = table.col[a], B = table.col[b];
+    for (let i = 0; i < n; i += stride) if (!(Math.abs(A[i] - B[i]) <= 1e-9 * span)) return false;
+    return Math.abs(A[n - 1] - B[n - 1]) <= 1e-9 * span;
+  };
+  for (const [i, a] of cols.entries()) {
+    if (taken.has(a)) continue;
+    const g = [a, ...cols.slice(i + 1).filter((b) => !taken.has(b) && same(a, b))];
+    if (g.length > 1) { groups.push(g.sort(byName)); g.forEach((c) => taken.add(c)); }
+  }
+  return groups;
+}
+
 // A legend entry: a swatch (solid or dashed) in a colour, then the text.
 function entry(color, dashed, text) {
   const span = document.createElement('span'), sw = document.createElement('i');
@@ -77,24 +99,48 @@ export class LcsView {
     this.tEnd = meta.t_end;
     this.px.opts.series = x.map((_, j) => ({ col: 'x' + j, color: colour(j) }));
     this.px.opts.y.label = x.map((s) => s[0]).join(', ');
-    this.puw.opts.series = u.flatMap((_, j) => [{ col: 'u' + j, color: colour(j) }, { col: 'w' + j, color: colour(j), dash: [6, 4] }]);
+    this.uwSeries = u.flatMap((_, j) => [{ col: 'u' + j, color: colour(j) }, { col: 'w' + j, color: colour(j), dash: [6, 4] }]);
+    this.puw.opts.series = this.uwSeries;
+    this.groups = '';
     this.puw.opts.y.label = run.m === 1 ? `${u[0][0]}, ${w[0][0]}` : 'u, w';
     const two = run.n >= 2;
     $('lcs-phase-figure').hidden = !two;
     this.pphase.opts.series = two ? [{ col: 'x1', color: colour(0) }] : [];
     if (two) { this.pphase.opts.x.label = x[0][0]; this.pphase.opts.y.label = x[1][0]; }
     $('lcs-x-legend').replaceChildren(...x.map((s, j) => entry(colour(j), false, said(s, 'x' + j))));
-    $('lcs-uw-legend').replaceChildren(...u.flatMap((s, j) => [entry(colour(j), false, said(s, 'u' + j)),
-      entry(colour(j), true, said(w[j], 'w' + j))]));
+    this.uwEntries = u.flatMap((s, j) => [entry(colour(j), false, said(s, 'u' + j)), entry(colour(j), true, said(w[j], 'w' + j))]);
+    this.coincide = document.createElement('span');
+    this.coincide.className = 'coincide';
+    this.coincide.hidden = true;
+    $('lcs-uw-legend').replaceChildren(...this.uwEntries, this.coincide);
     $('lcs-phase-legend').textContent = two ? `${x[1][0]} against ${x[0][0]}` : '';
-    Object.assign(this.box.dataset, { states: run.n, components: run.m, named: String(run.names.named), finite: 'true' });
+    Object.assign(this.box.dataset, { states: run.n, components: run.m, named: String(run.names.named), finite: 'true', coincide: '' });
     return run;
   }
 
   show(on) { this.box.hidden = !on; }
 
+  // Curves of the complementarity plot that coincide (the bridge's: a diode's current equals another's reverse
+  // voltage throughout) would hide each other, the last drawn on top: each group of k is drawn in alternating
+  // dashes, member i on every k-th dash of its own colour, and the legend says which coincide.
+  separate(run) {
+    const groups = coinciding(run.table, this.uwSeries.map((s) => s.col));
+    const key = groups.map((g) => g.join('=')).join(';');
+    if (key === this.groups) return;
+    this.groups = key;
+    const L = 7, member = new Map(groups.flatMap((g) => g.map((c, i) => [c, [i, g.length]])));
+    this.puw.opts.series = this.uwSeries.map((s) => {
+      const m = member.get(s.col);
+      return m ? { ...s, dash: [L, (m[1] - 1) * L], dashOffset: -m[0] * L } : s;
+    });
+    this.box.dataset.coincide = key;
+    this.coincide.hidden = !groups.length;
+    this.coincide.textContent = groups.length ? `coincide: ${groups.map((g) => g.join(' = ')).join('; ')} (drawn in alternating dashes)` : '';
+  }
+
   draw(run) {
     if (run) this.box.dataset.finite = String(run.finite);
+    if (run && run.table.n > 1) this.separate(run);
     for (const p of [this.px, this.puw, this.pphase]) { p.setTable(run ? run.table : null); p.draw(); }
   }
 }

@@ -1,5 +1,5 @@
 // web/plot.js - line plots on a plain <canvas>, no library: nice ticks, labelled axes, grid, shaded
-// intervals (stick phases), event markers. A Table holds the samples as growable columns; a Plot draws
+// intervals (stick phases), event markers (canvas.dataset.markers counts those drawn by kind). A Table holds the samples as growable columns; a Plot draws
 // some of its columns against another and records how many points it drew (canvas.dataset.points).
 
 export class Table {
@@ -44,7 +44,7 @@ export function niceStep(lo, hi, count) {
   return (r < 1.5 ? 1 : r < 3.5 ? 2 : r < 7.5 ? 5 : 10) * mag;
 }
 
-function tickLabel(v, step) {
+export function tickLabel(v, step) {
   if (v === 0) return '0';
   const a = Math.abs(v);
   if (a >= 1e5 || a < 1e-3) return v.toExponential(Math.max(0, Math.min(6, Math.round(Math.log10(a / step)))));
@@ -69,8 +69,12 @@ function niceRange(lo, hi, count) {
 // A colour: a CSS variable of the page (--name) or a colour as it is (the network view's per-node curves).
 const css = (name) => (name.startsWith('--') ? getComputedStyle(document.documentElement).getPropertyValue(name).trim() || '#000' : name);
 
-// opts: { x: {col, label, range?: () => [lo, hi]}, y: {label}, series: [{col, color, dash?}],
-//         bands?: () => [[x0, x1], ...], markers?: () => [{x, y, kind}] }
+// opts: { x: {col, label, range?: () => [lo, hi]}, y: {label}, series: [{col, color, dash?, dashOffset?}],
+//         bands?: () => [[x0, x1], ...], markers?: () => [{x, y, kind}],
+//         stems?: {label, color, values: () => [{x, p}]} }
+// Stems are impulses (a force's Dirac mass at x, of weight p >= 0 pushing the contact's ends apart, the
+// side of the negative forces): vertical lines down from the zero line with a dot at the tip, their length
+// on a scale of their own, the right axis (labelled with `label`); canvas.dataset.stems counts them.
 export class Plot {
   constructor(canvas, opts) {
     this.canvas = canvas;
@@ -97,7 +101,8 @@ export class Plot {
     ctx.clearRect(0, 0, w, h);
     const t = this.table;
     const n = t ? t.n : 0;
-    const m = { l: 62, r: 14, t: 10, b: 42 };
+    const stems = opts.stems ? opts.stems.values() : [];
+    const m = { l: 62, r: opts.stems ? 58 : 14, t: 10, b: 42 };
     const pw = w - m.l - m.r, ph = h - m.t - m.b;
 
     // ranges
@@ -105,6 +110,10 @@ export class Plot {
     let ylo = Infinity, yhi = -Infinity;
     if (t) for (const s of opts.series) { ylo = Math.min(ylo, t.min[s.col]); yhi = Math.max(yhi, t.max[s.col]); }
     const [dlo, dhi] = [ylo, yhi];
+    if (stems.length) { // room below the zero line for the stems
+      ylo = Math.min(ylo, 0, -(Math.max(Math.abs(yhi), Math.abs(ylo)) || 1)); // a force that is 0 throughout: [-1, 0]
+      yhi = Math.max(yhi, 0);
+    }
     const xticks = Math.max(2, Math.round(pw / 90)), yticks = Math.max(2, Math.round(ph / 48));
     if (!opts.x.range) [xlo, xhi] = niceRange(xlo, xhi, xticks);
     [ylo, yhi] = niceRange(ylo, yhi, yticks);
@@ -164,18 +173,56 @@ export class Plot {
     for (const s of opts.series) {
       ctx.strokeStyle = css(s.color);
       ctx.setLineDash(s.dash || []);
+      ctx.lineDashOffset = s.dashOffset || 0;
       if (t) line(ctx, t.col[opts.x.col], t.col[s.col], n, X, Y, opts.x.monotone, pw * dpr);
     }
     ctx.setLineDash([]);
+    ctx.lineDashOffset = 0;
+    const drawn = {};
     if (opts.markers) { // breakaways first: a stick at the same point stays visible inside its triangle
       const mks = opts.markers();
-      for (const kind of ['slip', 'stick', 'impact']) for (const mk of mks) if (mk.kind === kind) marker(ctx, X(mk.x), Y(mk.y), kind);
+      for (const kind of MARKER_KINDS) for (const mk of mks) if (mk.kind === kind) { marker(ctx, X(mk.x), Y(mk.y), kind); drawn[kind] = (drawn[kind] || 0) + 1; }
+    }
+    let stemScale = null;
+    if (stems.length) {
+      const top = Math.max(...stems.map((st) => st.p), 1e-300), y0 = Y(0), room = m.t + ph - y0;
+      stemScale = { top: top / 0.92, y0, room }; // the largest stem reaches 92% of the way down
+      const P = (p) => y0 + (p / stemScale.top) * room;
+      ctx.strokeStyle = ctx.fillStyle = css(opts.stems.color);
+      ctx.lineWidth = 2;
+      for (const st of stems) {
+        const px = Math.round(X(st.x)) + 0.5;
+        ctx.beginPath(); ctx.moveTo(px, y0); ctx.lineTo(px, P(st.p)); ctx.stroke();
+        ctx.beginPath(); ctx.arc(px, P(st.p), 3, 0, 2 * Math.PI); ctx.fill();
+      }
     }
     ctx.restore();
+    if (stemScale) { // the stems' own axis, on the right, in their colour
+      const { top, y0, room } = stemScale, s = niceStep(0, top, Math.max(2, Math.round(room / 40)));
+      ctx.font = '12px system-ui, sans-serif';
+      ctx.fillStyle = ctx.strokeStyle = css(opts.stems.color);
+      ctx.lineWidth = 1;
+      ctx.textAlign = 'left';
+      ctx.textBaseline = 'middle';
+      for (let v = 0; v <= top + s * 1e-9; v += s) {
+        const py = Math.round(y0 + (v / top) * room) + 0.5;
+        ctx.beginPath(); ctx.moveTo(m.l + pw, py); ctx.lineTo(m.l + pw + 4, py); ctx.stroke();
+        ctx.fillText(tickLabel(v, s), m.l + pw + 6, py);
+      }
+      ctx.save();
+      ctx.translate(w - 8, y0 + room / 2);
+      ctx.rotate(-Math.PI / 2);
+      ctx.font = 'italic 13px system-ui, sans-serif';
+      ctx.textAlign = 'center';
+      ctx.fillText(opts.stems.label, 0, 0);
+      ctx.restore();
+    }
+    canvas.dataset.stems = String(stems.length);
     ctx.strokeStyle = css('--frame');
     ctx.lineWidth = 1;
     ctx.strokeRect(m.l + 0.5, m.t + 0.5, pw - 1, ph - 1);
     canvas.dataset.points = String(n);
+    canvas.dataset.markers = Object.entries(drawn).map(([k, c]) => `${k}:${c}`).join(','); // e.g. "yield:16,unload:15"
     canvas.dataset.yrange = t && opts.series.length ? `${dlo},${dhi}` : ''; // the data's, before the ticks widen it
   }
 }
@@ -214,11 +261,27 @@ function line(ctx, xs, ys, n, X, Y, monotone, widthPx) {
   ctx.stroke();
 }
 
-// stick (slip -> stick): a filled dark circle; slip (breakaway): an open triangle; impact: a filled diamond.
+// The event kinds drawn as markers, in drawing order (docs/http.md, docs/contact.md; yield and unload are an
+// elastoplastic spring's: its slider starts sliding, and stops).
+const MARKER_KINDS = ['slip', 'stick', 'impact', 'yield', 'unload'];
+
+// stick (slip -> stick): a filled dark circle; slip (breakaway): an open triangle; impact: a filled diamond;
+// yield: a filled square; unload: an open square.
 export function marker(ctx, x, y, kind) {
   ctx.lineWidth = 1.5;
   ctx.beginPath();
-  if (kind === 'impact') {
+  if (kind === 'yield' || kind === 'unload') {
+    ctx.rect(x - 4.5, y - 4.5, 9, 9);
+    ctx.fillStyle = kind === 'yield' ? css('--ev-yield') : '#fff';
+    ctx.strokeStyle = kind === 'yield' ? '#fff' : css('--ev-yield');
+    ctx.fill();
+    ctx.stroke();
+    if (kind === 'yield') { // a white edge alone would vanish on the white background
+      ctx.strokeStyle = css('--ev-yield');
+      ctx.lineWidth = 1;
+      ctx.strokeRect(x - 5.5, y - 5.5, 11, 11);
+    }
+  } else if (kind === 'impact') {
     ctx.moveTo(x, y - 6); ctx.lineTo(x + 5, y); ctx.lineTo(x, y + 6); ctx.lineTo(x - 5, y); ctx.closePath();
     ctx.fillStyle = css('--ev-impact');
     ctx.strokeStyle = '#fff';

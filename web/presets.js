@@ -194,7 +194,7 @@ PRESETS.push({
 const RH = 'Friction with motion-dependent normal force (Painlev\u00e9)';
 PRESETS.push({
   id: 'piston-hinge', group: RH, label: 'Piston in an inclined tube with a body on a hinge', kind: 'simulate',
-  note: 'Seed 004 \u00a76: a piston (m1 = 1, f1 = 0.2) in a tube at 0.3 rad carries a body (m2 = 1, J_C = 0.1, r = 0.5) ' +
+  note: 'Matrosov & Finogenko 1995, \u00a76: a piston (m1 = 1, f1 = 0.2) in a tube at 0.3 rad carries a body (m2 = 1, J_C = 0.1, r = 0.5) ' +
     'on a hinge with friction arm f2 = 0.02. Friction holds the piston while the body swings down, until the force ' +
     'that holds it leaves the cone f1|N1| at t = 0.402; N1 and |N2| depend on the accelerations.',
   spec: {
@@ -227,7 +227,7 @@ PRESETS.push({
   },
 });
 
-// Circuits as linear complementarity systems (docs/lcs.md, seed 002 Examples 1.9 and 1.10): the docs' three
+// Circuits as linear complementarity systems (docs/lcs.md, Cibulka 2014, Examples 1.9 and 1.10): the docs' three
 // documents without their "output" (the page asks for about a plot's width of samples), drawn by web/lcs.js.
 // `columns` names a row's x, u and w components as [symbol, meaning] (the rows carry only x0, u0, w0, ...);
 // the view uses them when the run has as many states and components. Component j pairs u_j with w_j.
@@ -255,7 +255,7 @@ PRESETS.push({
 const complementarity = { law: 'complementarity' };
 PRESETS.push({
   id: 'lcs-bridge', group: LCS, label: 'Four-diode bridge rectifier', kind: 'simulate',
-  note: 'R = 1, L = 1, C = 0.5 with the seed\u2019s A, B, C, D; x = (v_C, i_L). Each pair u_j \u22a5 w_j is one diode\u2019s reverse ' +
+  note: 'R = 1, L = 1, C = 0.5 with Cibulka 2014\u2019s A, B, C, D (Example 1.10); x = (v_C, i_L). Each pair u_j \u22a5 w_j is one diode\u2019s reverse ' +
     'voltage and current. The load current i_DF1 + i_DR1 = |v_C|/R whichever sign v_C has (rectified); the tank is a ' +
     'parallel RLC, v_C = \u22122e^{\u2212t} sin t.',
   columns: {

@@ -5,12 +5,36 @@
 // located events) and the normal reactions N; where a Painlevé paradox (or the rod leaving or reaching the
 // floor) stopped the run, the rest of [0, t_end] is shaded from the stop on both.
 //
+// A stop is either a failure (a paradox: the friction law does not decide the motion) or the end the model
+// is built to reach: Painlevé's rod with mu < 4/3 meets no paradox anywhere (Matrosov & Finogenko's
+// Theorem 4.1, the meta line's check "(2.3) for every state"), so its right-hand solution goes on until it
+// leaves the set the model describes (end A on the floor, 0 < theta < pi): the rod reaches the floor (an
+// impact) or lifts off. designedEnd() tells a designed end from a failure by the meta line (model, mu) and
+// the error line's status and title, never by the words of its detail (shown as the daemon wrote it).
+//
 // For tests, #rh-plots carries data-stop (the stop time, '' if none) and each canvas data-points.
 
 import { Table, Plot } from './plot.js';
 
 const $ = (id) => document.getElementById(id);
 const MAX_ROWS = 2e6;
+
+// The error line's title of a run stopped by its model (docs/http.md: status 422, a step not solved).
+const STOPPED = { status: 422, title: 'a step could not be solved' };
+// The uniform rod's bound on mu below which (2.3) holds for every state (Theorem 4.1): min over theta of
+// (1 + 3 cos^2)/(3 sin cos), at tan theta = 2.
+const ROD_MU = 4 / 3;
+
+// The designed end of a run whose stream ended with the error line `err`, or null when the stop is a
+// failure: {kind: 'contact', title, text} for Painlevé's rod leaving the floor's set without a paradox possible.
+export function designedEnd(meta, err) {
+  if (!meta || !err || err.status !== STOPPED.status || err.title !== STOPPED.title) return null;
+  if (meta.model === 'painleve-rod' && meta.parameters && meta.parameters.mu < ROD_MU)
+    return { kind: 'contact', title: 'Ended at contact \u2014 the end this model is built for',
+      text: 'With \u03bc < 4/3 the rod meets no paradox (Matrosov & Finogenko 1995, Theorem 4.1): it slides until it reaches ' +
+        'the floor or lifts off, an impact or a flight this model does not follow. The plots are shaded after it.' };
+  return null;
+}
 
 export class RightHandRun {
   constructor(meta) {
