@@ -16,4 +16,12 @@ int dp_rules_right_hand(const dp_spec *s, double max_steps, dp_errors *e);
 /* Whether a network document is one mass on one element [ground, 0] with a solver the one-mass run steps. */
 int dp_network_is_one_mass(const dp_spec *s);
 
+/* The model families a spec may hold beside the one-mass model (rules/spec.c): which one it is, and the
+ * length of its initial state x0v, v0v. */
+int dp_spec_is_network(const dp_spec *s);
+int dp_spec_is_lcs(const dp_spec *s);
+int dp_spec_is_right_hand_model(const dp_spec *s);
+size_t dp_spec_network_nodes(const dp_spec *s);
+size_t dp_spec_right_hand_coordinates(const dp_spec *s);
+
 #endif

@@ -40,22 +40,11 @@ void dp_spec_init(dp_spec *s)
     s->output.events = 1;
 }
 
-void dp_spec_clear(dp_spec *s)
-{
-    if (s == NULL)
-        return;
-    dp_model_clear(&s->model);
-    dp_network_free(s->net);
-    dp_lcs_model_free(s->lcs);
-    s->lcs = NULL;
-    free(s->x0v);
-    free(s->v0v);
-    free(s->output.nodes);
-    free(s->output.elements);
-    free(s->rh);
-    s->rh = NULL;
-    s->net = NULL, s->x0v = s->v0v = NULL, s->output.nodes = s->output.elements = NULL;
-}
+int dp_spec_is_network(const dp_spec *s) { return s->net != NULL; }
+int dp_spec_is_lcs(const dp_spec *s) { return s->lcs != NULL; }
+int dp_spec_is_right_hand_model(const dp_spec *s) { return s->rh != NULL; }
+size_t dp_spec_network_nodes(const dp_spec *s) { return s->net->n; }
+size_t dp_spec_right_hand_coordinates(const dp_spec *s) { (void)s; return 2; }
 
 static void *dup_array(const void *src, size_t n, size_t size, int *fail)
 {
@@ -69,29 +58,90 @@ static void *dup_array(const void *src, size_t n, size_t size, int *fail)
     return d;
 }
 
+/* The model families beside the one-mass model, each its own member of dp_spec: one row each, so that
+ * copying and clearing a spec names no family. (Which solver runs a family is the run-type table's, in
+ * runs/run_table.c.) The initial state x0v, v0v of a model with several coordinates is the spec's own. */
+static int network_copy(dp_spec *dst, const dp_spec *src)
+{
+    return (dst->net = dp_network_copy(src->net)) == NULL ? DP_ENOMEM : DP_OK;
+}
+
+static void network_clear(dp_spec *s)
+{
+    dp_network_free(s->net);
+    s->net = NULL;
+}
+
+static int lcs_copy(dp_spec *dst, const dp_spec *src)
+{
+    return (dst->lcs = dp_lcs_model_copy(src->lcs)) == NULL ? DP_ENOMEM : DP_OK;
+}
+
+static void lcs_clear(dp_spec *s)
+{
+    dp_lcs_model_free(s->lcs);
+    s->lcs = NULL;
+}
+
+static int right_hand_copy(dp_spec *dst, const dp_spec *src)
+{
+    dst->rh = malloc(sizeof *dst->rh);
+    if (dst->rh == NULL)
+        return DP_ENOMEM;
+    *dst->rh = *src->rh;
+    return DP_OK;
+}
+
+static void right_hand_clear(dp_spec *s)
+{
+    free(s->rh);
+    s->rh = NULL;
+}
+
+static const struct family {
+    int (*present)(const dp_spec *s);
+    size_t (*coordinates)(const dp_spec *s);   /* the length of x0v and v0v */
+    int (*copy)(dp_spec *dst, const dp_spec *src);
+    void (*clear)(dp_spec *s);
+} families[] = {
+    { dp_spec_is_network, dp_spec_network_nodes, network_copy, network_clear },
+    { dp_spec_is_lcs, NULL, lcs_copy, lcs_clear },
+    { dp_spec_is_right_hand_model, dp_spec_right_hand_coordinates, right_hand_copy, right_hand_clear },
+};
+#define NFAMILIES (sizeof families / sizeof *families)
+
+void dp_spec_clear(dp_spec *s)
+{
+    if (s == NULL)
+        return;
+    dp_model_clear(&s->model);
+    for (size_t i = 0; i < NFAMILIES; i++)
+        families[i].clear(s);
+    free(s->x0v);
+    free(s->v0v);
+    free(s->output.nodes);
+    free(s->output.elements);
+    s->x0v = s->v0v = NULL, s->output.nodes = s->output.elements = NULL;
+}
+
 int dp_spec_copy(dp_spec *dst, const dp_spec *src)
 {
     *dst = *src;
-    dst->net = NULL, dst->rh = NULL, dst->x0v = dst->v0v = NULL, dst->output.nodes = dst->output.elements = NULL;
-    dst->lcs = NULL;
+    dst->net = NULL, dst->rh = NULL, dst->lcs = NULL;
+    dst->x0v = dst->v0v = NULL, dst->output.nodes = dst->output.elements = NULL;
     if (dp_model_copy(&dst->model, &src->model) != DP_OK) {
         memset(&dst->model, 0, sizeof dst->model);
         return DP_ENOMEM;
     }
     int fail = 0;
-    if (src->lcs)
-        fail = (dst->lcs = dp_lcs_model_copy(src->lcs)) == NULL;
-    if (src->net) {
-        size_t n = src->net->n;
-        dst->net = dp_network_copy(src->net);
-        fail = dst->net == NULL;
+    for (size_t i = 0; i < NFAMILIES && !fail; i++) {
+        const struct family *f = &families[i];
+        if (!f->present(src))
+            continue;
+        fail = f->copy(dst, src) != DP_OK;
+        size_t n = f->coordinates ? f->coordinates(src) : 0;
         dst->x0v = dup_array(src->x0v, n, sizeof(double), &fail);
         dst->v0v = dup_array(src->v0v, n, sizeof(double), &fail);
-    }
-    if (src->rh) {
-        dst->rh = dup_array(src->rh, 1, sizeof *src->rh, &fail);
-        dst->x0v = dup_array(src->x0v, 2, sizeof(double), &fail);
-        dst->v0v = dup_array(src->v0v, 2, sizeof(double), &fail);
     }
     dst->output.nodes = dup_array(src->output.nodes, src->output.nnodes, sizeof(size_t), &fail);
     dst->output.elements = dup_array(src->output.elements, src->output.nelements, sizeof(size_t), &fail);
