@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/contact.sh - unilateral contact and impacts (issue 19): dashpot's "events": "none" contact step next
+# bench/contact.sh - unilateral contact and impacts: dashpot's "events": "none" contact step next
 # to Siconos' Moreau-Jean (bench/contact_peer.cpp; the rules it follows are in bench/contact_peer.md) on the
 # bouncing ball (e = 0.9, 0.5, 0), two stacked masses with two contacts, and a chain of 100 blocks on stops.
 # 1. the peer's ball against the closed form (impact instants, the impact law), the pair against statics,

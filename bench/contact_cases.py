@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""bench/contact_cases.py - the cases of bench/contact.sh (issue 19) and their checks, in one place so that
+"""bench/contact_cases.py - the cases of bench/contact.sh and their checks, in one place so that
 Siconos' peer (bench/contact_peer.cpp, a text case) and dashpot (a network document) are given the same
 model from one definition, and both are judged by the same code.
 

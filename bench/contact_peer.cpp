@@ -1,4 +1,4 @@
-// bench/contact_peer.cpp - the peer of bench/contact.sh (issue 19): masses joined by linear springs and
+// bench/contact_peer.cpp - the peer of bench/contact.sh: masses joined by linear springs and
 // dampers, loaded by constant forces, with unilateral contacts and Newton impacts, stepped by Siconos'
 // kernel in its BouncingBall formulation, so that dashpot's "events": "none" contact step has an
 // independent reference (the rules it must match are in bench/contact_peer.md):

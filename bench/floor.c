@@ -1,4 +1,4 @@
-/* bench/floor.c - the physical floor of a stick-slip step: the theta-method step of mathematics.md §4 as a
+/* bench/floor.c - the physical floor of a stick-slip step: the theta-method step of docs/mathematics.md §4 as a
  * bare C loop, constants hoisted, no spec, no run object, no records, no event logic. What is left is the
  * loop-carried dependency chain v -> v_free -> soft threshold -> v+ (and the load's cos() when there is one),
  * which no solver can beat; bench/siconos.sh divides dashpot's output-off cost by it.

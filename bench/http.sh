@@ -5,7 +5,7 @@
 #   2. NDJSON streaming, samples/s and MB/s (curl to /dev/null) against the same bytes served from a file
 #      through the same chunked content-reader path (--bench-static);
 #   3. dp_format_double against printf("%.17g") (bench/encode_bench.c).
-# Goals (issue 3): small request >= 80% of /healthz; >= 5 M samples/s streamed; >= 50% of the static rate.
+# Goals: small request >= 80% of /healthz; >= 5 M samples/s streamed; >= 50% of the static rate.
 # Requests/s swing with whatever else the machine runs (wrk and the daemon share its cores), so part 1 also
 # prints the steadier CPU time per request: the daemon's from /proc/PID/stat, wrk's from `times`, and the
 # ratio their sums imply when the two saturate the same cores.

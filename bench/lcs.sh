@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # bench/lcs.sh - LCS circuits stepped by dashpot (`dashpot simulate`, docs/lcs.md) and by Siconos' kernel
 # (bench/lcs_peer.cpp: FirstOrderLinearTIDS + FirstOrderLinearTIR + ComplementarityConditionNSL,
-# EulerMoreauOSI, LCP/Lemke): the series RLC with an ideal diode and the four-diode bridge of seed 002
+# EulerMoreauOSI, LCP/Lemke): the series RLC with an ideal diode and the four-diode bridge of Cibulka 2014
 # (Examples 1.9, 1.10). EulerMoreauOSI is dashpot's θ-step, so the trajectories must agree to rounding at
 # every step (x to 1e-12, u to 1e-9 relative: u comes out of an LCP whose matrix is O(h), which multiplies
 # the rounding of x by 1/h); then the cost per step of each, 10^5 steps, printed with the ratio.
-# Then random passive LCS (seed 002's passivity with P = I: A + Aᵀ negative definite, B = Cᵀ, D + Dᵀ
+# Then random passive LCS (Cibulka 2014's passivity with P = I: A + Aᵀ negative definite, B = Cᵀ, D + Dᵀ
 # positive semidefinite, so |x|²/2 decays), with constant offsets p and q, for a few seeds and sizes up to
 # n = m = 10, compared to rounding the same way; the step's LCP matrix D + h C W⁻¹ B then has a positive
 # definite symmetric part (checked in dashpot's meta line), so u is unique and comparing it means something.

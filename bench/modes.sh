@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench/modes.sh - natural modes of chains of 10, 100 and 1000 masses: dashpot (its tridiagonal route, and
-# its dense route for reference) against scipy.linalg.eigh(K, M) in the same run, issue 17's goal being at
+# its dense route for reference) against scipy.linalg.eigh(K, M) in the same run, goal being at
 # least as fast at every size; scipy.linalg.eigh_tridiagonal is printed too, the like-for-like algorithm.
 # The eigenvalues must agree (sum of omegas to 1e-9 relative). Usage: BUILD=build bash bench/modes.sh.
 # One core: BLAS threads pinned to 1.

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """bench/modes_peer.py - the scipy peer of bench/modes_bench.c: the same chains' modes (eigenvalues and
-shapes) by scipy.linalg.eigh(K, M) on the dense matrices, as issue 17 asks, and by
+shapes) by scipy.linalg.eigh(K, M) on the dense matrices (an independent reference), and by
 scipy.linalg.eigh_tridiagonal on M^-1/2 K M^-1/2 (LAPACK's stemr, the same algorithm as dashpot's chain
 route) for a like-for-like number. Output: "key value" lines. Usage: modes_peer.py OUTDIR
 """

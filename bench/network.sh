@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/network.sh - networks of masses (issue 16): dashpot's exact network step next to Siconos on chains
+# bench/network.sh - networks of masses: dashpot's exact network step next to Siconos on chains
 # of 10, 100 and 1000 blocks with Coulomb friction on every block (bench/siconos_chain_peer.cpp:
 # EulerMoreauOSI + one Relay row per Coulomb element), step by step at theta = 1/2 and 1, and a network with
 # friction between two masses; Burridge-Knopoff chains of 10^2, 10^3, 10^4 blocks (cost per block-step, its

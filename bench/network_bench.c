@@ -1,4 +1,4 @@
-/* bench/network_bench.c - dashpot's network stepping measured for bench/network.sh (issue 16): agreement with
+/* bench/network_bench.c - dashpot's network stepping measured for bench/network.sh: agreement with
  * Siconos on chains, time per step and per block-step, memory, and a one-node network against the one-mass
  * model.
  *

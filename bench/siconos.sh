@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/siconos.sh - dashpot's stick-slip solver side by side with Siconos (issue 7): the same 1-DOF Coulomb
+# bench/siconos.sh - dashpot's stick-slip solver side by side with Siconos: the same 1-DOF Coulomb
 # oscillator (free decay, harmonic forcing, belt-driven stick-slip) stepped by dashpot ("events":"none") and
 # by Siconos' kernel (EulerMoreauOSI + Relay, bench/siconos_peer.cpp), theta = 1/2 and 1. Prints per case:
 # max |dx|, |dv|, |dF| between the two, the error of each against the closed form, ns per step and peak RSS
@@ -156,7 +156,7 @@ for c in "${names[@]}"; do
     "$(kv "$tmp/n.txt" bytes_per_sample)"
 done
 echo
-# The goals of issue 7: measured and reported, not enforced (they depend on the machine and its load).
+# The speed goals: measured and reported, not enforced (they depend on the machine and its load).
 goal() { awk -v n="$1" -v v="$2" -v g="$3" -v op="$4" 'BEGIN { ok = op == "<=" ? v + 0 <= g + 0 : v + 0 >= g + 0
          printf "  %-44s %10s  (goal %s %s)  %s\n", n, v, op, g, ok ? "met" : "NOT met" }'; }
 echo "goals (measured, not enforced)"

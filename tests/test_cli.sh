@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tests/test_cli.sh - the `dashpot` CLI end to end: every format, stdin, exit codes, located errors on
-# stderr, and the thesis-figures data checked against the closed form (seed 000 (4.14)).
+# stderr, and the thesis-figures data checked against the closed form (Babováková 2012 (4.14)).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 bin=${BUILD:-build}/dashpot
@@ -84,7 +84,7 @@ check "no spec exits 2 saying so" bash -c "[ $rc -eq 2 ] && grep -qF 'no spec gi
 check "output that cannot be written (/dev/full) exits 1, never 0" \
   bash -c "[ $rc -eq 1 ] && grep -qF 'cannot write the output' '$tmp/full.err'"
 
-# The input limit is 64 MiB exactly (README "Limits"): a spec padded to 64 MiB is read, one byte more is not.
+# The input limit is 64 MiB exactly (docs/spec.md, "Limits"): a spec padded to 64 MiB is read, one byte more is not.
 py "
 import sys
 spec = open('$tmp/decay.json').read().rstrip()

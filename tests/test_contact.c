@@ -1,4 +1,4 @@
-/* tests/test_contact.c - unilateral contacts and impacts (systems.md §4) against closed forms:
+/* tests/test_contact.c - unilateral contacts and impacts (docs/systems.md §4) against closed forms:
  * the bouncing ball's impact times, rebound speeds, impulses, energies and accumulation time t_inf for
  * e = 0.9, 0.5, 0 (theta = 1/2 integrates a constant force exactly, so located impacts are exact to rounding);
  * a block carried by a belt into a stop (its impacts, its slip, its rest pressed on the stop, no penetration,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tests/test_contact.sh - contacts and impacts (systems.md §4, docs/contact.md) end to end, over HTTP and the
+# tests/test_contact.sh - contacts and impacts (docs/systems.md §4, docs/contact.md) end to end, over HTTP and the
 # CLI: the bouncing ball in every format (the Fn column, impact events with the rate before and after and the
 # impulse, against the closed form), /v1/wellposedness's contact entries, every kind of bad contact input
 # refused with 422 and the exact JSON Pointer, and the examples of docs/contact.md print what it shows.

@@ -1,4 +1,4 @@
-/* tests/test_elastoplastic.c - the Jenkins element (systems.md §3; Höschl 003 §15) against closed forms:
+/* tests/test_elastoplastic.c - the Jenkins element (docs/systems.md §3; Höschl 003 §15) against closed forms:
  * its return mapping under monotonic loading, a full strain cycle whose loop area is the plastic work,
  * shakedown under small cycles; a mass on a Jenkins spring under a constant load thrown fast enough to
  * yield (elastic swing, one plastic excursion, elastic oscillation about the new offset), one mass and a

@@ -167,7 +167,7 @@ for f in web/*; do
 done
 check "GET / is text/html" bash -c "curl -s --max-time 10 -o /dev/null -w '%{content_type}' '$url/' | grep -q '^text/html'"
 
-# The README's decay: m = k = phi0 = 1 from x = 4.5 at rest. Closed form (seed 000 (4.14)): x = 1 + 3.5 cos t
+# The README's decay: m = k = phi0 = 1 from x = 4.5 at rest. Closed form (Babováková 2012 (4.14)): x = 1 + 3.5 cos t
 # while it slides left (to -2.5 at pi), x = -1 - 1.5 cos(t - pi) while it slides right (to 0.5 at 2 pi),
 # then it sticks at 0.5 for good (|k x| <= phi0).
 spec='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 1}},

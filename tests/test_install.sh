@@ -62,7 +62,7 @@ flags=$(pc --cflags --libs dashpot)
 check "pkg-config --cflags --libs dashpot: staged include and lib dirs, -ldashpot" \
     grep -q -- "-I$p/include .*-L$p/lib -ldashpot" <<< "$flags"
 # Decay of m x'' + x + F_c = 0 with phi0 = 1 from x = 4.5 at rest: it sticks at x = 0.5 after t = 2 pi
-# (seed 000 (4.14); README "A first run"). Built in the scratch directory, so only the installed headers exist.
+# (Babováková 2012 (4.14); README "A first run"). Built in the scratch directory, so only the installed headers exist.
 cat > "$SCRATCH/tiny.c" <<'C'
 #include <stdio.h>
 #include <string.h>
@@ -228,7 +228,7 @@ check "HEALTHCHECK command fails where nothing listens" \
 # ---- the sweep Job's script against this daemon ----------------------------------------------------------------
 # Index 7 of RUNS_PER_INDEX=4 is runs 28..31: phi0 = 0.05, x0 = 0.29 .. 0.32. From rest at x0 > phi0 the mass
 # swings through half periods of pi, each moving the turning point to -(x - 2 phi0 sgn x), until
-# |x| <= phi0, where it sticks for good (seed 000 (4.14)); t_end = 330 leaves time for all of them.
+# |x| <= phi0, where it sticks for good (Babováková 2012 (4.14)); t_end = 330 leaves time for all of them.
 manifest job-script > "$SCRATCH/sweep.sh"
 timeout 120 env -i PATH=/usr/bin:/bin JOB_COMPLETION_INDEX=7 RUNS_PER_INDEX=4 WORK_DIR="$SCRATCH" \
     DASHPOT_URL="$url/v1/simulate" sh "$SCRATCH/sweep.sh" > "$SCRATCH/sweep.out" 2> "$SCRATCH/sweep.err"

@@ -22,7 +22,7 @@ static void run_ok(const char *spec, traj *t)
     assert_int_equal(t->status, DP_DONE);
 }
 
-/* Coulomb: J_l(v) = sgn(v) max(|v| - l phi0, 0), A_l(v) = clamp(v/l, -phi0, phi0) (mathematics.md §1). */
+/* Coulomb: J_l(v) = sgn(v) max(|v| - l phi0, 0), A_l(v) = clamp(v/l, -phi0, phi0) (docs/mathematics.md §1). */
 static void test_coulomb_resolvent_and_yosida(void **state)
 {
     (void)state;

@@ -1,5 +1,5 @@
-/* tests/test_lcp.c - Lemke's method and the enumeration of complementary bases (issue 20) on the worked
- * examples of seed 002 with their own numbers (Examples 1.6, 2.4, 2.6, 2.7, 2.11, Lemma 2.5, Theorem 2.3), and
+/* tests/test_lcp.c - Lemke's method and the enumeration of complementary bases on the worked
+ * examples of Cibulka 2014 with their own numbers (Examples 1.6, 2.4, 2.6, 2.7, 2.11, Lemma 2.5, Theorem 2.3), and
  * Lemke against the enumeration on >= 10^4 random P-matrix and PSD problems and on degenerate integer ones.
  *
  * The references are independent of Lemke's pivoting: closed forms from the seed's text, and the enumeration

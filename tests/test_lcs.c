@@ -1,9 +1,9 @@
-/* tests/test_lcs.c - the θ-step of linear complementarity systems (issue 20) on seed 002's circuits against
+/* tests/test_lcs.c - the θ-step of linear complementarity systems on Cibulka 2014's circuits against
  * closed forms derived from the text: the series RLC with an ideal diode (Example 1.9: a damped oscillation
  * until the current vanishes, then blocked for good), the same with a breakdown diode (an interval law), and
  * the four-diode bridge (Example 1.10, its own matrices: with ideal diodes the load always conducts, so the
  * tank is a parallel RLC). Tolerances: O(h^2) for θ = 1/2 where u = 0 (the diode conducts freely), O(h)
- * after a switch (it lands on a step boundary) and wherever u != 0 (u is taken at the step's end, systems.md
+ * after a switch (it lands on a step boundary) and wherever u != 0 (u is taken at the step's end, docs/systems.md
  * §5, a backward Euler treatment of B u).
  */
 #include <math.h>

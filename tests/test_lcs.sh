@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tests/test_lcs.sh - `dashpot lcp` and POST /v1/lcp end to end (issue 20): seed 002's Examples 1.6 and 2.4
+# tests/test_lcs.sh - `dashpot lcp` and POST /v1/lcp end to end: Cibulka 2014's Examples 1.6 and 2.4
 # with their own numbers (closed forms in the comments, checked here in Python), a 3-solution problem whose
 # solutions are computed by hand, the CLI and the daemon answering byte for byte alike, and bad input (422
 # with JSON Pointers, CLI exit 2, 400 for malformed JSON), then the LCS circuits of docs/lcs.md.
@@ -61,7 +61,7 @@ check "lcp: a missing M named" bad missing '{"q": [1]}' /M
 check "lcp: an unknown key" bad key '{"M": [[1]], "q": [1], "r": 1}' '(document)'
 
 # ---- LCS models in `dashpot simulate` (docs/lcs.md) ----
-# Series RLC with an ideal diode (seed 002 Ex. 1.9), R = 0.5, L = 1, C = 0.25, x = (charge, current), no source.
+# Series RLC with an ideal diode (Cibulka 2014 Ex. 1.9), R = 0.5, L = 1, C = 0.25, x = (charge, current), no source.
 cat >"$T/rlc.json" <<'JSON'
 {"model": {"lcs": {"A": [[0, 1], [-4, -0.5]], "B": [[0], [1]], "C": [[0, 1]], "D": [[0]]},
            "laws": [{"law": "complementarity"}]},
@@ -199,7 +199,7 @@ blocked = [r for r in s if t1 + 0.01 < r['t'] < 2 * math.pi - 0.01]
 assert len(blocked) > 2000 and max(abs(r['u'][0] + math.sin(r['t'] - 0.0005)) for r in blocked) < 1e-6
 "
 
-# /v1/wellposedness for LCS models: seed 002 Theorem 2.3 needs D's symmetric part positive definite.
+# /v1/wellposedness for LCS models: Cibulka 2014 Theorem 2.3 needs D's symmetric part positive definite.
 "$BIN" wellposedness "$T/rlc.json" >"$T/wp_rlc.json"
 check "wellposedness, ideal-diode RLC (D = 0): not guaranteed by Theorem 2.3, each θ-step well defined" pyjson "$T/wp_rlc.json" "
 d['framework'] == 'LCS' and d['existence']['guaranteed'] is False and d['uniqueness']['theorem'] is None and

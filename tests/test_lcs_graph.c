@@ -1,4 +1,4 @@
-/* tests/test_lcs_graph.c - graph laws for LCS components (issue 20: "any monotone graph dashpot already
+/* tests/test_lcs_graph.c - graph laws for LCS components ("any monotone graph dashpot already
  * knows"), -w ∈ G(u), each against something that does not go through the stepper's splitting of G:
  * the graph of the complementarity cone and of an interval give the trajectories of those laws; the Coulomb
  * graph (the damper's builder) in a Jenkins element gives the return mapping's closed form step by step; two

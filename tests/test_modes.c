@@ -1,5 +1,5 @@
-/* tests/test_modes.c - modes, damped eigenvalues and receptance (issue 17) against Höschl's printed numbers
- * (seed 003, Ex. 1-4, 28, 29, 36; misprints noted where they are), against LAPACK's dsygv (a solver
+/* tests/test_modes.c - modes, damped eigenvalues and receptance against Höschl's printed numbers
+ * (Höschl 1983, Ex. 1-4, 28, 29, 36; misprints noted where they are), against LAPACK's dsygv (a solver
  * independent of GSL's gensymmv and of the QL + inverse iteration chain route) on random SPD pairs, repeated eigenvalues
  * and badly scaled systems, against closed forms for damping, and with bad input.
  *

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# tests/test_modes.sh - `dashpot modes|response` and POST /v1/modes, /v1/response end to end (issue 17):
-# Höschl's double pendulum (seed 003 Ex. 28-29) and a chain of elements against closed forms computed here
+# tests/test_modes.sh - `dashpot modes|response` and POST /v1/modes, /v1/response end to end:
+# Höschl's double pendulum (Höschl 1983 Ex. 28-29) and a chain of elements against closed forms computed here
 # in Python (stdlib only), a free decay by the stick-slip network solver against the modal superposition,
 # Rayleigh damping ratios, left-out set-valued elements, the three formats of the
 # response curve by --format and by Accept, and bad input (422 with JSON Pointers, CLI exit 2).

@@ -1,4 +1,4 @@
-/* tests/test_network.c - networks of masses (systems.md §1) against independent references:
+/* tests/test_network.c - networks of masses (docs/systems.md §1) against independent references:
  * a one-node network is the one-mass model for every law, belt, forcing and theta; a linear two-mass chain
  * follows its modal closed form with second-order error at theta = 1/2; a Coulomb chain's energy loss equals
  * the work of its dampers; sticking blocks do not creep; the records do not depend on the caller's block. */

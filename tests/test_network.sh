@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tests/test_network.sh - network documents (systems.md §1, docs/networks.md) end to end, over HTTP and the
+# tests/test_network.sh - network documents (docs/systems.md §1, docs/networks.md) end to end, over HTTP and the
 # CLI: the 3-mass chain in every format (column names, array lengths, no NaN, located events that name an
 # element), every kind of bad network input refused with 422 and the exact JSON Pointer (the n-mass step
 # bound with relaxation on both sides of it), relaxation and static thresholds on elements against their
@@ -355,7 +355,7 @@ assert [(x["element"], x["kind"]) for x in got] == [(x["element"], x["kind"]) fo
 assert max(abs(x["t"] - y["t"]) for x, y in zip(got, want)) < 1e-6, [(x["t"], y["t"]) for x, y in zip(got, want)]
 '
 
-# ---- docs/networks.md: its examples print what it shows (the README's conventions, tests/test_readme.sh) ----
+# ---- docs/networks.md: its examples print what it shows (the conventions of tests/test_docs.sh) ----
 doc_examples "$ROOT/docs/networks.md" net
 
 stop_daemon net

@@ -1,4 +1,4 @@
-/* tests/test_newmark.c - the newmark solver (Höschl 003 §15, Ex. 40; systems.md §3) against independent
+/* tests/test_newmark.c - the newmark solver (Höschl 003 §15, Ex. 40; docs/systems.md §3) against independent
  * references: the incremental form's coefficients against Höschl's linear-acceleration numbers, its steps
  * against the textbook (total) Newmark form on a damped, forced two-mass chain, second order for gamma = 1/2
  * (first for gamma > 1/2), the stability limit dt/T = sqrt(3)/pi of beta = 1/6 from both sides, exact

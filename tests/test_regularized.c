@@ -1,10 +1,10 @@
-/* tests/test_regularized.c - the regularized schemes (PCn), (PIk) (seed 001 (17), seed 000 ch. 2) and their
+/* tests/test_regularized.c - the regularized schemes (PCn), (PIk) (Pražák & Rajagopal 2016 (17), Babováková 2012 ch. 2) and their
  * convergence to the exact stick-slip solution.
  *
  * Reference problem (thesis ch. 4): m = k = phi0 = 1, F = 0, x(0) = 4.5, x'(0) = 0. Exact: half circles about
  * -/+1, turning at -2.5 (t = pi), at rest at x = 0.5 from t = 2 pi on. Regularized with g_n(v) =
  * clamp(n v, -1, 1): once |n v| < 1 the motion is m x'' + n x' + k x = 0, whose slow mode
- * z = (-n + sqrt(n^2 - 4 m k)) / (2 m) ~ -k/n makes x creep from 0.5 towards 0 (mathematics.md §3).
+ * z = (-n + sqrt(n^2 - 4 m k)) / (2 m) ~ -k/n makes x creep from 0.5 towards 0 (docs/mathematics.md §3).
  * Over [2 pi, T] the creep is 0.5 (1 - exp(-k (T - 2 pi)/n)) ~ 0.5 (T - 2 pi)/n: the O(1/n) error, and
  * the creep speed right after stopping, 0.5 k/n, is the error in v.
  */
@@ -90,7 +90,7 @@ static int coulomb_graph(dp_graph *g, double phi0)
     return dp_graph_init(g, 2, y, f, r, r);
 }
 
-/* phi of Lemma 1 for Coulomb (mathematics.md §1) and g_n = clamp(n v, -phi0, phi0) both ways. */
+/* phi of Lemma 1 for Coulomb (docs/mathematics.md §1) and g_n = clamp(n v, -phi0, phi0) both ways. */
 static void test_coulomb_gn_is_clamp(void **state)
 {
     (void)state;

@@ -1,12 +1,12 @@
-/* tests/test_right_hand.c - friction with motion-dependent normal force (src/core/right_hand*.c, seed 004,
- * systems.md §6) against references built here without the library's equations:
+/* tests/test_right_hand.c - friction with motion-dependent normal force (src/core/right_hand*.c, Matrosov & Finogenko 1995,
+ * docs/systems.md §6) against references built here without the library's equations:
  *  - the equations of motion from T and V by numerical differentiation of the Lagrangian, the normal
  *    reactions from Newton's law with the accelerations of the bodies' centres by finite differences of
  *    their positions: the solver's accelerations satisfy them at random sliding states;
  *  - Painlevé's condition f1 < (1 + sin^2 b)/|sin b cos b| (the paper's §6 remark) and the rod's band
  *    tan(theta) in the roots of t^2 - 3 mu t + 4 = 0, hence mu = 4/3, located by the enumeration to 1e-9;
  *    which paradox (no solution, two) and the two normal forces from the V-shaped scalar equation;
- *  - the exceptional states of §6 (with the corrected N1, N2 of systems.md) outside the set A, the printed
+ *  - the exceptional states of §6 (with the corrected N1, N2 of docs/systems.md) outside the set A, the printed
  *    N1 not vanishing there, and the printed sign of (2.3) certifying a state the enumeration refutes;
  *  - a run against an independent fine-step RK4 integration with Newton-solved accelerations, up to the
  *    located velocity zero, whose time it also checks; a paradox stops a run with its record.

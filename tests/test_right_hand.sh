@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tests/test_right_hand.sh - the right-hand friction models (systems.md §6, docs/right-hand.md) end to end,
+# tests/test_right_hand.sh - the right-hand friction models (docs/systems.md §6, docs/right-hand.md) end to end,
 # over HTTP and the CLI: the piston-hinge run in NDJSON and CSV (meta with the conditions and theorems, rows
 # with q, qd, qdd, N, mode, margin of the right lengths, no NaN, events naming their coordinate, the normal
 # force N1 recomputed here from the row by Newton's law), Painlevé's paradox at the start as a 422 problem

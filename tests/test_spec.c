@@ -107,7 +107,7 @@ static void check_run_fields(const char *w, const dp_spec *s, const dp_spec *wan
 
 /* ---- valid documents -------------------------------------------------------------------------------- */
 
-/* The model of architecture.md, and every default of spec.h / the schema. */
+/* The model of docs/architecture.md, and every default of spec.h / the schema. */
 static void test_architecture_example(void **state)
 {
     (void)state;

@@ -1,4 +1,4 @@
-/* tests/test_stability.c - stability of linear implicit laws (issue 4): thesis models 1.2-1.4 on both sides
+/* tests/test_stability.c - stability of linear implicit laws: thesis models 1.2-1.4 on both sides
  * of (1.10), (1.12), (1.14) down to 1e-9 relative, Hurwitz minors against roots on 10^4 random polynomials,
  * maps against the closed-form boundaries, state matrices against the roots, DAE pencils, and the wire
  * format (dp_stability_respond) with a catalogue of invalid requests.

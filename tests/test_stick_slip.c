@@ -1,4 +1,4 @@
-/* tests/test_stick_slip.c - the stick-slip solver against the closed form (seed 000 (4.14)-(4.15)), the
+/* tests/test_stick_slip.c - the stick-slip solver against the closed form (Babováková 2012 (4.14)-(4.15)), the
  * thesis algorithm 4.1, hand-computed steps and second methods (graph laws against their named twins).
  *
  * Reference problem (thesis ch. 4): m = k = phi0 = 1, F = 0, x(0) = x0, x'(0) = 0. Arcs are half circles

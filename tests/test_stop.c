@@ -1,4 +1,4 @@
-/* tests/test_stop.c - a run stops when its stop hook says so, within a bounded amount of work (issue 15),
+/* tests/test_stop.c - a run stops when its stop hook says so, within a bounded amount of work,
  * and NUL characters and duplicate keys are refused with their pointers.
  *
  * The property: for random valid specs (every solver, variant and law, graph and table sizes up to the
@@ -166,7 +166,7 @@ static void random_spec(text *t)
     put(t, ",\"output\":{\"every\":%s}}", every[pick(4)]);
 }
 
-/* The spec of issue 15 (~1.9 us a step before): 10^4-point graph spring and damper, rational relaxation,
+/* The slow spec of the stop tests (~1.9 us a step before): 10^4-point graph spring and damper, rational relaxation,
  * a belt, a 10^4-point table load, 10^8 steps of 10^-7, one sample in 10^15. */
 static void slow_spec(text *t)
 {

@@ -1,6 +1,6 @@
 /* tests/test_wellposedness.c - the well-posedness report over the law catalogue, the seeds' counterexamples
  * and user graphs that break each hypothesis (table-driven), and both solution branches of both
- * counterexamples (seed 001 §4) against their closed forms. */
+ * counterexamples (Pražák & Rajagopal 2016 §4) against their closed forms. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -128,7 +128,7 @@ static void test_witnesses(void **state)
     dp_model_clear(&g);
 }
 
-/* Counterexample 1 (seed 001 (24)-(25)): m = k = 1, phi0 = 0.5 < phi1 = 1, F = phi1 from rest.
+/* Counterexample 1 (Pražák & Rajagopal 2016 (24)-(25)): m = k = 1, phi0 = 0.5 < phi1 = 1, F = phi1 from rest.
  * Rest: x = 0. Motion: x = (phi1 - phi0)(1 - cos t) on [0, pi], then rest at 2 (phi1 - phi0) = 1. */
 static void test_counterexample_generalized_coulomb(void **state)
 {
@@ -198,7 +198,7 @@ static void power_motion_errors(double dt, double *early, double *late)
     traj_free(&motion);
 }
 
-/* Counterexample 2 (seed 001 (26)-(27)): Coulomb phi0 = 1 with gamma_N, N = 2, F = phi0 from rest.
+/* Counterexample 2 (Pražák & Rajagopal 2016 (26)-(27)): Coulomb phi0 = 1 with gamma_N, N = 2, F = phi0 from rest.
  * Rest: x = 0 exactly. Motion: x'' + x = gamma_N(x') leaves rest like x' = t^N, x = t^(N+1)/(N+1);
  * backward Euler lags it by a few steps, so the error is O(dt / t) and shrinks tenfold with dt. */
 static void test_counterexample_power_relaxation(void **state)

@@ -1,5 +1,5 @@
 /* include/dashpot/analytic.h - the closed-form solution of m x'' + k x + F_c = F0, F_c in phi0 Sgn(x')
- * (seed 000 (4.14)-(4.15)): harmonic arcs about (F0 -/+ phi0)/k joined at turning points, ending at rest
+ * (Babováková 2012 (4.14)-(4.15)): harmonic arcs about (F0 -/+ phi0)/k joined at turning points, ending at rest
  * at the first turning point where |F0 - k x| <= phi0. The reference every stick-slip solver is tested
  * against, and the `analytic` solver's engine. */
 #ifndef DASHPOT_ANALYTIC_H

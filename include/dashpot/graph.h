@@ -1,6 +1,6 @@
 /* include/dashpot/graph.h - constitutive relations as monotone graphs in the (kinematic, force) plane.
  *
- * One representation serves every law (mathematics.md §1): a piecewise-linear curve through vertices
+ * One representation serves every law (docs/mathematics.md §1): a piecewise-linear curve through vertices
  * (y_i, F_i), non-decreasing in both coordinates, extended at both ends by rays. Vertical pieces (equal y)
  * make the force multi-valued (Coulomb's stick interval, the taut rope); horizontal pieces make the kinematic
  * variable multi-valued (Bingham's yield plateau seen from the force side). A curve that is monotone and

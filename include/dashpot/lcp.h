@@ -1,6 +1,6 @@
-/* include/dashpot/lcp.h - the linear complementarity problem w = Mz + q, 0 <= z ⊥ w >= 0 (seed 002 (1.10),
- * Examples 1.6, 2.4, 2.6; systems.md §5): Lemke's complementary pivoting, all solutions of a small problem by
- * enumerating its 2^m complementary bases, and what the theory says about uniqueness (seed 002 Lemma 2.5,
+/* include/dashpot/lcp.h - the linear complementarity problem w = Mz + q, 0 <= z ⊥ w >= 0 (Cibulka 2014 (1.10),
+ * Examples 1.6, 2.4, 2.6; docs/systems.md §5): Lemke's complementary pivoting, all solutions of a small problem by
+ * enumerating its 2^m complementary bases, and what the theory says about uniqueness (Cibulka 2014 Lemma 2.5,
  * Theorem 2.3: a positive definite symmetric part, µ = λ_min((M + Mᵀ)/2) > 0, gives exactly one solution,
  * Lipschitz in q with constant 1/µ; a P-matrix, all principal minors > 0, is exactly the class where every q
  * has one solution).
@@ -49,7 +49,7 @@ int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector
 /* All solutions found by trying every complementary basis (m <= DP_LCP_ENUM_MAX): for each set a of
  * indices with z basic, M_aa z_a = -q_a, kept when z_a >= 0 and w >= 0 (to a tolerance relative to the
  * data), duplicates merged. `singular` counts the bases whose M_aa is singular: a continuum of solutions may
- * pass through them (seed 002 Example 2.4 with a = 0, p = 0), and it is not enumerated. */
+ * pass through them (Cibulka 2014 Example 2.4 with a = 0, p = 0), and it is not enumerated. */
 typedef struct dp_lcp_solutions {
     size_t m, n, cap;
     double *z;           /* n solutions, z[k*m .. k*m + m) */

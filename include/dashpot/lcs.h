@@ -1,4 +1,4 @@
-/* include/dashpot/lcs.h - linear complementarity systems (seed 002 (1.10), §1.4; systems.md §5):
+/* include/dashpot/lcs.h - linear complementarity systems (Cibulka 2014 (1.10), §1.4; docs/systems.md §5):
  *
  *     x' = A x + B u + p,   w = C x + D u + q,   (u_i, w_i) in the law of component i,
  *
@@ -70,7 +70,7 @@ dp_lcs dp_lcs_model_system(const dp_lcs_model *lm);
  * admit: some u with (u, Cx0 + Du + q) in the laws), appended as located errors. DP_OK, DP_EINVAL, DP_ELIMIT. */
 int dp_lcs_check(const dp_spec *s, double max_steps, dp_errors *e);
 
-/* What seed 002's theory says about a checked LCS spec (framework "LCS"): existence and uniqueness by
+/* What Cibulka 2014's theory says about a checked LCS spec (framework "LCS"): existence and uniqueness by
  * Theorem 2.3 when D's symmetric part is positive definite, and whether the θ-step's matrix is a P-matrix.
  * DP_OK, DP_ENOMEM, DP_ESOLVE. */
 struct dp_wp_report;

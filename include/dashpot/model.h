@@ -1,8 +1,8 @@
-/* include/dashpot/model.h - the oscillator m x'' + F_s + F_d = F(t) (seed 000 (1)) as plain data.
+/* include/dashpot/model.h - the oscillator m x'' + F_s + F_d = F(t) (Babováková 2012 (1)) as plain data.
  *
  * Every law keeps its named parameters (for reports and closed forms) and, once dp_model_prepare() has run,
  * its monotone graph (graph.h), which is what the solvers use. The damper force is F_d = F_c - gamma(v - v_b)
- * with (F_c, v - v_b) in the damper graph A (seed 001 (3)-(4), thesis (3.2)); v_b is the belt speed.
+ * with (F_c, v - v_b) in the damper graph A (Pražák & Rajagopal 2016 (3)-(4), thesis (3.2)); v_b is the belt speed.
  */
 #ifndef DASHPOT_MODEL_H
 #define DASHPOT_MODEL_H
@@ -12,7 +12,7 @@
 
 typedef enum dp_spring_law {
     DP_SPRING_LINEAR, DP_SPRING_ROPE, DP_SPRING_GRAPH,
-    DP_SPRING_ELASTOPLASTIC      /* Jenkins: spring k in series with a slider of yield force F_y (systems.md §3) */
+    DP_SPRING_ELASTOPLASTIC      /* Jenkins: spring k in series with a slider of yield force F_y (docs/systems.md §3) */
 } dp_spring_law;
 
 typedef struct dp_spring {
@@ -35,7 +35,7 @@ typedef enum dp_relaxation_kind {
     DP_RELAX_NONE, DP_RELAX_RATIONAL, DP_RELAX_LINEAR, DP_RELAX_POWER
 } dp_relaxation_kind;
 
-/* gamma: rational a v/(b+|v|) (thesis ch. 4), linear L v, power N |v|^(1-1/N) sgn v (seed 001 (26)). */
+/* gamma: rational a v/(b+|v|) (thesis ch. 4), linear L v, power N |v|^(1-1/N) sgn v (Pražák & Rajagopal 2016 (26)). */
 typedef struct dp_relaxation {
     dp_relaxation_kind kind;
     double a, b;       /* rational */
@@ -73,7 +73,7 @@ typedef struct dp_forcing {
     struct dp_forcing *terms;
 } dp_forcing;
 
-/* A unilateral contact on an element (systems.md §4): its elongation must stay at least `distance`.
+/* A unilateral contact on an element (docs/systems.md §4): its elongation must stay at least `distance`.
  * Rigid (compliance 0): Newton's impact law with restitution e in [0, 1] at the velocity level (Moreau-Jean);
  * compliant (compliance k > 0): the force k max(distance - u, 0) pushing the ends apart instead, the Yosida
  * approximation of the rigid contact (002 (2.7)), which rebounds elastically. */
@@ -123,7 +123,7 @@ double dp_relaxation_bound(const dp_relaxation *r);
 
 const char *dp_spring_law_name(dp_spring_law law);
 
-/* The Jenkins element's step (systems.md §3), exact by return mapping: from the plastic offset *p and the
+/* The Jenkins element's step (docs/systems.md §3), exact by return mapping: from the plastic offset *p and the
  * elongation u at the step's end, the force clamp(k (u - p), -F_y, F_y), with *p moved so that
  * F = k (u - p). Returns the force; *flow is +1/-1 while the slider slides (the trial force left the
  * interval), 0 when the step stayed elastic. */

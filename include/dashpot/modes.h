@@ -1,5 +1,5 @@
 /* include/dashpot/modes.h - linear analysis of a network: natural modes, damped eigenvalues and the
- * receptance (Höschl's dynamic compliance), systems.md §2.
+ * receptance (Höschl's dynamic compliance), docs/systems.md §2.
  *
  *     M x'' + C x' + K x = f,   K phi = omega^2 M phi,   H(omega) = (K - omega^2 M + i omega C)^-1
  *

@@ -1,4 +1,4 @@
-/* include/dashpot/network.h - many masses joined by implicit springs and dampers (systems.md §1).
+/* include/dashpot/network.h - many masses joined by implicit springs and dampers (docs/systems.md §1).
  *
  *     M x'' + C_l x' + K_l x + sum_e b_e (F_s,e + F_d,e) = f(t)
  *

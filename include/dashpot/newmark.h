@@ -1,5 +1,5 @@
 /* include/dashpot/newmark.h - Newmark's method (beta, gamma) in Höschl's incremental tangent-stiffness form
- * (seed 003 §15, Ex. 40; systems.md §3): beta = 1/6, gamma = 1/2 is his linear-acceleration method,
+ * (Höschl 1983 §15, Ex. 40; docs/systems.md §3): beta = 1/6, gamma = 1/2 is his linear-acceleration method,
  * beta = 1/4 the average-acceleration rule.
  *
  *     K^ = K_T + (gamma / (beta h)) C + (1 / (beta h^2)) M

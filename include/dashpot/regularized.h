@@ -1,12 +1,12 @@
 /* include/dashpot/regularized.h - the regularized existence schemes (PCn), (PIk) and their convergence study.
  *
  * Both schemes replace a set-valued constitutive relation by a single-valued Lipschitz one and integrate the
- * resulting ODE (mathematics.md §3). For a maximal monotone graph A in the (y, F) plane they are the same
+ * resulting ODE (docs/mathematics.md §3). For a maximal monotone graph A in the (y, F) plane they are the same
  * object seen from two sources:
- *   (PCn), seed 001 (17): (F_c, y - F_c/n) in A   <=>  F_c = g_n(y) = A_(1/n)(y), the Yosida approximation;
- *   (PIk), seed 000 (FIk): y = f(F) + F/k          <=>  F = f_k^-1(y) = A_(1/k)(y) with A the graph of f.
+ *   (PCn), Pražák & Rajagopal 2016 (17): (F_c, y - F_c/n) in A   <=>  F_c = g_n(y) = A_(1/n)(y), the Yosida approximation;
+ *   (PIk), Babováková 2012 (FIk): y = f(F) + F/k          <=>  F = f_k^-1(y) = A_(1/k)(y) with A the graph of f.
  * The solvers use the Yosida form (exact for piecewise-linear graphs, O(log vertices)); the 45-degree rotation
- * of Lemma 1 (seed 001 (11)) gives g_n for any maximal monotone graph through a 1-Lipschitz phi, and the
+ * of Lemma 1 (Pražák & Rajagopal 2016 (11)) gives g_n for any maximal monotone graph through a 1-Lipschitz phi, and the
  * tests check that both agree.
  */
 #ifndef DASHPOT_REGULARIZED_H
@@ -54,7 +54,7 @@ typedef struct dp_convergence {
     dp_scheme scheme;
     dp_stepper stepper;
     double rtol, atol, dt, t_end;
-    /* The exact solution compared against: the closed form (seed 000 (4.14)) where it exists, otherwise the
+    /* The exact solution compared against: the closed form (Babováková 2012 (4.14)) where it exists, otherwise the
      * stick-slip solver with events located, theta 1/2 (theta 1 for a graph spring) and step ref_dt. */
     dp_reference_kind reference;
     double ref_dt, ref_theta;

@@ -1,5 +1,5 @@
 /* include/dashpot/right_hand.h - Coulomb friction whose normal reaction depends on the accelerations
- * (Matrosov & Finogenko 1995, seed 004; systems.md §6): the acceleration problem of one instant solved by
+ * (Matrosov & Finogenko 1995; docs/systems.md §6): the acceleration problem of one instant solved by
  * enumerating every stick/slip mode, so that Painlevé's paradoxes (no solution: inconsistency; several:
  * indeterminacy) are found and reported, never guessed; the paper's conditions (1.2), (2.3), (6.2)-(6.4).
  *
@@ -16,7 +16,7 @@
 
 typedef enum dp_rh_kind { DP_RH_PISTON_HINGE = 0, DP_RH_ROD = 1 } dp_rh_kind;
 
-/* piston-hinge (seed 004 §6): q = (x, beta), parameters m1, m2, J_C, r, alpha, f1 (a coefficient), f2 (a
+/* piston-hinge (Matrosov & Finogenko 1995 §6): q = (x, beta), parameters m1, m2, J_C, r, alpha, f1 (a coefficient), f2 (a
  * length: the hinge's friction moment is f2 |N2|), g.
  * painleve-rod: a uniform rod of mass m and length `length` whose lower end A rests on a rough floor with
  * coefficient mu; q = (x_A, theta), theta the angle between the rod and the floor. */
@@ -87,7 +87,7 @@ void dp_rh_conditions_at(const dp_rh_model *m, const double q[2], const double q
                          dp_rh_conditions *c);
 
 struct dp_wp_report;
-/* The theorems of seed 004 (3.1, 4.1/4.2, 5.1) and their hypotheses at the initial state (q, qd). */
+/* The theorems of Matrosov & Finogenko 1995 (3.1, 4.1/4.2, 5.1) and their hypotheses at the initial state (q, qd). */
 void dp_rh_wellposedness(const dp_rh_model *m, const double q[2], const double qd[2], struct dp_wp_report *rep);
 
 /* "piston-hinge" or "painleve-rod". */

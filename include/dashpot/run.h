@@ -1,4 +1,4 @@
-/* include/dashpot/run.h - a solver run as a pull iterator (architecture.md, "Solvers are iterators").
+/* include/dashpot/run.h - a solver run as a pull iterator (docs/architecture.md, "Solvers are iterators").
  *
  *     dp_run *run = dp_run_alloc(&spec, &errs, &status);
  *     while ((s = dp_run_next(run, buf, cap, &n)) == DP_MORE) consume(buf, n);

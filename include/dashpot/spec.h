@@ -1,7 +1,7 @@
 /* include/dashpot/spec.h - one simulation request as data: model, initial state, solver, output.
  *
  * Produced by the JSON layer (dp_spec_parse, json.h) and consumed by every solver (run.h), so the CLI and the
- * daemon accept exactly the same documents (architecture.md, "The spec is data").
+ * daemon accept exactly the same documents (docs/architecture.md, "The spec is data").
  */
 #ifndef DASHPOT_SPEC_H
 #define DASHPOT_SPEC_H
@@ -20,9 +20,9 @@ typedef enum dp_solver_kind {
     DP_SOLVER_RIGHT_HAND  /* right-hand solutions of friction with motion-dependent normal force (right_hand.h) */
 } dp_solver_kind;
 
-/* The regularized existence schemes (mathematics.md §3): (PCn) F_c = g_n(x') with g_n the Yosida
- * approximation A_(1/n) (seed 001 (17)); (PIk) F_s = f_k^-1(x), F_d = g_k^-1(x') with f_k = f + u/k
- * (seed 000 ch. 2). */
+/* The regularized existence schemes (docs/mathematics.md §3): (PCn) F_c = g_n(x') with g_n the Yosida
+ * approximation A_(1/n) (Pražák & Rajagopal 2016 (17)); (PIk) F_s = f_k^-1(x), F_d = g_k^-1(x') with f_k = f + u/k
+ * (Babováková 2012 ch. 2). */
 typedef enum dp_scheme { DP_SCHEME_PC, DP_SCHEME_PI } dp_scheme;
 
 /* GSL odeiv2 steppers: implicit ones (with the analytic Jacobian) for the stiff large-n regime. */
@@ -38,7 +38,7 @@ typedef enum dp_variant { DP_VARIANT_EXACT, DP_VARIANT_THESIS } dp_variant;
  * event (keeps theta = 1/2 second order); DP_EVENTS_NONE is plain Moreau-Jean time stepping as in Siconos. */
 typedef enum dp_events_mode { DP_EVENTS_LOCATE, DP_EVENTS_NONE } dp_events_mode;
 
-/* Where solutions are not unique (seed 001 §4), which one to follow from rest: DP_BRANCH_REST stays at rest
+/* Where solutions are not unique (Pražák & Rajagopal 2016 §4), which one to follow from rest: DP_BRANCH_REST stays at rest
  * whenever rest is a solution; DP_BRANCH_MOTION leaves rest whenever a motion is a solution. */
 typedef enum dp_branch { DP_BRANCH_REST, DP_BRANCH_MOTION } dp_branch;
 

@@ -1,7 +1,7 @@
-/* include/dashpot/stability.h - stability of linear fully implicit laws (thesis chapter 1, issue 4).
+/* include/dashpot/stability.h - stability of linear fully implicit laws (Babováková 2012, chapter 1).
  *
  * A law  sum_i lambda_i F_V^(i) = sum_j mu_j x^(j)  closes  m x'' + F_V = 0.  With the Laplace variable z its
- * characteristic polynomial is  p(z) = m z^2 lambda(z) + mu(z)  (mathematics.md section 2). The analysis gives
+ * characteristic polynomial is  p(z) = m z^2 lambda(z) + mu(z)  (docs/mathematics.md section 2). The analysis gives
  * the roots (companion matrix, GSL), the spectral abscissa, the leading principal minors of the Hurwitz matrix
  * H_ij = a_(2i-j) (thesis Thm 1.1), a verdict that holds only when the two tests agree within rounding, the
  * closed-form conditions (1.10), (1.12), (1.14) when the law has the shape of thesis model 1.2, 1.3 or 1.4,
@@ -161,7 +161,7 @@ typedef struct dp_pencil {
                                    infinite (not finite: -1) when their count differs from deg p */
 } dp_pencil;
 
-/* The whole report of issue 4. */
+/* The whole stability report: the Hurwitz verdict, the roots and the closed forms. */
 typedef struct dp_stability {
     int nominal_degree;
     double coef[DP_STAB_MAX_DEGREE + 1];     /* p as written, a[0..nominal_degree], highest first */

@@ -1,9 +1,9 @@
-/* include/dashpot/wellposedness.h - what the theorems guarantee about a model (mathematics.md §5).
+/* include/dashpot/wellposedness.h - what the theorems guarantee about a model (docs/mathematics.md §5).
  *
  * From the graphs' own properties, existence and uniqueness are decided separately: guaranteed (by which
  * theorem of which seed, hypotheses checked) or not guaranteed (which hypothesis fails, with a witness).
- * Two frameworks: (PC) for a linear spring and a damper F_d = F_c - gamma(v), (F_c, v) in A (seed 001
- * Thms 2, 3; seed 000 Thms 3.2, 3.3), and (PI) for x = f(F_s), x' = g(F_d) (seed 000 Thms 2.1, 2.2).
+ * Two frameworks: (PC) for a linear spring and a damper F_d = F_c - gamma(v), (F_c, v) in A (Pražák & Rajagopal 2016
+ * Thms 2, 3; Babováková 2012 Thms 3.2, 3.3), and (PI) for x = f(F_s), x' = g(F_d) (Babováková 2012 Thms 2.1, 2.2).
  */
 #ifndef DASHPOT_WELLPOSEDNESS_H
 #define DASHPOT_WELLPOSEDNESS_H
@@ -16,7 +16,7 @@
 
 /* One hypothesis: its name as the source writes it, whether it holds, and why (a witness if not). */
 typedef struct dp_wp_check {
-    const char *name;          /* e.g. "A monotone (seed 001 (6))" */
+    const char *name;          /* e.g. "A monotone (Pražák & Rajagopal 2016 (6))" */
     int holds;
     char detail[DP_WP_TEXT];
 } dp_wp_check;

@@ -7,7 +7,7 @@
  * solver's step count is bounded by its stiffness, not by the spec's step count (k = 1e69 takes 10^9 steps
  * and minutes), and that is a cost, not a crash. The run's stop hook (as the daemon's) says stop at that
  * time or on its stop_at-th call (from the input's bytes), and yields on every third call: the property of
- * issue 15 is that the dp_run_next during which it said stop returns DP_ECANCEL, every later one too, and
+ * the stop contract is that the dp_run_next during which it said stop returns DP_ECANCEL, every later one too, and
  * that no two polls are more than GAP_SECONDS apart, whatever the laws, tables and `every`. */
 #include <math.h>
 #include <time.h>

@@ -5,7 +5,7 @@
                                 prints "NAME STATUSES CLOSED" (statuses comma-separated, CLOSED yes/no)
   rawhttp.py burst PORT N       N connections opened at once, then one GET /healthz on each, each kept
                                 open until every answer is in: prints "SERVED REFUSED OTHER"
-  rawhttp.py slowspec N T_END   the spec of issue 15 (N-point graph spring and damper, rational relaxation,
+  rawhttp.py slowspec N T_END   the slow spec of the stop tests (N-point graph spring and damper, rational relaxation,
                                 belt 0.3, N-point table load, dt 1e-7, t_end T_END, every 1e15) on stdout
 """
 import json

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tests/robustness/stop.sh - runs stop when told (issue 15), against the issue's slow spec (generated here:
+# tests/robustness/stop.sh - runs stop when told, against the issue's slow spec (generated here:
 # 10^4-point graph spring and damper, rational relaxation, belt, 10^4-point table load, 10^8 steps of 10^-7,
 # one sample in 10^15, i.e. one block for the whole run), on a daemon with --threads 2:
 #   1. two such runs with --max-wall 2: each stream ends with its wall-time error line within 2 s + 0.5 s;
