@@ -1,4 +1,5 @@
-/* src/http/server.c - libmicrohttpd set-up and the request lifecycle (docs/architecture.md; libmicrohttpd's own lifecycle: state on the first callback, the body under a cap, everything freed in the completed callback).
+/* src/http/server.c - libmicrohttpd set-up and the request lifecycle, as libmicrohttpd's own examples do it:
+ * state on the first callback, the body read under a cap, everything freed in the completed callback.
  *
  * MHD calls the access handler at least twice per request: the first call allocates the request state and
  * resolves the route; it answers only an overload (503), a missing bearer token (401) or a declared
