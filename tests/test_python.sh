@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# tests/test_python.sh - the Python client (python/) against a live daemon of this build ($BUILD/dashpotd):
+# tests/test_python.sh - the Python client (python/) and the notebook (notebooks/first-day.ipynb) against a
+# live daemon of this build ($BUILD/dashpotd):
 #
 # 1. The package installs offline with Debian 12's own packages, as python/README.md says: a venv made with
 #    --system-site-packages (numpy, requests, setuptools, pip from Debian), then
@@ -9,7 +10,9 @@
 #    life cycle, plots (python/tests/*.py say what each asserts). Passes only with exit status 0, at least
 #    MIN_TESTS tests run and none skipped (pytest exits 5 when it collects nothing; a skip would hide a
 #    missing optional package).
-# 3. No dashpotd started here is left running.
+# 3. The notebook, committed without outputs, executed headlessly by nbclient in a kernel of that venv; every
+#    computing cell asserts its numbers, so a wrong number fails a cell and the check.
+# 4. No dashpotd started here is left running.
 #
 # Env BUILD (default build); DASHPOT_PYTHON: the interpreter with Debian's packages (default /usr/bin/python3:
 # a python3 earlier on PATH, e.g. pyenv's, does not see them). Prints "N passed, M failed"; exit 1 on failure.
@@ -19,8 +22,9 @@ MIN_TESTS=30
 PY=${DASHPOT_PYTHON:-/usr/bin/python3}
 [ -x "$PY" ] || PY=$(command -v python3)
 VENV=$SCRATCH/venv
-export PYTHONDONTWRITEBYTECODE=1   # no __pycache__ in python/tests
+export PYTHONDONTWRITEBYTECODE=1   # no __pycache__ in python/tests or the notebook's imports
 export MPLBACKEND=Agg
+export PYDEVD_DISABLE_FILE_VALIDATION=1  # quiets ipykernel's debugger warning about frozen modules
 export DASHPOT_DAEMON=$DAEMON      # dashpot.Client() starts this build's daemon
 
 # The dashpotd processes of this build that are running now, one pid a line (to find leftovers at the end):
@@ -37,7 +41,7 @@ before=$(our_daemons)
 [ -x "$DAEMON" ] || { echo "not ok - $DAEMON not built"; exit 1; }
 missing=$("$PY" -c '
 import importlib.util
-need = "numpy requests setuptools pip pytest pandas matplotlib tqdm".split()
+need = "numpy requests setuptools pip pytest pandas matplotlib tqdm nbclient nbformat ipykernel".split()
 print(" ".join(m for m in need if importlib.util.find_spec(m) is None))')
 check "$PY has Debian's packages the client and its tests need (missing: ${missing:-none})" test -z "$missing"
 [ -z "$missing" ] || finish
@@ -71,9 +75,37 @@ check "pytest exit status 0 (got $rc)" test "$rc" = 0
 check "pytest ran at least $MIN_TESTS tests, none failed or skipped ($n_tests run, $n_failed failed, $n_errors errors, $n_skipped skipped)" \
     test "$n_tests" -ge $MIN_TESTS -a "$n_failed" = 0 -a "$n_errors" = 0 -a "$n_skipped" = 0
 
-# ---- 3. nothing left running ----
+# ---- 3. the notebook ----
+"$VENV/bin/python" -m ipykernel install --prefix "$VENV" --name dashpot-test >/dev/null 2>&1
+start=$(date +%s)
+(cd "$SCRATCH" && "$VENV/bin/python" - "$ROOT/notebooks/first-day.ipynb" <<'PY') >"$SCRATCH/notebook.log" 2>&1
+import os, sys
+import nbclient, nbformat
+path = sys.argv[1]
+nb = nbformat.read(path, as_version=4)
+nbformat.validate(nb)
+code = [c for c in nb.cells if c.cell_type == "code"]
+dirty = [i for i, c in enumerate(code) if c.outputs or c.execution_count is not None]
+assert not dirty, "code cells committed with outputs: %s" % dirty
+asserting = sum("assert " in c.source for c in code)
+print("%d code cells, %d of them assert" % (len(code), asserting))
+assert asserting >= 5, "the notebook's computing cells should assert their numbers"
+client = nbclient.NotebookClient(nb, kernel_name="dashpot-test", timeout=120, allow_errors=False,
+                                 resources={"metadata": {"path": os.path.dirname(path)}})
+try:
+    client.execute()
+except nbclient.exceptions.CellExecutionError as e:
+    print(e)
+    sys.exit(1)
+print("every cell ran")
+PY
+rc=$?
+sed 's/^/    /' "$SCRATCH/notebook.log" | tail -30
+check "notebooks/first-day.ipynb: no outputs committed, every cell runs and its asserts hold ($(( $(date +%s) - start )) s)" test $rc = 0
+
+# ---- 4. nothing left running ----
 leftover=$(comm -13 <(echo "$before") <(our_daemons) | grep .)
-check "no dashpotd started by the client is left running${leftover:+ (pids: $leftover)}" test -z "$leftover"
+check "no dashpotd started by the client or the notebook is left running${leftover:+ (pids: $leftover)}" test -z "$leftover"
 for p in $leftover; do kill -TERM "$p" 2>/dev/null; done
 
 echo "pytest: ${summary:-no summary line}"
