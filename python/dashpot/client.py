@@ -114,10 +114,12 @@ class Client:
         return self._daemon.log_tail(n) if self._daemon else ""
 
     def close(self):
-        """Closes the connections and stops the daemon this client started (idempotent)."""
+        """Closes the connections and stops the daemon this client started (idempotent). Returns the
+        daemon's exit status (0 after a clean SIGTERM), or None for a daemon given by URL."""
         self._session.close()
         if self._daemon is not None:
-            self._daemon.stop()
+            return self._daemon.stop()
+        return None
 
     def __enter__(self):
         return self
