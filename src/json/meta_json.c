@@ -8,6 +8,7 @@
 #include "dashpot/lcp_json.h"
 #include "dashpot/newmark.h"
 #include "dashpot/regularized.h"
+#include "dashpot/warnings.h"
 
 static const char *variant_name(const dp_solver_spec *s)
 {
@@ -52,6 +53,23 @@ static int whole(dp_buf *out, long v)
 }
 
 static int regularized_fields(const dp_solver_spec *sv, dp_buf *out);
+
+/* ,"warnings":[{"code","pointer","detail"}, ...] when the spec has any (dp_spec_warnings), else nothing: a
+ * run without warnings keeps its meta line as it was. */
+static int warnings_json(const dp_spec *s, dp_buf *out)
+{
+    dp_warnings w;
+    dp_spec_warnings(s, &w);
+    if (w.n == 0)
+        return 0;
+    int st = lit(out, ",\"warnings\":[");
+    for (size_t i = 0; i < w.n; i++) {
+        st |= lit(out, i ? ",{\"code\":" : "{\"code\":") | dp_json_quote(out, w.item[i].code);
+        st |= lit(out, ",\"pointer\":") | dp_json_quote(out, w.item[i].pointer);
+        st |= lit(out, ",\"detail\":") | dp_json_quote(out, w.item[i].detail) | lit(out, "}");
+    }
+    return st | lit(out, "]");
+}
 
 /* Newmark's parameters and the stability limit for the model's highest mode (newmark.h):
  * "beta","gamma","stability":{"omega_max","T_min","dt_over_T_min","limit","inside"}; limit null when
@@ -113,6 +131,7 @@ static int network_meta(const dp_spec *s, dp_buf *out)
     dp_wp_report wp;
     dp_network_wellposedness(net, &wp);
     st |= dp_wellposedness_json(&wp, out);
+    st |= warnings_json(s, out);
     st |= dp_buf_append(out, "}", 1);
     return st ? DP_ENOMEM : DP_OK;
 }
@@ -161,6 +180,7 @@ int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
     dp_wp_report wp;
     dp_wellposedness(&s->model, &wp);
     st |= dp_wellposedness_json(&wp, out);
+    st |= warnings_json(s, out);
     st |= dp_buf_append(out, "}", 1);
     return st ? DP_ENOMEM : DP_OK;
 }
