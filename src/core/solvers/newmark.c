@@ -36,12 +36,12 @@ static void check_laws(const dp_spring *sp, int has_spring, const dp_damper *d, 
                        dp_errors *e)
 {
     char p[DP_POINTER_MAX];
-    if (has_spring && sp->law != DP_SPRING_LINEAR && sp->law != DP_SPRING_ELASTOPLASTIC) {
+    if (has_spring && !dp_spring_linear(sp) && !dp_spring_plastic(sp)) {
         snprintf(p, sizeof p, "%s/spring/law", at);
         dp_errors_add(e, p, "the newmark solver takes linear and elastoplastic springs; a %s spring is stepped by "
                       "the stick-slip solver", dp_spring_law_name(sp->law));
     }
-    if (has_damper && d->law != DP_DAMPER_NONE && d->law != DP_DAMPER_LINEAR) {
+    if (has_damper && !dp_damper_linear(d)) {
         snprintf(p, sizeof p, "%s/damper/law", at);
         dp_errors_add(e, p, "the newmark solver takes linear dampers only: a %s damper is set-valued (it can "
                       "stick), which only the stick-slip solver steps exactly: use \"kind\": \"stick-slip\"",
@@ -95,7 +95,7 @@ static int omega2_max(const dp_spec *s, double *w2)
         dp_network_linear_parts(net, M->data, K->data, NULL);
         for (size_t i = 0; i < net->nel; i++) {
             const dp_element *el = &net->el[i];
-            if (!el->has_spring || el->spring.law != DP_SPRING_ELASTOPLASTIC)
+            if (!el->has_spring || !dp_spring_plastic(&el->spring))
                 continue;
             long a = el->a, b = el->b;
             double k = el->spring.k;
@@ -273,18 +273,19 @@ int dp_nm_step(dp_nm *w, double h, const double *Pnew, const signed char *flow, 
 
 /* ---- the one-mass run --------------------------------------------------------------------------------- */
 
-/* The load: F(t) and a linear damper's belt term c v_b. */
+/* The load: F(t) and a viscous damper's belt term c v_b. */
 static double one_mass_load(const dp_run *r, double t)
 {
     const dp_damper *d = &r->spec.model.damper;
-    return dp_forcing_eval(&r->spec.model.forcing, t) + (d->law == DP_DAMPER_LINEAR ? d->c * d->belt_velocity : 0);
+    return dp_forcing_eval(&r->spec.model.forcing, t) +
+           (dp_damper_has_viscous(d) ? dp_damper_viscous(d) * d->belt_velocity : 0);
 }
 
 static void one_mass_forces(dp_run *r)
 {
     const dp_model *m = &r->spec.model;
     dp_sample *c = &r->cur;
-    double cv = m->damper.law == DP_DAMPER_LINEAR ? m->damper.c : 0;
+    double cv = dp_damper_viscous(&m->damper);
     c->Fs = r->ep ? r->ep_F : m->spring.k * c->x;
     c->Fc = c->Fd = cv == 0 ? 0 : cv * (c->v - m->damper.belt_velocity);
     c->phase = DP_PHASE_NONE;
@@ -294,13 +295,13 @@ static void one_mass_forces(dp_run *r)
 int dp_newmark_init(dp_run *r)
 {
     dp_model *m = &r->spec.model;
-    int ep = m->spring.law == DP_SPRING_ELASTOPLASTIC;
+    int ep = dp_spring_plastic(&m->spring);
     dp_nm *w = r->nm = dp_nm_alloc(1, 0, ep ? 1 : 0);
     if (w == NULL)
         return DP_ENOMEM;
     static const long ground = -1, node = 0;
     r->nm_M = m->mass;
-    r->nm_C = m->damper.law == DP_DAMPER_LINEAR ? m->damper.c : 0;
+    r->nm_C = dp_damper_viscous(&m->damper);
     r->nm_K = ep ? 0 : m->spring.k;
     w->M = &r->nm_M, w->C = &r->nm_C, w->K = &r->nm_K;
     w->ea = &ground, w->eb = &node, w->ek = &m->spring.k;

@@ -178,7 +178,7 @@ static int set_law(struct dp_regularized *g, const dp_spec *spec)
     const dp_model *m = &spec->model;
     const dp_damper *d = &m->damper;
     double n = spec->solver.n_list[0];
-    double c = (d->law == DP_DAMPER_LINEAR || d->law == DP_DAMPER_BINGHAM) ? d->c : 0;
+    double c = dp_damper_viscous(d);
     g->m = m->mass;
     g->vb = d->belt_velocity;
     g->gamma = &d->relaxation;
@@ -191,7 +191,7 @@ static int set_law(struct dp_regularized *g, const dp_spec *spec)
     }
     g->D = &d->graph;
     g->c = c;
-    g->spring_exact = m->spring.law == DP_SPRING_LINEAR;
+    g->spring_exact = dp_spring_linear(&m->spring);
     g->k = m->spring.k;
     return DP_OK;
 }
@@ -216,9 +216,11 @@ void dp_regularized_check(const dp_spec *s, dp_errors *e)
         dp_errors_add(e, "/solver/rtol", "rtol and atol must be finite, >= 0 and not both 0");
     if ((unsigned)sv->stepper > DP_STEPPER_RK8PD)
         dp_errors_add(e, "/solver/stepper", "unknown stepper");
-    if (d->law == DP_DAMPER_GENERALIZED_COULOMB)
+    const dp_damper_law_info *DL = dp_damper_law_info_of(d->law);
+    if (DL && DL->static_threshold)   /* a law with a static threshold, whatever its values */
         dp_errors_add(e, "/model/damper/law", "the regularized schemes need a maximal monotone damper graph "
-                      "(seed 001 Lemma 1); generalized-coulomb (phi1 > phi0) is not monotone");
+                      "(seed 001 Lemma 1); %s (%s > %s) is not monotone", DL->row.name,
+                      dp_law_member_key(&DL->row, DL->static_threshold), dp_law_member_key(&DL->row, DL->kinetic));
     if (d->relaxation.kind == DP_RELAX_POWER)
         dp_errors_add(e, "/model/damper/relaxation", "power relaxation is not Lipschitz at 0 (seed 001 (26)): "
                       "the regularized ODE has no unique solution and no bounded Jacobian");

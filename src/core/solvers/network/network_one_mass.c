@@ -15,8 +15,8 @@ int dp_network_is_one_mass(const dp_spec *s)
         return 0;
     if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
         return 0;
-    /* an elastoplastic spring steps on the network solver, which writes its "p" columns */
-    return s->solver.kind == DP_SOLVER_STICK_SLIP && n->el[0].spring.law != DP_SPRING_ELASTOPLASTIC;
+    /* a plastic (elastoplastic) spring steps on the network solver, which writes its "p" columns */
+    return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring);
 }
 
 /* The network's laws and loads as the run's one-mass model (deep copies: the run owns them). */
