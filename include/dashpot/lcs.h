@@ -22,7 +22,8 @@
 /* GRAPH, COULOMB and ROPE are graph laws: `graph` holds their (u, -w) graph (the one-mass model's builders:
  * the damper's Coulomb graph, the spring's rope, user points) and the stepper uses nothing else. */
 typedef enum dp_lcs_law_kind {
-    DP_LCS_COMPLEMENTARITY = 0, DP_LCS_INTERVAL = 1, DP_LCS_GRAPH = 2, DP_LCS_COULOMB = 3, DP_LCS_ROPE = 4
+    DP_LCS_COMPLEMENTARITY = 0, DP_LCS_INTERVAL = 1, DP_LCS_GRAPH = 2, DP_LCS_COULOMB = 3, DP_LCS_ROPE = 4,
+    DP_LCS_LAW_COUNT     /* not a law: the number of them (the law table's size) */
 } dp_lcs_law_kind;
 
 typedef struct dp_lcs_law {
@@ -33,7 +34,26 @@ typedef struct dp_lcs_law {
     dp_graph graph;      /* graph laws (an empty graph for the others) */
 } dp_lcs_law;
 
-/* Whether the stepper takes the law's graph (kind GRAPH, COULOMB or ROPE). */
+/* The component laws' table (src/core/lcp/lcs_laws.c), as the one-mass laws' (dashpot/model.h): its name and
+ * members, and what the stepper takes of it. A shape of 0 is no law: refused (dp_lcs_law_valid). */
+typedef enum dp_lcs_shape {
+    DP_LCS_SHAPE_NONE,
+    DP_LCS_SHAPE_CONE,       /* 0 <= u ⊥ w >= 0: one complementarity row */
+    DP_LCS_SHAPE_INTERVAL,   /* w ∈ -N_[lo,hi](u), lo and hi its members: two rows */
+    DP_LCS_SHAPE_GRAPH       /* -w ∈ G(u), G the law's `graph` (user points, or built from its members) */
+} dp_lcs_shape;
+
+typedef struct dp_lcs_law_info {
+    dp_law_row row;
+    dp_lcs_shape shape;
+    int (*build)(dp_lcs_law *law);   /* a named graph law's graph from its members; NULL for the others */
+} dp_lcs_law_info;
+
+extern const dp_lcs_law_info dp_lcs_laws[DP_LCS_LAW_COUNT];
+/* A kind's entry; NULL for a value that is no law. */
+const dp_lcs_law_info *dp_lcs_law_info_of(dp_lcs_law_kind kind);
+
+/* Whether the stepper takes the law's graph (its entry's shape is a graph: GRAPH, COULOMB, ROPE). */
 int dp_lcs_law_is_graph(const dp_lcs_law *law);
 /* The LCP rows a law adds to a step: 1 for complementarity, 2 for an interval, for a graph one per
  * non-vertical end ray and two per non-vertical segment between the vertices where it turns (a user graph's

@@ -12,7 +12,8 @@
 
 typedef enum dp_spring_law {
     DP_SPRING_LINEAR, DP_SPRING_ROPE, DP_SPRING_GRAPH,
-    DP_SPRING_ELASTOPLASTIC      /* Jenkins: spring k in series with a slider of yield force F_y (docs/systems.md §3) */
+    DP_SPRING_ELASTOPLASTIC,     /* Jenkins: spring k in series with a slider of yield force F_y (docs/systems.md §3) */
+    DP_SPRING_LAW_COUNT          /* not a law: the number of them (the law table's size) */
 } dp_spring_law;
 
 typedef struct dp_spring {
@@ -28,7 +29,8 @@ typedef struct dp_spring {
 
 typedef enum dp_damper_law {
     DP_DAMPER_NONE, DP_DAMPER_LINEAR, DP_DAMPER_COULOMB, DP_DAMPER_BINGHAM,
-    DP_DAMPER_GENERALIZED_COULOMB, DP_DAMPER_GRAPH
+    DP_DAMPER_GENERALIZED_COULOMB, DP_DAMPER_GRAPH,
+    DP_DAMPER_LAW_COUNT          /* not a law: the number of them (the law table's size) */
 } dp_damper_law;
 
 typedef enum dp_relaxation_kind {
@@ -122,6 +124,92 @@ double dp_relaxation_slope(const dp_relaxation *r, double v);
 double dp_relaxation_bound(const dp_relaxation *r);
 
 const char *dp_spring_law_name(dp_spring_law law);
+
+/* ---- the law table (src/core/laws/law_table.c) ------------------------------------------------------------
+ *
+ * One entry per law holds everything the code knows about it: its name and members (what the JSON parser
+ * reads), how its graph is built, and every property a solver, a rule or a report decides by. Nothing else
+ * classifies laws: code reads the entry (or the accessors below). Adding a law is its enum value, its entry
+ * with its graph builder, and its OpenAPI entry. A property left out of an entry reads as 0, which is always
+ * the general answer (the law's graph, the inclusion path, no event location, refused by the solvers with
+ * closed forms): a law is never sent down a special path it did not ask for. */
+
+typedef enum dp_member_bound { DP_MEMBER_ANY, DP_MEMBER_NONNEG, DP_MEMBER_POSITIVE } dp_member_bound;
+
+/* A number-valued member of a law's JSON object, stored at byte `offset` of its struct (dp_spring, dp_damper,
+ * dp_lcs_law). An optional member absent from the document takes `def`. */
+typedef struct dp_law_member {
+    const char *key;              /* NULL ends a list */
+    size_t offset;
+    dp_member_bound bound;
+    int required;
+    double def;
+} dp_law_member;
+
+#define DP_LAW_MAX_MEMBERS 4
+
+/* What the parser needs of any law: its enum value, its name, its members, and, for a user graph, the name of
+ * the abscissa of its "points" ([x, F], [v, F], [u, F]); NULL for a law built from its members. */
+typedef struct dp_law_row {
+    int law;
+    const char *name;
+    dp_law_member members[DP_LAW_MAX_MEMBERS + 1];
+    const char *points;
+} dp_law_row;
+
+/* A field of a law's struct named by its offset; 0 (the offset of `law`) means none. */
+typedef size_t dp_law_field;
+
+typedef struct dp_spring_law_info {
+    dp_law_row row;
+    int (*build)(dp_spring *s);   /* its graph from its members (a user graph: checks it has points) */
+    int linear;           /* F_s = k x: the solvers keep k as a number, no graph */
+    int plastic;          /* a plastic offset as a state (dp_elastoplastic_return, the Jenkins element) */
+    int locate;           /* one mass: stick-slip events located inside the step (else resolved to the step) */
+    int locate_network;   /* networks: the same (a graph spring's pieces move with the step's length) */
+    dp_law_field x_max;   /* a member bounding x from above (an inextensible rope's length) */
+    dp_law_field elastic; /* a member holding its elastic stiffness (the fastest oscillation it allows) */
+} dp_spring_law_info;
+
+typedef struct dp_damper_law_info {
+    dp_law_row row;
+    int (*build)(dp_damper *d);   /* its graph from its members (a user graph: checks it has points) */
+    dp_law_field viscous; /* c of a viscous part c (v - v_b) kept out of the graph (docs/mathematics.md §4) */
+    dp_law_field kinetic; /* the kinetic threshold tau: the graph is the stick interval [-tau, tau] */
+    dp_law_field static_threshold; /* a static threshold >= kinetic: breakaway from rest needs more */
+    int closed_form;      /* the soft-threshold closed form of the stick-slip step applies (stick_slip.c) */
+    int linear;           /* F_c = c (v - v_b): nothing set-valued */
+    int locate;           /* stick-slip events located inside the step when it can stick */
+    int analytic;         /* the analytic solver's closed form covers it (Coulomb's, or no damper) */
+    int thesis;           /* algorithm 4.1 of Babováková 2012 (variant "thesis") covers it */
+} dp_damper_law_info;
+
+extern const dp_spring_law_info dp_spring_laws[DP_SPRING_LAW_COUNT];
+extern const dp_damper_law_info dp_damper_laws[DP_DAMPER_LAW_COUNT];
+
+/* A law's entry; NULL for a value that is no law. */
+const dp_spring_law_info *dp_spring_law_info_of(dp_spring_law law);
+const dp_damper_law_info *dp_damper_law_info_of(dp_damper_law law);
+
+/* Reads of the entry. The k of a linear spring (0 for any other: its force is in its graph); whether the
+ * spring is linear, whether it is plastic. */
+double dp_spring_stiffness(const dp_spring *s);
+int dp_spring_linear(const dp_spring *s);
+int dp_spring_plastic(const dp_spring *s);
+/* The damper's viscous c (0 without a viscous part), its kinetic threshold (0 without one), its static
+ * threshold (the kinetic one when it has none); whether it is linear, whether its stick-slip step has the
+ * closed form. */
+double dp_damper_viscous(const dp_damper *d);
+int dp_damper_has_viscous(const dp_damper *d);
+double dp_damper_kinetic(const dp_damper *d);
+double dp_damper_static(const dp_damper *d);
+int dp_damper_linear(const dp_damper *d);
+int dp_damper_closed_form(const dp_damper *d);
+/* The stick interval [-phi1, phi1] at the static threshold, into an empty g. DP_OK, DP_EINVAL, DP_ENOMEM. */
+int dp_damper_static_graph(const dp_damper *d, dp_graph *g);
+/* The key of the member of a row stored at `field` (NULL when none is); the number there in a law's struct. */
+const char *dp_law_member_key(const dp_law_row *row, dp_law_field field);
+double dp_law_field_value(const void *law_struct, dp_law_field field);
 
 /* The Jenkins element's step (docs/systems.md §3), exact by return mapping: from the plastic offset *p and the
  * elongation u at the step's end, the force clamp(k (u - p), -F_y, F_y), with *p moved so that

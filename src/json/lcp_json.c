@@ -328,25 +328,18 @@ static int put_matrix_theory(dp_buf *b, const char *key, const gsl_matrix *M)
     return s || put(b, ",\"uniqueness\":") || dp_json_quote(b, u) || put(b, "}");
 }
 
-/* A law as the document gave it; a graph law with its points, and the LCP rows it adds to a step. */
+/* A law as the document gave it (its entry's name and members, dashpot/lcs.h); a user graph with its points,
+ * and a graph law with the LCP rows it adds to a step. */
 static int put_law(dp_buf *b, const dp_lcs_law *l)
 {
-    int s;
-    switch (l->kind) {
-    case DP_LCS_COMPLEMENTARITY:
-        s = put(b, "{\"law\":\"complementarity\"");
-        break;
-    case DP_LCS_INTERVAL:
-        s = put(b, "{\"law\":\"interval\",\"min\":") || put_num(b, l->lo) || put(b, ",\"max\":") || put_num(b, l->hi);
-        break;
-    case DP_LCS_COULOMB:
-        s = put(b, "{\"law\":\"coulomb\",\"phi0\":") || put_num(b, l->phi0);
-        break;
-    case DP_LCS_ROPE:
-        s = put(b, "{\"law\":\"rope\",\"k\":") || put_num(b, l->k) || put(b, ",\"length\":") || put_num(b, l->length);
-        break;
-    default:
-        s = put(b, "{\"law\":\"graph\",\"points\":[");
+    const dp_lcs_law_info *L = dp_lcs_law_info_of(l->kind);
+    if (L == NULL)
+        return DP_EINVAL;
+    int s = put(b, "{\"law\":\"") || put(b, L->row.name) || put(b, "\"");
+    for (const dp_law_member *m = L->row.members; m->key && !s; m++)
+        s = put(b, ",\"") || put(b, m->key) || put(b, "\":") || put_num(b, dp_law_field_value(l, m->offset));
+    if (L->row.points) {
+        s = s || put(b, ",\"points\":[");
         for (size_t v = 0; v < l->graph.n && !s; v++) {
             double pt[2] = { l->graph.y[v], l->graph.f[v] };
             s = (v ? put(b, ",") : DP_OK) || put_vec(b, pt, 2);

@@ -124,7 +124,7 @@ static int network_meta(const dp_spec *s, dp_buf *out)
     size_t np = 0;
     for (size_t i = 0; i < ne; i++) {
         size_t k = s->output.elements ? s->output.elements[i] : i;
-        if (net->el[k].has_spring && net->el[k].spring.law == DP_SPRING_ELASTOPLASTIC)
+        if (net->el[k].has_spring && dp_spring_plastic(&net->el[k].spring))
             st |= lit(out, np++ ? "," : "],\"p\":[") | whole(out, (long)k);
     }
     st |= lit(out, "]},\"wellposedness\":");
@@ -164,9 +164,12 @@ int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
         st |= newmark_fields(s, out) | lit(out, ",\"events_mode\":\"step\"");
     else {
         st |= lit(out, "\",\"variant\":\"") | lit(out, variant_name(sv));
-        /* an elastoplastic spring's graph moves with its offset: its events are resolved to the step */
-        int ep = s->model.spring.law == DP_SPRING_ELASTOPLASTIC;
-        st |= lit(out, sv->events == DP_EVENTS_NONE ? "\",\"events_mode\":\"none" : ep ? "\",\"events_mode\":\"step"
+        /* a law whose entry does not locate its events (an elastoplastic spring's graph moves with its
+         * offset) has them resolved to the step */
+        const dp_spring_law_info *SL = dp_spring_law_info_of(s->model.spring.law);
+        const dp_damper_law_info *DL = dp_damper_law_info_of(s->model.damper.law);
+        int step = !(SL && SL->locate && DL && DL->locate);
+        st |= lit(out, sv->events == DP_EVENTS_NONE ? "\",\"events_mode\":\"none" : step ? "\",\"events_mode\":\"step"
                                                                                   : "\",\"events_mode\":\"locate");
         st |= lit(out, sv->branch == DP_BRANCH_MOTION ? "\",\"branch\":\"motion\"" : "\",\"branch\":\"rest\"");
         st |= num(out, "theta", sv->theta);

@@ -190,31 +190,46 @@ static const char *law_of(const cJSON *o, const char *p, const char *const *laws
     return NULL;
 }
 
+/* The law table's names (dashpot/model.h), NULL-terminated, as the list "a, b, c". */
+static void law_list(const char *const *names, char *list, size_t cap)
+{
+    size_t len = 0;
+    list[0] = '\0';
+    for (size_t i = 0; names[i]; i++)
+        len += (size_t)snprintf(list + len, len < cap ? cap - len : 0, "%s%s", i ? ", " : "", names[i]);
+}
+
 /* The spring and damper of an element: what is linear in them, and a law that marks the rest. */
 static void parse_laws(const cJSON *el, const char *p, dp_element *x, dp_errors *e)
 {
-    static const char *const springs[] = { "linear", "rope", "graph", "elastoplastic", NULL };
-    static const char *const dampers[] = { "none", "linear", "coulomb", "bingham", "generalized-coulomb", "graph", NULL };
+    const char *springs[DP_SPRING_LAW_COUNT + 1], *dampers[DP_DAMPER_LAW_COUNT + 1];
+    char slist[256], dlist[256];
+    for (size_t i = 0; i <= DP_SPRING_LAW_COUNT; i++)
+        springs[i] = i < DP_SPRING_LAW_COUNT ? dp_spring_laws[i].row.name : NULL;
+    for (size_t i = 0; i <= DP_DAMPER_LAW_COUNT; i++)
+        dampers[i] = i < DP_DAMPER_LAW_COUNT ? dp_damper_laws[i].row.name : NULL;
+    law_list(springs, slist, sizeof slist);
+    law_list(dampers, dlist, sizeof dlist);
     char q[DP_POINTER_MAX];
     const cJSON *s = cJSON_GetObjectItemCaseSensitive(el, "spring"), *d = cJSON_GetObjectItemCaseSensitive(el, "damper");
     int id;
     ptrf(q, "%s/spring", p);
     if (s && (!cJSON_IsObject(s) ? (dp_errors_add(e, q, "must be an object"), 0) : 1) &&
-        law_of(s, q, springs, "linear, rope, graph, elastoplastic", e, &id)) {
+        law_of(s, q, springs, slist, e, &id)) {
+        int linear = dp_spring_laws[id].linear;
         x->has_spring = 1;
-        x->spring.law = id == 0 ? DP_SPRING_LINEAR : DP_SPRING_GRAPH; /* anything but linear is left out */
-        if (id == 0)
+        x->spring.law = linear ? (dp_spring_law)id : DP_SPRING_GRAPH; /* anything but linear is left out */
+        if (linear)
             get_number(s, q, "k", 0, INFINITY, 1, &x->spring.k, e);
     }
     ptrf(q, "%s/damper", p);
     if (d && (!cJSON_IsObject(d) ? (dp_errors_add(e, q, "must be an object"), 0) : 1) &&
-        law_of(d, q, dampers, "none, linear, coulomb, bingham, generalized-coulomb, graph", e, &id)) {
-        static const dp_damper_law ids[] = { DP_DAMPER_NONE, DP_DAMPER_LINEAR, DP_DAMPER_COULOMB, DP_DAMPER_BINGHAM,
-                                             DP_DAMPER_GENERALIZED_COULOMB, DP_DAMPER_GRAPH };
+        law_of(d, q, dampers, dlist, e, &id)) {
+        const dp_damper_law_info *L = &dp_damper_laws[id];
         x->has_damper = 1;
-        x->damper.law = ids[id];
-        if (id == 1 || id == 3) /* linear and Bingham: their viscous c is linear */
-            get_number(d, q, "c", 0, INFINITY, 1, &x->damper.c, e);
+        x->damper.law = (dp_damper_law)id;
+        if (L->viscous) /* linear and Bingham: their viscous c is linear */
+            get_number(d, q, dp_law_member_key(&L->row, L->viscous), 0, INFINITY, 1, &x->damper.c, e);
         const cJSON *relax = cJSON_GetObjectItemCaseSensitive(d, "relaxation");
         if (relax && !cJSON_IsNull(relax))
             x->damper.relaxation.kind = DP_RELAX_RATIONAL; /* left out: only its presence matters here */

@@ -463,21 +463,39 @@ static void parse_graph(ctx *c, const cJSON *o, const at *ptr, const char *yname
 
 #define NUM(st, field, r, req) { #field, offsetof(st, field), &(r), (req) }
 
+/* A law table's row (dashpot/model.h) as a variant: its members with their bounds, "points" for a user graph. */
+static void law_variant(const dp_law_row *row, variant *v)
+{
+    static const range *const bounds[] = { [DP_MEMBER_ANY] = &ANY, [DP_MEMBER_NONNEG] = &NONNEG,
+                                           [DP_MEMBER_POSITIVE] = &POSITIVE };
+    *v = (variant){ row->name, row->law, { { NULL } }, { row->points ? "points" : NULL, NULL } };
+    for (size_t i = 0; row->members[i].key; i++) {
+        const dp_law_member *m = &row->members[i];
+        v->params[i] = (param){ m->key, m->offset, bounds[m->bound], m->required };
+    }
+}
+
+/* The law's optional members that o leaves out take their defaults. */
+static void law_defaults(const dp_law_row *row, const cJSON *o, void *base)
+{
+    for (const dp_law_member *m = row->members; m->key; m++)
+        if (!m->required && cJSON_GetObjectItemCaseSensitive(o, m->key) == NULL)
+            *(double *)((char *)base + m->offset) = m->def;
+}
+
 static void parse_spring(ctx *c, const cJSON *o, const at *ptr, dp_spring *s)
 {
-    static const variant laws[] = {
-        { "linear", DP_SPRING_LINEAR, { NUM(dp_spring, k, NONNEG, 1) }, { NULL } },
-        { "rope", DP_SPRING_ROPE, { NUM(dp_spring, k, NONNEG, 1), NUM(dp_spring, length, ANY, 1) }, { NULL } },
-        { "graph", DP_SPRING_GRAPH, { { NULL } }, { "points", NULL } },
-        { "elastoplastic", DP_SPRING_ELASTOPLASTIC, { NUM(dp_spring, k, POSITIVE, 1), NUM(dp_spring, yield, POSITIVE, 1),
-          NUM(dp_spring, offset, ANY, 0) }, { NULL } },
-    };
-    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, 4, NULL, s);
+    variant laws[DP_SPRING_LAW_COUNT];
+    for (size_t i = 0; i < DP_SPRING_LAW_COUNT; i++)
+        law_variant(&dp_spring_laws[i].row, &laws[i]);
+    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, DP_SPRING_LAW_COUNT, NULL, s);
     if (v == NULL)
         return;
     s->law = (dp_spring_law)v->id;
-    if (s->law == DP_SPRING_GRAPH)
-        parse_graph(c, o, ptr, "x", &s->graph);
+    const dp_law_row *row = &dp_spring_laws[s->law].row;
+    law_defaults(row, o, s);
+    if (row->points)
+        parse_graph(c, o, ptr, row->points, &s->graph);
 }
 
 static void parse_relaxation(ctx *c, const cJSON *o, const at *ptr, dp_relaxation *r)
@@ -495,29 +513,26 @@ static void parse_relaxation(ctx *c, const cJSON *o, const at *ptr, dp_relaxatio
 
 static void parse_damper(ctx *c, const cJSON *o, const at *ptr, dp_damper *d)
 {
-    static const variant laws[] = {
-        { "none", DP_DAMPER_NONE, { { NULL } }, { NULL } },
-        { "linear", DP_DAMPER_LINEAR, { NUM(dp_damper, c, NONNEG, 1) }, { NULL } },
-        { "coulomb", DP_DAMPER_COULOMB, { NUM(dp_damper, phi0, NONNEG, 1) }, { NULL } },
-        { "bingham", DP_DAMPER_BINGHAM, { NUM(dp_damper, tau, NONNEG, 1), NUM(dp_damper, c, NONNEG, 1) },
-          { NULL } },
-        { "generalized-coulomb", DP_DAMPER_GENERALIZED_COULOMB,
-          { NUM(dp_damper, phi0, NONNEG, 1), NUM(dp_damper, phi1, NONNEG, 1) }, { NULL } },
-        { "graph", DP_DAMPER_GRAPH, { { NULL } }, { "points", NULL } },
-    };
+    variant laws[DP_DAMPER_LAW_COUNT];
+    for (size_t i = 0; i < DP_DAMPER_LAW_COUNT; i++)
+        law_variant(&dp_damper_laws[i].row, &laws[i]);
     static const char *const common[] = { "relaxation", "belt_velocity", NULL };
     size_t before = c->nerr;
-    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, 6, common, d);
+    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, DP_DAMPER_LAW_COUNT, common, d);
     if (v == NULL)
         return;
     d->law = (dp_damper_law)v->id;
+    const dp_damper_law_info *L = &dp_damper_laws[d->law];
+    law_defaults(&L->row, o, d);
     char a[32], b[32];
-    at p = { ptr, "phi1", 0 };
-    if (d->law == DP_DAMPER_GENERALIZED_COULOMB && c->nerr == before && d->phi1 < d->phi0) {
-        fail(c, &p, "must be >= phi0 (%s), got %s", num_text(d->phi0, a), num_text(d->phi1, b));
+    at p = { ptr, dp_law_member_key(&L->row, L->static_threshold), 0 };
+    /* a static threshold is at least the kinetic one (generalized Coulomb's phi1 >= phi0) */
+    if (L->static_threshold && c->nerr == before && dp_damper_static(d) < dp_damper_kinetic(d)) {
+        fail(c, &p, "must be >= %s (%s), got %s", dp_law_member_key(&L->row, L->kinetic),
+             num_text(dp_damper_kinetic(d), a), num_text(dp_damper_static(d), b));
     }
-    if (d->law == DP_DAMPER_GRAPH)
-        parse_graph(c, o, ptr, "v", &d->graph);
+    if (L->row.points)
+        parse_graph(c, o, ptr, L->row.points, &d->graph);
     get_num(c, o, ptr, "belt_velocity", &ANY, 0, 0, &d->belt_velocity);
     const cJSON *r = member(c, o, ptr, "relaxation", NULL, &p);
     if (r != NULL)

@@ -33,12 +33,12 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
     long static_at = -1;
     for (size_t i = 0; i < net->nel && static_at < 0; i++) {
         const dp_damper *dm = &net->el[i].damper;
-        if (net->el[i].has_damper && dm->law == DP_DAMPER_GENERALIZED_COULOMB && dm->phi1 > dm->phi0)
+        if (net->el[i].has_damper && dp_damper_static(dm) > dp_damper_kinetic(dm))
             static_at = (long)i;
     }
     size_t ep = 0;
     for (size_t i = 0; i < net->nel; i++)
-        ep += net->el[i].has_spring && net->el[i].spring.law == DP_SPRING_ELASTOPLASTIC;
+        ep += net->el[i].has_spring && dp_spring_plastic(&net->el[i].spring);
     if (ep)   /* a Jenkins element with its force as a state: F' in k u' - N(F), a stop operator (systems.md §3) */
         snprintf(d, sizeof d, "%zu elements, each a monotone piecewise-linear graph (one-mass laws); %zu "
                  "elastoplastic, each with its force as a state (F' in k u' - N_K(F), K = [-F_y, F_y]: a maximal "
@@ -52,7 +52,7 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
         c->holds = 0;
         snprintf(c->detail, sizeof c->detail, "element %ld: generalized Coulomb with phi1 = %g > phi0 = %g is not "
                  "monotone (its force drops as it starts to slip); the solver follows the rest branch",
-                 static_at, dm->phi1, dm->phi0);
+                 static_at, dp_damper_static(dm), dp_damper_kinetic(dm));
     }
     size_t relaxed = 0;
     for (size_t i = 0; i < net->nel; i++)

@@ -24,7 +24,7 @@ static int omega2_max(const dp_spec *s, double *w2)
         dp_network_linear_parts(net, M->data, K->data, NULL);
         for (size_t i = 0; i < net->nel; i++) {
             const dp_element *el = &net->el[i];
-            if (!el->has_spring || el->spring.law != DP_SPRING_ELASTOPLASTIC)
+            if (!el->has_spring || !dp_spring_plastic(&el->spring))
                 continue;
             long a = el->a, b = el->b;
             double k = el->spring.k;

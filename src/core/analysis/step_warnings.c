@@ -20,18 +20,11 @@
 /* A tenth of a period: about the coarsest step at which the theta-method still follows an oscillation. */
 #define DP_STEPS_PER_PERIOD 10
 
+/* The elastic stiffness of a spring whose law-table entry names one; 0 for the others (a graph spring). */
 static double spring_k(const dp_spring *sp, int has)
 {
-    if (!has)
-        return 0;
-    switch (sp->law) {
-    case DP_SPRING_LINEAR:
-    case DP_SPRING_ELASTOPLASTIC:
-    case DP_SPRING_ROPE:
-        return fabs(sp->k);
-    default:
-        return 0;   /* a graph spring: its slopes are not judged */
-    }
+    const dp_spring_law_info *L = has ? dp_spring_law_info_of(sp->law) : NULL;
+    return L && L->elastic ? fabs(dp_law_field_value(sp, L->elastic)) : 0;
 }
 
 /* Gershgorin's bound on omega_max^2 of a network; 0 when it has none (no stiffness, or M's bound <= 0). */

@@ -1,70 +1,22 @@
-/* src/core/model.c - the named laws of mathematics.md §1 turned into monotone graphs, and model lifetime.
- *
- * Springs live in the (x, F_s) plane, dampers in the (v - v_b, F_c) plane. The damper graph holds only the
- * part a solver must treat implicitly as a set: Coulomb's and Bingham's stick interval; their viscous
- * part c stays a number so that the theta-method can weight it (mathematics.md §4).
+/* src/core/model.c - the model's lifetime: its laws' graphs built (by the law table, law_table.c), cleared and
+ * copied.
  */
-#include <math.h>
 #include <string.h>
 
 #include "dashpot/model.h"
 #include "dashpot/status.h"
 
-static const double RIGHT[2] = { 1, 0 };  /* horizontal ray: force constant */
-static const double UP[2] = { 0, 1 };     /* vertical ray: force unbounded at a fixed position */
-
-static int line_graph(dp_graph *g, double slope)
-{
-    double y = 0, f = 0, d[2] = { 1, slope };
-    return dp_graph_init(g, 1, &y, &f, d, d);
-}
-
-/* The stick interval [-phi, phi] at zero relative velocity, flat beyond (Coulomb, seed 000 (C)). */
-static int threshold_graph(dp_graph *g, double phi)
-{
-    if (phi == 0)
-        return line_graph(g, 0);
-    double y[2] = { 0, 0 }, f[2] = { -phi, phi };
-    return dp_graph_init(g, 2, y, f, RIGHT, RIGHT);
-}
-
+/* A law's graph is built by its entry in the law table (law_table.c); a value that is no law is refused. */
 int dp_spring_prepare(dp_spring *s)
 {
-    if (s->law == DP_SPRING_GRAPH)
-        return s->graph.n > 0 ? DP_OK : DP_EINVAL;
-    dp_graph_clear(&s->graph);
-    if (s->law == DP_SPRING_LINEAR)
-        return line_graph(&s->graph, s->k);
-    if (s->law == DP_SPRING_ELASTOPLASTIC) {
-        if (!(s->k > 0 && s->yield > 0 && isfinite(s->offset)))
-            return DP_EINVAL;
-        double y[2] = { s->offset - s->yield / s->k, s->offset + s->yield / s->k }, f[2] = { -s->yield, s->yield };
-        double flat[2] = { 1, 0 };
-        return dp_graph_init(&s->graph, 2, y, f, flat, flat);
-    }
-    /* Rope (thesis Fig. 1): F_s = k x while slack; at x = L the rope takes any extra tension. */
-    double y = s->length, f = s->k * s->length, left[2] = { 1, s->k };
-    return dp_graph_init(&s->graph, 1, &y, &f, left, UP);
+    const dp_spring_law_info *L = dp_spring_law_info_of(s->law);
+    return L && L->build ? L->build(s) : DP_EINVAL;
 }
 
 int dp_damper_prepare(dp_damper *d)
 {
-    switch (d->law) {
-    case DP_DAMPER_GRAPH:
-        return d->graph.n > 0 ? DP_OK : DP_EINVAL;
-    case DP_DAMPER_NONE:
-    case DP_DAMPER_LINEAR:
-        dp_graph_clear(&d->graph);
-        return line_graph(&d->graph, 0);
-    case DP_DAMPER_COULOMB:
-    case DP_DAMPER_GENERALIZED_COULOMB:
-        dp_graph_clear(&d->graph);
-        return threshold_graph(&d->graph, d->phi0);
-    case DP_DAMPER_BINGHAM:
-        dp_graph_clear(&d->graph);
-        return threshold_graph(&d->graph, d->tau);
-    }
-    return DP_EINVAL;
+    const dp_damper_law_info *L = dp_damper_law_info_of(d->law);
+    return L && L->build ? L->build(d) : DP_EINVAL;
 }
 
 int dp_model_prepare(dp_model *m)
@@ -98,16 +50,4 @@ int dp_model_copy(dp_model *dst, const dp_model *src)
     if (s != DP_OK)
         dp_model_clear(dst);
     return s;
-}
-
-const char *dp_spring_law_name(dp_spring_law law)
-{
-    static const char *names[] = { "linear", "rope", "graph", "elastoplastic" };
-    return (unsigned)law < 4 ? names[law] : "?";
-}
-
-const char *dp_damper_law_name(dp_damper_law law)
-{
-    static const char *names[] = { "none", "linear", "coulomb", "bingham", "generalized-coulomb", "graph" };
-    return (unsigned)law < 6 ? names[law] : "?";
 }

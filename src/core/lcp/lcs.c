@@ -59,9 +59,15 @@ void dp_lcs_stepper_free(dp_lcs_stepper *st)
     free(st);
 }
 
+static dp_lcs_shape shape_of(const dp_lcs_law *law)
+{
+    const dp_lcs_law_info *L = dp_lcs_law_info_of(law->kind);
+    return L ? L->shape : DP_LCS_SHAPE_NONE;
+}
+
 int dp_lcs_law_is_graph(const dp_lcs_law *law)
 {
-    return law->kind == DP_LCS_GRAPH || law->kind == DP_LCS_COULOMB || law->kind == DP_LCS_ROPE;
+    return shape_of(law) == DP_LCS_SHAPE_GRAPH;
 }
 
 /* The direction of the graph into vertex v (from v - 1, or the left ray) and out of it. */
@@ -92,7 +98,7 @@ static size_t law_pieces(const dp_lcs_law *law, size_t comp, piece *out, double 
                          size_t *bounded)
 {
     if (!dp_lcs_law_is_graph(law)) {
-        int iv = law->kind == DP_LCS_INTERVAL;
+        int iv = shape_of(law) == DP_LCS_SHAPE_INTERVAL;   /* else a complementarity row: u in [0, inf) */
         *u0 = *lo = iv ? law->lo : 0.0;
         *hi = iv ? law->hi : INFINITY;
         if (out)
@@ -167,8 +173,8 @@ int dp_lcs_law_valid(const dp_lcs_law *l)
 {
     if (dp_lcs_law_is_graph(l))
         return l->graph.n > 0 && l->graph.y && l->graph.f && pieces_finite(l);
-    return l->kind == DP_LCS_COMPLEMENTARITY ||
-           (l->kind == DP_LCS_INTERVAL && isfinite(l->lo) && isfinite(l->hi) && l->lo <= l->hi);
+    return shape_of(l) == DP_LCS_SHAPE_CONE ||
+           (shape_of(l) == DP_LCS_SHAPE_INTERVAL && isfinite(l->lo) && isfinite(l->hi) && l->lo <= l->hi);
 }
 
 static int valid(const dp_lcs *s, double h, double theta)

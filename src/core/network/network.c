@@ -128,15 +128,13 @@ static void add_incidence(double *A, size_t n, const dp_element *e, double w)
 /* The stiffness an element adds to K_l: a linear spring's k (graph and rope springs stay in the step). */
 static double element_k(const dp_element *e)
 {
-    return e->has_spring && e->spring.law == DP_SPRING_LINEAR ? e->spring.k : 0;
+    return e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
 }
 
-/* The viscosity an element adds to C_l: the c of a linear or Bingham damper (mathematics.md §4). */
+/* The viscosity an element adds to C_l: its damper's viscous c (linear, Bingham: mathematics.md §4). */
 static double element_c(const dp_element *e)
 {
-    if (!e->has_damper)
-        return 0;
-    return e->damper.law == DP_DAMPER_LINEAR || e->damper.law == DP_DAMPER_BINGHAM ? e->damper.c : 0;
+    return e->has_damper ? dp_damper_viscous(&e->damper) : 0;
 }
 
 static void fill(double *dst, const double *src, size_t nn)
@@ -166,8 +164,8 @@ void dp_network_linear_parts(const dp_network *net, double *M, double *K, double
 
 int dp_element_laws_linear(const dp_element *e)
 {
-    int nonlinear_spring = e->has_spring && e->spring.law != DP_SPRING_LINEAR;
-    int nonlinear_damper = e->has_damper && e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR;
+    int nonlinear_spring = e->has_spring && !dp_spring_linear(&e->spring);
+    int nonlinear_damper = e->has_damper && !dp_damper_linear(&e->damper);
     int relaxed = e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE;
     return !nonlinear_spring && !nonlinear_damper && !relaxed;
 }

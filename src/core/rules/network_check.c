@@ -139,7 +139,7 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
             dp_errors_add(e, p, "the initial relative velocity %g is outside the damper graph's domain", z);
         }
     }
-    if (el->has_spring && el->spring.law != DP_SPRING_LINEAR && el->spring.law != DP_SPRING_ELASTOPLASTIC &&
+    if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) &&
         s->solver.theta != 1) {
         el_ptr(p, sizeof p, s, i, "/spring");
         dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler): use "
@@ -160,10 +160,11 @@ static void check_regularized(const dp_spec *s, dp_errors *e)
     const dp_solver_spec *sv = &s->solver;
     char p[DP_POINTER_MAX];
     for (size_t i = 0; i < s->net->nel; i++)
-        if (s->net->el[i].has_spring && s->net->el[i].spring.law == DP_SPRING_ELASTOPLASTIC) {
+        if (s->net->el[i].has_spring && dp_spring_plastic(&s->net->el[i].spring)) {
             el_ptr(p, sizeof p, s, i, "/spring/law");
-            dp_errors_add(e, p, "the elastoplastic spring has memory (its plastic offset), which the regularized "
-                          "scheme's memoryless laws do not: use the stick-slip or the newmark solver");
+            dp_errors_add(e, p, "the %s spring has memory (its plastic offset), which the regularized "
+                          "scheme's memoryless laws do not: use the stick-slip or the newmark solver",
+                          dp_spring_law_name(s->net->el[i].spring.law));
         }
     if (sv->scheme != DP_SCHEME_PC)
         dp_errors_add(e, "/solver/scheme", "networks take scheme PC (Yosida dampers); PI is for one mass");
@@ -210,6 +211,6 @@ int dp_network_is_one_mass(const dp_spec *s)
         return 0;
     if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
         return 0;
-    /* an elastoplastic spring steps on the network solver, which writes its "p" columns */
-    return s->solver.kind == DP_SOLVER_STICK_SLIP && n->el[0].spring.law != DP_SPRING_ELASTOPLASTIC;
+    /* a plastic (elastoplastic) spring steps on the network solver, which writes its "p" columns */
+    return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring);
 }

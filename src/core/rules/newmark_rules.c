@@ -8,12 +8,12 @@ static void check_laws(const dp_spring *sp, int has_spring, const dp_damper *d, 
                        dp_errors *e)
 {
     char p[DP_POINTER_MAX];
-    if (has_spring && sp->law != DP_SPRING_LINEAR && sp->law != DP_SPRING_ELASTOPLASTIC) {
+    if (has_spring && !dp_spring_linear(sp) && !dp_spring_plastic(sp)) {
         snprintf(p, sizeof p, "%s/spring/law", at);
         dp_errors_add(e, p, "the newmark solver takes linear and elastoplastic springs; a %s spring is stepped by "
                       "the stick-slip solver", dp_spring_law_name(sp->law));
     }
-    if (has_damper && d->law != DP_DAMPER_NONE && d->law != DP_DAMPER_LINEAR) {
+    if (has_damper && !dp_damper_linear(d)) {
         snprintf(p, sizeof p, "%s/damper/law", at);
         dp_errors_add(e, p, "the newmark solver takes linear dampers only: a %s damper is set-valued (it can "
                       "stick), which only the stick-slip solver steps exactly: use \"kind\": \"stick-slip\"",

@@ -24,9 +24,11 @@ void dp_regularized_check(const dp_spec *s, dp_errors *e)
         dp_errors_add(e, "/solver/rtol", "rtol and atol must be finite, >= 0 and not both 0");
     if ((unsigned)sv->stepper > DP_STEPPER_RK8PD)
         dp_errors_add(e, "/solver/stepper", "unknown stepper");
-    if (d->law == DP_DAMPER_GENERALIZED_COULOMB)
+    const dp_damper_law_info *DL = dp_damper_law_info_of(d->law);
+    if (DL && DL->static_threshold)   /* a law with a static threshold, whatever its values */
         dp_errors_add(e, "/model/damper/law", "the regularized schemes need a maximal monotone damper graph "
-                      "(seed 001 Lemma 1); generalized-coulomb (phi1 > phi0) is not monotone");
+                      "(seed 001 Lemma 1); %s (%s > %s) is not monotone", DL->row.name,
+                      dp_law_member_key(&DL->row, DL->static_threshold), dp_law_member_key(&DL->row, DL->kinetic));
     if (d->relaxation.kind == DP_RELAX_POWER)
         dp_errors_add(e, "/model/damper/relaxation", "power relaxation is not Lipschitz at 0 (seed 001 (26)): "
                       "the regularized ODE has no unique solution and no bounded Jacobian");

@@ -164,9 +164,10 @@ static void check_analytic(const dp_spec *s, dp_errors *e)
 {
     const dp_model *m = &s->model;
     double F0;
-    if (m->spring.law != DP_SPRING_LINEAR || !(m->spring.k > 0))
+    const dp_damper_law_info *DL = dp_damper_law_info_of(m->damper.law);
+    if (!dp_spring_linear(&m->spring) || !(m->spring.k > 0))
         dp_errors_add(e, "/model/spring", "the analytic solver needs a linear spring with k > 0");
-    if (m->damper.law != DP_DAMPER_COULOMB && m->damper.law != DP_DAMPER_NONE)
+    if (!(DL && DL->analytic))
         dp_errors_add(e, "/model/damper/law", "the analytic solver needs a coulomb (or no) damper, got %s",
                       dp_damper_law_name(m->damper.law));
     if (m->damper.relaxation.kind != DP_RELAX_NONE)
@@ -186,7 +187,7 @@ static double analytic_arcs(const dp_spec *s)
 {
     const dp_model *m = &s->model;
     double k = m->spring.k, om = sqrt(k / m->mass), F0 = 0;
-    double phi0 = m->damper.law == DP_DAMPER_COULOMB ? m->damper.phi0 : 0;
+    double phi0 = dp_damper_kinetic(&m->damper);   /* coulomb's phi0, or no damper (check_analytic) */
     dp_forcing_is_constant(&m->forcing, &F0);
     double by_time = s->solver.t_end * om / M_PI + 2;
     if (!(phi0 > 0))
@@ -199,9 +200,11 @@ static void check_thesis(const dp_spec *s, dp_errors *e)
 {
     const dp_model *m = &s->model;
     const dp_damper *d = &m->damper;
-    if (m->spring.law != DP_SPRING_LINEAR || !(m->spring.k > 0))
+    const dp_damper_law_info *DL = dp_damper_law_info_of(d->law);
+    int thesis = DL && DL->thesis;
+    if (!dp_spring_linear(&m->spring) || !(m->spring.k > 0))
         dp_errors_add(e, "/model/spring", "variant \"thesis\" (algorithm 4.1) needs a linear spring with k > 0");
-    if (d->law != DP_DAMPER_COULOMB)
+    if (!thesis)
         dp_errors_add(e, "/model/damper/law", "variant \"thesis\" needs a coulomb damper, got %s",
                       dp_damper_law_name(d->law));
     if (d->belt_velocity != 0)
@@ -209,10 +212,10 @@ static void check_thesis(const dp_spec *s, dp_errors *e)
     if (s->solver.theta != 1)
         dp_errors_add(e, "/solver/theta", "variant \"thesis\" is the backward Euler scheme: theta must be 1");
     double A = dp_relaxation_bound(&d->relaxation);
-    if (d->law == DP_DAMPER_COULOMB && d->relaxation.kind != DP_RELAX_NONE && !(A < d->phi0))
+    if (thesis && d->relaxation.kind != DP_RELAX_NONE && !(A < dp_damper_kinetic(d)))
         dp_errors_add(e, "/model/damper/relaxation",
                       "variant \"thesis\" needs |gamma| <= A < phi0 (thesis (4.8)) for its sign rule (4.12); "
-                      "sup|gamma| = %g, phi0 = %g", A, d->phi0);
+                      "sup|gamma| = %g, phi0 = %g", A, dp_damper_kinetic(d));
     double K = m->mass / s->solver.dt + s->solver.dt * m->spring.k;
     double L = dp_relaxation_lipschitz(&d->relaxation);
     if (!(L < K))
@@ -225,11 +228,11 @@ static void check_exact(const dp_spec *s, dp_errors *e)
 {
     const dp_model *m = &s->model;
     double h = s->solver.dt, th = s->solver.theta;
-    if (th != 1 && m->spring.law != DP_SPRING_LINEAR && m->spring.law != DP_SPRING_ELASTOPLASTIC)
+    if (th != 1 && !dp_spring_linear(&m->spring) && !dp_spring_plastic(&m->spring))
         dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring (the %s spring is stepped by "
                       "backward Euler): use theta = 1", dp_spring_law_name(m->spring.law));
-    double k = m->spring.law == DP_SPRING_LINEAR ? m->spring.k : 0;
-    double c = (m->damper.law == DP_DAMPER_LINEAR || m->damper.law == DP_DAMPER_BINGHAM) ? m->damper.c : 0;
+    double k = dp_spring_stiffness(&m->spring);
+    double c = dp_damper_viscous(&m->damper);
     double W = m->mass + h * th * c + h * h * th * th * k;
     double L = dp_relaxation_lipschitz(&m->damper.relaxation);
     if (isfinite(L) && !(W > h * th * L))
@@ -255,9 +258,12 @@ static void check_domain(const dp_graph *g, double y, const char *ptr, const cha
 static void check_one_mass_domain(const dp_spec *s, dp_errors *e)
 {
     const dp_model *m = &s->model;
-    if (m->spring.law == DP_SPRING_ROPE && s->x0 > m->spring.length)
-        dp_errors_add(e, "/initial/x", "the rope is inextensible: x must be <= length = %g, got %g",
-                      m->spring.length, s->x0);
+    const dp_spring_law_info *SL = dp_spring_law_info_of(m->spring.law);
+    dp_law_field x_max = SL ? SL->x_max : 0;
+    double xm = x_max ? dp_law_field_value(&m->spring, x_max) : 0;
+    if (x_max && s->x0 > xm)
+        dp_errors_add(e, "/initial/x", "the %s is inextensible: x must be <= %s = %g, got %g", SL->row.name,
+                      dp_law_member_key(&SL->row, x_max), xm, s->x0);
     else
         check_domain(&m->spring.graph, s->x0, "/initial/x", "x", e);
     check_domain(&m->damper.graph, s->v0 - m->damper.belt_velocity, "/initial/v", "v - belt_velocity", e);
@@ -335,9 +341,10 @@ int dp_rules_regularized(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     check_one_mass_domain(s, e);
-    if (s->model.spring.law == DP_SPRING_ELASTOPLASTIC)
-        dp_errors_add(e, "/model/spring/law", "the elastoplastic spring has memory (its plastic offset), which the "
-                      "regularized schemes' memoryless laws do not: use the stick-slip or the newmark solver");
+    if (dp_spring_plastic(&s->model.spring))
+        dp_errors_add(e, "/model/spring/law", "the %s spring has memory (its plastic offset), which the "
+                      "regularized schemes' memoryless laws do not: use the stick-slip or the newmark solver",
+                      dp_spring_law_name(s->model.spring.law));
     else
         dp_regularized_check(s, e);
     return finish(s, max_steps, e, before);

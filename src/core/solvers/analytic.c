@@ -24,7 +24,7 @@ static dp_coulomb_problem problem_of(const dp_run *r)
 {
     const dp_model *m = &r->spec.model;
     dp_coulomb_problem p = { .m = m->mass, .k = m->spring.k, .F0 = ((const analytic_run *)r->state)->F0, .x0 = r->spec.x0, .v0 = r->spec.v0 };
-    p.phi0 = m->damper.law == DP_DAMPER_COULOMB ? m->damper.phi0 : 0;
+    p.phi0 = dp_damper_kinetic(&m->damper);   /* a coulomb damper's phi0, or none (check_analytic) */
     return p;
 }
 

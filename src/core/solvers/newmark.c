@@ -9,18 +9,19 @@
 #include "rules/rules.h"
 #include "solvers/run_types.h"
 
-/* The load: F(t) and a linear damper's belt term c v_b. */
+/* The load: F(t) and a viscous damper's belt term c v_b. */
 static double one_mass_load(const dp_run *r, double t)
 {
     const dp_damper *d = &r->spec.model.damper;
-    return dp_forcing_eval(&r->spec.model.forcing, t) + (d->law == DP_DAMPER_LINEAR ? d->c * d->belt_velocity : 0);
+    return dp_forcing_eval(&r->spec.model.forcing, t) +
+           (dp_damper_has_viscous(d) ? dp_damper_viscous(d) * d->belt_velocity : 0);
 }
 
 static void one_mass_forces(dp_run *r)
 {
     const dp_model *m = &r->spec.model;
     dp_sample *c = &r->cur;
-    double cv = m->damper.law == DP_DAMPER_LINEAR ? m->damper.c : 0;
+    double cv = dp_damper_viscous(&m->damper);
     c->Fs = r->ep ? r->ep_F : m->spring.k * c->x;
     c->Fc = c->Fd = cv == 0 ? 0 : cv * (c->v - m->damper.belt_velocity);
     c->phase = DP_PHASE_NONE;
@@ -45,7 +46,7 @@ static void newmark_free(void *state)
 static int newmark_init(dp_run *r)
 {
     dp_model *m = &r->spec.model;
-    int ep = m->spring.law == DP_SPRING_ELASTOPLASTIC;
+    int ep = dp_spring_plastic(&m->spring);
     newmark_run *nm = r->state = calloc(1, sizeof *nm);
     if (nm == NULL)
         return DP_ENOMEM;
@@ -54,7 +55,7 @@ static int newmark_init(dp_run *r)
         return DP_ENOMEM;
     static const long ground = -1, node = 0;
     nm->M = m->mass;
-    nm->C = m->damper.law == DP_DAMPER_LINEAR ? m->damper.c : 0;
+    nm->C = dp_damper_viscous(&m->damper);
     nm->K = ep ? 0 : m->spring.k;
     w->M = &nm->M, w->C = &nm->C, w->K = &nm->K;
     w->ea = &ground, w->eb = &node, w->ek = &m->spring.k;

@@ -186,7 +186,7 @@ static int set_law(struct dp_regularized *g, const dp_spec *spec)
     const dp_model *m = &spec->model;
     const dp_damper *d = &m->damper;
     double n = spec->solver.n_list[0];
-    double c = (d->law == DP_DAMPER_LINEAR || d->law == DP_DAMPER_BINGHAM) ? d->c : 0;
+    double c = dp_damper_viscous(d);
     g->m = m->mass;
     g->vb = d->belt_velocity;
     g->gamma = &d->relaxation;
@@ -199,7 +199,7 @@ static int set_law(struct dp_regularized *g, const dp_spec *spec)
     }
     g->D = &d->graph;
     g->c = c;
-    g->spring_exact = m->spring.law == DP_SPRING_LINEAR;
+    g->spring_exact = dp_spring_linear(&m->spring);
     g->k = m->spring.k;
     return DP_OK;
 }

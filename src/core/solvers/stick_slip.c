@@ -1,8 +1,9 @@
 /* src/core/stick_slip.c - exact stick-slip time stepping: the theta-method (Moreau-Jean, as Siconos'
  * EulerMoreauOSI) for m x'' + c (x' - v_b) + k x + r - gamma = F(t), r in A(x' - v_b) (mathematics.md §4).
  *
- * Each step is one scalar monotone inclusion in v+. For a linear spring, a threshold damper (Coulomb,
- * Bingham, linear, generalized Coulomb) and no relaxation it is the soft threshold
+ * Each step is one scalar monotone inclusion in v+. For a linear spring, a damper whose law-table entry has
+ * closed_form (a stick interval [-tau, tau] and a viscous c: Coulomb, Bingham, linear, generalized Coulomb)
+ * and no relaxation it is the soft threshold
  *     u = v_free - v_b,  v+ = v_b + sgn(u) max(|u| - h tau / W, 0),  W = m + h theta c + h^2 theta^2 k,
  * (Moreau's catching-up scheme: exact sticking, no creep). Otherwise it goes to dp_inclusion_solve, which
  * handles any maximal monotone damper graph, monotone spring graph and relaxation. With events "locate"
@@ -224,17 +225,19 @@ int dp_stick_slip_init(dp_run *r)
     const dp_model *m = &r->spec.model;
     const dp_damper *d = &m->damper;
     dp_ss_law *L = &r->law;
-    int linear_spring = m->spring.law == DP_SPRING_LINEAR;
-    int threshold = d->law != DP_DAMPER_GRAPH;
+    const dp_spring_law_info *SL = dp_spring_law_info_of(m->spring.law);
+    const dp_damper_law_info *DL = dp_damper_law_info_of(d->law);
+    if (SL == NULL || DL == NULL)
+        return DP_EINVAL;
+    int linear_spring = SL->linear;
     double lo, hi;
     L->m = m->mass;
-    L->k = linear_spring ? m->spring.k : 0;
-    L->c = (d->law == DP_DAMPER_LINEAR || d->law == DP_DAMPER_BINGHAM) ? d->c : 0;
-    L->tau = d->law == DP_DAMPER_BINGHAM ? d->tau : (d->law == DP_DAMPER_COULOMB
-             || d->law == DP_DAMPER_GENERALIZED_COULOMB) ? d->phi0 : 0;
+    L->k = dp_spring_stiffness(&m->spring);
+    L->c = dp_damper_viscous(d);
+    L->tau = dp_damper_kinetic(d);
     L->motion = r->spec.solver.branch == DP_BRANCH_MOTION;
     /* The motion branch leaves rest as soon as kinetic friction allows: the static threshold drops out. */
-    L->tau_s = d->law == DP_DAMPER_GENERALIZED_COULOMB && !L->motion ? d->phi1 : L->tau;
+    L->tau_s = !L->motion ? dp_damper_static(d) : L->tau;
     L->vb = d->belt_velocity;
     L->theta = r->spec.solver.theta;
     L->A = &d->graph;
@@ -243,11 +246,14 @@ int dp_stick_slip_init(dp_run *r)
     L->gamma = &d->relaxation;
     L->F = &m->forcing;
     dp_graph_force(L->A, 0, &lo, &hi);
-    L->can_stick = threshold ? L->tau_s > 0 : lo < hi;
-    L->closed = linear_spring && threshold && d->relaxation.kind == DP_RELAX_NONE;
+    /* A stick interval at rest: a static threshold (which may exceed the graph's, generalized Coulomb) or a
+     * vertical piece of the graph at zero. */
+    L->can_stick = L->tau_s > 0 || lo < hi;
+    /* Only an entry that says so takes the closed form, which reads tau and c and never the graph. */
+    L->closed = linear_spring && DL->closed_form && d->relaxation.kind == DP_RELAX_NONE;
     /* Only a stick interval makes the dynamics nonsmooth; smooth reversals need no splitting. */
     L->h = r->h;
-    if (m->spring.law == DP_SPRING_ELASTOPLASTIC) {   /* its state at x0 and its step graph there */
+    if (SL->plastic) {   /* its state at x0 and its step graph there */
         dp_spring *sp = &r->spec.model.spring;
         r->ep = 1, r->ep_p = sp->offset;
         r->ep_F = dp_elastoplastic_return(sp, r->spec.x0, &r->ep_p, &r->ep_flow);
@@ -259,7 +265,7 @@ int dp_stick_slip_init(dp_run *r)
     dp_ss_coef_init(L, L->h, &L->nominal);
     /* Events are located where the damper can stick; the motion branch leaves rest on its own terms. */
     L->locate = r->spec.solver.events == DP_EVENTS_LOCATE && (L->closed ? L->tau > 0 : L->can_stick && !L->motion)
-                && !r->ep;
+                && SL->locate && DL->locate;
     initial_state(r);
     dp_run_emit_state(r); /* the initial state: queued, no block yet */
     return DP_OK;

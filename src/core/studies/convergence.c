@@ -71,7 +71,7 @@ static void reference_spec(const dp_spec *spec, double ref_dt, dp_spec *ref, dp_
     out->ref_theta = NAN;
     if (dp_spec_check(ref, 0, &scratch) == DP_OK)
         return;
-    int linear = spec->model.spring.law == DP_SPRING_LINEAR;
+    int linear = dp_spring_linear(&spec->model.spring);
     double dt = spec->solver.dt, h = ref_dt > 0 ? ref_dt : linear ? REF_H_SECOND_ORDER : REF_H_FIRST_ORDER;
     double m = ref_dt > 0 ? fmax(1, round(dt / h)) : ceil(dt / h * (1 - 1e-12));
     ref->solver.kind = DP_SOLVER_STICK_SLIP;

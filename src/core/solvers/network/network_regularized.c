@@ -37,7 +37,7 @@ static double element_force(const struct dp_net_run *nr, size_t i, double u, dou
     const dp_element *e = &nr->net->el[i];
     double f = 0, s = 0, vb = e->has_damper ? e->damper.belt_velocity : 0;
     *du = *dz = 0;
-    if (e->has_spring && e->spring.law != DP_SPRING_LINEAR)
+    if (e->has_spring && !dp_spring_linear(&e->spring))
         f += dp_graph_yosida_slope(&e->spring.graph, lam, u, du);
     if (e->has_contact && u < e->contact.distance) {   /* compliant (rigid ones are refused) */
         f += nr_compliant_force(&e->contact, u);
@@ -173,7 +173,7 @@ static void row_forces(struct dp_net_reg *g)
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
         double u = nr_rel(e->a, e->b, nr->x), z = nr_rel(e->a, e->b, nr->v), du, dz, s = 0, d = 0, vb = 0;
-        if (e->has_spring && e->spring.law != DP_SPRING_LINEAR)
+        if (e->has_spring && !dp_spring_linear(&e->spring))
             s = dp_graph_yosida_slope(&e->spring.graph, g->lam, u, &du);
         if (e->has_damper) {
             vb = e->damper.belt_velocity;

@@ -103,7 +103,7 @@ static void band_add_incidence(double *B, size_t p, long a, long b, double w)
 
 static int is_ep(const dp_element *e)
 {
-    return e->has_spring && e->spring.law == DP_SPRING_ELASTOPLASTIC;
+    return e->has_spring && dp_spring_plastic(&e->spring);
 }
 
 /* The elastoplastic springs' state at the initial elongations (an elongation past yield moves the offset
@@ -140,11 +140,10 @@ static int setup_laws(struct dp_net_run *nr)
         dp_band_from_dense(net->C, n, p, nr->C);
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
-        int lin_spring = !e->has_spring || e->spring.law == DP_SPRING_LINEAR;
-        nr->k[i] = e->has_spring && lin_spring ? e->spring.k : 0;
-        nr->c[i] = e->has_damper && (e->damper.law == DP_DAMPER_LINEAR || e->damper.law == DP_DAMPER_BINGHAM)
-                   ? e->damper.c : 0;
-        int set_damper = e->has_damper && ((e->damper.law != DP_DAMPER_NONE && e->damper.law != DP_DAMPER_LINEAR)
+        int lin_spring = !e->has_spring || dp_spring_linear(&e->spring);
+        nr->k[i] = e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
+        nr->c[i] = e->has_damper ? dp_damper_viscous(&e->damper) : 0;
+        int set_damper = e->has_damper && (!dp_damper_linear(&e->damper)
                                            || e->damper.relaxation.kind != DP_RELAX_NONE);
         nr->can_stick[i] = (unsigned char)dp_element_can_stick(e);
         nr->act_of[i] = -1;
@@ -154,12 +153,11 @@ static int setup_laws(struct dp_net_run *nr)
             continue;
         if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
             nr->gamma[nr->nact] = &e->damper.relaxation, nr->relaxed = 1;
-        if (e->has_damper && e->damper.law == DP_DAMPER_GENERALIZED_COULOMB && e->damper.phi1 > e->damper.phi0) {
-            dp_model m = { .mass = 1, .damper = { .law = DP_DAMPER_COULOMB, .phi0 = e->damper.phi1 } };
-            if (dp_model_prepare(&m) != DP_OK)
+        if (e->has_damper && dp_damper_static(&e->damper) > dp_damper_kinetic(&e->damper)) {
+            dp_graph g = { 0 };   /* the stick interval at the static threshold */
+            if (dp_damper_static_graph(&e->damper, &g) != DP_OK)
                 return DP_ENOMEM;
-            nr->static_A[nr->nact] = m.damper.graph;   /* the spring's line graph of m is empty (k = 0 line) */
-            dp_graph_clear(&m.spring.graph);
+            nr->static_A[nr->nact] = g;
             nr->has_static = 1;
         }
         nr->act_of[i] = (long)nr->nact;
@@ -466,22 +464,33 @@ static int network_run_advance(dp_run *r)
     return DP_OK;
 }
 
+/* Whether the element's laws let their events be located (their entries' locate, or locate_network on a
+ * network of more than one mass). */
+static int element_locates(const dp_element *e, int network)
+{
+    const dp_spring_law_info *SL = dp_spring_law_info_of(e->spring.law);
+    const dp_damper_law_info *DL = dp_damper_law_info_of(e->damper.law);
+    int spring = !e->has_spring || (SL && (network ? SL->locate_network : SL->locate));
+    return spring && (!e->has_damper || (DL && DL->locate));
+}
+
 /* Location holds an assignment over shorter steps: its pieces must not move with the step's length, so
  * graph springs (vertices at (y - u)/h), relaxation and static thresholds are stepped without it. */
 int dp_network_locates(const dp_spec *s)
 {
     if (dp_network_is_one_mass(s))   /* the one-mass solver locates every damper that can stick */
-        return s->solver.events == DP_EVENTS_LOCATE && dp_element_can_stick(&s->net->el[0]);
+        return s->solver.events == DP_EVENTS_LOCATE && dp_element_can_stick(&s->net->el[0]) &&
+               element_locates(&s->net->el[0], 0);
     int sticky = 0;
     for (size_t i = 0; i < s->net->nel; i++) {
         const dp_element *e = &s->net->el[i];
         if (e->has_contact && e->contact.compliance > 0)
             return 0;     /* a compliant contact is a graph spring */
         sticky |= e->has_contact;
-        if (e->has_spring && e->spring.law != DP_SPRING_LINEAR)
+        if (!element_locates(e, 1))
             return 0;
         if (e->has_damper && (e->damper.relaxation.kind != DP_RELAX_NONE ||
-                              (e->damper.law == DP_DAMPER_GENERALIZED_COULOMB && e->damper.phi1 > e->damper.phi0)))
+                              dp_damper_static(&e->damper) > dp_damper_kinetic(&e->damper)))
             return 0;
         sticky |= dp_element_can_stick(e);
     }
