@@ -466,7 +466,7 @@ static void test_elastic_rattle(void **state)
 
 /* Touching and approaching at t = 0 (review finding, fixed), "events": "none": a ball at x = 0 moving down at
  * 1 (e = 1/2, no force). The first step takes the impact (v = 1/2 after it) and reports it: the run's initial
- * probe no longer leaves the contact counted as armed (nr_contacts_after_probe). One impact event, impulse 3/2. */
+ * probe no longer leaves the contact counted as armed (network_run_contacts_after_probe). One impact event, impulse 3/2. */
 static void test_initial_impact_event_mj(void **state)
 {
     (void)state;

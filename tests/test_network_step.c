@@ -168,23 +168,23 @@ static void test_coulomb_step_against_brute_force(void **state)
         problem p;
         random_problem(&p);
         dp_graph g[EMAX];
-        dp_net_elem el[EMAX];
+        dp_network_step_element el[EMAX];
         for (size_t e = 0; e < p.ne; e++) {
             coulomb_graph(&g[e], p.phi[e]);
-            el[e] = (dp_net_elem){ .a = p.a[e], .b = p.b[e], .A = &g[e], .S = NULL, .vb = p.vb[e] };
+            el[e] = (dp_network_step_element){ .a = p.a[e], .b = p.b[e], .A = &g[e], .S = NULL, .vb = p.vb[e] };
         }
-        dp_net_ws *w = dp_net_ws_alloc(p.n, p.n - 1, p.ne, el);
+        dp_network_step *w = dp_network_step_alloc(p.n, p.n - 1, p.ne, el);
         assert_non_null(w);
-        double *W = dp_net_ws_W(w), u[EMAX] = { 0 }, guess[NMAX], v[NMAX], ref[NMAX];
+        double *W = dp_network_step_W(w), u[EMAX] = { 0 }, guess[NMAX], v[NMAX], ref[NMAX];
         for (size_t i = 0; i < p.n; i++)
             for (size_t d = 0; i + d < p.n; d++)
                 W[i * p.n + d] = p.W[(i + d) * p.n + i];
-        dp_net_ws_W_changed(w);
+        dp_network_step_W_changed(w);
         for (size_t i = 0; i < p.n; i++)
             guess[i] = urand() < 0.5 ? 0 : urand() - 0.5;
-        dp_net_force f[EMAX];
+        dp_network_step_forces f[EMAX];
         unsigned long long it = 0;
-        assert_int_equal(dp_net_solve(w, p.h, p.r, u, guess, v, f, &it), DP_OK);
+        assert_int_equal(dp_network_step_solve(w, p.h, p.r, u, guess, v, f, &it), DP_OK);
         assert_true(brute_force(&p, ref));
         for (size_t i = 0; i < p.n; i++)
             assert_true(fabs(v[i] - ref[i]) < 1e-9 * (1 + fabs(ref[i])));
@@ -198,7 +198,7 @@ static void test_coulomb_step_against_brute_force(void **state)
             }
         }
         agree++;
-        dp_net_ws_free(w);
+        dp_network_step_free(w);
         for (size_t e = 0; e < p.ne; e++)
             dp_graph_clear(&g[e]);
     }

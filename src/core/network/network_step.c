@@ -46,9 +46,9 @@ typedef struct elem_state {
     double lam_err;       /* its rounding: eps times the forces it was computed from, over h */
 } elem_state;
 
-struct dp_net_ws {
+struct dp_network_step {
     size_t n, p, ne;
-    const dp_net_elem *el;
+    const dp_network_step_element *el;
     double *W, *H;        /* band storage n x (p+1) */
     double *R;            /* reduced band storage, capacity n x (p+1) grown on demand */
     size_t R_cap, nr, pr;
@@ -71,9 +71,9 @@ struct dp_net_ws {
     double *zk, *g0, *g1, *gshift;
 };
 
-dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
+dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_network_step_element *el)
 {
-    dp_net_ws *w = calloc(1, sizeof *w);
+    dp_network_step *w = calloc(1, sizeof *w);
     if (w == NULL)
         return NULL;
     w->n = n, w->p = p, w->ne = ne, w->el = el;
@@ -106,13 +106,13 @@ dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el)
     if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
         !w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
         !w->y || !w->vs || !w->d || !w->res || !w->res_err || !w->head || !w->next_edge || !w->deg || !w->queue) {
-        dp_net_ws_free(w);
+        dp_network_step_free(w);
         return NULL;
     }
     return w;
 }
 
-void dp_net_ws_free(dp_net_ws *w)
+void dp_network_step_free(dp_network_step *w)
 {
     if (w == NULL)
         return;
@@ -123,18 +123,18 @@ void dp_net_ws_free(dp_net_ws *w)
     free(w);
 }
 
-void dp_net_ws_relaxation(dp_net_ws *w, const dp_relaxation *const *gamma, double theta)
+void dp_network_step_relaxation(dp_network_step *w, const dp_relaxation *const *gamma, double theta)
 {
     w->gamma = gamma;
     w->theta = theta;
 }
 
-double *dp_net_ws_W(dp_net_ws *w)
+double *dp_network_step_W(dp_network_step *w)
 {
     return w->W;
 }
 
-void dp_net_ws_W_changed(dp_net_ws *w)
+void dp_network_step_W_changed(dp_network_step *w)
 {
     w->factored = 0;
 }
@@ -142,44 +142,44 @@ void dp_net_ws_W_changed(dp_net_ws *w)
 /* ---- the graphs Sigma_e ------------------------------------------------------------------------------ */
 
 /* End index of an element in the union-find (the ground is n). */
-static size_t end_index(const dp_net_ws *w, long e)
+static size_t end_index(const dp_network_step *w, long e)
 {
     return e < 0 ? w->n : (size_t)e;
 }
 
-static double rel_velocity(const dp_net_elem *e, const double *v)
+static double rel_velocity(const dp_network_step_element *e, const double *v)
 {
     return (e->b >= 0 ? v[e->b] : 0) - (e->a >= 0 ? v[e->a] : 0);
 }
 
 /* The argument of A and S at z, each read exactly at a remembered vertex. */
-static double arg_A(const dp_net_elem *e, const vertex *at)
+static double arg_A(const dp_network_step_element *e, const vertex *at)
 {
     return at->src == SRC_A ? at->y : at->z - e->vb;
 }
 
 /* The spring graph's argument is u + beta z, beta = h (graph springs) or h theta (elastoplastic), and its
  * force enters Sigma with the weight 1 or theta: factors of exactly 1 keep graph springs bit for bit. */
-static double s_beta(const dp_net_elem *e, double h)
+static double s_beta(const dp_network_step_element *e, double h)
 {
     return e->ep_theta > 0 ? h * e->ep_theta : h;
 }
 
-static double s_weight(const dp_net_elem *e)
+static double s_weight(const dp_network_step_element *e)
 {
     return e->ep_theta > 0 ? e->ep_theta : 1;
 }
 
-static double arg_S(const dp_net_elem *e, double u, double h, const vertex *at)
+static double arg_S(const dp_network_step_element *e, double u, double h, const vertex *at)
 {
     return at->src == SRC_S ? at->y : u + s_beta(e, h) * at->z;
 }
 
 /* The piece of Sigma_e leaving `at` towards dir: slope in z, force there, the next vertex. */
-static int sigma_piece(const dp_net_ws *w, size_t i, double u, double h, const vertex *at, int dir,
+static int sigma_piece(const dp_network_step *w, size_t i, double u, double h, const vertex *at, int dir,
                        double *slope, double *f, vertex *next)
 {
-    const dp_net_elem *e = &w->el[i];
+    const dp_network_step_element *e = &w->el[i];
     dp_graph_piece_t pc;
     *slope = 0, *f = 0;
     next->z = dir * INFINITY, next->src = SRC_NONE, next->y = 0;
@@ -207,10 +207,10 @@ static int sigma_piece(const dp_net_ws *w, size_t i, double u, double h, const v
 }
 
 /* The force interval of Sigma_e at a vertex. */
-static void sigma_interval(const dp_net_ws *w, size_t i, double u, double h, const vertex *at, double *lo,
+static void sigma_interval(const dp_network_step *w, size_t i, double u, double h, const vertex *at, double *lo,
                            double *hi)
 {
-    const dp_net_elem *e = &w->el[i];
+    const dp_network_step_element *e = &w->el[i];
     double l, r, g = w->g0[i] + w->g1[i] * (at->z - w->zk[i]);
     *lo = *hi = -g;
     if (e->A) {
@@ -225,7 +225,7 @@ static void sigma_interval(const dp_net_ws *w, size_t i, double u, double h, con
 }
 
 /* Puts element i free on the piece leaving `at` towards dir; 0 if the domain ends there. */
-static int set_free(dp_net_ws *w, size_t i, double u, double h, const vertex *at, int dir)
+static int set_free(dp_network_step *w, size_t i, double u, double h, const vertex *at, int dir)
 {
     elem_state *s = &w->es[i];
     double slope, f;
@@ -244,7 +244,7 @@ static int set_free(dp_net_ws *w, size_t i, double u, double h, const vertex *at
 /* ---- the fixed forest -------------------------------------------------------------------------------- */
 
 /* Root of i with path compression; pot[i] becomes v_i - v_root. */
-static long find(dp_net_ws *w, long i)
+static long find(dp_network_step *w, long i)
 {
     long r = i;
     double acc = 0;
@@ -262,7 +262,7 @@ static long find(dp_net_ws *w, long i)
 }
 
 /* Adds the constraint v_b - v_a = z; 0 when it closes a cycle (dependent on those already in). */
-static int join(dp_net_ws *w, const dp_net_elem *e, double z)
+static int join(dp_network_step *w, const dp_network_step_element *e, double z)
 {
     long a = (long)end_index(w, e->a), b = (long)end_index(w, e->b);
     long ra = find(w, a), rb = find(w, b);
@@ -278,14 +278,14 @@ static int join(dp_net_ws *w, const dp_net_elem *e, double z)
     return 1;
 }
 
-static void forest_reset(dp_net_ws *w)
+static void forest_reset(dp_network_step *w)
 {
     for (size_t i = 0; i <= w->n; i++)
         w->parent[i] = (long)i, w->pot[i] = 0;
 }
 
 /* Builds the forest of the fixed elements and the map node -> reduced unknown. */
-static void build_forest(dp_net_ws *w)
+static void build_forest(dp_network_step *w)
 {
     forest_reset(w);
     for (size_t i = 0; i < w->ne; i++)
@@ -313,12 +313,12 @@ static void build_forest(dp_net_ws *w)
 /* ---- the reduced system ------------------------------------------------------------------------------ */
 
 /* rhs_eff = rhs - h sum_free (lam0 - slope zref) b. */
-static void effective_rhs(dp_net_ws *w, double h, const double *rhs)
+static void effective_rhs(dp_network_step *w, double h, const double *rhs)
 {
     memcpy(w->rhs_eff, rhs, w->n * sizeof *rhs);
     for (size_t i = 0; i < w->ne; i++) {
         const elem_state *s = &w->es[i];
-        const dp_net_elem *e = &w->el[i];
+        const dp_network_step_element *e = &w->el[i];
         if (s->st != FREE)
             continue;
         double g = h * (s->lam0 - s->slope * s->zref);
@@ -330,13 +330,13 @@ static void effective_rhs(dp_net_ws *w, double h, const double *rhs)
 }
 
 /* H = W + h sum_free slope b b^T. */
-static void assemble_H(dp_net_ws *w, double h)
+static void assemble_H(dp_network_step *w, double h)
 {
     size_t p1 = w->p + 1;
     memcpy(w->H, w->W, w->n * p1 * sizeof *w->H);
     for (size_t i = 0; i < w->ne; i++) {
         const elem_state *s = &w->es[i];
-        const dp_net_elem *e = &w->el[i];
+        const dp_network_step_element *e = &w->el[i];
         double k = h * s->slope;
         if (s->st != FREE || k == 0)
             continue;
@@ -351,7 +351,7 @@ static void assemble_H(dp_net_ws *w, double h)
     }
 }
 
-static int reduced_storage(dp_net_ws *w)
+static int reduced_storage(dp_network_step *w)
 {
     size_t need = w->nr * (w->pr + 1);
     if (need > w->R_cap) {
@@ -366,7 +366,7 @@ static int reduced_storage(dp_net_ws *w)
 
 /* Whether the assignment's structure (which elements are fixed, the free ones' slopes) is the factored one:
  * H and R depend on nothing else, so a quiet step reuses them. */
-static int same_structure(const dp_net_ws *w)
+static int same_structure(const dp_network_step *w)
 {
     for (size_t i = 0; i < w->ne; i++) {
         const elem_state *s = &w->es[i];
@@ -376,11 +376,11 @@ static int same_structure(const dp_net_ws *w)
     return 1;
 }
 
-static int factor_reduced(dp_net_ws *w);
+static int factor_reduced(dp_network_step *w);
 
 /* rhs_eff for the current assignment; H and R's factor only where the structure changed (build_forest must
  * have run: R is over its trees). */
-static int prepare(dp_net_ws *w, double h, const double *rhs)
+static int prepare(dp_network_step *w, double h, const double *rhs)
 {
     effective_rhs(w, h, rhs);
     if (w->factored && h == w->h_factored && same_structure(w))
@@ -395,7 +395,7 @@ static int prepare(dp_net_ws *w, double h, const double *rhs)
 }
 
 /* R = T^T H T in band storage, factored (Cholesky). */
-static int factor_reduced(dp_net_ws *w)
+static int factor_reduced(dp_network_step *w)
 {
     size_t n = w->n, p1 = w->p + 1, pr = 0;
     for (size_t i = 0; i < n; i++)
@@ -433,13 +433,13 @@ static int factor_reduced(dp_net_ws *w)
 }
 
 /* y = H x for the symmetric band H. */
-static void band_mul(const dp_net_ws *w, const double *x, double *y)
+static void band_mul(const dp_network_step *w, const double *x, double *y)
 {
     dp_band_symv(w->H, w->n, w->p, x, y);
 }
 
 /* The minimizer of the current assignment into vs: v = T y + c with R y = T^T (rhs_eff - H c). */
-static int solve_assignment(dp_net_ws *w)
+static int solve_assignment(dp_network_step *w)
 {
     size_t n = w->n;
     band_mul(w, w->c, w->res);
@@ -460,7 +460,7 @@ static int solve_assignment(dp_net_ws *w)
 
 /* The fixed elements' multipliers from the residual h sum_F b_e lambda_e = rhs_eff - H v, peeled off the
  * forest leaf by leaf (each leaf's residual belongs to its one remaining edge). */
-static void multipliers(dp_net_ws *w, double h)
+static void multipliers(dp_network_step *w, double h)
 {
     size_t n = w->n, nq = 0;
     band_mul(w, w->vs, w->res);
@@ -492,7 +492,7 @@ static void multipliers(dp_net_ws *w, double h)
         if (slot < 0)
             continue;
         size_t k = (size_t)slot / 2;
-        const dp_net_elem *e = &w->el[k];
+        const dp_network_step_element *e = &w->el[k];
         double sign_i = (long)i == e->b ? 1 : -1;   /* b_e's entry at node i */
         double lam = w->res[i] / (h * sign_i);
         w->es[k].lam = lam;
@@ -520,7 +520,7 @@ static int inside(const elem_state *s, double lo, double hi)
 
 /* The end of A's domain nearest z, for a z outside it (a vertical end ray of the damper graph); 0 when the
  * domain is not A's to end (a spring graph's). */
-static int domain_end(const dp_net_elem *e, double z, vertex *at)
+static int domain_end(const dp_network_step_element *e, double z, vertex *at)
 {
     const dp_graph *A = e->A;
     if (A == NULL)
@@ -537,11 +537,11 @@ static int domain_end(const dp_net_elem *e, double z, vertex *at)
 /* The assignment at a start point v: elements on a vertex of A are fixed there (while independent),
  * others free on the piece holding z; one whose z lies beyond a vertical end of A fixed at that end. 0 when
  * some z lies outside its graph's domain otherwise. */
-static int assign_start(dp_net_ws *w, double h, const double *u, const double *v)
+static int assign_start(dp_network_step *w, double h, const double *u, const double *v)
 {
     forest_reset(w);
     for (size_t i = 0; i < w->ne; i++) {
-        const dp_net_elem *e = &w->el[i];
+        const dp_network_step_element *e = &w->el[i];
         double z = rel_velocity(e, v), lo, hi, slope, f;
         vertex at = { z, SRC_NONE, 0 }, below;
         if (e->A && dp_graph_has_vertex(e->A, z - e->vb))
@@ -572,13 +572,13 @@ static int assign_start(dp_net_ws *w, double h, const double *u, const double *v
 
 /* The first free element that meets a vertex on the way from v along d, and the fraction t of the way;
  * t = 1 when none does. Elements whose ends the fixed forest already joins cannot move. */
-static double blocking(dp_net_ws *w, const double *v, long *which, int *side)
+static double blocking(dp_network_step *w, const double *v, long *which, int *side)
 {
     double t = 1;
     *which = -1;
     for (size_t i = 0; i < w->ne; i++) {
         const elem_state *s = &w->es[i];
-        const dp_net_elem *e = &w->el[i];
+        const dp_network_step_element *e = &w->el[i];
         if (s->st != FREE)
             continue;
         if (find(w, (long)end_index(w, e->a)) == find(w, (long)end_index(w, e->b)))
@@ -600,7 +600,7 @@ static double blocking(dp_net_ws *w, const double *v, long *which, int *side)
 }
 
 /* Releases the lowest-index fixed element whose multiplier left its interval; 0 when none did. */
-static int release(dp_net_ws *w, double h, const double *u)
+static int release(dp_network_step *w, double h, const double *u)
 {
     for (size_t i = 0; i < w->ne; i++) {
         elem_state *s = &w->es[i];
@@ -620,9 +620,9 @@ static int release(dp_net_ws *w, double h, const double *u)
 /* Whether free element i sits exactly at rest (z = v_b, inside A's interval there) between two ends the
  * fixed forest already joins: a stick interval in parallel with a fixed one, which could not be fixed itself
  * (its constraint depends on the others). */
-static int parallel_at_rest(dp_net_ws *w, size_t i, const dp_net_force *o)
+static int parallel_at_rest(dp_network_step *w, size_t i, const dp_network_step_forces *o)
 {
-    const dp_net_elem *e = &w->el[i];
+    const dp_network_step_element *e = &w->el[i];
     double lo, hi;
     if (w->es[i].st != FREE || e->A == NULL || e->S != NULL || o->z != e->vb || w->g1[i] != 0 || w->g0[i] != 0)
         return 0;
@@ -632,12 +632,12 @@ static int parallel_at_rest(dp_net_ws *w, size_t i, const dp_net_force *o)
 
 /* A fixed element at rest with the same ends as free element i (either way round), or -1; *sign is +1 when
  * it has i's orientation. */
-static long parallel_partner(const dp_net_ws *w, size_t i, double *sign)
+static long parallel_partner(const dp_network_step *w, size_t i, double *sign)
 {
-    const dp_net_elem *e = &w->el[i];
+    const dp_network_step_element *e = &w->el[i];
     for (long slot = w->head[end_index(w, e->a)]; slot >= 0; slot = w->next_edge[slot]) {
         size_t j = (size_t)slot / 2;
-        const dp_net_elem *p = &w->el[j];
+        const dp_network_step_element *p = &w->el[j];
         if (j == i || p->A == NULL || p->S != NULL || w->es[j].fix.src != SRC_A || w->es[j].fix.y != 0)
             continue;
         if (p->a == e->a && p->b == e->b)
@@ -651,7 +651,7 @@ static long parallel_partner(const dp_net_ws *w, size_t i, double *sign)
 /* Parallel stick intervals hold their common force together, but how they split it is not determined by
  * the motion: the split reported gives each its lower bound plus a share of the rest in proportion to its
  * interval's width (so each stays inside its own interval), and all of them stick. */
-static void share_parallel(dp_net_ws *w, dp_net_force *f)
+static void share_parallel(dp_network_step *w, dp_network_step_forces *f)
 {
     for (size_t i = 0; i < w->ne; i++) {
         double sign_i;
@@ -684,12 +684,12 @@ static void share_parallel(dp_net_ws *w, dp_net_force *f)
     }
 }
 
-static void report(dp_net_ws *w, double h, const double *u, const double *v, dp_net_force *f)
+static void report(dp_network_step *w, double h, const double *u, const double *v, dp_network_step_forces *f)
 {
     for (size_t i = 0; i < w->ne; i++) {
-        const dp_net_elem *e = &w->el[i];
+        const dp_network_step_element *e = &w->el[i];
         const elem_state *s = &w->es[i];
-        dp_net_force *o = &f[i];
+        dp_network_step_forces *o = &f[i];
         double alo = 0, ahi = 0, slo = 0, shi = 0;
         o->z = rel_velocity(e, v);
         vertex at = s->st == FIXED ? s->fix : (vertex){ o->z, SRC_NONE, 0 };
@@ -720,7 +720,7 @@ static void report(dp_net_ws *w, double h, const double *u, const double *v, dp_
 /* The piecewise-linear problem (the relaxation frozen in its linearization) from the start point v. */
 /* Moves free element i, whose relative velocity z left its piece, to where z lies: fixed at the first
  * vertex with a force interval on the way (or the domain's end), else on the piece holding z. */
-static void follow(dp_net_ws *w, size_t i, double h, const double *u, double z)
+static void follow(dp_network_step *w, size_t i, double h, const double *u, double z)
 {
     elem_state *s = &w->es[i];
     int dir = z > s->hi.z ? 1 : -1;
@@ -740,7 +740,7 @@ static void follow(dp_net_ws *w, size_t i, double h, const double *u, double z)
 /* One update of the primal-dual active-set method: every free element whose z left its piece and every
  * fixed one whose multiplier left its interval changes at once (a semismooth Newton step on the
  * piecewise-linear optimality conditions). Returns how many changed: 0 means vs is the exact minimizer. */
-static size_t bulk_update(dp_net_ws *w, double h, const double *u)
+static size_t bulk_update(dp_network_step *w, double h, const double *u)
 {
     size_t changed = 0;
     for (size_t i = 0; i < w->ne; i++) {
@@ -763,7 +763,7 @@ static size_t bulk_update(dp_net_ws *w, double h, const double *u)
 }
 
 /* Whether the fixed elements still form a forest (bulk updates may close a cycle). */
-static int fixed_forest(dp_net_ws *w)
+static int fixed_forest(dp_network_step *w)
 {
     forest_reset(w);
     for (size_t i = 0; i < w->ne; i++)
@@ -775,7 +775,7 @@ static int fixed_forest(dp_net_ws *w)
 /* The primal-dual active-set method from the warm start: usually the answer in one to three solves, with no
  * guarantee of termination outside M-matrix structure; DP_OK with v the minimizer, or DP_EAGAIN-like 1 when
  * it did not settle (the caller then runs the primal method, which always ends). */
-static int pdas(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, unsigned long long *iters)
+static int pdas(dp_network_step *w, double h, const double *rhs, const double *u, double *v, unsigned long long *iters)
 {
     for (int it = 0; it < 12; it++) {
         if (!fixed_forest(w))
@@ -793,7 +793,7 @@ static int pdas(dp_net_ws *w, double h, const double *rhs, const double *u, doub
     return 1;
 }
 
-static int solve_pl(dp_net_ws *w, double h, const double *rhs, const double *u, double *v,
+static int solve_pl(dp_network_step *w, double h, const double *rhs, const double *u, double *v,
                     unsigned long long *iters)
 {
     size_t n = w->n;
@@ -840,7 +840,7 @@ static int solve_pl(dp_net_ws *w, double h, const double *rhs, const double *u, 
     return DP_ESOLVE;
 }
 
-static double zmax_change(const dp_net_ws *w, const double *v)
+static double zmax_change(const dp_network_step *w, const double *v)
 {
     double worst = 0;
     for (size_t i = 0; i < w->ne; i++)
@@ -851,8 +851,8 @@ static double zmax_change(const dp_net_ws *w, const double *v)
     return worst;
 }
 
-int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, const double *v_guess,
-                 double *v, dp_net_force *f, unsigned long long *iters)
+int dp_network_step_solve(dp_network_step *w, double h, const double *rhs, const double *u, const double *v_guess,
+                 double *v, dp_network_step_forces *f, unsigned long long *iters)
 {
     memcpy(v, v_guess, w->n * sizeof *v);
     if (w->gamma == NULL) {
@@ -892,22 +892,22 @@ int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, con
 
 /* ---- the assignment held: event location ------------------------------------------------------------- */
 
-size_t dp_net_ws_pattern_bytes(const dp_net_ws *w)
+size_t dp_network_step_pattern_bytes(const dp_network_step *w)
 {
     return (w->ne ? w->ne : 1) * sizeof *w->es;
 }
 
-void dp_net_ws_pattern_save(const dp_net_ws *w, void *buf)
+void dp_network_step_pattern_save(const dp_network_step *w, void *buf)
 {
     memcpy(buf, w->es, w->ne * sizeof *w->es);
 }
 
-void dp_net_ws_pattern_restore(dp_net_ws *w, const void *buf)
+void dp_network_step_pattern_restore(dp_network_step *w, const void *buf)
 {
     memcpy(w->es, buf, w->ne * sizeof *w->es);
 }
 
-int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, dp_net_force *f,
+int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs, const double *u, double *v, dp_network_step_forces *f,
                         double *margin)
 {
     build_forest(w);
@@ -932,7 +932,7 @@ int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double 
     return DP_OK;
 }
 
-int dp_net_ws_pattern_same(const dp_net_ws *w, const void *buf)
+int dp_network_step_pattern_same(const dp_network_step *w, const void *buf)
 {
     const elem_state *old = buf;
     for (size_t i = 0; i < w->ne; i++) {
@@ -945,7 +945,7 @@ int dp_net_ws_pattern_same(const dp_net_ws *w, const void *buf)
     return 1;
 }
 
-void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v)
+void dp_network_step_fix_end(dp_network_step *w, size_t i, const double *v)
 {
     elem_state *s = &w->es[i];
     if (s->st == FIXED)
@@ -955,7 +955,7 @@ void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v)
     s->st = FIXED;
 }
 
-int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u)
+int dp_network_step_violation(const dp_network_step *w, size_t i, double h, const double *u)
 {
     const elem_state *s = &w->es[i];
     double lo, hi;
@@ -968,15 +968,15 @@ int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u)
     return !isfinite(hi) ? -1 : !isfinite(lo) ? 1 : s->lam - lo > hi - s->lam ? 1 : -1;
 }
 
-int dp_net_ws_fixed(const dp_net_ws *w, size_t i)
+int dp_network_step_fixed(const dp_network_step *w, size_t i)
 {
     return w->es[i].st == FIXED;
 }
 
-int dp_net_ws_at_rest(const dp_net_ws *w, size_t i)
+int dp_network_step_at_rest(const dp_network_step *w, size_t i)
 {
     const elem_state *s = &w->es[i];
-    const dp_net_elem *e = &w->el[i];
+    const dp_network_step_element *e = &w->el[i];
     double lo, hi;
     if (s->st != FIXED || e->A == NULL || arg_A(e, &s->fix) != 0)
         return 0;
@@ -984,7 +984,7 @@ int dp_net_ws_at_rest(const dp_net_ws *w, size_t i)
     return hi > lo;
 }
 
-void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir)
+void dp_network_step_slip(dp_network_step *w, size_t i, double h, const double *u, int dir)
 {
     vertex at = w->es[i].fix;
     set_free(w, i, u[i], h, &at, dir);

@@ -20,69 +20,69 @@
 
 /* An element whose law enters the step's convex problem: a set-valued or piecewise-linear damper A and/or
  * a spring graph S that is not linear (linear springs and viscous parts live in W). */
-typedef struct dp_net_elem {
+typedef struct dp_network_step_element {
     long a, b;            /* ends: node index or -1 for the ground; z = v_b - v_a */
     const dp_graph *A;    /* (z - vb, F_c) or NULL */
     const dp_graph *S;    /* (u + h z, F_s) or NULL */
     double vb;
     double ep_theta;      /* 0: S at u + h z with weight 1 (graph springs); theta > 0: S at u + h theta z,
                              weighted theta (an elastoplastic spring) */
-} dp_net_elem;
+} dp_network_step_element;
 
 /* What the step found for one element. */
-typedef struct dp_net_force {
+typedef struct dp_network_step_forces {
     double z;             /* relative velocity at the step's end */
     double lambda;        /* Sigma_e's force: a + s */
     double a, s;          /* the damper's and the spring's parts */
     int at_rest;          /* held at A's vertex at zero relative velocity (sticking) */
-} dp_net_force;
+} dp_network_step_forces;
 
-typedef struct dp_net_ws dp_net_ws;
+typedef struct dp_network_step dp_network_step;
 
 /* A workspace for n nodes, bandwidth p, and ne elements (the array is kept by reference). */
-dp_net_ws *dp_net_ws_alloc(size_t n, size_t p, size_t ne, const dp_net_elem *el);
-void dp_net_ws_free(dp_net_ws *w);
+dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_network_step_element *el);
+void dp_network_step_free(dp_network_step *w);
 
 /* Relaxation: Sigma_e gains -gamma_e(theta z + (1-theta) z_start - v_b), gamma[i] NULL where there is none
  * (the array is kept by reference). The step is then solved by Newton-Josephy iterations on the smooth
  * part, each an exact piecewise-linear problem; W - h theta sum L_e b b^T must stay positive definite. */
-void dp_net_ws_relaxation(dp_net_ws *w, const dp_relaxation *const *gamma, double theta);
+void dp_network_step_relaxation(dp_network_step *w, const dp_relaxation *const *gamma, double theta);
 
-/* W's band storage, to be filled by the caller; call dp_net_ws_W_changed after changing it. */
-double *dp_net_ws_W(dp_net_ws *w);
-void dp_net_ws_W_changed(dp_net_ws *w);
+/* W's band storage, to be filled by the caller; call dp_network_step_W_changed after changing it. */
+double *dp_network_step_W(dp_network_step *w);
+void dp_network_step_W_changed(dp_network_step *w);
 
 /* Solves the step: v (n) receives the minimizer, f (ne) each element's forces; u (ne) are the elongations
  * the spring graphs see (u_e + h z), v_guess a warm start (the previous velocity). *iters counts the
  * active-set iterations. DP_OK, DP_ESOLVE (no feasible start, cycling) or DP_ENOMEM. */
-int dp_net_solve(dp_net_ws *w, double h, const double *rhs, const double *u, const double *v_guess,
-                 double *v, dp_net_force *f, unsigned long long *iters);
+int dp_network_step_solve(dp_network_step *w, double h, const double *rhs, const double *u, const double *v_guess,
+                 double *v, dp_network_step_forces *f, unsigned long long *iters);
 
 /* ---- for event location (network_run.c): the assignment kept fixed over a shorter step ---- */
 
 /* Bytes of the current assignment (which elements are fixed where, which piece the others are on). */
-size_t dp_net_ws_pattern_bytes(const dp_net_ws *w);
-void dp_net_ws_pattern_save(const dp_net_ws *w, void *buf);
-void dp_net_ws_pattern_restore(dp_net_ws *w, const void *buf);
+size_t dp_network_step_pattern_bytes(const dp_network_step *w);
+void dp_network_step_pattern_save(const dp_network_step *w, void *buf);
+void dp_network_step_pattern_restore(dp_network_step *w, const void *buf);
 
 /* Solves a step of length h with the current assignment held (no vertex met, no release): v and f as
- * dp_net_solve, and margin[i] >= 0 while element i's assignment is consistent (a free element inside its
+ * dp_network_step_solve, and margin[i] >= 0 while element i's assignment is consistent (a free element inside its
  * piece, a fixed one's multiplier inside its interval), < 0 once it is not. DP_OK or DP_ESOLVE. */
-int dp_net_solve_frozen(dp_net_ws *w, double h, const double *rhs, const double *u, double *v, dp_net_force *f,
+int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs, const double *u, double *v, dp_network_step_forces *f,
                         double *margin);
 
 /* Whether the current assignment is the saved one (same fixed vertices, same pieces). */
-int dp_net_ws_pattern_same(const dp_net_ws *w, const void *buf);
+int dp_network_step_pattern_same(const dp_network_step *w, const void *buf);
 
 /* At a located event: a free element i that reached an end of its piece is fixed at that end (the one
  * nearer its relative velocity in v); a fixed one is freed onto the piece towards its multiplier's
- * violation (the last held solve's). dp_net_ws_violation: +1 above its interval, -1 below, and inside it
+ * violation (the last held solve's). dp_network_step_violation: +1 above its interval, -1 below, and inside it
  * the side of the nearer bound (0 for a free element). */
-void dp_net_ws_fix_end(dp_net_ws *w, size_t i, const double *v);
-int dp_net_ws_violation(const dp_net_ws *w, size_t i, double h, const double *u);
-void dp_net_ws_slip(dp_net_ws *w, size_t i, double h, const double *u, int dir);
+void dp_network_step_fix_end(dp_network_step *w, size_t i, const double *v);
+int dp_network_step_violation(const dp_network_step *w, size_t i, double h, const double *u);
+void dp_network_step_slip(dp_network_step *w, size_t i, double h, const double *u, int dir);
 /* Element i is fixed (at any vertex) / at its damper's vertex at zero relative velocity (sticking). */
-int dp_net_ws_fixed(const dp_net_ws *w, size_t i);
-int dp_net_ws_at_rest(const dp_net_ws *w, size_t i);
+int dp_network_step_fixed(const dp_network_step *w, size_t i);
+int dp_network_step_at_rest(const dp_network_step *w, size_t i);
 
 #endif

@@ -34,7 +34,7 @@
  * accumulating ball of e = 0.9 makes about 200 located impacts in its last step). */
 #define IMPACTS_PER_STEP 1000
 
-int nr_contacts_chattering(const struct dp_net_run *nr)
+int network_run_contacts_chattering(const struct dp_network_run *nr)
 {
     return nr->impacts_step >= IMPACTS_PER_STEP;
 }
@@ -53,7 +53,7 @@ static int compliance_graph(dp_graph *g, const dp_contact *c)
     return dp_graph_init(g, 1, &c->distance, &(double){ 0 }, left, right);
 }
 
-int nr_contacts_setup(struct dp_net_run *nr)
+int network_run_contacts_setup(struct dp_network_run *nr)
 {
     const dp_network *net = nr->net;
     size_t m = 0;
@@ -82,65 +82,65 @@ int nr_contacts_setup(struct dp_net_run *nr)
         if (!e->has_contact)
             continue;
         nr->ct_el[c] = i, nr->ct_last[c] = -INFINITY;
-        dp_net_elem *a = &nr->act[nr->nact];
-        *a = (dp_net_elem){ .a = e->a, .b = e->b };
+        dp_network_step_element *a = &nr->act[nr->nact];
+        *a = (dp_network_step_element){ .a = e->a, .b = e->b };
         if (e->contact.compliance > 0) {
             if (compliance_graph(&nr->ct_soft[c], &e->contact) != DP_OK)
                 return DP_ENOMEM;
             a->S = &nr->ct_soft[c];
         }
-        nr->imp[c] = (dp_net_elem){ .a = e->a, .b = e->b };
+        nr->imp[c] = (dp_network_step_element){ .a = e->a, .b = e->b };
         nr->act_el[nr->nact++] = i;
         c++;
     }
-    nr->iws = dp_net_ws_alloc(nr->n, nr->p, m, nr->imp);
+    nr->iws = dp_network_step_alloc(nr->n, nr->p, m, nr->imp);
     if (nr->iws == NULL)
         return DP_ENOMEM;
-    memcpy(dp_net_ws_W(nr->iws), nr->M, nr->n * (nr->p + 1) * sizeof(double));
-    dp_net_ws_W_changed(nr->iws);
+    memcpy(dp_network_step_W(nr->iws), nr->M, nr->n * (nr->p + 1) * sizeof(double));
+    dp_network_step_W_changed(nr->iws);
     return DP_OK;
 }
 
-void nr_contacts_free(struct dp_net_run *nr)
+void network_run_contacts_free(struct dp_network_run *nr)
 {
     for (size_t c = 0; nr->ct_soft && c < nr->nc; c++)
         dp_graph_clear(&nr->ct_soft[c]);
     dp_graph_clear(&nr->cone);
-    dp_net_ws_free(nr->iws);
+    dp_network_step_free(nr->iws);
     void *p[] = { nr->ct_el, nr->ct_soft, nr->ct_on, nr->ct_last, nr->ct_pre, nr->ct_touch, nr->Fn, nr->imp, nr->iforce, nr->iv };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
 }
 
-double nr_compliant_force(const dp_contact *c, double u)
+double network_run_compliant_force(const dp_contact *c, double u)
 {
     return -c->compliance * fmax(c->distance - u, 0);
 }
 
-static int rigid(const struct dp_net_run *nr, size_t c)
+static int rigid(const struct dp_network_run *nr, size_t c)
 {
     return nr->net->el[nr->ct_el[c]].contact.compliance == 0;
 }
 
 /* Contact c's gap u - d, its rate, and how close to zero a gap counts as touching: the rounding of the
  * positions and a billionth of what the gap moves in a step. */
-static double gap(const struct dp_net_run *nr, size_t c, const double *x)
+static double gap(const struct dp_network_run *nr, size_t c, const double *x)
 {
     const dp_element *e = &nr->net->el[nr->ct_el[c]];
-    return nr_rel(e->a, e->b, x) - e->contact.distance;
+    return network_run_rel(e->a, e->b, x) - e->contact.distance;
 }
 
-static double touch_tol(const struct dp_net_run *nr, size_t c, double h)
+static double touch_tol(const struct dp_network_run *nr, size_t c, double h)
 {
     const dp_element *e = &nr->net->el[nr->ct_el[c]];
     double xs = fabs(e->contact.distance) + (e->a >= 0 ? fabs(nr->x[e->a]) : 0) + (e->b >= 0 ? fabs(nr->x[e->b]) : 0);
-    return 1e-9 * h * fabs(nr_rel(e->a, e->b, nr->v)) + 64 * DBL_EPSILON * xs;
+    return 1e-9 * h * fabs(network_run_rel(e->a, e->b, nr->v)) + 64 * DBL_EPSILON * xs;
 }
 
 /* Arms contact c for the coming step with the cone at v_c, or disarms it (a zero law). */
-static int arm(struct dp_net_run *nr, size_t c, int on, double vc)
+static int arm(struct dp_network_run *nr, size_t c, int on, double vc)
 {
-    dp_net_elem *a = &nr->act[nr->nact_el + c];
+    dp_network_step_element *a = &nr->act[nr->nact_el + c];
     int changed = (a->A != NULL) != on;
     a->A = on ? &nr->cone : NULL;
     a->vb = on ? vc : 0;
@@ -150,14 +150,14 @@ static int arm(struct dp_net_run *nr, size_t c, int on, double vc)
 
 /* Moreau-Jean's rule (Siconos' MoreauJeanOSI index set): armed for the step from t where the gap predicted
  * half a step on, g + h/2 g', has closed; the cone at -e g'. */
-void nr_contacts_arm_mj(struct dp_net_run *nr, double h)
+void network_run_contacts_arm_mj(struct dp_network_run *nr, double h)
 {
     int changed = 0;
     for (size_t c = 0; c < nr->nc; c++) {
         if (!rigid(nr, c))
             continue;
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double g = gap(nr, c, nr->x), gd = nr_rel(e->a, e->b, nr->v);
+        double g = gap(nr, c, nr->x), gd = network_run_rel(e->a, e->b, nr->v);
         if (fabs(gd) < DBL_MIN)
             gd = 0;   /* a resting contact's rate decays by e per step into subnormals: 0, not a slow tail */
         int was = nr->ct_on[c];
@@ -165,18 +165,18 @@ void nr_contacts_arm_mj(struct dp_net_run *nr, double h)
         nr->ct_pre[c] = was ? 0 : gd;      /* an impact closes a contact; a closed one rests */
     }
     if (changed)
-        dp_net_ws_W_changed(nr->ws);
+        dp_network_step_W_changed(nr->ws);
 }
 
 /* After a Moreau-Jean step from t of length h: an impact event at its end for each contact the step closed
  * (armed now, not in the step before) while approaching, that took an impulse. */
-void nr_contacts_mj_events(dp_run *r, double t, double h)
+void network_run_contacts_mj_events(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     for (size_t c = 0; c < nr->nc; c++) {
         size_t k = nr->nact_el + c;
         if (nr->ct_on[c] && nr->ct_pre[c] < 0 && nr->force[k].lambda < 0)
-            nr_impact_event(r, t + h, nr->ct_el[c], nr->ct_pre[c], nr->force[k].z, -h * nr->force[k].lambda);
+            network_run_impact_event(r, t + h, nr->ct_el[c], nr->ct_pre[c], nr->force[k].z, -h * nr->force[k].lambda);
     }
 }
 
@@ -185,12 +185,12 @@ void nr_contacts_mj_events(dp_run *r, double t, double h)
  * -status. The impact problem's elements have no spring graph, so the elongations it is given are unused. */
 static int impact(dp_run *r, double t, const unsigned char *touch)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     size_t n = nr->n;
     int any = 0;
     for (size_t c = 0; c < nr->nc; c++) {
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double gd = nr_rel(e->a, e->b, nr->v), en = e->contact.restitution;
+        double gd = network_run_rel(e->a, e->b, nr->v), en = e->contact.restitution;
         int approaching = touch[c] && gd < 0;
         if (approaching && en > 0 && en * (t - nr->ct_last[c]) / (1 - en) <= 1e-9 * r->h)
             en = 0;                                   /* accumulated (Zeno): the rest of it is plastic */
@@ -202,8 +202,8 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
         return 0;
     double *rhs = nr->iv, *vplus = nr->iv + n;
     dp_band_symv(nr->M, n, nr->p, nr->v, rhs);
-    dp_net_ws_W_changed(nr->iws);
-    int s = dp_net_solve(nr->iws, 1, rhs, nr->u, nr->v, vplus, nr->iforce, &r->sum.iterations);
+    dp_network_step_W_changed(nr->iws);
+    int s = dp_network_step_solve(nr->iws, 1, rhs, nr->u, nr->v, vplus, nr->iforce, &r->sum.iterations);
     if (s != DP_OK)
         return -s;
     /* every touching contact that took an impulse (to rounding of the largest): the approaching ones and
@@ -213,12 +213,12 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
         most = touch[c] ? fmax(most, -nr->iforce[c].lambda) : most;
     for (size_t c = 0; c < nr->nc; c++) {
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double before = nr_rel(e->a, e->b, nr->v), impulse = -nr->iforce[c].lambda;
+        double before = network_run_rel(e->a, e->b, nr->v), impulse = -nr->iforce[c].lambda;
         if (!touch[c] || !(impulse > 1e-12 * most))
             continue;
         nr->impacts_step++;
         nr->ct_last[c] = t;
-        nr_impact_event(r, t, nr->ct_el[c], before, nr->iforce[c].z, impulse);
+        network_run_impact_event(r, t, nr->ct_el[c], before, nr->iforce[c].z, impulse);
     }
     memcpy(nr->v, vplus, n * sizeof *nr->v);
     return 1;
@@ -228,9 +228,9 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
  * within rounding), then which contacts are armed for the sub-step: the touching ones that do not separate
  * (they rest, or a plastic impact just closed them). Returns 1 when velocities jumped (the caller renews
  * the assignment), 0, or -status. */
-int nr_contacts_instant(dp_run *r, double t, double h)
+int network_run_contacts_instant(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     if (nr->nc == 0)
         return 0;
     unsigned char *touch = nr->ct_touch;
@@ -242,17 +242,17 @@ int nr_contacts_instant(dp_run *r, double t, double h)
     int changed = 0;
     for (size_t c = 0; c < nr->nc; c++) {
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double gd = nr_rel(e->a, e->b, nr->v);
+        double gd = network_run_rel(e->a, e->b, nr->v);
         changed |= arm(nr, c, touch[c] && gd <= touch_tol(nr, c, h) / h, 0);
     }
     if (changed)
-        dp_net_ws_W_changed(nr->ws);
+        dp_network_step_W_changed(nr->ws);
     return jumped;
 }
 
 /* The held step's margins for the contacts that are not armed: the gap at its end (x + s ((1-theta) v +
  * theta v1)), measured from the start's gap where that is already (to rounding) below zero. */
-void nr_contacts_margins(struct dp_net_run *nr, double s)
+void network_run_contacts_margins(struct dp_network_run *nr, double s)
 {
     for (size_t c = 0; c < nr->nc; c++) {
         size_t k = nr->nact_el + c;
@@ -260,17 +260,17 @@ void nr_contacts_margins(struct dp_net_run *nr, double s)
             continue;
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double g0 = nr->u[k] - e->contact.distance;
-        double rate = (1 - nr->theta) * nr_rel(e->a, e->b, nr->v) + nr->theta * nr_rel(e->a, e->b, nr->v1);
+        double rate = (1 - nr->theta) * network_run_rel(e->a, e->b, nr->v) + nr->theta * network_run_rel(e->a, e->b, nr->v1);
         nr->margin[k] = g0 + s * rate - fmin(g0, 0);
     }
 }
 
 /* Whether a step of length h just solved (v1) carries a contact that is not armed through its stop. */
-int nr_contacts_penetrate(struct dp_net_run *nr, double h)
+int network_run_contacts_penetrate(struct dp_network_run *nr, double h)
 {
     if (nr->nc == 0)
         return 0;
-    nr_contacts_margins(nr, h);
+    network_run_contacts_margins(nr, h);
     for (size_t c = 0; c < nr->nc; c++)
         if (rigid(nr, c) && !nr->ct_on[c] && nr->margin[nr->nact_el + c] < 0)
             return 1;
@@ -280,21 +280,21 @@ int nr_contacts_penetrate(struct dp_net_run *nr, double h)
 /* Arms, Moreau-Jean's way (the cone at -e g'), every contact that is not armed and that the step of length h
  * just solved (v1) carries through its stop: where location cannot split the step (a gap closing within a
  * billionth of it, or a step with too many changes) the impact is taken inside the step. Returns how many. */
-size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h)
+size_t network_run_contacts_arm_closing(struct dp_network_run *nr, double h)
 {
-    if (!nr_contacts_penetrate(nr, h))
+    if (!network_run_contacts_penetrate(nr, h))
         return 0;
     size_t m = 0;
     for (size_t c = 0; c < nr->nc; c++) {
         if (nr->ct_on[c] || !rigid(nr, c) || !(nr->margin[nr->nact_el + c] < 0))
             continue;
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double gd = nr_rel(e->a, e->b, nr->v);
+        double gd = network_run_rel(e->a, e->b, nr->v);
         arm(nr, c, 1, -e->contact.restitution * fmin(gd, 0));
         nr->ct_pre[c] = gd;
         m++;
     }
-    dp_net_ws_W_changed(nr->ws);
+    dp_network_step_W_changed(nr->ws);
     return m;
 }
 
@@ -302,11 +302,11 @@ size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h)
  * at t = 0): a contact that approaches at t = 0 takes an impact there, so its force before it is 0, not the
  * probe's impulse over its billionth of a step; and no contact counts as armed before the first step, whose
  * closing of it is then an impact (Moreau-Jean's events). */
-void nr_contacts_after_probe(struct dp_net_run *nr)
+void network_run_contacts_after_probe(struct dp_network_run *nr)
 {
     for (size_t c = 0; c < nr->nc; c++) {
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        if (rigid(nr, c) && nr_rel(e->a, e->b, nr->v) < 0)
+        if (rigid(nr, c) && network_run_rel(e->a, e->b, nr->v) < 0)
             nr->Fn[nr->ct_el[c]] = 0;
         nr->ct_on[c] = 0;
     }
@@ -314,13 +314,13 @@ void nr_contacts_after_probe(struct dp_net_run *nr)
 
 /* Each contact's force at the current state into Fn (per element): a rigid one's from the last solution
  * (in a Moreau-Jean step with an impact, the impulse over the step), a compliant one's from its gap. */
-void nr_contacts_forces(struct dp_net_run *nr, int stepped)
+void network_run_contacts_forces(struct dp_network_run *nr, int stepped)
 {
     for (size_t c = 0; c < nr->nc; c++) {
         size_t i = nr->ct_el[c], k = nr->nact_el + c;
         const dp_contact *ct = &nr->net->el[i].contact;
         if (ct->compliance > 0)
-            nr->Fn[i] = nr_compliant_force(ct, nr_rel(nr->net->el[i].a, nr->net->el[i].b, nr->x));
+            nr->Fn[i] = network_run_compliant_force(ct, network_run_rel(nr->net->el[i].a, nr->net->el[i].b, nr->x));
         else
             nr->Fn[i] = stepped && nr->ct_on[c] ? nr->force[k].lambda : 0;
     }

@@ -23,12 +23,12 @@ typedef struct held_ctx {
 static double held_margin(void *vctx, double s)
 {
     held_ctx *c = vctx;
-    struct dp_net_run *nr = c->r->state;
-    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
-    nr_step_rhs(nr, c->t, s);
-    if (dp_net_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
+    struct dp_network_run *nr = c->r->state;
+    dp_network_step_pattern_restore(nr->ws, nr->pattern);
+    network_run_step_rhs(nr, c->t, s);
+    if (dp_network_step_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
         return NAN;
-    nr_contacts_margins(nr, s);
+    network_run_contacts_margins(nr, s);
     double m = INFINITY;
     for (size_t k = 0; k < nr->nact; k++)
         if (c->cand == NULL || c->cand[k])
@@ -55,7 +55,7 @@ static double held_root(dp_run *r, double t, double s0, double s1, const unsigne
  * once. */
 static double earliest_event(dp_run *r, double t, double h, unsigned char *fails)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     size_t m = nr->nact;
     held_ctx c = { r, t, NULL };
     double th = nr->theta, s0 = 1e-9 * h, *start = nr->roots, *scale = nr->scale;
@@ -65,7 +65,7 @@ static double earliest_event(dp_run *r, double t, double h, unsigned char *fails
     memcpy(start, nr->margin, m * sizeof *start);
     int any_fixed = 0, any_free = 0;
     for (size_t k = 0; k < m; k++)
-        fixed[k] = (unsigned char)dp_net_ws_fixed(nr->ws, k);
+        fixed[k] = (unsigned char)dp_network_step_fixed(nr->ws, k);
     for (int pass = 0; pass < 2; pass++) {   /* free elements over h, fixed ones over h / theta */
         if (!(held_margin(&c, pass ? h / th : h) == held_margin(&c, pass ? h / th : h)))
             return h;
@@ -112,14 +112,14 @@ static double earliest_event(dp_run *r, double t, double h, unsigned char *fails
  * no stick, as for one mass). Returns the element's phase after. */
 static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     double s0 = 1e-9 * (left > 0 ? left : 1);
-    if (dp_net_ws_fixed(nr->ws, k)) {
-        int dir = dp_net_ws_violation(nr->ws, k, s0, nr->u);
-        dp_net_ws_slip(nr->ws, k, s0, nr->u, dir >= 0 ? 1 : -1);
+    if (dp_network_step_fixed(nr->ws, k)) {
+        int dir = dp_network_step_violation(nr->ws, k, s0, nr->u);
+        dp_network_step_slip(nr->ws, k, s0, nr->u, dir >= 0 ? 1 : -1);
     } else {
-        dp_net_ws_fix_end(nr->ws, k, nr->v);
-        dp_net_ws_pattern_save(nr->ws, nr->pattern);
+        dp_network_step_fix_end(nr->ws, k, nr->v);
+        dp_network_step_pattern_save(nr->ws, nr->pattern);
         unsigned char *only = calloc(nr->nact, 1);
         if (only == NULL)
             return nr->phase[nr->act_el[k]];
@@ -127,11 +127,11 @@ static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
         double m = left > 0 ? held_margin(&(held_ctx){ r, t, only }, s0) : 0;
         free(only);
         if (m < 0)
-            dp_net_ws_slip(nr->ws, k, s0, nr->u, dp_net_ws_violation(nr->ws, k, s0, nr->u) >= 0 ? 1 : -1);
+            dp_network_step_slip(nr->ws, k, s0, nr->u, dp_network_step_violation(nr->ws, k, s0, nr->u) >= 0 ? 1 : -1);
     }
     if (!nr->can_stick[nr->act_el[k]])
         return DP_PHASE_NONE;
-    return dp_net_ws_at_rest(nr->ws, k) ? DP_PHASE_STICK : DP_PHASE_SLIP;
+    return dp_network_step_at_rest(nr->ws, k) ? DP_PHASE_STICK : DP_PHASE_SLIP;
 }
 
 /* Whether a fixed element's force leaves its interval inside a step that the exact solution keeps it
@@ -140,25 +140,25 @@ static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
  * fixed; the assignment is left as it was.) */
 static int breaks_away(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     if (nr->theta == 1)
         return 0;
     int any = 0;
-    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
+    dp_network_step_pattern_restore(nr->ws, nr->pattern);
     for (size_t k = 0; k < nr->nact && !any; k++)
-        any = dp_net_ws_fixed(nr->ws, k);
+        any = dp_network_step_fixed(nr->ws, k);
     if (!any)
         return 0;
     held_margin(&(held_ctx){ r, t, NULL }, h / nr->theta);
     for (size_t k = 0; k < nr->nact; k++)
-        if (dp_net_ws_fixed(nr->ws, k) && nr->margin[k] < 0)
+        if (dp_network_step_fixed(nr->ws, k) && nr->margin[k] < 0)
             return 1;
     return 0;
 }
 
 /* Whether the network has contacts and something other than a closing contact fails at the start of the
  * held step (nr->fails): an element's assignment or a resting contact's release. */
-static int switches_at_once(const struct dp_net_run *nr)
+static int switches_at_once(const struct dp_network_run *nr)
 {
     for (size_t j = 0; nr->nc && j < nr->nact; j++)
         if (nr->fails[j] && (j < nr->nact_el || nr->ct_on[j - nr->nact_el]))
@@ -171,21 +171,21 @@ static int switches_at_once(const struct dp_net_run *nr)
  * is armed by Moreau-Jean's rule instead. */
 static int finish_step(dp_run *r, double t, double left)
 {
-    struct dp_net_run *nr = r->state;
-    dp_net_ws_pattern_restore(nr->ws, nr->pattern);
-    if (nr_contacts_chattering(nr))
-        nr_contacts_arm_mj(nr, left);
-    int s = nr_net_step_keep(r, t, left);
-    if (s == DP_OK && nr_contacts_arm_closing(nr, left))
-        s = nr_net_step_keep(r, t, left);
+    struct dp_network_run *nr = r->state;
+    dp_network_step_pattern_restore(nr->ws, nr->pattern);
+    if (network_run_contacts_chattering(nr))
+        network_run_contacts_arm_mj(nr, left);
+    int s = network_run_net_step_keep(r, t, left);
+    if (s == DP_OK && network_run_contacts_arm_closing(nr, left))
+        s = network_run_net_step_keep(r, t, left);
     if (s != DP_OK)
         return s;
-    nr_take_velocity(nr, left);
-    nr_element_forces(nr, 1);
-    nr_step_events(r, nr->phase_prev, t + left);
-    nr_stick_time(r, nr->phase, left);
+    network_run_take_velocity(nr, left);
+    network_run_element_forces(nr, 1);
+    network_run_step_events(r, nr->phase_prev, t + left);
+    network_run_stick_time(r, nr->phase, left);
     if (nr->nc)
-        nr_contacts_mj_events(r, t, left);
+        network_run_contacts_mj_events(r, t, left);
     return DP_OK;
 }
 
@@ -193,17 +193,17 @@ static int finish_step(dp_run *r, double t, double left)
  * billionth of a step (as at the run's start) and the phase changes it made are events at t. */
 static int contacts_at(dp_run *r, double t, double left)
 {
-    struct dp_net_run *nr = r->state;
-    int jumped = nr_contacts_instant(r, t, r->h);
+    struct dp_network_run *nr = r->state;
+    int jumped = network_run_contacts_instant(r, t, r->h);
     if (jumped < 0)
         return -jumped;
     if (jumped == 0)
         return DP_OK;
-    int s = nr_net_step_keep(r, t, 1e-9 * left);
+    int s = network_run_net_step_keep(r, t, 1e-9 * left);
     if (s != DP_OK)
         return s;
-    nr_element_forces(nr, 1);
-    nr_step_events(r, nr->phase_prev, t);
+    network_run_element_forces(nr, 1);
+    network_run_step_events(r, nr->phase_prev, t);
     memcpy(nr->phase_prev, nr->phase, nr->nel);
     return DP_OK;
 }
@@ -213,24 +213,24 @@ static int contacts_at(dp_run *r, double t, double left)
  * the element switches (stick at its belt speed, or slip towards its force) and its event is emitted at
  * that instant; so theta = 1/2 stays second order through stick-slip, as for one mass. Contacts: impacts
  * at each sub-step's start (contacts_at), a closing gap is one more margin to split at. */
-int nr_located_step(dp_run *r, double t, double h)
+int network_run_located_step(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     double left = h;
     for (size_t sub = 0; left > 0; sub++) {
         memcpy(nr->phase_prev, nr->phase, nr->nel);
-        if (nr->nc && nr_contacts_chattering(nr)) {
-            dp_net_ws_pattern_save(nr->ws, nr->pattern);
+        if (nr->nc && network_run_contacts_chattering(nr)) {
+            dp_network_step_pattern_save(nr->ws, nr->pattern);
             return finish_step(r, t, left);
         }
         int s = nr->nc ? contacts_at(r, t, left) : DP_OK;
         if (s != DP_OK)
             return s;
-        dp_net_ws_pattern_save(nr->ws, nr->pattern);
-        if ((s = nr_net_step_keep(r, t, left)) != DP_OK)
+        dp_network_step_pattern_save(nr->ws, nr->pattern);
+        if ((s = network_run_net_step_keep(r, t, left)) != DP_OK)
             return s;
-        nr_element_forces(nr, 1);
-        int same = dp_net_ws_pattern_same(nr->ws, nr->pattern) && !nr_contacts_penetrate(nr, left);
+        network_run_element_forces(nr, 1);
+        int same = dp_network_step_pattern_same(nr->ws, nr->pattern) && !network_run_contacts_penetrate(nr, left);
         if (same && nr->theta < 1) {      /* keep the step's solution while the held step looks further */
             memcpy(nr->v1_keep, nr->v1, nr->n * sizeof *nr->v1);
             memcpy(nr->force_keep, nr->force, nr->nact * sizeof *nr->force);
@@ -239,10 +239,10 @@ int nr_located_step(dp_run *r, double t, double h)
             memcpy(nr->force, nr->force_keep, nr->nact * sizeof *nr->force);
         }
         if (same) {
-            nr_take_velocity(nr, left);
-            nr_element_forces(nr, 1);
-            nr_step_events(r, nr->phase_prev, t + left);
-            nr_stick_time(r, nr->phase, left);
+            network_run_take_velocity(nr, left);
+            network_run_element_forces(nr, 1);
+            network_run_step_events(r, nr->phase_prev, t + left);
+            network_run_stick_time(r, nr->phase, left);
             return DP_OK;
         }
         /* impacts add sub-steps of their own (accumulating ones end plastic: network_contact.c) */
@@ -260,8 +260,8 @@ int nr_located_step(dp_run *r, double t, double h)
             at = 1e-9 * left;
         }
         held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
-        nr_take_velocity(nr, at);
-        nr_element_forces(nr, 1);
+        network_run_take_velocity(nr, at);
+        network_run_element_forces(nr, 1);
         /* every element whose assignment fails at this instant (to the root's tolerance) switches here:
          * identical blocks stick together */
         for (size_t j = 0; j < nr->nact; j++) {
@@ -273,8 +273,8 @@ int nr_located_step(dp_run *r, double t, double h)
                 switch_element(r, t + at, left - at, j);    /* a resting contact let go */
             /* a closing contact takes its impact at the next sub-step's start */
         }
-        nr_stick_time(r, nr->phase_prev, at);
-        nr_step_events(r, nr->phase_prev, t + at);
+        network_run_stick_time(r, nr->phase_prev, at);
+        network_run_step_events(r, nr->phase_prev, t + at);
         t += at, left -= at;
     }
     return DP_OK;

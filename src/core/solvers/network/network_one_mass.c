@@ -43,18 +43,18 @@ static int as_model(dp_run *r)
 
 static int one_mass_init(dp_run *r)
 {
-    int s = dp_network_run_setup(r);
+    int s = network_run_setup(r);
     if (s != DP_OK)
         return s;
     s = as_model(r);
     if (s != DP_OK)
         return s;
-    nr_of(r)->one_mass = 1;
+    network_run_of(r)->one_mass = 1;
     return dp_stick_slip_init(r);
 }
 
 /* The network's state from the one-mass sample s: what rows and the summary are made of. */
-static void take_sample(struct dp_net_run *nr, const dp_sample *s)
+static void take_sample(struct dp_network_run *nr, const dp_sample *s)
 {
     nr->x[0] = s->x, nr->v[0] = s->v;
     nr->Fs[0] = s->Fs, nr->Fd[0] = s->Fd;
@@ -65,9 +65,9 @@ static void take_sample(struct dp_net_run *nr, const dp_sample *s)
  * events with their element (0; u = x, du = v on [ground, 0]). */
 static int one_mass_rows(dp_run *r, dp_record *buf, size_t n)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     r->out_cap = n;
-    if (nr_reserve_rows(r) != DP_OK)
+    if (network_run_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
     for (size_t i = 0; i < n; i++) {
         if (buf[i].type == DP_RECORD_EVENT) {
@@ -80,10 +80,10 @@ static int one_mass_rows(dp_run *r, dp_record *buf, size_t n)
         take_sample(nr, &buf[i].u.sample);
         size_t k = nr->rows_used++;
         buf[i].type = DP_RECORD_ROW;
-        buf[i].u.row = nr_fill_row(nr, t, nr->rows + k * nr->row_len);
+        buf[i].u.row = network_run_fill_row(nr, t, nr->rows + k * nr->row_len);
     }
     take_sample(nr, &r->sum.final);
-    r->sum.final_row = nr_fill_row(nr, r->sum.final.t, nr->final_row);
+    r->sum.final_row = network_run_fill_row(nr, r->sum.final.t, nr->final_row);
     return DP_OK;
 }
 
@@ -91,5 +91,5 @@ static int one_mass_rows(dp_run *r, dp_record *buf, size_t n)
  * rewritten as the network's rows. */
 const dp_run_type dp_run_network_one_mass = {
     .name = "stick-slip", .check = dp_rules_network, .init = one_mass_init, .advance = dp_stick_slip_advance,
-    .pending = dp_network_run_pending, .block = one_mass_rows, .free = dp_network_run_free,
+    .pending = network_run_pending, .block = one_mass_rows, .free = network_run_free,
 };

@@ -155,7 +155,7 @@ static int relabel(dp_network *net, double *x0, double *v0, const size_t *order,
     return DP_OK;
 }
 
-int nr_reorder(struct dp_net_run *nr, dp_network *net, double *x0, double *v0)
+int network_run_reorder(struct dp_network_run *nr, dp_network *net, double *x0, double *v0)
 {
     size_t n = net->n;
     if (n < 3)

@@ -12,7 +12,7 @@
 /* Row storage per block: the block holds at most this many numbers of rows. */
 #define ROW_BUDGET (1u << 20)
 
-dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data)
+dp_row network_run_fill_row(const struct dp_network_run *nr, double t, double *data)
 {
     size_t nn = nr->cols.nodes, ne = nr->cols.elements;
     for (size_t j = 0; j < nn; j++) {
@@ -31,9 +31,9 @@ dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data)
 }
 
 /* Queues a record for the caller: into its block while it has room and nothing waits, else the queue. */
-void nr_put(dp_run *r, const dp_record *rec)
+void network_run_put(dp_run *r, const dp_record *rec)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     if (nr->nq == 0 && r->out && r->out_n < r->out_cap) {
         r->out[r->out_n++] = *rec;
         return;
@@ -49,27 +49,27 @@ void nr_put(dp_run *r, const dp_record *rec)
     nr->queue[nr->nq++] = *rec;
 }
 
-void nr_emit_row(dp_run *r)
+void network_run_emit_row(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     r->countdown = r->spec.output.every;
     if (!r->spec.output.samples)
         return;
     dp_record rec = { .type = DP_RECORD_ROW };
     if (nr->nq == 0 && r->out && r->out_n < r->out_cap && nr->rows_used < nr->rows_cap) {
         size_t s = nr->rows_used++;
-        rec.u.row = nr_fill_row(nr, r->cur.t, nr->rows + s * nr->row_len);
+        rec.u.row = network_run_fill_row(nr, r->cur.t, nr->rows + s * nr->row_len);
     } else {
-        rec.u.row = nr_fill_row(nr, r->cur.t, nr->pending_row);
+        rec.u.row = network_run_fill_row(nr, r->cur.t, nr->pending_row);
     }
-    nr_put(r, &rec);
+    network_run_put(r, &rec);
     r->sum.samples++;
 }
 
-void nr_finalize_summary(dp_run *r)
+void network_run_finalize_summary(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
-    r->sum.final_row = nr_fill_row(nr, r->cur.t, nr->final_row);
+    struct dp_network_run *nr = r->state;
+    r->sum.final_row = network_run_fill_row(nr, r->cur.t, nr->final_row);
 }
 
 
@@ -77,68 +77,68 @@ void nr_finalize_summary(dp_run *r)
  * rate du. */
 static void element_event(dp_run *r, dp_event_kind kind, double t, size_t i, double du)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     r->sum.events++;
     if (!r->spec.output.events)
         return;
     const dp_element *e = &nr->net->el[i];
     dp_record rec = { .type = DP_RECORD_EVENT };
-    rec.u.event = (dp_event){ .kind = kind, .t = t, .x = nr_rel(e->a, e->b, nr->x), .v = du, .element = i };
-    nr_put(r, &rec);
+    rec.u.event = (dp_event){ .kind = kind, .t = t, .x = network_run_rel(e->a, e->b, nr->x), .v = du, .element = i };
+    network_run_put(r, &rec);
 }
 
-void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse)
+void network_run_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     r->sum.events++, r->sum.impacts++;
     if (!r->spec.output.events)
         return;
     const dp_element *e = &nr->net->el[i];
     dp_record rec = { .type = DP_RECORD_EVENT };
-    rec.u.event = (dp_event){ .kind = DP_EVENT_IMPACT, .t = t, .x = nr_rel(e->a, e->b, nr->x), .v = before,
+    rec.u.event = (dp_event){ .kind = DP_EVENT_IMPACT, .t = t, .x = network_run_rel(e->a, e->b, nr->x), .v = before,
                               .element = i, .v_after = after, .impulse = impulse };
-    nr_put(r, &rec);
+    network_run_put(r, &rec);
 }
 
 /* Events at time t for the elements whose phase differs from `before`. */
-void nr_step_events(dp_run *r, const unsigned char *before, double t)
+void network_run_step_events(dp_run *r, const unsigned char *before, double t)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     for (size_t i = 0; i < nr->nel; i++) {
         if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
             continue;
         const dp_element *e = &nr->net->el[i];
         /* a stick holds the belt's speed exactly; the state carries its rounding */
         double du = nr->phase[i] == DP_PHASE_STICK && e->has_damper ? e->damper.belt_velocity
-                                                                    : nr_rel(e->a, e->b, nr->v);
+                                                                    : network_run_rel(e->a, e->b, nr->v);
         element_event(r, nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP, t, i, du);
     }
 }
 
 /* An elastoplastic spring's slider starting to slide (yield: from elastic, or reversed from the other
  * yield force) or stopping (unload), at the end of the step that did it. */
-void nr_plastic_events(dp_run *r, double t)
+void network_run_plastic_events(dp_run *r, double t)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     for (size_t i = 0; nr->has_ep && i < nr->nel; i++) {
         int before = nr->ep_flow_prev[i], now = nr->ep_flow[i];
         if (nr->ep_graph[i] == NULL || before == now)
             continue;
         const dp_element *e = &nr->net->el[i];
-        element_event(r, now ? DP_EVENT_YIELD : DP_EVENT_UNLOAD, t, i, nr_rel(e->a, e->b, nr->v));
+        element_event(r, now ? DP_EVENT_YIELD : DP_EVENT_UNLOAD, t, i, network_run_rel(e->a, e->b, nr->v));
     }
 }
 
 /* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
-void nr_stick_time(dp_run *r, const unsigned char *ph, double h)
+void network_run_stick_time(dp_run *r, const unsigned char *ph, double h)
 {
-    for (size_t i = 0; i < nr_of(r)->nel; i++)
+    for (size_t i = 0; i < network_run_of(r)->nel; i++)
         if (ph[i] == DP_PHASE_STICK)
             r->sum.stick_time += h;
 }
 
 
-int nr_state_finite(const struct dp_net_run *nr)
+int network_run_state_finite(const struct dp_network_run *nr)
 {
     for (size_t i = 0; i < nr->n; i++)
         if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
@@ -150,9 +150,9 @@ int nr_state_finite(const struct dp_net_run *nr)
 }
 
 /* Moves queued records into the caller's block (a queued row into a block slot of its own). */
-void nr_flush(dp_run *r)
+void network_run_flush(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     while (nr->iq < nr->nq && r->out_n < r->out_cap) {
         dp_record rec = nr->queue[nr->iq];
         if (rec.type == DP_RECORD_ROW) {
@@ -171,9 +171,9 @@ void nr_flush(dp_run *r)
 }
 
 /* Row slots for this block: one per record the caller can take, within ROW_BUDGET numbers. */
-int nr_reserve_rows(dp_run *r)
+int network_run_reserve_rows(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     size_t want = r->out_cap, fit = ROW_BUDGET / (nr->row_len ? nr->row_len : 1);
     if (want > fit)
         want = fit ? fit : 1;

@@ -19,8 +19,8 @@
 #include "solvers/network/network_run.h"
 #include "solvers/regularized.h"
 
-struct dp_net_reg {
-    struct dp_net_run *nr;
+struct dp_network_regularized {
+    struct dp_network_run *nr;
     gsl_odeiv2_system sys;
     gsl_odeiv2_driver *drv;
     double lam;            /* 1/n */
@@ -31,7 +31,7 @@ struct dp_net_reg {
 };
 
 /* An element's regularized force at elongation u and rate z, and (slopes) its derivatives in u and z. */
-static double element_force(const struct dp_net_run *nr, size_t i, double u, double z, double lam, double *du,
+static double element_force(const struct dp_network_run *nr, size_t i, double u, double z, double lam, double *du,
                             double *dz)
 {
     const dp_element *e = &nr->net->el[i];
@@ -40,7 +40,7 @@ static double element_force(const struct dp_net_run *nr, size_t i, double u, dou
     if (e->has_spring && !dp_spring_linear(&e->spring))
         f += dp_graph_yosida_slope(&e->spring.graph, lam, u, du);
     if (e->has_contact && u < e->contact.distance) {   /* compliant (rigid ones are refused) */
-        f += nr_compliant_force(&e->contact, u);
+        f += network_run_compliant_force(&e->contact, u);
         *du += e->contact.compliance;
     }
     if (e->has_damper) {
@@ -55,9 +55,9 @@ static double element_force(const struct dp_net_run *nr, size_t i, double u, dou
 }
 
 /* F = f(t) - K x - C v + belt terms - sum_e b_e (nonlinear force); acc = M^-1 F. */
-static void forces(struct dp_net_reg *g, double t, const double y[])
+static void forces(struct dp_network_regularized *g, double t, const double y[])
 {
-    struct dp_net_run *nr = g->nr;
+    struct dp_network_run *nr = g->nr;
     size_t n = nr->n;
     const double *x = y, *v = y + n;
     dp_band_symv(nr->K, n, nr->p, x, g->F);
@@ -69,7 +69,7 @@ static void forces(struct dp_net_reg *g, double t, const double y[])
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
         double du, dz, vb = e->has_damper ? e->damper.belt_velocity : 0;
-        double f = nr->c[i] * -vb + element_force(nr, i, nr_rel(e->a, e->b, x), nr_rel(e->a, e->b, v), g->lam,
+        double f = nr->c[i] * -vb + element_force(nr, i, network_run_rel(e->a, e->b, x), network_run_rel(e->a, e->b, v), g->lam,
                                                   &du, &dz);
         if (e->b >= 0)
             g->F[e->b] -= f;
@@ -86,7 +86,7 @@ static void forces(struct dp_net_reg *g, double t, const double y[])
 
 static int rhs(double t, const double y[], double f[], void *p)
 {
-    struct dp_net_reg *g = p;
+    struct dp_network_regularized *g = p;
     size_t n = g->nr->n;
     g->fevals++;
     forces(g, t, y);
@@ -112,9 +112,9 @@ static void add_bbT(double *A, size_t n, long a, long b, double w)
 }
 
 /* The stiffness and damping the linear parts and the regularized laws present at y, dense. */
-static void tangents(const struct dp_net_reg *g, const double y[], double *Kt, double *Ct)
+static void tangents(const struct dp_network_regularized *g, const double y[], double *Kt, double *Ct)
 {
-    const struct dp_net_run *nr = g->nr;
+    const struct dp_network_run *nr = g->nr;
     size_t n = nr->n, p1 = nr->p + 1;
     memset(Kt, 0, n * n * sizeof *Kt);
     memset(Ct, 0, n * n * sizeof *Ct);
@@ -126,7 +126,7 @@ static void tangents(const struct dp_net_reg *g, const double y[], double *Kt, d
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
         double du, dz;
-        element_force(nr, i, nr_rel(e->a, e->b, y), nr_rel(e->a, e->b, y + n), g->lam, &du, &dz);
+        element_force(nr, i, network_run_rel(e->a, e->b, y), network_run_rel(e->a, e->b, y + n), g->lam, &du, &dz);
         add_bbT(Kt, n, e->a, e->b, du);
         add_bbT(Ct, n, e->a, e->b, dz);
     }
@@ -134,8 +134,8 @@ static void tangents(const struct dp_net_reg *g, const double y[], double *Kt, d
 
 static int jacobian(double t, const double y[], double *dfdy, double dfdt[], void *p)
 {
-    struct dp_net_reg *g = p;
-    const struct dp_net_run *nr = g->nr;
+    struct dp_network_regularized *g = p;
+    const struct dp_network_run *nr = g->nr;
     size_t n = nr->n, m = 2 * n;
     double *Kt = malloc(2 * n * n * sizeof *Kt), *Ct = Kt ? Kt + n * n : NULL;
     if (Kt == NULL)
@@ -167,27 +167,27 @@ static int jacobian(double t, const double y[], double *dfdy, double dfdt[], voi
 }
 
 /* The row's forces at the integrator's state: Fs = k u + S_1/n(u), Fd = c (z - v_b) + A_1/n(z - v_b) - gamma. */
-static void row_forces(struct dp_net_reg *g)
+static void row_forces(struct dp_network_regularized *g)
 {
-    struct dp_net_run *nr = g->nr;
+    struct dp_network_run *nr = g->nr;
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
-        double u = nr_rel(e->a, e->b, nr->x), z = nr_rel(e->a, e->b, nr->v), du, dz, s = 0, d = 0, vb = 0;
+        double u = network_run_rel(e->a, e->b, nr->x), z = network_run_rel(e->a, e->b, nr->v), du, dz, s = 0, d = 0, vb = 0;
         if (e->has_spring && !dp_spring_linear(&e->spring))
             s = dp_graph_yosida_slope(&e->spring.graph, g->lam, u, &du);
         if (e->has_damper) {
             vb = e->damper.belt_velocity;
-            d = element_force(nr, i, u, z, g->lam, &du, &dz) - s - (e->has_contact ? nr_compliant_force(&e->contact, u) : 0);
+            d = element_force(nr, i, u, z, g->lam, &du, &dz) - s - (e->has_contact ? network_run_compliant_force(&e->contact, u) : 0);
         }
         nr->Fs[i] = nr->k[i] * u + s;
         nr->Fd[i] = nr->c[i] * (z - vb) + d;
         nr->phase[i] = DP_PHASE_NONE;
     }
-    nr_contacts_forces(nr, 0);
+    network_run_contacts_forces(nr, 0);
 }
 
 /* M^-1, dense: the inverse masses, or the mass matrix inverted through its Cholesky factor. */
-static int invert_mass(struct dp_net_reg *g)
+static int invert_mass(struct dp_network_regularized *g)
 {
     const dp_network *net = g->nr->net;
     size_t n = net->n;
@@ -205,10 +205,10 @@ static int invert_mass(struct dp_net_reg *g)
 
 int dp_network_regularized_init(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     const dp_solver_spec *sv = &r->spec.solver;
     size_t n = nr->n;
-    struct dp_net_reg *g = calloc(1, sizeof *g);
+    struct dp_network_regularized *g = calloc(1, sizeof *g);
     if (g == NULL)
         return DP_ENOMEM;
     nr->reg = g;
@@ -235,7 +235,7 @@ int dp_network_regularized_init(dp_run *r)
     return DP_OK;
 }
 
-void dp_network_regularized_free(struct dp_net_reg *g)
+void dp_network_regularized_free(struct dp_network_regularized *g)
 {
     if (g == NULL)
         return;
@@ -250,9 +250,9 @@ void dp_network_regularized_free(struct dp_net_reg *g)
  * deadline or a hang-up ends even a long stretch without samples. GSL_CONTINUE when the hook said so. */
 static int integrate_to(dp_run *r, double t1)
 {
-    struct dp_net_reg *g = nr_of(r)->reg;
+    struct dp_network_regularized *g = network_run_of(r)->reg;
     gsl_odeiv2_driver *d = g->drv;
-    unsigned long long size = (unsigned long long)(nr_of(r)->n * nr_of(r)->n + nr_of(r)->nel + 1);
+    unsigned long long size = (unsigned long long)(network_run_of(r)->n * network_run_of(r)->n + network_run_of(r)->nel + 1);
     while (g->t < t1) {
         if (dp_run_stopped(r, r->n + g->fevals * size))
             return GSL_CONTINUE;
@@ -268,12 +268,12 @@ static int integrate_to(dp_run *r, double t1)
 /* Integrates to the next output instant (the next sample due, or t_end), one row there. */
 int dp_network_regularized_advance(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
-    struct dp_net_reg *g = nr->reg;
+    struct dp_network_run *nr = r->state;
+    struct dp_network_regularized *g = nr->reg;
     size_t n = nr->n;
-    if (nr_reserve_rows(r) != DP_OK)
+    if (network_run_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
-    nr_flush(r);
+    network_run_flush(r);
     while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
         unsigned long long next = r->n + (unsigned long long)(r->countdown > 0 ? r->countdown : 1);
         if (next > r->nsteps || !r->spec.output.samples)
@@ -295,15 +295,15 @@ int dp_network_regularized_advance(dp_run *r)
         memcpy(nr->x, g->y, n * sizeof *g->y);
         memcpy(nr->v, g->y + n, n * sizeof *g->y);
         row_forces(g);
-        if (!nr_state_finite(nr))
+        if (!network_run_state_finite(nr))
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", t1);
         r->sum.steps = r->n;
         if (r->n >= r->nsteps) {
             r->finished = 1;
-            nr_finalize_summary(r);
+            network_run_finalize_summary(r);
         }
         if (r->countdown <= 0 || r->n >= r->nsteps)
-            nr_emit_row(r);
+            network_run_emit_row(r);
     }
     return DP_OK;
 }

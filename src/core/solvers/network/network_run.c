@@ -47,7 +47,7 @@ static size_t bandwidth(const dp_network *net)
 
 /* ---- allocation ------------------------------------------------------------------------------------- */
 
-static int alloc_all(struct dp_net_run *nr)
+static int alloc_all(struct dp_network_run *nr)
 {
     /* arrays over the convex problem's elements hold every element's laws and then every contact */
     size_t n = nr->n, ne = nr->nel ? nr->nel : 1, na = ne, band = n * (nr->p + 1);
@@ -108,7 +108,7 @@ static int is_ep(const dp_element *e)
 
 /* The elastoplastic springs' state at the initial elongations (an elongation past yield moves the offset
  * there, as the return mapping would), their step graphs (the run's own copies) at that offset. */
-static void ep_init(struct dp_net_run *nr, dp_network *net, const double *x0)
+static void ep_init(struct dp_network_run *nr, dp_network *net, const double *x0)
 {
     for (size_t i = 0; i < nr->nel; i++) {
         dp_element *e = &net->el[i];
@@ -117,7 +117,7 @@ static void ep_init(struct dp_net_run *nr, dp_network *net, const double *x0)
         int flow;
         nr->has_ep = 1;
         nr->ep_p[i] = e->spring.offset;
-        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, nr_rel(e->a, e->b, x0), &nr->ep_p[i], &flow);
+        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, network_run_rel(e->a, e->b, x0), &nr->ep_p[i], &flow);
         nr->ep_graph[i] = &e->spring.graph;
         dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
     }
@@ -125,7 +125,7 @@ static void ep_init(struct dp_net_run *nr, dp_network *net, const double *x0)
 
 /* The linear parts straight into band storage (a dense n x n copy would not fit a chain of 10^4 blocks);
  * the elements' nonlinear laws into the convex problem's list. */
-static int setup_laws(struct dp_net_run *nr)
+static int setup_laws(struct dp_network_run *nr)
 {
     const dp_network *net = nr->net;
     size_t n = nr->n, p = nr->p;
@@ -162,15 +162,15 @@ static int setup_laws(struct dp_net_run *nr)
         }
         nr->act_of[i] = (long)nr->nact;
         nr->act_el[nr->nact] = i;
-        nr->act[nr->nact++] = (dp_net_elem){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
+        nr->act[nr->nact++] = (dp_network_step_element){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
                                              .S = lin_spring ? NULL : &e->spring.graph,
                                              .vb = e->has_damper ? e->damper.belt_velocity : 0,
                                              .ep_theta = is_ep(e) ? nr->theta : 0 };
     }
-    return nr_contacts_setup(nr);
+    return network_run_contacts_setup(nr);
 }
 
-static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
+static int setup_columns(struct dp_network_run *nr, const dp_output_spec *o)
 {
     for (size_t i = 0; i < nr->n; i++)
         nr->all_nodes[i] = i;
@@ -205,17 +205,17 @@ static int setup_columns(struct dp_net_run *nr, const dp_output_spec *o)
     return nr->final_row && nr->pending_row ? DP_OK : DP_ENOMEM;
 }
 
-void dp_network_run_free(void *state)
+void network_run_free(void *state)
 {
-    struct dp_net_run *nr = state;
+    struct dp_network_run *nr = state;
     if (nr == NULL)
         return;
-    dp_net_ws_free(nr->ws);
+    dp_network_step_free(nr->ws);
     dp_network_regularized_free(nr->reg);
     for (size_t i = 0; nr->static_A && i < nr->nact; i++)
         dp_graph_clear(&nr->static_A[i]);
     dp_nm_free(nr->nm);
-    nr_contacts_free(nr);
+    network_run_contacts_free(nr);
     void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
@@ -227,7 +227,7 @@ void dp_network_run_free(void *state)
 /* ---- the newmark solver ------------------------------------------------------------------------------ */
 
 /* The load at t: the nodes' forcing and the linear dampers' belt terms c v_b b. */
-static void nm_load(struct dp_net_run *nr, double t, double *P)
+static void nm_load(struct dp_network_run *nr, double t, double *P)
 {
     memset(P, 0, nr->n * sizeof *P);
     for (size_t i = 0; i < nr->net->nforce; i++)
@@ -243,7 +243,7 @@ static void nm_load(struct dp_net_run *nr, double t, double *P)
 }
 
 /* The elastoplastic forces and tangent states in the stepper's order. */
-static void nm_gather(struct dp_net_run *nr)
+static void nm_gather(struct dp_network_run *nr)
 {
     for (size_t j = 0; j < nr->nm_nep; j++)
         nr->nm_F[j] = nr->ep_F[nr->nm_el[j]], nr->nm_flow[j] = nr->ep_flow[nr->nm_el[j]];
@@ -251,7 +251,7 @@ static void nm_gather(struct dp_net_run *nr)
 
 static int newmark_init(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     size_t m = nr->nel ? nr->nel : 1;
     nr->nm_ea = calloc(m, sizeof *nr->nm_ea), nr->nm_eb = calloc(m, sizeof *nr->nm_eb);
     nr->nm_ek = calloc(m, sizeof *nr->nm_ek), nr->nm_F = calloc(m, sizeof *nr->nm_F);
@@ -278,12 +278,12 @@ static int newmark_init(dp_run *r)
 /* One step of Höschl's incremental form to t + h, the elastoplastic springs' return mappings after it. */
 static int newmark_step(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     nm_load(nr, t + h, nr->nm_P);
     nm_gather(nr);
     if (dp_nm_step(nr->nm, h, nr->nm_P, nr->nm_flow, nr->x, nr->v) != DP_OK)
         return DP_ESOLVE;
-    nr_ep_update(nr);
+    network_run_ep_update(nr);
     nm_gather(nr);
     dp_nm_accel(nr->nm, nr->x, nr->v, nr->nm_P, nr->nm_F);
     return DP_OK;
@@ -302,7 +302,7 @@ static double relaxation_rise(const dp_relaxation *g)
  * checked for the nominal and the last step by GSL's band Cholesky. */
 static int check_step_bound(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     if (!nr->relaxed)
         return DP_OK;
     size_t len = nr->n * (nr->p + 1);
@@ -331,30 +331,30 @@ static int check_step_bound(dp_run *r)
 }
 
 /* The state, the laws, the columns and the workspace: what the network run and the one-mass network share. */
-int dp_network_run_setup(dp_run *r)
+int network_run_setup(dp_run *r)
 {
-    struct dp_net_run *nr = calloc(1, sizeof *nr);
+    struct dp_network_run *nr = calloc(1, sizeof *nr);
     if (nr == NULL)
         return DP_ENOMEM;
     r->state = nr;
     nr->net = r->spec.net;
     r->cols = &nr->cols;
     nr->n = nr->net->n, nr->nel = nr->net->nel, nr->theta = r->spec.solver.theta;
-    int s = nr_reorder(nr, r->spec.net, r->spec.x0v, r->spec.v0v);
+    int s = network_run_reorder(nr, r->spec.net, r->spec.x0v, r->spec.v0v);
     if (s != DP_OK)
         return s;
     nr->p = bandwidth(nr->net);
     s = alloc_all(nr);
     s = s ? s : setup_laws(nr);
     s = s ? s : setup_columns(nr, &r->spec.output);
-    if (s == DP_OK && (nr->ws = dp_net_ws_alloc(nr->n, nr->p, nr->nact, nr->act)) == NULL)
+    if (s == DP_OK && (nr->ws = dp_network_step_alloc(nr->n, nr->p, nr->nact, nr->act)) == NULL)
         s = DP_ENOMEM;
     if (s != DP_OK)
         return s;
     if (nr->relaxed)
-        dp_net_ws_relaxation(nr->ws, nr->gamma, nr->theta);
+        dp_network_step_relaxation(nr->ws, nr->gamma, nr->theta);
     ep_init(nr, r->spec.net, r->spec.x0v);
-    nr->pattern = malloc(dp_net_ws_pattern_bytes(nr->ws));
+    nr->pattern = malloc(dp_network_step_pattern_bytes(nr->ws));
     nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
     nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
     size_t na = nr->nact ? nr->nact : 1;
@@ -374,55 +374,55 @@ int dp_network_run_setup(dp_run *r)
 /* The network run: its setup, then the initial forces and the first row. */
 static int network_run_init(dp_run *r)
 {
-    int s = dp_network_run_setup(r);
+    int s = network_run_setup(r);
     if (s != DP_OK)
         return s;
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     memcpy(nr->x, r->spec.x0v, nr->n * sizeof *nr->x);
     memcpy(nr->v, r->spec.v0v, nr->n * sizeof *nr->v);
     if (r->spec.solver.kind == DP_SOLVER_REGULARIZED) {
         if ((s = dp_network_regularized_init(r)) != DP_OK)
             return s;
         r->countdown = 1;
-        nr_finalize_summary(r);
-        nr_emit_row(r);
+        network_run_finalize_summary(r);
+        network_run_emit_row(r);
         return DP_OK;
     }
     if (r->spec.solver.kind == DP_SOLVER_NEWMARK) {
         if ((s = newmark_init(r)) != DP_OK)
             return s;
-        nr_element_forces(nr, 0);
+        network_run_element_forces(nr, 0);
         r->countdown = 1;
-        nr_finalize_summary(r);
-        nr_emit_row(r);
+        network_run_finalize_summary(r);
+        network_run_emit_row(r);
         return DP_OK;
     }
-    nr_build_W(nr, r->h);
+    network_run_build_W(nr, r->h);
     /* The initial forces and phases: an exact step of a billionth of dt from the initial state says which
      * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
      * leaves its assignment for the first located step. */
     double h0 = 1e-9 * r->h;
     if (nr->nc)
-        nr_contacts_arm_mj(nr, h0);
-    if (nr_net_step_keep(r, 0, h0) == DP_OK)
-        nr_element_forces(nr, 1);
+        network_run_contacts_arm_mj(nr, h0);
+    if (network_run_net_step_keep(r, 0, h0) == DP_OK)
+        network_run_element_forces(nr, 1);
     else
-        nr_element_forces(nr, 0);
-    nr_contacts_after_probe(nr);
+        network_run_element_forces(nr, 0);
+    network_run_contacts_after_probe(nr);
     r->countdown = 1;
-    nr_finalize_summary(r);
-    nr_emit_row(r);     /* the initial state: queued, no block yet */
+    network_run_finalize_summary(r);
+    network_run_emit_row(r);     /* the initial state: queued, no block yet */
     return DP_OK;
 }
 
 static int network_run_advance(dp_run *r)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     if (nr->reg)
         return dp_network_regularized_advance(r);
-    if (nr_reserve_rows(r) != DP_OK)
+    if (network_run_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
-    nr_flush(r);
+    network_run_flush(r);
     while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
         /* a solve costs about a unit per node and element: 10^4 blocks poll every step or so, one mass every
          * 4096 steps, both about the same work apart */
@@ -433,33 +433,33 @@ static int network_run_advance(dp_run *r)
         nr->impacts_step = 0;
         if (nr->nm) {
             if ((s = newmark_step(r, t, h)) == DP_OK) {
-                nr_element_forces(nr, 0);
-                nr_plastic_events(r, t + h);
+                network_run_element_forces(nr, 0);
+                network_run_plastic_events(r, t + h);
             }
         } else if (nr->locate && nr->solved) {
-            s = nr_located_step(r, t, h);
+            s = network_run_located_step(r, t, h);
         } else {
             memcpy(nr->phase_prev, nr->phase, nr->nel);
-            if ((s = nr_net_step(r, t, h)) == DP_OK) {
-                nr_element_forces(nr, 1);
-                nr_step_events(r, nr->phase_prev, t + h);
-                nr_plastic_events(r, t + h);
-                nr_stick_time(r, nr->phase, h);
+            if ((s = network_run_net_step(r, t, h)) == DP_OK) {
+                network_run_element_forces(nr, 1);
+                network_run_step_events(r, nr->phase_prev, t + h);
+                network_run_plastic_events(r, t + h);
+                network_run_stick_time(r, nr->phase, h);
             }
         }
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
         r->n++;
         r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
-        if (!nr_state_finite(nr))
+        if (!network_run_state_finite(nr))
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
         r->sum.steps = r->n;
         if (r->n >= r->nsteps) {
             r->finished = 1;
-            nr_finalize_summary(r);
+            network_run_finalize_summary(r);
         }
         if (--r->countdown <= 0 || r->n >= r->nsteps)
-            nr_emit_row(r);
+            network_run_emit_row(r);
     }
     return DP_OK;
 }
@@ -497,12 +497,12 @@ int dp_network_locates(const dp_spec *s)
     return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }
 
-int dp_network_run_pending(const dp_run *r)
+int network_run_pending(const dp_run *r)
 {
-    return nr_of(r)->nq > nr_of(r)->iq;
+    return network_run_of(r)->nq > network_run_of(r)->iq;
 }
 
 const dp_run_type dp_run_network = {
     .name = "network", .check = dp_rules_network, .init = network_run_init, .advance = network_run_advance,
-    .pending = dp_network_run_pending, .free = dp_network_run_free,
+    .pending = network_run_pending, .free = network_run_free,
 };

@@ -10,15 +10,15 @@
 #include "solvers/run_types.h"
 #include "solvers/stick_slip_step.h"
 
-struct dp_net_reg;
+struct dp_network_regularized;
 
-struct dp_net_run {
+struct dp_network_run {
     size_t n, nel, p, nact;
     int relaxed;                /* some element has a relaxation gamma */
     double theta;
     const dp_network *net;
     double *M, *K, *C;          /* band storage n x (p+1) */
-    dp_net_elem *act;           /* the elements of the convex problem */
+    dp_network_step_element *act;           /* the elements of the convex problem */
     const dp_relaxation **gamma; /* per active element, NULL without relaxation */
     dp_graph *static_A;         /* per active element: generalized Coulomb's static graph (phi1), else empty */
     unsigned char *held, *broke; /* per active element in a step: on its static graph; broke away this step */
@@ -32,16 +32,16 @@ struct dp_net_run {
     double *scale;              /* per active element: the size of its margin over a step */
     unsigned char *fixed, *cand, *fails_at;   /* per active element: location's scratch */
     double *v1_keep;            /* n: a step's solution kept while location looks further */
-    dp_net_force *force_keep;   /* per active element, likewise */
-    struct dp_net_reg *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
+    dp_network_step_forces *force_keep;   /* per active element, likewise */
+    struct dp_network_regularized *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
     int one_mass;               /* stepped by the one-mass solver (network_one_mass.c) */
     long *act_of;               /* element -> its index in act, or -1 */
     size_t *act_el;             /* index in act -> element */
     double *k, *c;              /* per element: linear stiffness and viscosity */
-    dp_net_ws *ws;
+    dp_network_step *ws;
     double h_W;                 /* the step W was built for */
     double *x, *v, *v1, *rhs, *tmp, *u;
-    dp_net_force *force;
+    dp_network_step_forces *force;
     double *Fs, *Fd;            /* per element, at the current state */
     unsigned char *phase, *phase_prev, *can_stick;
     dp_columns cols;
@@ -76,30 +76,30 @@ struct dp_net_run {
     unsigned char *ct_touch;    /* per contact: scratch of an instant */
     double *ct_last, *ct_pre;   /* per contact: time of its last located impact; its rate when armed (MJ) */
     double *Fn;                 /* per element: the contact's force */
-    dp_net_ws *iws;             /* the impact problem: W = M, the contacts' cones */
-    dp_net_elem *imp;
-    dp_net_force *iforce;
+    dp_network_step *iws;             /* the impact problem: W = M, the contacts' cones */
+    dp_network_step_element *imp;
+    dp_network_step_forces *iforce;
     double *iv;                 /* 2n: its right side and solution */
     unsigned long long impacts_step;
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */
-void nr_put(dp_run *r, const dp_record *rec);
+void network_run_put(dp_run *r, const dp_record *rec);
 /* A row of the current state at r->cur.t, if samples are wanted; restarts the decimation. */
-void nr_emit_row(dp_run *r);
+void network_run_emit_row(dp_run *r);
 /* Events at time t for the elements whose phase differs from `before`. */
-void nr_step_events(dp_run *r, const unsigned char *before, double t);
+void network_run_step_events(dp_run *r, const unsigned char *before, double t);
 /* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
-void nr_stick_time(dp_run *r, const unsigned char *ph, double h);
+void network_run_stick_time(dp_run *r, const unsigned char *ph, double h);
 /* Moves queued records into the caller's block; row slots for this block. */
-void nr_flush(dp_run *r);
-int nr_reserve_rows(dp_run *r);
+void network_run_flush(dp_run *r);
+int network_run_reserve_rows(dp_run *r);
 /* The summary's final row from the current state. */
-void nr_finalize_summary(dp_run *r);
+void network_run_finalize_summary(dp_run *r);
 /* Every position, velocity and force finite (and not absurdly large). */
-int nr_state_finite(const struct dp_net_run *nr);
+int network_run_state_finite(const struct dp_network_run *nr);
 /* x_b - x_a with the ground at 0. */
-static inline double nr_rel(long a, long b, const double *x)
+static inline double network_run_rel(long a, long b, const double *x)
 {
     return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
 }
@@ -107,54 +107,54 @@ static inline double nr_rel(long a, long b, const double *x)
 /* The stepping pieces located events are made of (network_stepping.c): the right side of a step of length h
  * from time t, its exact solution into v1 and the forces (state unmoved), moving the state by it, and the
  * elements' forces and phases (`stepped`: from the last solution; else the initial state). */
-void nr_step_rhs(struct dp_net_run *nr, double t, double h);
-int nr_net_step_keep(dp_run *r, double t, double h);
-void nr_take_velocity(struct dp_net_run *nr, double h);
-void nr_element_forces(struct dp_net_run *nr, int stepped);
+void network_run_step_rhs(struct dp_network_run *nr, double t, double h);
+int network_run_net_step_keep(dp_run *r, double t, double h);
+void network_run_take_velocity(struct dp_network_run *nr, double h);
+void network_run_element_forces(struct dp_network_run *nr, int stepped);
 /* W for step length h into the workspace; one whole step from t (the state moved, the forces set). */
-void nr_build_W(struct dp_net_run *nr, double h);
-int nr_net_step(dp_run *r, double t, double h);
+void network_run_build_W(struct dp_network_run *nr, double h);
+int network_run_net_step(dp_run *r, double t, double h);
 /* The elastoplastic springs' offsets and forces after a step (network_stepping.c). */
-void nr_ep_update(struct dp_net_run *nr);
+void network_run_ep_update(struct dp_network_run *nr);
 /* One step of length h from t split at its phase changes (network_events.c). */
-int nr_located_step(dp_run *r, double t, double h);
+int network_run_located_step(dp_run *r, double t, double h);
 
 /* Contacts (network_contact.c): set-up after the elements' laws, Moreau-Jean arming and its impact events,
  * located impacts at an instant, the unarmed contacts' gaps as held margins, their forces. */
-int nr_contacts_setup(struct dp_net_run *nr);
-void nr_contacts_free(struct dp_net_run *nr);
-void nr_contacts_arm_mj(struct dp_net_run *nr, double h);
-void nr_contacts_mj_events(dp_run *r, double t, double h);
-int nr_contacts_instant(dp_run *r, double t, double h);
-void nr_contacts_margins(struct dp_net_run *nr, double s);
-int nr_contacts_penetrate(struct dp_net_run *nr, double h);
-size_t nr_contacts_arm_closing(struct dp_net_run *nr, double h);
-int nr_contacts_chattering(const struct dp_net_run *nr);
-void nr_contacts_forces(struct dp_net_run *nr, int stepped);
-void nr_contacts_after_probe(struct dp_net_run *nr);
+int network_run_contacts_setup(struct dp_network_run *nr);
+void network_run_contacts_free(struct dp_network_run *nr);
+void network_run_contacts_arm_mj(struct dp_network_run *nr, double h);
+void network_run_contacts_mj_events(dp_run *r, double t, double h);
+int network_run_contacts_instant(dp_run *r, double t, double h);
+void network_run_contacts_margins(struct dp_network_run *nr, double s);
+int network_run_contacts_penetrate(struct dp_network_run *nr, double h);
+size_t network_run_contacts_arm_closing(struct dp_network_run *nr, double h);
+int network_run_contacts_chattering(const struct dp_network_run *nr);
+void network_run_contacts_forces(struct dp_network_run *nr, int stepped);
+void network_run_contacts_after_probe(struct dp_network_run *nr);
 /* A compliant contact's force at elongation u, -k max(d - u, 0) (0 for a rigid one: k = 0). */
-double nr_compliant_force(const dp_contact *c, double u);
+double network_run_compliant_force(const dp_contact *c, double u);
 /* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
-void nr_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse);
+void network_run_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse);
 
 /* Yield and unload events at time t of the elastoplastic springs whose slider started or stopped sliding. */
-void nr_plastic_events(dp_run *r, double t);
+void network_run_plastic_events(dp_run *r, double t);
 
 /* A row over the columns from the current state, its numbers written to data and ph. */
-dp_row nr_fill_row(const struct dp_net_run *nr, double t, double *data);
+dp_row network_run_fill_row(const struct dp_network_run *nr, double t, double *data);
 
 /* Renumbers the run's copy of the network (and its initial state) for a narrow band, where that at least
  * halves it; sets nr->node_pos then (network_order.c). DP_OK or DP_ENOMEM. */
-int nr_reorder(struct dp_net_run *nr, dp_network *net, double *x0, double *v0);
+int network_run_reorder(struct dp_network_run *nr, dp_network *net, double *x0, double *v0);
 
 /* The network run (network_run.c), whose setup, queue and state the one-mass network's type shares
  * (network_one_mass.c). */
-int dp_network_run_setup(dp_run *r);
-int dp_network_run_pending(const dp_run *r);
-void dp_network_run_free(void *state);
+int network_run_setup(dp_run *r);
+int network_run_pending(const dp_run *r);
+void network_run_free(void *state);
 
 /* The run's state. */
-static inline struct dp_net_run *nr_of(const dp_run *r)
+static inline struct dp_network_run *network_run_of(const dp_run *r)
 {
     return r->state;
 }
@@ -162,6 +162,6 @@ static inline struct dp_net_run *nr_of(const dp_run *r)
 /* The regularized scheme on networks (network_regularized.c). */
 int dp_network_regularized_init(dp_run *r);
 int dp_network_regularized_advance(dp_run *r);
-void dp_network_regularized_free(struct dp_net_reg *g);
+void dp_network_regularized_free(struct dp_network_regularized *g);
 
 #endif

@@ -11,7 +11,7 @@
 
 /* The elastoplastic springs after a step: each one's return map at its new elongation, its step graph moved
  * with its offset where it slid. */
-void nr_ep_update(struct dp_net_run *nr)
+void network_run_ep_update(struct dp_network_run *nr)
 {
     if (!nr->has_ep)
         return;
@@ -21,20 +21,20 @@ void nr_ep_update(struct dp_net_run *nr)
         const dp_element *e = &nr->net->el[i];
         int flow;
         nr->ep_flow_prev[i] = nr->ep_flow[i];
-        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, nr_rel(e->a, e->b, nr->x), &nr->ep_p[i], &flow);
+        nr->ep_F[i] = dp_elastoplastic_return(&e->spring, network_run_rel(e->a, e->b, nr->x), &nr->ep_p[i], &flow);
         nr->ep_flow[i] = (signed char)flow;
         if (flow)
             dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
     }
 }
 
-void nr_build_W(struct dp_net_run *nr, double h)
+void network_run_build_W(struct dp_network_run *nr, double h)
 {
     size_t len = nr->n * (nr->p + 1);
-    double *W = dp_net_ws_W(nr->ws), th = nr->theta;
+    double *W = dp_network_step_W(nr->ws), th = nr->theta;
     for (size_t i = 0; i < len; i++)
         W[i] = nr->M[i] + h * th * nr->C[i] + h * h * th * th * nr->K[i];
-    dp_net_ws_W_changed(nr->ws);
+    dp_network_step_W_changed(nr->ws);
     nr->h_W = h;
 }
 
@@ -42,11 +42,11 @@ void nr_build_W(struct dp_net_run *nr, double h)
 
 /* Each element's forces and phase at the current state; `stepped`: after a step (forces from its
  * solution), else the initial state (set-valued forces taken closest to zero). */
-void nr_element_forces(struct dp_net_run *nr, int stepped)
+void network_run_element_forces(struct dp_network_run *nr, int stepped)
 {
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
-        double u = nr_rel(e->a, e->b, nr->x), z = nr_rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
+        double u = network_run_rel(e->a, e->b, nr->x), z = network_run_rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
         /* no linear part: 0, not the -0 of 0 * (a negative elongation) */
         double fs = nr->k[i] != 0 ? nr->k[i] * u : 0, fd = nr->c[i] != 0 ? nr->c[i] * (z - vb) : 0, lo, hi;
         long k = nr->act_of[i];
@@ -60,7 +60,7 @@ void nr_element_forces(struct dp_net_run *nr, int stepped)
                 fd += fmin(fmax(0.0, lo), hi);
             }
         } else if (k >= 0 && stepped) {
-            const dp_net_force *f = &nr->force[k];
+            const dp_network_step_forces *f = &nr->force[k];
             fs += f->s, fd += f->a, rest = f->at_rest;
         } else if (k >= 0) {
             if (nr->act[k].S) {
@@ -77,7 +77,7 @@ void nr_element_forces(struct dp_net_run *nr, int stepped)
         nr->Fs[i] = fs, nr->Fd[i] = fd;
         nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
     }
-    nr_contacts_forces(nr, stepped);
+    network_run_contacts_forces(nr, stepped);
 }
 
 /* ---- stepping --------------------------------------------------------------------------------------- */
@@ -88,7 +88,7 @@ void nr_element_forces(struct dp_net_run *nr, int stepped)
  * moves at least one element for good, so this ends after at most 2 x elements solves. */
 static int static_solve(dp_run *r, double h)
 {
-    struct dp_net_run *nr = r->state;
+    struct dp_network_run *nr = r->state;
     for (size_t k = 0; k < nr->nact; k++) {
         nr->held[k] = nr->static_A[k].n > 0 && nr->phase[nr->act_el[k]] == DP_PHASE_STICK;
         nr->broke[k] = 0;
@@ -97,15 +97,15 @@ static int static_solve(dp_run *r, double h)
         for (size_t k = 0; k < nr->nact; k++)
             if (nr->static_A[k].n > 0)
                 nr->act[k].A = nr->held[k] ? &nr->static_A[k] : &nr->net->el[nr->act_el[k]].damper.graph;
-        dp_net_ws_W_changed(nr->ws);
-        int s = dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+        dp_network_step_W_changed(nr->ws);
+        int s = dp_network_step_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
         if (s != DP_OK)
             return s;
         int changed = 0;
         for (size_t k = 0; k < nr->nact; k++) {
             if (nr->static_A[k].n == 0)
                 continue;
-            double vb = nr->act[k].vb, z0 = nr_rel(nr->act[k].a, nr->act[k].b, nr->v) - vb, z1 = nr->force[k].z - vb;
+            double vb = nr->act[k].vb, z0 = network_run_rel(nr->act[k].a, nr->act[k].b, nr->v) - vb, z1 = nr->force[k].z - vb;
             if (nr->held[k] && !nr->force[k].at_rest) {
                 nr->held[k] = 0, nr->broke[k] = 1, changed = 1;
             } else if (!nr->held[k] && !nr->broke[k] && z0 != 0 && z1 != 0 && (z0 > 0) != (z1 > 0)) {
@@ -120,12 +120,12 @@ static int static_solve(dp_run *r, double h)
 
 /* The right side of a step of length h from the current state at time t, W for h, and the elongations the
  * spring graphs see (network_step.h for the problem they define). */
-void nr_step_rhs(struct dp_net_run *nr, double t, double h)
+void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
 {
     size_t n = nr->n, p = nr->p;
     double th = nr->theta;
     if (h != nr->h_W)
-        nr_build_W(nr, h);
+        network_run_build_W(nr, h);
     dp_band_symv(nr->M, n, p, nr->v, nr->rhs);
     dp_band_symv(nr->C, n, p, nr->v, nr->tmp);
     for (size_t i = 0; i < n; i++) {
@@ -146,16 +146,16 @@ void nr_step_rhs(struct dp_net_run *nr, double t, double h)
             nr->rhs[e->a] -= g;
     }
     for (size_t k = 0; k < nr->nact; k++)
-        nr->u[k] = nr_rel(nr->act[k].a, nr->act[k].b, nr->x);
+        nr->u[k] = network_run_rel(nr->act[k].a, nr->act[k].b, nr->x);
     if (!nr->has_ep)
         return;
     for (size_t k = 0; k < nr->nact; k++) {
-        const dp_net_elem *e = &nr->act[k];
+        const dp_network_step_element *e = &nr->act[k];
         if (e->ep_theta == 0)
             continue;
         /* u+ = u + h (1-theta) u' + h theta z+; the force's (1-theta) part is known */
         double g = h * (1 - th) * nr->ep_F[nr->act_el[k]];
-        nr->u[k] += h * (1 - th) * nr_rel(e->a, e->b, nr->v);
+        nr->u[k] += h * (1 - th) * network_run_rel(e->a, e->b, nr->v);
         if (e->b >= 0)
             nr->rhs[e->b] -= g;
         if (e->a >= 0)
@@ -164,35 +164,35 @@ void nr_step_rhs(struct dp_net_run *nr, double t, double h)
 }
 
 /* x+ = x + h ((1-theta) v + theta v+), v = v+. */
-void nr_take_velocity(struct dp_net_run *nr, double h)
+void network_run_take_velocity(struct dp_network_run *nr, double h)
 {
     for (size_t i = 0; i < nr->n; i++) {
         nr->x[i] += h * ((1 - nr->theta) * nr->v[i] + nr->theta * nr->v1[i]);
         nr->v[i] = nr->v1[i];
     }
-    nr_ep_update(nr);
+    network_run_ep_update(nr);
 }
 
 /* The exact solution of a step of length h from time t into v1 and the forces; the state is not moved. */
-int nr_net_step_keep(dp_run *r, double t, double h)
+int network_run_net_step_keep(dp_run *r, double t, double h)
 {
-    struct dp_net_run *nr = r->state;
-    nr_step_rhs(nr, t, h);
+    struct dp_network_run *nr = r->state;
+    network_run_step_rhs(nr, t, h);
     int s = nr->has_static ? static_solve(r, h)
-                           : dp_net_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+                           : dp_network_step_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
     nr->solved = s == DP_OK;
     return s;
 }
 
 /* One theta-step of length h from time t, solved exactly; contacts armed by Moreau-Jean's rule. */
-int nr_net_step(dp_run *r, double t, double h)
+int network_run_net_step(dp_run *r, double t, double h)
 {
-    if (nr_of(r)->nc)
-        nr_contacts_arm_mj(nr_of(r), h);
-    int s = nr_net_step_keep(r, t, h);
+    if (network_run_of(r)->nc)
+        network_run_contacts_arm_mj(network_run_of(r), h);
+    int s = network_run_net_step_keep(r, t, h);
     if (s == DP_OK)
-        nr_take_velocity(nr_of(r), h);
-    if (s == DP_OK && nr_of(r)->nc)
-        nr_contacts_mj_events(r, t, h);
+        network_run_take_velocity(network_run_of(r), h);
+    if (s == DP_OK && network_run_of(r)->nc)
+        network_run_contacts_mj_events(r, t, h);
     return s;
 }
