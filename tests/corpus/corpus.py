@@ -287,8 +287,9 @@ def gather_docs(g):
                     routes = routes_for(json.loads(data))
                 except ValueError:
                     routes = ["simulate"]
-            accepts = [a for _, a in uses.get(name, []) if a]
-            g.add(f"docs/{stem}-{name}", data, routes, http=True, accepts=accepts)
+            for route in dict.fromkeys(routes):
+                accepts = [a for r, a in uses.get(name, []) if a and r == route]
+                g.add(f"docs/{stem}-{name}", data, [route], http=True, accepts=accepts)
         for k, (data, route, accept) in enumerate(inline, 1):
             g.add(f"docs/{stem}-inline{k:02d}.json", data, [route], http=True, accepts=[accept] if accept else [])
         # JSON requests shown without a marker (a ```json block that is a request document)
