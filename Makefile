@@ -40,7 +40,7 @@ TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 TEST_SH  := $(filter-out tests/test_image.sh,$(wildcard tests/*.sh))
 PROGS    := $(BUILD)/dashpot $(if $(HTTP_SRC),$(BUILD)/dashpotd)
 
-.PHONY: all test unit integration run bench deps deps-ok deps-run clean thesis-figures fuzz bench-peers
+.PHONY: all test unit integration run bench deps deps-ok deps-run clean thesis-figures corpus fuzz bench-peers
 
 all: $(LIB) $(PROGS)
 
@@ -91,6 +91,12 @@ thesis-figures: $(BUILD)/dashpot
 .PHONY: gallery
 gallery: $(BUILD)/dashpot
 	bash scripts/gallery.sh $(BUILD)/dashpot docs/images
+
+# Re-records the answer corpus of tests/test_corpus.sh (tests/corpus/README.md) from this build: only for an
+# intended change of behaviour, described in CHANGELOG.md. `bash tests/corpus/record.sh --inputs` also gathers
+# the inputs afresh from the docs, the OpenAPI examples, the tests and the page's presets.
+corpus: all
+	BUILD=$(BUILD) bash tests/corpus/record.sh
 
 # libFuzzer targets (tests/fuzz/fuzz_*.c) over an instrumented build of the library in build-fuzz/; each runs
 # FUZZ_SECONDS from its seed corpus, tests/fuzz/corpus-NAME for fuzz_NAME if there is one, else

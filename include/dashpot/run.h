@@ -95,6 +95,14 @@ typedef struct dp_run dp_run;
  * On failure returns NULL, sets *status (DP_EINVAL, DP_ELIMIT, DP_ENOMEM) and appends to errs. */
 dp_run *dp_run_alloc(const dp_spec *spec, double max_steps, dp_errors *errs, int *status);
 
+/* What runs a checked spec, as its meta line says it: the solver ("stick-slip", "regularized", ...), its
+ * variant (NULL where the solver has none), and how its phase changes are reported ("locate": located
+ * inside the step; "step": at the end of the step that made them; "none"; NULL where it reports none).
+ * Never NULL for the solver. */
+const char *dp_spec_solver(const dp_spec *s);
+const char *dp_spec_variant(const dp_spec *s);
+const char *dp_spec_events_mode(const dp_spec *s);
+
 /* Produces up to `cap` records (cap >= 1) into buf, *n of them. Returns DP_MORE while records remain,
  * DP_DONE once the run is complete (possibly with *n > 0 final records), or an error (DP_ENONFINITE when
  * the solution diverged, DP_ESOLVE, DP_ECANCEL when the stop hook said so) after which the run is finished; no record with a non-finite number

@@ -109,6 +109,11 @@ int dp_network_is_one_mass(const dp_spec *s);
  * Returns DP_OK or DP_EINVAL / DP_ELIMIT. */
 int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *errs);
 
+/* The model family a spec holds: the one-mass model, a network, a linear complementarity system or a
+ * right-hand friction model (its own member of dp_spec each). */
+typedef enum dp_family { DP_FAMILY_ONE_MASS, DP_FAMILY_NETWORK, DP_FAMILY_LCS, DP_FAMILY_RIGHT_HAND } dp_family;
+dp_family dp_spec_family(const dp_spec *s);
+
 /* The regularized solver's own rules (regularized.c): which laws each scheme takes, n/k > 0, tolerances. */
 void dp_regularized_check(const dp_spec *s, dp_errors *errs);
 

@@ -10,23 +10,6 @@
 #include "dashpot/regularized.h"
 #include "dashpot/warnings.h"
 
-static const char *variant_name(const dp_solver_spec *s)
-{
-    if (s->kind == DP_SOLVER_ANALYTIC)
-        return "closed-form";
-    return s->variant == DP_VARIANT_THESIS ? "thesis" : "exact";
-}
-
-static const char *solver_name(const dp_solver_spec *s)
-{
-    switch (s->kind) {
-    case DP_SOLVER_ANALYTIC: return "analytic";
-    case DP_SOLVER_REGULARIZED: return "regularized";
-    case DP_SOLVER_NEWMARK: return "newmark";
-    default: return "stick-slip";
-    }
-}
-
 static int lit(dp_buf *out, const char *s)
 {
     return dp_buf_append(out, s, strlen(s));
@@ -94,21 +77,68 @@ static int newmark_fields(const dp_spec *s, dp_buf *out)
     return st | lit(out, L.inside ? ",\"inside\":true}" : ",\"inside\":false}");
 }
 
+/* After "solver":"NAME: the solver's own members, in the order each family's meta line has always had them.
+ * One row per family and solver kind; NULL rows do not occur (the rules refuse those pairs). */
+static int one_mass_theta_fields(const dp_spec *s, dp_buf *out)
+{
+    const dp_solver_spec *sv = &s->solver;
+    int st = lit(out, "\",\"variant\":\"") | lit(out, dp_spec_variant(s));
+    st |= lit(out, "\",\"events_mode\":\"") | lit(out, dp_spec_events_mode(s));
+    st |= lit(out, sv->branch == DP_BRANCH_MOTION ? "\",\"branch\":\"motion\"" : "\",\"branch\":\"rest\"");
+    return st | num(out, "theta", sv->theta);
+}
+
+static int one_mass_regularized_fields(const dp_spec *s, dp_buf *out)
+{
+    return regularized_fields(&s->solver, out);
+}
+
+static int one_mass_newmark_fields(const dp_spec *s, dp_buf *out)
+{
+    return newmark_fields(s, out) | lit(out, ",\"events_mode\":\"") | lit(out, dp_spec_events_mode(s)) | lit(out, "\"");
+}
+
+static int network_theta_fields(const dp_spec *s, dp_buf *out)
+{
+    int st = lit(out, "\",\"variant\":\"") | lit(out, dp_spec_variant(s));
+    st |= lit(out, "\",\"events_mode\":\"") | lit(out, dp_spec_events_mode(s));
+    return st | lit(out, "\",\"model\":\"network\"") | num(out, "theta", s->solver.theta);
+}
+
+static int network_regularized_fields(const dp_spec *s, dp_buf *out)
+{
+    return regularized_fields(&s->solver, out) | lit(out, ",\"model\":\"network\"");
+}
+
+static int network_newmark_fields(const dp_spec *s, dp_buf *out)
+{
+    return newmark_fields(s, out) | lit(out, ",\"model\":\"network\"");
+}
+
+typedef int (*fields_writer)(const dp_spec *s, dp_buf *out);
+static const fields_writer one_mass_fields[] = {
+    [DP_SOLVER_STICK_SLIP] = one_mass_theta_fields, [DP_SOLVER_ANALYTIC] = one_mass_theta_fields,
+    [DP_SOLVER_REGULARIZED] = one_mass_regularized_fields, [DP_SOLVER_NEWMARK] = one_mass_newmark_fields,
+};
+static const fields_writer network_fields[] = {
+    [DP_SOLVER_STICK_SLIP] = network_theta_fields, [DP_SOLVER_REGULARIZED] = network_regularized_fields,
+    [DP_SOLVER_NEWMARK] = network_newmark_fields,
+};
+
+/* {"type":"meta","version":...,"solver":"NAME and the solver's own members from the family's row. */
+static int head(const dp_spec *s, const fields_writer *rows, size_t nrows, dp_buf *out)
+{
+    size_t k = (size_t)s->solver.kind;
+    int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"") | lit(out, dp_spec_solver(s));
+    return k < nrows && rows[k] ? st | rows[k](s, out) : DP_EINVAL;
+}
+
 /* A network run's meta: its size and the columns its rows hold, so an array member can be read by name. */
 static int network_meta(const dp_spec *s, dp_buf *out)
 {
     const dp_solver_spec *sv = &s->solver;
     const dp_network *net = s->net;
-    int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"");
-    if (sv->kind == DP_SOLVER_REGULARIZED) {
-        st |= lit(out, "regularized") | regularized_fields(sv, out) | lit(out, ",\"model\":\"network\"");
-    } else if (sv->kind == DP_SOLVER_NEWMARK) {
-        st |= lit(out, "newmark") | newmark_fields(s, out) | lit(out, ",\"model\":\"network\"");
-    } else {
-        const char *mode = dp_network_locates(s) ? "locate" : sv->events == DP_EVENTS_NONE ? "none" : "step";
-        st |= lit(out, "stick-slip\",\"variant\":\"exact\",\"events_mode\":\"") | lit(out, mode);
-        st |= lit(out, "\",\"model\":\"network\"") | num(out, "theta", sv->theta);
-    }
+    int st = head(s, network_fields, sizeof network_fields / sizeof *network_fields, out);
     st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
     st |= num(out, "steps", dp_spec_steps(s));
     st |= lit(out, ",\"every\":") | whole(out, s->output.every);
@@ -147,33 +177,11 @@ static int regularized_fields(const dp_solver_spec *sv, dp_buf *out)
     return st | num(out, "rtol", sv->rtol) | num(out, "atol", sv->atol);
 }
 
-/* Written piece by piece rather than with snprintf: this object opens every run, small ones included. */
-int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
+/* The one-mass model's meta: its solver, its laws by name and what the theorems guarantee. */
+static int one_mass_meta(const dp_spec *s, dp_buf *out)
 {
-    if (s->lcs)
-        return dp_lcs_meta_json(s, out);
-    if (s->rh)
-        return dp_rh_meta_json(s, out);
-    if (s->net)
-        return network_meta(s, out);
     const dp_solver_spec *sv = &s->solver;
-    int st = lit(out, "{\"type\":\"meta\",\"version\":\"" DP_VERSION "\",\"solver\":\"") | lit(out, solver_name(sv));
-    if (sv->kind == DP_SOLVER_REGULARIZED)
-        st |= regularized_fields(sv, out);
-    else if (sv->kind == DP_SOLVER_NEWMARK)
-        st |= newmark_fields(s, out) | lit(out, ",\"events_mode\":\"step\"");
-    else {
-        st |= lit(out, "\",\"variant\":\"") | lit(out, variant_name(sv));
-        /* a law whose entry does not locate its events (an elastoplastic spring's graph moves with its
-         * offset) has them resolved to the step */
-        const dp_spring_law_info *SL = dp_spring_law_info_of(s->model.spring.law);
-        const dp_damper_law_info *DL = dp_damper_law_info_of(s->model.damper.law);
-        int step = !(SL && SL->locate && DL && DL->locate);
-        st |= lit(out, sv->events == DP_EVENTS_NONE ? "\",\"events_mode\":\"none" : step ? "\",\"events_mode\":\"step"
-                                                                                  : "\",\"events_mode\":\"locate");
-        st |= lit(out, sv->branch == DP_BRANCH_MOTION ? "\",\"branch\":\"motion\"" : "\",\"branch\":\"rest\"");
-        st |= num(out, "theta", sv->theta);
-    }
+    int st = head(s, one_mass_fields, sizeof one_mass_fields / sizeof *one_mass_fields, out);
     st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
     st |= num(out, "steps", dp_spec_steps(s));
     st |= lit(out, ",\"every\":") | whole(out, s->output.every);
@@ -186,4 +194,16 @@ int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
     st |= warnings_json(s, out);
     st |= dp_buf_append(out, "}", 1);
     return st ? DP_ENOMEM : DP_OK;
+}
+
+/* One writer per model family. Written piece by piece rather than with snprintf: this object opens every
+ * run, small ones included. */
+static int (*const family_meta[])(const dp_spec *s, dp_buf *out) = {
+    [DP_FAMILY_ONE_MASS] = one_mass_meta, [DP_FAMILY_NETWORK] = network_meta,
+    [DP_FAMILY_LCS] = dp_lcs_meta_json, [DP_FAMILY_RIGHT_HAND] = dp_rh_meta_json,
+};
+
+int dp_spec_meta_json(const dp_spec *s, dp_buf *out)
+{
+    return family_meta[dp_spec_family(s)](s, out);
 }

@@ -31,9 +31,12 @@ typedef struct dp_ss_law {
     dp_ss_coef nominal;  /* its coefficients */
 } dp_ss_law;
 
-/* A kind of run, as GSL's stepper types (gsl_odeiv2_step_type): everything the iterator needs to know of
- * it, so that adding one is its own file plus a row of the run-type table (runs/run_table.c).
+/* A kind of run, as GSL's stepper types (gsl_odeiv2_step_type): everything the iterator and the meta line
+ * need to know of it, so that adding one is its own file plus a row of the run-type table (runs/run_table.c).
  *   name     the solver as the meta line names it
+ *   variant  its variant as the meta line names it (NULL: the meta line has none)
+ *   events_mode  how it reports phase changes for a spec: "locate" (located inside the step), "step"
+ *           (at the end of the step that made them), "none" (NULL function: the meta line has no such member)
  *   check    its cross-field rules and limits (dp_spec_check calls it; DP_OK, DP_EINVAL or DP_ELIMIT)
  *   init     allocates its state (r->state), prepares, queues the first records
  *   advance  writes records into the caller's block until the block is full or the run ends
@@ -42,6 +45,8 @@ typedef struct dp_ss_law {
  *   free     releases r->state (accepts NULL) */
 typedef struct dp_run_type {
     const char *name;
+    const char *variant;
+    const char *(*events_mode)(const dp_spec *s);
     int (*check)(const dp_spec *s, double max_steps, dp_errors *e);
     int (*init)(dp_run *r);
     int (*advance)(dp_run *r);

@@ -46,6 +46,11 @@ int dp_spec_is_right_hand_model(const dp_spec *s) { return s->rh != NULL; }
 size_t dp_spec_network_nodes(const dp_spec *s) { return s->net->n; }
 size_t dp_spec_right_hand_coordinates(const dp_spec *s) { (void)s; return 2; }
 
+dp_family dp_spec_family(const dp_spec *s)
+{
+    return s->lcs ? DP_FAMILY_LCS : s->rh ? DP_FAMILY_RIGHT_HAND : s->net ? DP_FAMILY_NETWORK : DP_FAMILY_ONE_MASS;
+}
+
 static void *dup_array(const void *src, size_t n, size_t size, int *fail)
 {
     if (src == NULL || n == 0)

@@ -16,6 +16,8 @@ static int is_regularized(const dp_spec *s) { return s->solver.kind == DP_SOLVER
 static int is_newmark(const dp_spec *s) { return s->solver.kind == DP_SOLVER_NEWMARK; }
 static int is_thesis(const dp_spec *s) { return s->solver.variant == DP_VARIANT_THESIS; }
 static int always(const dp_spec *s) { (void)s; return 1; }
+static int is_regularized_network(const dp_spec *s) { return is_network(s) && is_regularized(s); }
+static int is_newmark_network(const dp_spec *s) { return is_network(s) && is_newmark(s); }
 
 /* In order: the first row that selects a spec runs it. Model families first (their documents choose their
  * solver themselves), then the one-mass solvers by the solver's kind and variant. */
@@ -26,6 +28,8 @@ static const struct run_row {
     { is_lcs, &dp_run_lcs },
     { is_right_hand, &dp_run_right_hand },
     { dp_network_is_one_mass, &dp_run_network_one_mass }, /* one mass on one element: the one-mass step */
+    { is_regularized_network, &dp_run_network_regularized },
+    { is_newmark_network, &dp_run_network_newmark },
     { is_network, &dp_run_network },
     { is_analytic, &dp_run_analytic },
     { is_regularized, &dp_run_regularized },
@@ -45,4 +49,20 @@ const dp_run_type *dp_run_type_of(const dp_spec *spec)
 int dp_spec_check(const dp_spec *s, double max_steps, dp_errors *e)
 {
     return dp_run_type_of(s)->check(s, max_steps, e);
+}
+
+const char *dp_spec_solver(const dp_spec *s)
+{
+    return dp_run_type_of(s)->name;
+}
+
+const char *dp_spec_variant(const dp_spec *s)
+{
+    return dp_run_type_of(s)->variant;
+}
+
+const char *dp_spec_events_mode(const dp_spec *s)
+{
+    const dp_run_type *t = dp_run_type_of(s);
+    return t->events_mode ? t->events_mode(s) : NULL;
 }

@@ -82,6 +82,7 @@ static int analytic_advance(dp_run *r)
 }
 
 const dp_run_type dp_run_analytic = {
-    .name = "analytic", .check = dp_rules_analytic, .init = analytic_init, .advance = analytic_advance,
+    .name = "analytic", .variant = "closed-form", .events_mode = dp_one_mass_events_mode,
+    .check = dp_rules_analytic, .init = analytic_init, .advance = analytic_advance,
     .free = analytic_free,
 };

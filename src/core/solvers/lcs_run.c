@@ -200,5 +200,5 @@ static int lcs_run_advance(dp_run *r)
 }
 
 const dp_run_type dp_run_lcs = {
-    .name = "lcs", .check = dp_lcs_check, .init = lcs_run_init, .advance = lcs_run_advance, .free = lcs_run_free,
+    .name = "stick-slip", .check = dp_lcs_check, .init = lcs_run_init, .advance = lcs_run_advance, .free = lcs_run_free,
 };

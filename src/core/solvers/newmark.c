@@ -106,7 +106,14 @@ static int newmark_advance(dp_run *r)
     return DP_OK;
 }
 
+/* Newmark's run reports yield and unload at the end of the step that made them. */
+static const char *newmark_events_mode(const dp_spec *s)
+{
+    (void)s;
+    return "step";
+}
+
 const dp_run_type dp_run_newmark = {
-    .name = "newmark", .check = dp_rules_newmark, .init = newmark_init, .advance = newmark_advance,
+    .name = "newmark", .events_mode = newmark_events_mode, .check = dp_rules_newmark, .init = newmark_init, .advance = newmark_advance,
     .free = newmark_free,
 };

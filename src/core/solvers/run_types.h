@@ -11,8 +11,14 @@ extern const dp_run_type dp_run_analytic;          /* analytic.c: the closed for
 extern const dp_run_type dp_run_regularized;       /* regularized.c: the regularized ODE (GSL odeiv2) */
 extern const dp_run_type dp_run_newmark;           /* newmark.c: Hoschl's incremental Newmark, one mass */
 extern const dp_run_type dp_run_network;           /* network/network_run.c: networks of masses */
+extern const dp_run_type dp_run_network_regularized; /* network/network_run.c: their regularized ODE */
+extern const dp_run_type dp_run_network_newmark;   /* network/network_run.c: Newmark on networks */
 extern const dp_run_type dp_run_network_one_mass;  /* network/network_one_mass.c: one mass, one element */
 extern const dp_run_type dp_run_lcs;               /* lcs_run.c: linear complementarity systems */
 extern const dp_run_type dp_run_right_hand;        /* right_hand_run.c: friction with motion-dependent N */
+
+/* How a one-mass stick-slip run reports its events (stick_slip.c): "none" when not asked, "step" when a law's
+ * entry does not locate them (an elastoplastic spring's graph moves with its offset), else "locate". */
+const char *dp_one_mass_events_mode(const dp_spec *s);
 
 #endif

@@ -271,7 +271,16 @@ int dp_stick_slip_init(dp_run *r)
     return DP_OK;
 }
 
+const char *dp_one_mass_events_mode(const dp_spec *s)
+{
+    const dp_spring_law_info *SL = dp_spring_law_info_of(s->model.spring.law);
+    const dp_damper_law_info *DL = dp_damper_law_info_of(s->model.damper.law);
+    int step = !(SL && SL->locate && DL && DL->locate);
+    return s->solver.events == DP_EVENTS_NONE ? "none" : step ? "step" : "locate";
+}
+
 const dp_run_type dp_run_stick_slip = {
-    .name = "stick-slip", .check = dp_rules_stick_slip, .init = dp_stick_slip_init,
+    .name = "stick-slip", .variant = "exact", .events_mode = dp_one_mass_events_mode,
+    .check = dp_rules_stick_slip, .init = dp_stick_slip_init,
     .advance = dp_stick_slip_advance,
 };

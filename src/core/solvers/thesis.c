@@ -68,5 +68,5 @@ static int thesis_advance(dp_run *r)
 }
 
 const dp_run_type dp_run_thesis = {
-    .name = "stick-slip", .check = dp_rules_thesis, .init = dp_stick_slip_init, .advance = thesis_advance,
+    .name = "stick-slip", .variant = "thesis", .events_mode = dp_one_mass_events_mode, .check = dp_rules_thesis, .init = dp_stick_slip_init, .advance = thesis_advance,
 };

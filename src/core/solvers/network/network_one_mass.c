@@ -90,6 +90,6 @@ static int one_mass_rows(dp_run *r, dp_record *buf, size_t n)
 /* The network's own setup (rows, columns, the reordering), then the one-mass solver's steps, each block
  * rewritten as the network's rows. */
 const dp_run_type dp_run_network_one_mass = {
-    .name = "stick-slip", .check = dp_rules_network, .init = one_mass_init, .advance = dp_stick_slip_advance,
+    .name = "stick-slip", .variant = "exact", .events_mode = network_run_events_mode, .check = dp_rules_network, .init = one_mass_init, .advance = dp_stick_slip_advance,
     .pending = network_run_pending, .block = one_mass_rows, .free = network_run_free,
 };

@@ -502,7 +502,24 @@ int network_run_pending(const dp_run *r)
     return network_run_of(r)->nq > network_run_of(r)->iq;
 }
 
+const char *network_run_events_mode(const dp_spec *s)
+{
+    return dp_network_locates(s) ? "locate" : s->solver.events == DP_EVENTS_NONE ? "none" : "step";
+}
+
+/* One run of the network for its three solvers: init and advance follow the solver's kind. */
 const dp_run_type dp_run_network = {
-    .name = "network", .check = dp_rules_network, .init = network_run_init, .advance = network_run_advance,
+    .name = "stick-slip", .variant = "exact", .events_mode = network_run_events_mode, .check = dp_rules_network,
+    .init = network_run_init, .advance = network_run_advance, .pending = network_run_pending,
+    .free = network_run_free,
+};
+
+const dp_run_type dp_run_network_regularized = {
+    .name = "regularized", .check = dp_rules_network, .init = network_run_init, .advance = network_run_advance,
+    .pending = network_run_pending, .free = network_run_free,
+};
+
+const dp_run_type dp_run_network_newmark = {
+    .name = "newmark", .check = dp_rules_network, .init = network_run_init, .advance = network_run_advance,
     .pending = network_run_pending, .free = network_run_free,
 };

@@ -151,6 +151,8 @@ int network_run_reorder(struct dp_network_run *nr, dp_network *net, double *x0, 
  * (network_one_mass.c). */
 int network_run_setup(dp_run *r);
 int network_run_pending(const dp_run *r);
+/* How a network's stick-slip run reports its events (dp_network_locates): "locate", "step" or "none". */
+const char *network_run_events_mode(const dp_spec *s);
 void network_run_free(void *state);
 
 /* The run's state. */
