@@ -105,9 +105,9 @@ check "well-posedness: k = 0.1 and the witness (0, 0.3), (0.7, 0.1) printed shor
 import json
 d = json.load(open('$tmp/wp.json'))
 details = {c['hypothesis']: c['detail'] for c in d['checks']}
-assert details['linear spring F_s = k x (seed 001 (1))'] == 'k = 0.1', details
-assert details['A monotone (seed 001 (6))'].startswith('points (v, F) = (0, 0.3) and (0.7, 0.1) have'), details
-assert d['existence']['reason'] == 'fails: A monotone (seed 001 (6))', d['existence']
+assert details['linear spring F_s = k x (Pražák & Rajagopal 2016, (1))'] == 'k = 0.1', details
+assert details['A monotone (Pražák & Rajagopal 2016, (6))'].startswith('points (v, F) = (0, 0.3) and (0.7, 0.1) have'), details
+assert d['existence']['reason'] == 'fails: A monotone (Pražák & Rajagopal 2016, (6))', d['existence']
 assert '0000000' not in open('$tmp/wp.json').read()
 "
 

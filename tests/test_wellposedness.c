@@ -26,7 +26,7 @@ typedef struct row {
 #define GSP "\"spring\":{\"law\":\"graph\",\"points\":[[-1,-2],[1,2]]}"
 
 static const row rows[] = {
-    { "coulomb", LIN ",\"damper\":{\"law\":\"coulomb\",\"phi0\":1}", "PC", 1, 1, "seed 001 Theorem 3", NULL, 0 },
+    { "coulomb", LIN ",\"damper\":{\"law\":\"coulomb\",\"phi0\":1}", "PC", 1, 1, "Pražák & Rajagopal 2016, Theorem 3", NULL, 0 },
     { "no damper", LIN ",\"damper\":{\"law\":\"none\"}", "PC", 1, 1, "Theorem 3", NULL, 0 },
     { "linear damper", LIN ",\"damper\":{\"law\":\"linear\",\"c\":2}", "PC", 1, 1, "Theorem 3", NULL, 0 },
     { "bingham", LIN ",\"damper\":{\"law\":\"bingham\",\"tau\":1,\"c\":2}", "PC", 1, 1, "Theorem 3", NULL, 0 },
@@ -55,7 +55,7 @@ static const row rows[] = {
     { "rope + bingham", "\"spring\":{\"law\":\"rope\",\"k\":1,\"length\":2},\"damper\":{\"law\":\"bingham\","
       "\"tau\":1,\"c\":1}", "PI", 0, 0, NULL, "growth of f", 0 },
     { "graph spring + bingham, constant load", GSP ",\"damper\":{\"law\":\"bingham\",\"tau\":1,\"c\":1},"
-      "\"forcing\":{\"kind\":\"constant\",\"value\":0.5}", "PI", 1, 1, "seed 000 Theorem 2.1", NULL, 0 },
+      "\"forcing\":{\"kind\":\"constant\",\"value\":0.5}", "PI", 1, 1, "Babováková 2012, Theorem 2.1", NULL, 0 },
     { "graph spring + bingham, harmonic load", GSP ",\"damper\":{\"law\":\"bingham\",\"tau\":1,\"c\":1},"
       "\"forcing\":{\"kind\":\"harmonic\",\"amplitude\":1,\"omega\":2}", "PI", 1, 0, "Theorem 2.1",
       "constant load", 0 },

@@ -31,7 +31,6 @@ import { runModes, renderModes } from './modes.js';
 import { RightHandView, designedEnd } from './right_hand.js';
 import { LcsView, lcsReport } from './lcs.js';
 import { ContactPlots } from './contact.js';
-import { named } from './sources.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
@@ -193,7 +192,7 @@ function showProblem(problem, prefix = '') {
 }
 
 async function problemOf(res) {
-  try { return named(await res.json()); } catch { return { status: res.status, title: res.statusText }; }
+  try { return await res.json(); } catch { return { status: res.status, title: res.statusText }; }
 }
 
 // ---- simulation ----
@@ -290,7 +289,6 @@ function onRecord(o) {
       if (o.kind === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
       break;
     case 'meta':
-      o = named(o); // the sources by name in what the page shows (web/sources.js)
       sim.meta = o;
       sim.tEnd = o.t_end;
       if (o.model === 'network') sim.net = network.start(o, sim.spec);
@@ -300,7 +298,7 @@ function onRecord(o) {
       showWarnings(o.warnings);
       break;
     case 'summary': sim.summary = o; break;
-    case 'error': sim.error = named(o); if (sim.rh) sim.rh.stop(o, sim.lastT); break;
+    case 'error': sim.error = o; if (sim.rh) sim.rh.stop(o, sim.lastT); break;
   }
 }
 
@@ -455,7 +453,7 @@ async function runStability() {
     const t0 = performance.now();
     const [jr, sr] = await Promise.all([post('application/json'), hasMap ? post('image/svg+xml') : null]);
     if (!jr.ok) { showProblem(await problemOf(jr)); return; }
-    const doc = named(await jr.json());
+    const doc = await jr.json();
     const img = $('stab-img');
     if (ui.mapUrl) URL.revokeObjectURL(ui.mapUrl);
     ui.mapUrl = null;
@@ -530,7 +528,7 @@ async function runModesTab() {
     const { mr, rr } = await runModes(post, text);
     if (!mr.ok) { showProblem(await problemOf(mr)); return; }
     if (rr && !rr.ok) { showProblem(await problemOf(rr)); return; }
-    renderModes(named(await mr.json()), rr ? named(await rr.json()) : null);
+    renderModes(await mr.json(), rr ? await rr.json() : null);
     $('status').textContent = `done in ${((performance.now() - t0) / 1000).toFixed(2)} s`;
     state = 'done';
   } catch (e) {

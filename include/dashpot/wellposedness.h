@@ -12,7 +12,7 @@
 #include "dashpot/model.h"
 
 #define DP_WP_MAX_CHECKS 12
-#define DP_WP_TEXT 320
+#define DP_WP_TEXT 512
 
 /* One hypothesis: its name as the source writes it, whether it holds, and why (a witness if not). */
 typedef struct dp_wp_check {

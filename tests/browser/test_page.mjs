@@ -145,10 +145,8 @@ const inked = (page) => page.evaluate(() => [...document.querySelectorAll('#pane
   return n;
 }));
 
-// The sources by name, as the page must show them: the daemon's reports cite them by working labels ("seed"
-// and 000 .. 004); the page names them (web/sources.js), dropping a label its name already stands before.
-const SOURCES = ['Babov\u00e1kov\u00e1 2012', 'Pra\u017e\u00e1k & Rajagopal 2016', 'Cibulka 2014', 'H\u00f6schl 1983', 'Matrosov & Finogenko 1995'];
-const named = (s) => s.replace(/(Matrosov & Finogenko 1995),\s*seed 004\b/g, '$1').replace(/\b[Ss]eed 00([0-4])\b/g, (_, k) => SOURCES[+k]);
+// The daemon's reports name their sources by author and year, and the page shows them as they come.
+const named = (s) => s;
 
 async function screenshot(page, name) {
   const text = await page.evaluate(() => document.body.innerText + ' ' + [...document.querySelectorAll('[title]')].map((e) => e.title).join(' '));

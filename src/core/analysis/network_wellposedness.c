@@ -1,10 +1,10 @@
-/* src/core/network_wellposedness.c - what the theory guarantees for a network (systems.md §1).
+/* src/core/network_wellposedness.c - what the theory guarantees for a network (docs/systems.md §1).
  *
  * With M positive definite, K and C positive semidefinite, every element graph maximal monotone and every
  * relaxation gamma Lipschitz, the network is M x'' + C x' + K x + B^T A(B x', B x) - B^T gamma(B x') = f(t):
  * a Lipschitz perturbation of a maximal monotone operator on (x, v) in the energy inner product, so a
  * solution exists and is unique for every initial state in the domain (Brezis 1973, Thm 3.1; for one mass
- * seed 001 Thms 2, 3). dp_network_check refuses what breaks these hypotheses (a power relaxation, a static
+ * Pražák & Rajagopal 2016, Thms 2, 3). dp_network_check refuses what breaks these hypotheses (a power relaxation, a static
  * threshold above the kinetic one), so the report names them as checked.
  */
 #include <stdio.h>
@@ -39,14 +39,14 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
     size_t ep = 0;
     for (size_t i = 0; i < net->nel; i++)
         ep += net->el[i].has_spring && dp_spring_plastic(&net->el[i].spring);
-    if (ep)   /* a Jenkins element with its force as a state: F' in k u' - N(F), a stop operator (systems.md §3) */
+    if (ep)   /* a Jenkins element with its force as a state: F' in k u' - N(F), a stop operator (docs/systems.md §3) */
         snprintf(d, sizeof d, "%zu elements, each a monotone piecewise-linear graph (one-mass laws); %zu "
                  "elastoplastic, each with its force as a state (F' in k u' - N_K(F), K = [-F_y, F_y]: a maximal "
                  "monotone stop operator in the product F G / k)", net->nel, ep);
     else
         snprintf(d, sizeof d, "%zu elements, each a monotone piecewise-linear graph (one-mass laws)", net->nel);
     check(rep, "element graphs maximal monotone", d);
-    if (static_at >= 0) {   /* the static threshold above the kinetic one: not monotone (seed 001 section 4) */
+    if (static_at >= 0) {   /* the static threshold above the kinetic one: not monotone (Pražák & Rajagopal 2016, section 4) */
         const dp_damper *dm = &net->el[static_at].damper;
         dp_wp_check *c = &rep->check[rep->nchecks - 1];
         c->holds = 0;
@@ -60,7 +60,7 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
     snprintf(d, sizeof d, "%zu elements with relaxation, each rational or linear (globally Lipschitz); each step "
              "is checked against W - h theta sum L b b^T > 0", relaxed);
     check(rep, "relaxation gamma Lipschitz", d);
-    const char *thm = "maximal monotone evolution inclusion (Brezis 1973, Thm 3.1; seed 001 Thms 2-3 for one mass)";
+    const char *thm = "maximal monotone evolution inclusion (Brezis 1973, Thm 3.1; Pražák & Rajagopal 2016, Thms 2-3 for one mass)";
     size_t rigid = 0, soft = 0, other = 0;   /* other: elements with a law that is not linear, contacts aside */
     for (size_t i = 0; i < net->nel; i++) {
         const dp_element *e = &net->el[i];
@@ -95,7 +95,7 @@ void dp_network_wellposedness(const dp_network *net, dp_wp_report *rep)
         rep->uniqueness = (dp_wp_verdict){ .guaranteed = 0 };
         snprintf(rep->existence.reason, DP_WP_TEXT, "fails: element graphs maximal monotone");
         snprintf(rep->uniqueness.reason, DP_WP_TEXT, "fails: element graphs maximal monotone");
-        rep->counterexample = "seed 001 section 4, (24)-(25): with the load at phi1 from rest both rest and "
+        rep->counterexample = "Pražák & Rajagopal 2016, section 4, (24)-(25): with the load at phi1 from rest both rest and "
                               "x = (phi1 - phi0)(1 - cos t) solve (for one mass; the network follows rest)";
         return;
     }

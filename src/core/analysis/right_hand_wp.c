@@ -1,4 +1,4 @@
-/* src/core/right_hand_wp.c - which of Matrosov & Finogenko's theorems (seed 004) cover a right-hand friction
+/* src/core/right_hand_wp.c - which of Matrosov & Finogenko's theorems (Matrosov & Finogenko 1995) cover a right-hand friction
  * model from its initial state, as a well-posedness report (wellposedness.h) with each hypothesis and its
  * margin:
  *   Theorem 3.1: a local right-hand solution where (2.3) holds at a solution of (1.1) with |N_s| != 0
@@ -53,7 +53,7 @@ static const char *mode_word(dp_rh_mode m)
 void dp_rh_wellposedness(const dp_rh_model *m, const double q[2], const double qd[2], dp_wp_report *rep)
 {
     memset(rep, 0, sizeof *rep);
-    rep->framework = "right-hand solutions (Matrosov & Finogenko 1995, seed 004)";
+    rep->framework = "right-hand solutions (Matrosov & Finogenko 1995)";
     dp_rh_result res;
     dp_rh_solve(m, q, qd, NULL, &res);
     int unique = res.n == 1 && !res.continuum;

@@ -1,5 +1,5 @@
 /* src/core/stability.c - stability of a linear fully implicit law sum lambda_i F_V^(i) = sum mu_j x^(j)
- * closing m x'' + F_V = 0 (thesis chapter 1; mathematics.md section 2).
+ * closing m x'' + F_V = 0 (thesis chapter 1; docs/mathematics.md section 2).
  *
  * Laplace: F_V = -m z^2 x, so p(z) = m z^2 lambda(z) + mu(z). Using x^(j) = -F_V^(j-2)/m for j >= 2 the law
  * becomes c(D) F_V = mu_0 x + mu_1 x' with c_k = lambda_k + mu_(k+2)/m = p_(k+2)/m, which gives the explicit

@@ -1,8 +1,8 @@
-/* src/core/wellposedness.c - existence and uniqueness from the graphs' own properties (mathematics.md §5).
+/* src/core/wellposedness.c - existence and uniqueness from the graphs' own properties (docs/mathematics.md §5).
  *
- * (PC), linear spring: seed 001 Theorem 3 gives existence when A is maximal monotone (6)-(7), coercive (8),
+ * (PC), linear spring: Pražák & Rajagopal 2016, Theorem 3 gives existence when A is maximal monotone (6)-(7), coercive (8),
  * gamma continuous with linear growth (5) and F in L^2 (10); Theorem 2 adds uniqueness when gamma is
- * Lipschitz (seed 000 Theorems 3.3, 3.2). (PI), spring and damper as x = f(F_s), x' = g(F_d): seed 000
+ * Lipschitz (Babováková 2012, Theorems 3.3, 3.2). (PI), spring and damper as x = f(F_s), x' = g(F_d): Babováková 2012
  * Theorem 2.1 gives existence for continuous non-decreasing f, g with f(0) = g(0) = 0 and the growth
  * (2.6)-(2.7); Theorem 2.2 uniqueness for a constant load (piecewise-linear f meets its structure).
  * Every failed hypothesis comes with a witness a person can check by hand.
@@ -156,7 +156,7 @@ static int no_gap(const dp_graph *g, char *why, size_t cap)
         }
     }
     text(why, cap, "a connected curve unbounded at both ends (rotated by 45 degrees it is the graph of "
-         "a 1-Lipschitz function, seed 001 Lemma 1)");
+         "a 1-Lipschitz function, Pražák & Rajagopal 2016, Lemma 1)");
     return 1;
 }
 
@@ -227,7 +227,7 @@ static int through_origin(const dp_graph *g, const char *yn, char *why, size_t c
 
 static void relaxation_checks(dp_wp_report *r, const dp_relaxation *g)
 {
-    add_check(r, "gamma continuous with |gamma(u)| <= c1(1 + |u|) (seed 001 (5))", 1, "%s",
+    add_check(r, "gamma continuous with |gamma(u)| <= c1(1 + |u|) (Pražák & Rajagopal 2016, (5))", 1, "%s",
               g->kind == DP_RELAX_NONE ? "gamma = 0" : g->kind == DP_RELAX_POWER
               ? "N |u|^(1-1/N) sgn u is continuous for N > 1 and grows sublinearly"
               : "continuous, at most linear growth");
@@ -245,35 +245,35 @@ static void framework_pc(const dp_model *m, dp_wp_report *r)
     local_graph l;
     const dp_damper *d = &m->damper;
     r->framework = "PC";
-    if (dp_spring_plastic(&m->spring))   /* Jenkins: the stop operator (systems.md §3) */
-        add_check(r, "elastoplastic spring F_s = k (x - p), |F_s| <= F_y, p' in N(F_s) (seed 003 section 15)",
+    if (dp_spring_plastic(&m->spring))   /* Jenkins: the stop operator (docs/systems.md §3) */
+        add_check(r, "elastoplastic spring F_s = k (x - p), |F_s| <= F_y, p' in N(F_s) (Höschl 1983, section 15)",
                   m->spring.k > 0 && m->spring.yield > 0, "k = %s, F_y = %s: with F_s as a state, F_s' in k x' - "
                   "N_[-F_y, F_y](F_s) makes (x', F_s) a maximal monotone evolution inclusion in the energy product "
                   "m v w + F G / k", N(m->spring.k), N(m->spring.yield));
     else
-        add_number(r, "linear spring F_s = k x (seed 001 (1))", 1, "k = ", m->spring.k);
+        add_number(r, "linear spring F_s = k x (Pražák & Rajagopal 2016, (1))", 1, "k = ", m->spring.k);
     const dp_graph *A = damper_graph(d, &l);
     if (dp_damper_static(d) > dp_damper_kinetic(d)) {
-        add_check(r, "A monotone (seed 001 (6))", 0, "points (v, F) = (0, %s) and (1, %s) have (v1 - v2)"
+        add_check(r, "A monotone (Pražák & Rajagopal 2016, (6))", 0, "points (v, F) = (0, %s) and (1, %s) have (v1 - v2)"
                   "(F1 - F2) < 0: the static threshold phi1 exceeds the dynamic phi0", N(dp_damper_static(d)),
                   N(dp_damper_kinetic(d)));
-        add_check(r, "A maximal (seed 001 (7))", 0, "not applicable: A is not monotone");
-        add_check(r, "A coercive (seed 001 (8))", 1, "|F| <= phi1 is bounded");
+        add_check(r, "A maximal (Pražák & Rajagopal 2016, (7))", 0, "not applicable: A is not monotone");
+        add_check(r, "A coercive (Pražák & Rajagopal 2016, (8))", 1, "|F| <= phi1 is bounded");
     } else {
         int mono = A && monotone(A, "v", why, sizeof why);
         if (A == NULL)
             text(why, sizeof why, TOO_BIG);
-        add_check(r, "A monotone (seed 001 (6))", mono, "%s", why);
+        add_check(r, "A monotone (Pražák & Rajagopal 2016, (6))", mono, "%s", why);
         if (mono) {
-            add_check(r, "A maximal (seed 001 (7))", no_gap(A, why, sizeof why), "%s", why);
-            add_check(r, "A coercive (seed 001 (8))", coercive(A, why, sizeof why), "%s", why);
+            add_check(r, "A maximal (Pražák & Rajagopal 2016, (7))", no_gap(A, why, sizeof why), "%s", why);
+            add_check(r, "A coercive (Pražák & Rajagopal 2016, (8))", coercive(A, why, sizeof why), "%s", why);
         } else {
-            add_check(r, "A maximal (seed 001 (7))", 0, "not applicable: A is not monotone");
-            add_check(r, "A coercive (seed 001 (8))", 0, "not applicable: A is not monotone");
+            add_check(r, "A maximal (Pražák & Rajagopal 2016, (7))", 0, "not applicable: A is not monotone");
+            add_check(r, "A coercive (Pražák & Rajagopal 2016, (8))", 0, "not applicable: A is not monotone");
         }
     }
     relaxation_checks(r, &d->relaxation);
-    add_check(r, "F in L^2(0, T) (seed 001 (10))", 1, "every forcing kind is bounded and piecewise continuous");
+    add_check(r, "F in L^2(0, T) (Pražák & Rajagopal 2016, (10))", 1, "every forcing kind is bounded and piecewise continuous");
 }
 
 static void framework_pi(const dp_model *m, dp_wp_report *r)
@@ -282,10 +282,10 @@ static void framework_pi(const dp_model *m, dp_wp_report *r)
     local_graph l;
     r->framework = "PI";
     const struct { const dp_graph *g; const char *y, *mono, *fn, *zero, *grow; } part[2] = {
-        { &m->spring.graph, "x", "f continuous and non-decreasing (seed 000 (PI))", "x = f(F_s) a function",
-          "f(0) = 0", "growth of f (seed 000 (2.6))" },
-        { damper_graph(&m->damper, &l), "v", "g continuous and non-decreasing (seed 000 (PI))",
-          "x' = g(F_d) a function", "g(0) = 0", "growth of g (seed 000 (2.7))" },
+        { &m->spring.graph, "x", "f continuous and non-decreasing (Babováková 2012, (PI))", "x = f(F_s) a function",
+          "f(0) = 0", "growth of f (Babováková 2012, (2.6))" },
+        { damper_graph(&m->damper, &l), "v", "g continuous and non-decreasing (Babováková 2012, (PI))",
+          "x' = g(F_d) a function", "g(0) = 0", "growth of g (Babováková 2012, (2.7))" },
     };
     for (int i = 0; i < 2; i++) {
         const dp_graph *g = part[i].g;
@@ -304,9 +304,9 @@ static void framework_pi(const dp_model *m, dp_wp_report *r)
         add_check(r, part[i].grow, growth(g, part[i].y, why, sizeof why), "%s", why);
     }
     int relaxed = m->damper.relaxation.kind != DP_RELAX_NONE;
-    add_check(r, "no relaxation (seed 000 (PI) has none)", !relaxed, "%s", relaxed
+    add_check(r, "no relaxation (Babováková 2012, (PI) has none)", !relaxed, "%s", relaxed
               ? "(PI) has no relaxation term; (PC) would cover it but needs a linear spring" : "gamma = 0");
-    add_check(r, "F in L^2(0, T) (seed 000 Theorem 2.1)", 1, "every forcing kind is bounded and piecewise "
+    add_check(r, "F in L^2(0, T) (Babováková 2012, Theorem 2.1)", 1, "every forcing kind is bounded and piecewise "
               "continuous");
 }
 
@@ -341,9 +341,9 @@ void dp_wellposedness(const dp_model *m, dp_wp_report *r)
     double F0;
     int constant = dp_forcing_is_constant(&m->forcing, &F0);
     if (!pc)
-        add_check(r, "constant load (seed 000 Theorem 2.2)", constant, "%s", constant ? "F is constant"
+        add_check(r, "constant load (Babováková 2012, Theorem 2.2)", constant, "%s", constant ? "F is constant"
                   : "F varies in time: Theorem 2.2 covers constant loads only");
-    r->existence.guaranteed = failures(r, pc ? "gamma Lipschitz" : "constant load (seed 000 Theorem 2.2)",
+    r->existence.guaranteed = failures(r, pc ? "gamma Lipschitz" : "constant load (Babováková 2012, Theorem 2.2)",
                                        r->existence.reason, sizeof r->existence.reason) == 0;
     r->uniqueness.guaranteed = failures(r, NULL, r->uniqueness.reason, sizeof r->uniqueness.reason) == 0;
     if (ep) {
@@ -352,16 +352,16 @@ void dp_wellposedness(const dp_model *m, dp_wp_report *r)
         r->existence.theorem = r->existence.guaranteed ? brezis : NULL;
         r->uniqueness.theorem = r->uniqueness.guaranteed ? brezis : NULL;
     } else if (pc) {
-        r->existence.theorem = r->existence.guaranteed ? "seed 001 Theorem 3 (seed 000 Theorem 3.3)" : NULL;
-        r->uniqueness.theorem = r->uniqueness.guaranteed ? "seed 001 Theorem 2 (seed 000 Theorem 3.2)" : NULL;
+        r->existence.theorem = r->existence.guaranteed ? "Pražák & Rajagopal 2016, Theorem 3 (Babováková 2012, Theorem 3.3)" : NULL;
+        r->uniqueness.theorem = r->uniqueness.guaranteed ? "Pražák & Rajagopal 2016, Theorem 2 (Babováková 2012, Theorem 3.2)" : NULL;
     } else {
-        r->existence.theorem = r->existence.guaranteed ? "seed 000 Theorem 2.1" : NULL;
-        r->uniqueness.theorem = r->uniqueness.guaranteed ? "seed 000 Theorem 2.2" : NULL;
+        r->existence.theorem = r->existence.guaranteed ? "Babováková 2012, Theorem 2.1" : NULL;
+        r->uniqueness.theorem = r->uniqueness.guaranteed ? "Babováková 2012, Theorem 2.2" : NULL;
     }
     if (dp_damper_static(&m->damper) > dp_damper_kinetic(&m->damper))
-        r->counterexample = "seed 001 section 4, (24)-(25): with F = phi1 from rest both x = 0 and "
+        r->counterexample = "Pražák & Rajagopal 2016, section 4, (24)-(25): with F = phi1 from rest both x = 0 and "
                             "x = (phi1 - phi0)(1 - cos t) solve";
     else if (m->damper.relaxation.kind == DP_RELAX_POWER)
-        r->counterexample = "seed 001 section 4, (26)-(27): with F = phi0 from rest both x = 0 and a solution "
+        r->counterexample = "Pražák & Rajagopal 2016, section 4, (26)-(27): with F = phi0 from rest both x = 0 and a solution "
                             "leaving rest like t^(N+1)/(N+1) solve";
 }

@@ -1,5 +1,5 @@
 /* src/core/elastoplastic.c - the Jenkins element (a spring k in series with a Coulomb slider of yield
- * force F_y; Höschl 003 §15, systems.md §3): its return mapping and its step graph.
+ * force F_y; Höschl 003 §15, docs/systems.md §3): its return mapping and its step graph.
  *
  * Why a separate graph per step: the law has memory (the plastic offset p), so the force at the step's end
  * as a function of the elongation there, F+ = clamp(k (u+ - p), -F_y, F_y), is a monotone piecewise-linear

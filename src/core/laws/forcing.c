@@ -1,5 +1,5 @@
 /* src/core/forcing.c - the load F(t): constant, harmonic amplitude*cos(omega t + phase), piecewise-linear
- * table (held constant beyond its ends), and sums of those (architecture.md, "A model"). */
+ * table (held constant beyond its ends), and sums of those (docs/architecture.md, "A model"). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

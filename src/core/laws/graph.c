@@ -2,7 +2,7 @@
  *
  * A graph is a curve through vertices (y_i, F_i), non-decreasing in both coordinates, with a ray at each
  * end. Along such a curve u = y + l*F is non-decreasing for l > 0, and strictly increasing except on
- * repeated vertices, so the resolvent J_l(s) (the y with y + l*A(y) containing s, seed 002 Lemma 1.2)
+ * repeated vertices, so the resolvent J_l(s) (the y with y + l*A(y) containing s, Cibulka 2014, Lemma 1.2)
  * is found by one binary search on u and one linear interpolation: exact, no iteration.
  */
 #include <math.h>

@@ -1,7 +1,7 @@
 /* src/core/inclusion.c - solving the implicit step K w - gamma(w) + A(w) + S(w) containing b exactly.
  *
  * The step of any maximal monotone damper graph and monotone spring graph is one scalar inclusion
- * (mathematics.md §4). Its set-valued part lives at the graphs' vertices, so the vertices are searched
+ * (docs/mathematics.md §4). Its set-valued part lives at the graphs' vertices, so the vertices are searched
  * first (binary search: Phi is monotone), which makes sticking and the taut rope exact rather than
  * approximately reached; between two neighbouring vertices every graph is affine, so without relaxation
  * the root is one division, and with it one bracketed root search.

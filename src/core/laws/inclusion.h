@@ -8,7 +8,7 @@
 /* Find w with 0 in Phi(w) = W w - b + h A(w - a_shift) + h S(s_x + s_h w) - h gamma(g_theta w + g_shift).
  * A is the damper graph (v - v_b, F_c); S (may be NULL) a spring graph (x, F_s) stepped implicitly;
  * gamma (may be NULL or DP_RELAX_NONE) the relaxation. Phi is strictly increasing when
- * W > h g_theta L_gamma (mathematics.md §4, "Exact form of the step"), and the solution is then unique. */
+ * W > h g_theta L_gamma (docs/mathematics.md §4, "Exact form of the step"), and the solution is then unique. */
 typedef struct dp_inclusion {
     double W, b, h;
     const dp_graph *A;
@@ -27,7 +27,7 @@ typedef struct dp_inclusion {
 int dp_inclusion_solve(const dp_inclusion *p, double *w, double *a, double *s, unsigned long long *evals);
 
 /* A solution strictly on one side of rest, sgn(w - a_shift) = dir, if there is one (DP_ESOLVE if not):
- * the motion branch where rest is also a solution (seed 001 (26)-(27)). */
+ * the motion branch where rest is also a solution (Pražák & Rajagopal 2016, (26)-(27)). */
 int dp_inclusion_solve_side(const dp_inclusion *p, double dir, double *w, double *a, double *s,
                             unsigned long long *evals);
 

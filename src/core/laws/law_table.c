@@ -5,9 +5,9 @@
  * place that needed them, and a new law took the closed-form path of the stick-slip solver unless every one
  * of those places was found.
  *
- * Springs live in the (x, F_s) plane, dampers in the (v - v_b, F_c) plane (mathematics.md §1). A damper's
+ * Springs live in the (x, F_s) plane, dampers in the (v - v_b, F_c) plane (docs/mathematics.md §1). A damper's
  * graph holds only the part a solver must treat implicitly as a set: Coulomb's and Bingham's stick interval;
- * a viscous part c stays a number so that the theta-method can weight it (mathematics.md §4).
+ * a viscous part c stays a number so that the theta-method can weight it (docs/mathematics.md §4).
  */
 #include <assert.h>
 #include <math.h>

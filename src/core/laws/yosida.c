@@ -1,10 +1,10 @@
 /* src/core/yosida.c - the single-valued regularizations of a maximal monotone graph that the schemes (PCn)
- * and (PIk) integrate (mathematics.md §3).
+ * and (PIk) integrate (docs/mathematics.md §3).
  *
- * (PCn), seed 001 (17): F_c = G_n(F_c, v) := n/(n+1) (v + phi(v + (n-1)/n F_c)), with phi the 45-degree
+ * (PCn), Pražák & Rajagopal 2016, (17): F_c = G_n(F_c, v) := n/(n+1) (v + phi(v + (n-1)/n F_c)), with phi the 45-degree
  * rotation of the graph (Lemma 1, (11)). Undoing the rotation, (17) says (F_c, v - F_c/n) in A, i.e.
  * v = y + F_c/n with F_c in A(y): y = J_(1/n)(v) and F_c = n (v - J_(1/n)(v)) = A_(1/n)(v), the Yosida
- * approximation. (PIk), seed 000 (FIk): x = f(F) + F/k says (x - F/k, F) on the graph, the same equation
+ * approximation. (PIk), Babováková 2012, (FIk): x = f(F) + F/k says (x - F/k, F) on the graph, the same equation
  * with 1/k for 1/n, so f_k^-1 = A_(1/k). For piecewise-linear graphs the Yosida approximation is exact
  * (graph.c: one binary search); dp_regularized_gn solves (17) for any 1-Lipschitz phi and is the second
  * method the tests hold the first one to.

@@ -1,5 +1,5 @@
 /* src/core/lcs_model.c - the LCS model a spec owns (copy, free) and its spec rules: the stick-slip θ-step,
- * the step count, and an initial state the laws admit (seed 002 (1.10): at t = 0 some u must give
+ * the step count, and an initial state the laws admit (Cibulka 2014, (1.10): at t = 0 some u must give
  * (u, C x0 + D u + q) in the laws; with D = 0 and an ideal diode that is C x0 + q >= 0, a current that
  * does not already flow backwards). */
 #include <math.h>
@@ -136,9 +136,9 @@ int dp_lcs_check(const dp_spec *s, double max_steps, dp_errors *e)
     return DP_OK;
 }
 
-/* ---- what seed 002's theory says about an LCS (/v1/wellposedness) ------------------------------------ */
+/* ---- what Cibulka 2014's theory says about an LCS (/v1/wellposedness) ------------------------------------ */
 
-static const char *const TH23 = "seed 002 Theorem 2.3 with Lemma 2.5 (D's symmetric part positive definite: u = s(x) "
+static const char *const TH23 = "Cibulka 2014, Theorem 2.3 with Lemma 2.5 (D's symmetric part positive definite: u = s(x) "
                                 "is Lipschitz, and x' = A x + B s(x) + p a Lipschitz ODE)";
 
 /* Appends a check; its detail is written by the caller into the returned slot. */
@@ -169,10 +169,10 @@ int dp_lcs_wellposedness(const dp_spec *s, dp_wp_report *rep)
     if (st != DP_OK)
         return st;
     char *d = add_check(rep, "the laws are maximal monotone (complementarity and intervals: normal cones of convex "
-                        "sets, seed 002 Proposition 1.7 for their product; graph laws: monotone curves unbounded "
+                        "sets, Cibulka 2014, Proposition 1.7 for their product; graph laws: monotone curves unbounded "
                         "at both ends)", 1);
     snprintf(d, DP_WP_TEXT, "holds for every law this model takes");
-    d = add_check(rep, "D has a positive definite symmetric part (seed 002 Lemma 2.5)", td.pd_symmetric);
+    d = add_check(rep, "D has a positive definite symmetric part (Cibulka 2014, Lemma 2.5)", td.pd_symmetric);
     snprintf(d, DP_WP_TEXT, td.pd_symmetric ? "mu = lambda_min((D + D^T)/2) = %.6g > 0: u is Lipschitz in x"
                                             : "mu = lambda_min((D + D^T)/2) = %.6g, not > 0", td.mu);
     d = add_check(rep, "the step's matrix D + hCWB is a P-matrix (one u per step)", ts.p_matrix == 1);
@@ -189,7 +189,7 @@ int dp_lcs_wellposedness(const dp_spec *s, dp_wp_report *rep)
     if (td.pd_symmetric)
         snprintf(ex->reason, sizeof ex->reason, "all hypotheses hold");
     else
-        snprintf(ex->reason, sizeof ex->reason, "D's symmetric part is not positive definite (mu = %.6g): seed 002's "
+        snprintf(ex->reason, sizeof ex->reason, "D's symmetric part is not positive definite (mu = %.6g): Cibulka 2014's "
                  "reduction to an ODE does not apply (ideal diodes have D = 0); the θ-step %s", td.mu,
                  ts.p_matrix == 1 ? "is well defined (its matrix is a P-matrix)" : "may have several u or none");
     memcpy(un->reason, ex->reason, sizeof un->reason);

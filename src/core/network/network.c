@@ -1,4 +1,4 @@
-/* src/core/network.c - the network model's lifetime and its linear part (systems.md §1).
+/* src/core/network.c - the network model's lifetime and its linear part (docs/systems.md §1).
  *
  * An element's laws are the one-mass model's (model.c builds their graphs), so a network is prepared by
  * preparing each element as a one-mass model would be: one set of law code for both.
@@ -131,7 +131,7 @@ static double element_k(const dp_element *e)
     return e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
 }
 
-/* The viscosity an element adds to C_l: its damper's viscous c (linear, Bingham: mathematics.md §4). */
+/* The viscosity an element adds to C_l: its damper's viscous c (linear, Bingham: docs/mathematics.md §4). */
 static double element_c(const dp_element *e)
 {
     return e->has_damper ? dp_damper_viscous(&e->damper) : 0;

@@ -12,7 +12,7 @@
  * stick widths thr = h tau / W and thr_s = h tau_s / W. */
 typedef struct dp_ss_coef { double W, cv, cx, cf, c0, thr, thr_s; } dp_ss_coef;
 
-/* The constants of one stick-slip run, fixed at allocation (mathematics.md §4 notation). */
+/* The constants of one stick-slip run, fixed at allocation (docs/mathematics.md §4 notation). */
 typedef struct dp_ss_law {
     double m, k, c;      /* mass, linear spring stiffness (0 for a graph spring), viscous part of the damper */
     double tau, tau_s;   /* kinetic and static stick thresholds (tau_s = phi1 for generalized Coulomb) */

@@ -1,7 +1,7 @@
-/* src/core/painleve.c - the two models of friction with motion-dependent normal force (systems.md §6) as
+/* src/core/painleve.c - the two models of friction with motion-dependent normal force (docs/systems.md §6) as
  * frames A q'' = b + Q with their normal reactions affine in q'' (right_hand.h).
  *
- * Piston-hinge (seed 004 §6, with the corrections of systems.md: beta'^2 in N1, beta'' in N2). Tube Ox
+ * Piston-hinge (Matrosov & Finogenko 1995, §6, with the corrections of docs/systems.md: beta'^2 in N1, beta'' in N2). Tube Ox
  * inclined at alpha, e_x up the tube, n its upward normal; the body's centre C = B + r sin(beta) e_x
  * - r cos(beta) n, so with m = m1 + m2, J = J_C + m2 r^2:
  *     T = m x'^2/2 + m2 r cos(beta) x' beta' + J beta'^2/2,   V = m g x sin(alpha) - m2 g r cos(alpha + beta)

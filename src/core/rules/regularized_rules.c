@@ -27,10 +27,10 @@ void dp_regularized_check(const dp_spec *s, dp_errors *e)
     const dp_damper_law_info *DL = dp_damper_law_info_of(d->law);
     if (DL && DL->static_threshold)   /* a law with a static threshold, whatever its values */
         dp_errors_add(e, "/model/damper/law", "the regularized schemes need a maximal monotone damper graph "
-                      "(seed 001 Lemma 1); %s (%s > %s) is not monotone", DL->row.name,
+                      "(Pražák & Rajagopal 2016, Lemma 1); %s (%s > %s) is not monotone", DL->row.name,
                       dp_law_member_key(&DL->row, DL->static_threshold), dp_law_member_key(&DL->row, DL->kinetic));
     if (d->relaxation.kind == DP_RELAX_POWER)
-        dp_errors_add(e, "/model/damper/relaxation", "power relaxation is not Lipschitz at 0 (seed 001 (26)): "
+        dp_errors_add(e, "/model/damper/relaxation", "power relaxation is not Lipschitz at 0 (Pražák & Rajagopal 2016, (26)): "
                       "the regularized ODE has no unique solution and no bounded Jacobian");
     else if (sv->scheme == DP_SCHEME_PI && d->relaxation.kind != DP_RELAX_NONE)
         dp_errors_add(e, "/model/damper/relaxation", "scheme PI (thesis ch. 2, x' = g(F_d)) has no relaxation; "

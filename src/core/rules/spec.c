@@ -2,7 +2,7 @@
  *
  * The rules come from the mathematics: the thesis algorithm needs the contraction (4.10) and the bound
  * (4.8); the exact step is uniquely solvable only while m + h theta c + h^2 theta^2 k > h theta L_gamma
- * (its left side must stay strictly increasing, mathematics.md §4); theta-weighting is defined only for
+ * (its left side must stay strictly increasing, docs/mathematics.md §4); theta-weighting is defined only for
  * linear springs; the analytic solver exists only where the closed form (4.14) does.
  */
 #include <math.h>

@@ -1,9 +1,9 @@
-/* src/core/regularized.c - the regularized existence schemes (PCn) and (PIk) as solvers (mathematics.md §3).
+/* src/core/regularized.c - the regularized existence schemes (PCn) and (PIk) as solvers (docs/mathematics.md §3).
  *
- *   (PCn), seed 001 (17)-(18):  m x'' + F_s(x) + F_c - gamma(u) = F(t),  u = x' - v_b,
+ *   (PCn), Pražák & Rajagopal 2016, (17)-(18):  m x'' + F_s(x) + F_c - gamma(u) = F(t),  u = x' - v_b,
  *                               F_c = c u + g_n(u),  g_n = A_(1/n) (yosida.c),
  *                               F_s = k x for a linear spring, S_(1/n)(x) for a graph spring (rope, points);
- *   (PIk), seed 000 ch. 2:      x'' = F - f_k^-1(x) - g_k^-1(x'),  f_k^-1 = S_(1/k),  g_k^-1 = (A + c I)_(1/k),
+ *   (PIk), Babováková 2012, ch. 2:      x'' = F - f_k^-1(x) - g_k^-1(x'),  f_k^-1 = S_(1/k),  g_k^-1 = (A + c I)_(1/k),
  *                               the whole law regularized, as (FIk) does; no relaxation (the thesis has none).
  * The ODE's Lipschitz constant grows like n/m, so it is stiff: GSL odeiv2 with the analytic Jacobian
  * (piecewise constant: the slopes of the Yosida pieces, yosida.c) and an implicit stepper by default.

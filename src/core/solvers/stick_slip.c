@@ -1,5 +1,5 @@
 /* src/core/stick_slip.c - exact stick-slip time stepping: the theta-method (Moreau-Jean, as Siconos'
- * EulerMoreauOSI) for m x'' + c (x' - v_b) + k x + r - gamma = F(t), r in A(x' - v_b) (mathematics.md §4).
+ * EulerMoreauOSI) for m x'' + c (x' - v_b) + k x + r - gamma = F(t), r in A(x' - v_b) (docs/mathematics.md §4).
  *
  * Each step is one scalar monotone inclusion in v+. For a linear spring, a damper whose law-table entry has
  * closed_form (a stick interval [-tau, tau] and a viscous c: Coulomb, Bingham, linear, generalized Coulomb)
@@ -10,7 +10,7 @@
  * the steps that hold a phase change are split there (event_location.c); long stretches of slip or stick
  * in the closed form run in the hot loops glide and hold.
  *
- * An elastoplastic spring (Jenkins: systems.md §3) takes the general inclusion with its step graph at the
+ * An elastoplastic spring (Jenkins: docs/systems.md §3) takes the general inclusion with its step graph at the
  * current plastic offset, weighted like a linear spring: (1-theta) F + theta F+, F+ = S(x + h (1-theta) v
  * + h theta v+) the return mapping at the position update's own x+; p moves after the step. Its graph moves
  * with p, so its steps are not split at events (reported at the end of the step that made them).

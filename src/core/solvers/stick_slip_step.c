@@ -1,4 +1,4 @@
-/* src/core/solvers/stick_slip_step.c - one step of the stick-slip theta-method (mathematics.md §4), with
+/* src/core/solvers/stick_slip_step.c - one step of the stick-slip theta-method (docs/mathematics.md §4), with
  * no events: the closed form (Moreau's soft threshold) and the general inclusion. Shared by the stepper
  * (stick_slip.c) and event location (event_location.c), which splits a step at its phase changes: both call
  * down into this file, so neither calls the other back. */
@@ -56,7 +56,7 @@ double dp_ss_moreau(const dp_ss_law *L, step_state *s, double h)
 
 /* ---- the general inclusion ------------------------------------------------------------------------- */
 
-/* The inclusion of a step of length h from s (mathematics.md §4, "Exact form of the step"). */
+/* The inclusion of a step of length h from s (docs/mathematics.md §4, "Exact form of the step"). */
 dp_inclusion dp_ss_step_inclusion(const dp_ss_law *L, const step_state *s, double h)
 {
     double th = L->theta;

@@ -1,12 +1,12 @@
 /* src/core/convergence.c - how fast (PCn) / (PIk) approach the exact solution as n (or k) grows.
  *
- * The existence proofs (seed 001 Thm 3, seed 000 Thm 2.1) give uniform convergence of x and x' along a
+ * The existence proofs (Pražák & Rajagopal 2016, Thm 3, Babováková 2012, Thm 2.1) give uniform convergence of x and x' along a
  * subsequence; on a finite horizon the error is O(1/n), dominated by creep in stick phases: where the exact
  * solution rests with |F - k x| < phi0, the regularized one obeys m x'' + n x' + k x = F and drifts like
- * exp(-k t / n) (mathematics.md §3). The study measures that: one regularized run per n and a reference run
+ * exp(-k t / n) (docs/mathematics.md §3). The study measures that: one regularized run per n and a reference run
  * of the same model, pulled in lockstep sample by sample, so memory is a few blocks whatever t_end is.
  *
- * The reference is the closed form (seed 000 (4.14)-(4.15), the analytic solver) where it applies, else
+ * The reference is the closed form (Babováková 2012, (4.14)-(4.15), the analytic solver) where it applies, else
  * the stick-slip solver with events located (theta 1/2: second order; theta 1 for a graph spring, which
  * the theta-method only steps by backward Euler) at a step dt/m, a whole fraction of the output spacing so
  * that its samples fall on the same times.

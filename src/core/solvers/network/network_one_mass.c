@@ -1,5 +1,5 @@
 /* src/core/solvers/network/network_one_mass.c - a network that is one mass on one element [ground, 0] is the one-mass model
- * (systems.md §1), so it is stepped by the one-mass solver: the same answers, bit for bit, at the same speed
+ * (docs/systems.md §1), so it is stepped by the one-mass solver: the same answers, bit for bit, at the same speed
  * (a general network step costs some 20 times the soft threshold's few nanoseconds). Its samples and events
  * are rewritten as the network's rows and element events on their way out.
  */

@@ -1,7 +1,7 @@
 /* src/core/network_run.c - the stick-slip solver on a network: theta-steps solved exactly by
  * network_step.c, samples as rows over the chosen columns, a phase change per element as an event.
  *
- * The linear parts are weighted exactly as the one-mass scheme weights them (mathematics.md §4):
+ * The linear parts are weighted exactly as the one-mass scheme weights them (docs/mathematics.md §4):
  *     W = M + h theta C + h^2 theta^2 K,
  *     rhs = M v - h (1-theta) C v - h K (x + h theta (1-theta) v) + h f(t + theta h) + h sum_e c_e v_b,e b_e,
  * and the graphs at the step's end (springs at u + h z, as the one-mass step takes them), so a network of
