@@ -160,6 +160,14 @@ check "force node out of range: exit 2 at /force_node" bad force \
     /force_node response
 check "negative Rayleigh alpha: exit 2 at /damping/rayleigh/alpha" bad alpha \
     '{"model": {"masses": [1]}, "damping": {"rayleigh": {"alpha": -1}}}' /damping/rayleigh/alpha
+check "a repeated key in an element's spring: exit 2 at its pointer" bad dupk \
+    '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1, "k": 2}}]}}' \
+    /model/elements/0/spring/k
+check "a repeated key in a member modes ignores (solver): still refused" bad dupsolver \
+    '{"model": {"masses": [1]}, "solver": {"dt": 1, "dt": 2}}' /solver/dt
+check "response: a repeated omega: exit 2 at /omega" bad dupomega \
+    '{"model": {"masses": [1]}, "force_node": 0, "response_node": 0, "omega": {"from": 0, "to": 1, "points": 5}, "omega": {}}' \
+    /omega response
 
 # ---- the daemon ----
 start_daemon modes || finish
@@ -188,6 +196,17 @@ d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/omega/to']"
 printf '{"model": ' >"$T/trunc.json"
 post /v1/modes application/json "$T/trunc.json"
 check "POST /v1/modes, malformed JSON: 400" [ "$(cut -d' ' -f1 "$T/ct")" = 400 ]
+printf '{"model": {"masses": [1],\n  "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1},}]}}' \
+    >"$T/comma.json"
+post /v1/response application/json "$T/comma.json"
+check "POST /v1/response, a trailing comma: 400 at line 2, column 78, the words of every route" pyjson "$T/body" "
+d['status'] == 400 and [(e['pointer'], e['detail']) for e in d['errors']] == [
+('', 'malformed JSON near byte 103 (line 2, column 78): a trailing comma before }; remove it')]"
+printf '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "damper": {"law": "linear", "c": 1}, "damper": {}}]}}' \
+    >"$T/dupel.json"
+post /v1/modes application/json "$T/dupel.json"
+check "POST /v1/modes, a repeated key in a network element: 422 at its pointer" pyjson "$T/body" "
+d['status'] == 422 and ('/model/elements/0/damper', 'duplicate key \"damper\"') in [(e['pointer'], e['detail']) for e in d['errors']]"
 check "/metrics counts /v1/modes and /v1/response" bash -c \
     "curl -s '$U/metrics' | grep -q 'route=\"/v1/modes\"' && curl -s '$U/metrics' | grep -q 'route=\"/v1/response\"'"
 stop_daemon modes

@@ -387,6 +387,73 @@ static void test_depth_boundary(void **state)
     }
 }
 
+/* A malformed document is one error at "", its place as byte, line and column (columns count characters),
+ * and what is wrong there (src/json/body.c). Raw text: no ' for " here, single quotes are one of the cases. */
+static void test_malformed_where_and_why(void **state)
+{
+    (void)state;
+    static const struct { const char *doc; size_t len; const char *message; } cases[] = {
+        { "{\"model\": {\"mass\": NaN}}", 0,
+          "malformed JSON near byte 19 (line 1, column 20): JSON has no NaN or Infinity; send a number or null" },
+        { "{\n  \"model\": {\n    \"mass\": -Infinity\n  }\n}", 0,
+          "malformed JSON near byte 27 (line 3, column 13): JSON has no NaN or Infinity; send a number or null" },
+        { "{'model': {}}", 0,
+          "malformed JSON near byte 1 (line 1, column 2): JSON keys take double quotes, not single quotes" },
+        { "{\"model\": {\"spring\": {\"law\": 'linear'}}}", 0,
+          "malformed JSON near byte 29 (line 1, column 30): JSON strings take double quotes, not single quotes" },
+        { "{\"model\": {\"mass\": 1,}}", 0,
+          "malformed JSON near byte 20 (line 1, column 21): a trailing comma before }; remove it" },
+        { "{\"solver\": {\"n\": [1, 2,]}}", 0,
+          "malformed JSON near byte 22 (line 1, column 23): a trailing comma before ]; remove it" },
+        { "{\"model\": {\"mass\": 1 /* kg */}}", 0,
+          "malformed JSON near byte 21 (line 1, column 22): JSON has no comments" },
+        { "{\n  // the oscillator\n  \"model\": {}\n}", 0,
+          "malformed JSON near byte 4 (line 2, column 3): JSON has no comments" },
+        { "{model: {}}", 0,
+          "malformed JSON near byte 1 (line 1, column 2): the key model must be in double quotes: \"model\"" },
+        { "{\"model\": {\"mass\": 1", 0,
+          "malformed JSON near byte 20 (line 1, column 21): the document ends early: the { at line 1, column 11 "
+          "is never closed" },
+        { "{\"model\": {\"damper\": {\"law\": \"coul", 0,
+          "malformed JSON near byte 34 (line 1, column 35): the document ends inside the string opened at line 1, "
+          "column 30" },
+        { "{\"model\": {} \"solver\": {}}", 0,
+          "malformed JSON near byte 13 (line 1, column 14): a comma is missing between two members" },
+        { "{\"model\": {\"mass\": True}}", 0,
+          "malformed JSON near byte 19 (line 1, column 20): unknown word \"True\"; JSON's literals are true, false "
+          "and null" },
+        { "{\"model\": {\"mass\": 1]}", 0,
+          "malformed JSON near byte 20 (line 1, column 21): this ] does not close the { at line 1, column 11" },
+        { "{\"model\": {\"nom\": \"\xc3\xa9t\xc3\xa9\", \"mass\": .5}}", 0,      /* é is one column, two bytes */
+          "malformed JSON near byte 35 (line 1, column 34): a JSON number needs a digit before its point (0.5, not .5)" },
+        { "{\"model\": {\"law\": \"\\x\"}}", 0,
+          "malformed JSON near byte 19 (line 1, column 20): invalid escape \\ followed by 'x'; JSON's are \\\" \\\\ "
+          "\\/ \\b \\f \\n \\r \\t \\uXXXX" },
+        { "{\"model\":\0{}}", 13,
+          "malformed JSON near byte 9 (line 1, column 10): a NUL byte outside any string" },
+        { "\n\n {} []", 0,
+          "malformed JSON near byte 6 (line 3, column 5): data after the document (send one JSON object)" },
+        { " \n", 0, "malformed JSON near byte 2 (line 2, column 1): empty document: send one JSON object" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        size_t len = cases[i].len ? cases[i].len : strlen(cases[i].doc);
+        dp_spec s;
+        dp_errors e;
+        dp_spec_init(&s);
+        dp_errors_init(&e);
+        int st = dp_spec_parse(cases[i].doc, len, 0, &s, &e);
+        if (st != DP_ESYNTAX || e.n != 1 || strcmp(e.item[0].message, cases[i].message) != 0) {
+            print_error("case %zu: status %d for %s\n   expected: %s\n", i, st, cases[i].doc, cases[i].message);
+            print_errors(&e);
+        }
+        assert_int_equal(st, DP_ESYNTAX);
+        assert_int_equal(e.n, 1);
+        assert_string_equal(e.item[0].pointer, "");
+        assert_string_equal(e.item[0].message, cases[i].message);
+        dp_spec_clear(&s);
+    }
+}
+
 /* Several independent mistakes are all reported, each at its own place. */
 static void test_multiple_errors(void **state)
 {
@@ -726,6 +793,7 @@ int main(void)
         cmocka_unit_test(test_regularized_fields),
         cmocka_unit_test(test_length_not_nul),
         cmocka_unit_test(test_depth_boundary),
+        cmocka_unit_test(test_malformed_where_and_why),
         cmocka_unit_test(test_multiple_errors),
     };
     size_t nf = sizeof fixed / sizeof fixed[0], nr = sizeof rows / sizeof rows[0];

@@ -15,50 +15,12 @@
 #include "dashpot/lcp.h"
 #include "dashpot/lcp_json.h"
 #include "dashpot/lcs.h"
+#include "body.h"
 
 static const char *type_name(const cJSON *v)
 {
     return v == NULL ? "nothing" : cJSON_IsNumber(v) ? "a number" : cJSON_IsString(v) ? "a string" :
            cJSON_IsArray(v) ? "an array" : cJSON_IsObject(v) ? "an object" : cJSON_IsBool(v) ? "a boolean" : "null";
-}
-
-/* The document, or NULL with the error; nesting is bounded before cJSON recurses (an LCP needs 3 levels). */
-static cJSON *parse_doc(const char *text, size_t len, dp_errors *e, int *nomem)
-{
-    int depth = 0, in_string = 0;
-    for (size_t i = 0; i < len; i++) {
-        char ch = text[i];
-        if (in_string) {
-            if (ch == '\\')
-                i++; /* the escaped character cannot end the string */
-            else if (ch == '"')
-                in_string = 0;
-        } else if (ch == '"')
-            in_string = 1;
-        else if ((ch == '[' || ch == '{') && ++depth > DP_JSON_MAX_DEPTH) {
-            dp_errors_add(e, "", "malformed JSON near byte %zu: nested deeper than %d levels", i, DP_JSON_MAX_DEPTH);
-            return NULL;
-        } else if ((ch == ']' || ch == '}') && depth > 0)
-            depth--;
-    }
-    char *buf = malloc(len + 1);
-    if (buf == NULL) {
-        *nomem = 1;
-        return NULL;
-    }
-    memcpy(buf, text, len);
-    buf[len] = '\0';
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithLengthOpts(buf, len, &end, 0);
-    if (root != NULL && end[strspn(end, " \t\r\n")] != '\0') {
-        cJSON_Delete(root);
-        root = NULL;
-    }
-    if (root == NULL)
-        dp_errors_add(e, "", "malformed JSON near byte %zu%s", end ? (size_t)(end - buf) : 0,
-                      len == 0 ? " (empty document)" : "");
-    free(buf);
-    return root;
 }
 
 /* A finite number at pointer p into *out; 0 (with the error) otherwise. */
@@ -136,22 +98,19 @@ static gsl_vector *read_vector(const cJSON *a, size_t m, dp_errors *e, int *nome
 static int read_request(const char *body, size_t len, gsl_matrix **M, gsl_vector **q, dp_errors *e)
 {
     int nomem = 0;
-    cJSON *doc = parse_doc(body, len, e, &nomem);
+    cJSON *doc;
+    int read = dp_body_read(body, len, e, &doc);
     if (doc == NULL)
-        return nomem ? DP_ENOMEM : DP_ESYNTAX;
-    if (!cJSON_IsObject(doc))
-        dp_errors_add(e, "", "must be an object {\"M\": [[...]], \"q\": [...]}");
-    else {
-        for (const cJSON *k = doc->child; k; k = k->next)
-            if (strcmp(k->string, "M") != 0 && strcmp(k->string, "q") != 0)
-                dp_errors_add(e, "", "unknown key \"%.60s\"; expected M, q", k->string);
-        const cJSON *a = cJSON_GetObjectItemCaseSensitive(doc, "M");
-        *M = read_matrix(a, e, &nomem);
-        if (*M)
-            *q = read_vector(cJSON_GetObjectItemCaseSensitive(doc, "q"), (*M)->size1, e, &nomem);
-        else if (cJSON_GetObjectItemCaseSensitive(doc, "q") == NULL)
-            dp_errors_add(e, "/q", "missing required key \"q\" (an array of numbers)");
-    }
+        return read;
+    for (const cJSON *k = doc->child; k; k = k->next)
+        if (strcmp(k->string, "M") != 0 && strcmp(k->string, "q") != 0)
+            dp_errors_add(e, "", "unknown key \"%.60s\"; expected M, q", k->string);
+    const cJSON *a = cJSON_GetObjectItemCaseSensitive(doc, "M");
+    *M = read_matrix(a, e, &nomem);
+    if (*M)
+        *q = read_vector(cJSON_GetObjectItemCaseSensitive(doc, "q"), (*M)->size1, e, &nomem);
+    else if (cJSON_GetObjectItemCaseSensitive(doc, "q") == NULL)
+        dp_errors_add(e, "/q", "missing required key \"q\" (an array of numbers)");
     cJSON_Delete(doc);
     if (nomem)
         return DP_ENOMEM;

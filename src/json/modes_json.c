@@ -19,7 +19,7 @@
 #include "dashpot/json.h"
 #include "dashpot/modes.h"
 #include "dashpot/modes_json.h"
-#include "json_read.h"
+#include "body.h"
 #include "dashpot/network.h"
 
 /* A JSON Pointer into out[DP_POINTER_MAX], cut short if ever longer (ours are not). */
@@ -64,20 +64,15 @@ static const char *type_name(const cJSON *v)
            cJSON_IsArray(v) ? "an array" : cJSON_IsObject(v) ? "an object" : cJSON_IsBool(v) ? "a boolean" : "null";
 }
 
-/* Unknown or repeated members of o are errors. */
+/* Unknown members of o are errors (a repeated one is the body reader's, body.c). */
 static void check_keys(const cJSON *o, const char *ptr, const char *const *keys, const char *list, dp_errors *e)
 {
     for (const cJSON *m = o->child; m; m = m->next) {
         int known = 0;
         for (const char *const *k = keys; *k; k++)
             known |= strcmp(*k, m->string) == 0;
-        int repeated = 0;
-        for (const cJSON *q = o->child; q != m; q = q->next)
-            repeated |= strcmp(q->string, m->string) == 0;
         if (!known)
             dp_errors_add(e, ptr, "unknown key \"%.60s\"; expected one of: %s", m->string, list);
-        else if (repeated)
-            dp_errors_add(e, ptr, "duplicate key \"%.60s\"", m->string);
     }
 }
 
@@ -371,23 +366,18 @@ static int parse_request(const char *body, size_t len, int response, request *r,
     static const char *const keys[] = { "model", "damping", "force_node", "response_node", "omega", "initial",
                                         "solver", "output", NULL };
     memset(r, 0, sizeof *r);
-    int nomem = 0;
-    cJSON *doc = dp_json_read(body, len, e, &nomem);
-    if (doc == NULL)
-        return nomem ? DP_ENOMEM : DP_ESYNTAX;
     size_t before = e->n + e->dropped;
-    dp_json_refuse_nul(e, body, len);
-    if (!cJSON_IsObject(doc))
-        dp_errors_add(e, "", "must be an object {\"model\": ...}");
-    else {
-        check_keys(doc, "", keys, "model, damping, force_node, response_node, omega (initial, solver, output ignored)", e);
-        parse_model(doc, r, e);
-        parse_damping(doc, r, e);
-        if (response && r->net.n > 0) {
-            get_index(doc, "", "force_node", r->net.n, &r->force_node, e);
-            get_index(doc, "", "response_node", r->net.n, &r->response_node, e);
-            parse_range(doc, r, e);
-        }
+    cJSON *doc;
+    int read = dp_body_read(body, len, e, &doc);
+    if (doc == NULL)
+        return read;
+    check_keys(doc, "", keys, "model, damping, force_node, response_node, omega (initial, solver, output ignored)", e);
+    parse_model(doc, r, e);
+    parse_damping(doc, r, e);
+    if (response && r->net.n > 0) {
+        get_index(doc, "", "force_node", r->net.n, &r->force_node, e);
+        get_index(doc, "", "response_node", r->net.n, &r->response_node, e);
+        parse_range(doc, r, e);
     }
     cJSON_Delete(doc);
     if (e->n + e->dropped > before || r->net.n == 0)

@@ -25,7 +25,7 @@
 #include <cjson/cJSON.h>
 
 #include "dashpot/json.h"
-#include "json_read.h"
+#include "body.h"
 
 /* The walk's state: where errors go, how many this parse added, whether an allocation failed. */
 typedef struct ctx {
@@ -301,25 +301,21 @@ static int key_index(const char *const *keys, const char *k)
     return -1;
 }
 
-/* Reports every member of o that is not in `keys` and every repeated one. With a tag, the list is qualified
- * (" for law \"coulomb\"": tag "law", its value "coulomb"). O(members x keys): no quadratic blow-up on a
- * hostile document. */
+/* Reports every member of o that is not in `keys` (a repeated one is the body reader's, body.c). With a tag,
+ * the list is qualified (" for law \"coulomb\"": tag "law", its value "coulomb"). O(members x keys): no
+ * quadratic blow-up on a hostile document. */
 static void check_keys(ctx *c, const cJSON *o, const at *ptr, const char *const *keys, const char *tag,
                        const char *value)
 {
     char list[256], sb[64], why[96];
-    unsigned char seen[MAX_KEYS] = { 0 };
     for (const cJSON *m = o->child; m; m = m->next) {
-        int i = key_index(keys, m->string);
         at p = { ptr, m->string, 0 };
-        if (i < 0) {
+        if (key_index(keys, m->string) < 0) {
             why[0] = '\0';
             if (tag != NULL)
                 snprintf(why, sizeof why, " for %s \"%s\"", tag, value);
             fail(c, &p, "unknown key \"%s\"%s; expected one of: %s", shown(m->string, sb), why,
                  joined(keys, list, sizeof list));
-        } else if (seen[i]++) {
-            fail(c, &p, "duplicate key \"%s\"", m->string);
         }
     }
 }
@@ -808,13 +804,13 @@ static int one_mass_as_network(dp_spec *s)
     return DP_OK;
 }
 
-static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
+/* The whole document o (an object: body.c); its own keys are not checked again when keys_checked. */
+static void parse_root(ctx *c, const cJSON *o, dp_spec *s, int keys_checked)
 {
     static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
     at p;
-    if (!want_object(c, o, NULL))
-        return;
-    check_keys(c, o, NULL, keys, NULL, NULL);
+    if (!keys_checked)
+        check_keys(c, o, NULL, keys, NULL, NULL);
     const cJSON *v = member(c, o, NULL, "model", "an object with mass, spring and damper", &p);
     int rh = v != NULL && !is_network(v) && is_right_hand(v); /* its own initial state, even if the model is bad */
     if (v != NULL && is_network(v))
@@ -848,33 +844,32 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s)
 
 
 
-/* The document's tree (NULL: malformed, or out of memory in c->nomem), a NUL in a string counted as an error. */
-static cJSON *read_document(ctx *c, const char *text, size_t len)
+/* The document's tree, or NULL with the status in *s (body.c); the errors the reader found in a tree (a NUL
+ * in a string, a repeated key) are counted, so the walk goes on to report the rest and the parse fails. */
+static cJSON *read_document(ctx *c, const char *text, size_t len, int *s)
 {
-    cJSON *root = dp_json_read(text ? text : "", text ? len : 0, c->errs, &c->nomem);
-    if (root != NULL)
-        c->nerr += dp_json_refuse_nul(c->errs, text, len);
+    size_t before = c->errs->n + c->errs->dropped;
+    cJSON *root;
+    *s = dp_body_read(text, len, c->errs, &root);
+    c->nerr += c->errs->n + c->errs->dropped - before;
     return root;
 }
 
-int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs)
+/* A spec from the document's tree (read by read_document into c), then prepared and checked. */
+static int spec_from_tree(ctx *c, const cJSON *root, double max_steps, dp_spec *spec, int keys_checked)
 {
-    ctx c = { errs, 0, 0 };
-    cJSON *root = read_document(&c, text, len);
-    if (root == NULL)
-        return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
-    parse_root(&c, root, spec);
-    cJSON_Delete(root);
-    if (c.nomem)
+    dp_errors *errs = c->errs;
+    parse_root(c, root, spec, keys_checked);
+    if (c->nomem)
         return DP_ENOMEM;
-    if (c.nerr > 0)
+    if (c->nerr > 0)
         return DP_EINVAL;
     int s = spec->rh ? DP_OK : spec->net ? dp_network_prepare(spec->net) : spec->lcs ? DP_OK : dp_model_prepare(&spec->model);
     if (s == DP_ENOMEM)
         return s;
     if (s != DP_OK) {
         const at model = { NULL, "model", 0 };
-        fail(&c, &model, "the model's graphs could not be built (%s)", dp_strerror(s));
+        fail(c, &model, "the model's graphs could not be built (%s)", dp_strerror(s));
         return DP_EINVAL;
     }
     /* DP_SPEC_MAX_STEPS is a hard ceiling; front ends may only lower it. */
@@ -883,12 +878,22 @@ int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec,
     return dp_spec_check(spec, max_steps, errs);
 }
 
+int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs)
+{
+    ctx c = { errs, 0, 0 };
+    int read;
+    cJSON *root = read_document(&c, text, len, &read);
+    if (root == NULL)
+        return read;
+    int s = spec_from_tree(&c, root, max_steps, spec, 0);
+    cJSON_Delete(root);
+    return s;
+}
+
 /* The "model" member of a document that may be a whole simulation spec: only its model is read. */
 static const cJSON *model_member(ctx *c, const cJSON *root, at *p)
 {
     static const char *const keys[] = { "model", "initial", "solver", "output", NULL };
-    if (!want_object(c, root, NULL))
-        return NULL;
     check_keys(c, root, NULL, keys, NULL, NULL);
     return member(c, root, NULL, "model", "an object with mass, spring and damper", p);
 }
@@ -909,9 +914,10 @@ int dp_model_parse_lenient(const char *text, size_t len, dp_model *model, dp_err
 {
     ctx c = { errs, 0, 0, 1 };
     at p;
-    cJSON *root = read_document(&c, text, len);
+    int read;
+    cJSON *root = read_document(&c, text, len, &read);
     if (root == NULL)
-        return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
+        return read;
     int s = lenient_model(&c, model_member(&c, root, &p), &p, model);
     cJSON_Delete(root);
     return s;
@@ -946,9 +952,10 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
 {
     ctx c = { errs, 0, 0, 1 };
     at p;
-    cJSON *root = read_document(&c, text, len);
+    int read;
+    cJSON *root = read_document(&c, text, len, &read);
     if (root == NULL)
-        return c.nomem ? DP_ENOMEM : DP_ESYNTAX;
+        return read;
     const cJSON *v = model_member(&c, root, &p);
     int s;
     if (v != NULL && is_right_hand(v)) {
@@ -956,7 +963,8 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
     } else if (v != NULL && is_lcs(v)) {   /* an LCS: checked as a run's spec, its theory from the step's matrix */
         dp_spec spec;
         dp_spec_init(&spec);
-        s = dp_spec_parse(text, len, 0, &spec, errs);
+        c.lenient = 0;
+        s = spec_from_tree(&c, root, 0, &spec, 1);
         s = s == DP_OK ? dp_lcs_wellposedness(&spec, rep) : s;
         dp_spec_clear(&spec);
     } else if (v != NULL && is_network(v)) {
@@ -964,7 +972,8 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
     } else if (v != NULL && cJSON_GetObjectItemCaseSensitive(v, "contact") != NULL) {
         dp_spec spec;   /* a one-mass document with a contact: the one-node network it runs as */
         dp_spec_init(&spec);
-        s = dp_spec_parse(text, len, 0, &spec, errs);
+        c.lenient = 0;
+        s = spec_from_tree(&c, root, 0, &spec, 1);
         if (s == DP_OK)
             dp_network_wellposedness(spec.net, rep);
         dp_spec_clear(&spec);

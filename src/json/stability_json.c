@@ -14,8 +14,7 @@
 
 #include "dashpot/stability.h"
 #include "dashpot/stability_json.h"
-#include "json_read.h"
-#include "nul_scan.h"
+#include "body.h"
 #include "stability_out.h"
 
 typedef struct request {
@@ -48,11 +47,10 @@ static int want_object(pctx *c, const cJSON *v, const char *ptr)
     return 0;
 }
 
-/* Reports every member of o not in `keys` and every repeated one (cJSON keeps both; the first would win
- * silently). O(members x keys), as the spec parser's check. */
+/* Reports every member of o not in `keys` (a repeated one is the body reader's, body.c). O(members x keys),
+ * as the spec parser's check. */
 static void check_keys(pctx *c, const cJSON *o, const char *ptr, const char *const *keys, const char *list)
 {
-    unsigned char seen[16] = { 0 };
     for (const cJSON *m = o->child; m != NULL; m = m->next) {
         int known = -1;
         for (int k = 0; keys[k] != NULL && known < 0; k++)
@@ -62,8 +60,6 @@ static void check_keys(pctx *c, const cJSON *o, const char *ptr, const char *con
         snprintf(p, sizeof p, "%s/%s", ptr, m->string);
         if (known < 0)
             bad(c, DP_EINVAL, p, "unknown member (expected %s)", list);
-        else if (known < (int)sizeof seen && seen[known]++)
-            bad(c, DP_EINVAL, p, "duplicate key \"%s\"", m->string);
     }
 }
 
@@ -529,15 +525,11 @@ int dp_stability_respond_ws(dp_stability_ws *w, const char *body, size_t len, in
                             dp_errors *errs)
 {
     pctx c = { errs, DP_OK };
-    int nomem = 0;
-    cJSON *root = dp_json_read(body ? body : "", body ? len : 0, errs, &nomem);
+    cJSON *root;
+    int read = dp_body_read(body, len, errs, &root);
     if (root == NULL)
-        return nomem ? DP_ENOMEM : DP_ESYNTAX;
-    char nul_at[DP_POINTER_MAX];
-    int in_key = 0;
-    if (dp_json_find_nul(body, len, nul_at, sizeof nul_at, &in_key)) /* cJSON would cut the string there */
-        bad(&c, DP_EINVAL, nul_at, "%s contains a NUL character (\\u0000), which no field may hold",
-            in_key ? "a key of this object" : "this string");
+        return read;
+    merge(&c, read);        /* a NUL in a string or a repeated key: reported, the rest is still checked */
     request r;
     parse_request(&c, root, &r);
     cJSON_Delete(root);
