@@ -58,7 +58,7 @@ check "lcp: a short row named" bad row '{"M": [[1, 2], [3]], "q": [1, 1]}' /M/1
 check "lcp: q of another length named" bad q '{"M": [[1]], "q": [1, 2]}' /q
 check "lcp: a string entry named" bad entry '{"M": [[1, "x"], [0, 1]], "q": [1, 1]}' /M/0/1
 check "lcp: a missing M named" bad missing '{"q": [1]}' /M
-check "lcp: an unknown key" bad key '{"M": [[1]], "q": [1], "r": 1}' '(document)'
+check "lcp: an unknown key named at its pointer" bad key '{"M": [[1]], "q": [1], "r": 1}' /r
 check "lcp: a repeated key named, as on every route" bad dup '{"M": [[1]], "q": [1], "q": [2]}' /q
 check "lcp: a repeated key inside M's rows is no key, but one in a nested object is" bad dupdeep \
     '{"M": [[1]], "q": [1], "r": {"a": 1, "a": 2}}' /r/a
