@@ -160,6 +160,22 @@ check "force node out of range: exit 2 at /force_node" bad force \
     /force_node response
 check "negative Rayleigh alpha: exit 2 at /damping/rayleigh/alpha" bad alpha \
     '{"model": {"masses": [1]}, "damping": {"rayleigh": {"alpha": -1}}}' /damping/rayleigh/alpha
+same_as_simulate() { # same_as_simulate NAME JSON: modes and response refuse it with exactly simulate's errors
+    printf '%s' "$2" >"$T/$1.json"
+    "$BIN" simulate "$T/$1.json" >/dev/null 2>"$T/$1.sim"
+    "$BIN" modes "$T/$1.json" >/dev/null 2>"$T/$1.modes"
+    local rc=$?
+    [ $rc = 2 ] && [ -s "$T/$1.sim" ] && cmp -s "$T/$1.sim" "$T/$1.modes" ||
+        { echo "    exit $rc; simulate: $(cat "$T/$1.sim"); modes: $(cat "$T/$1.modes")"; return 1; }
+}
+check "a network's elements are read by simulate's parser: a misspelt law and a non-monotone graph in its words" \
+    same_as_simulate laws '{"model": {"masses": [1, 1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1}},
+     {"between": [0, 1], "damper": {"law": "colomb", "phi0": 1}},
+     {"between": [1, "ground"], "spring": {"law": "graph", "points": [[0, 1], [1, 0]]}}]}}'
+check "...a Coulomb damper without phi0, a load on a missing node" same_as_simulate phi0 \
+    '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1},
+     "damper": {"law": "coulomb"}}], "forcing": [{"node": 3, "kind": "constant", "value": 1}]}}'
+check "an unknown member is named at its own pointer" bad unknown '{"model": {"masses": [1]}, "dampnig": {}}' /dampnig
 check "a repeated key in an element's spring: exit 2 at its pointer" bad dupk \
     '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1, "k": 2}}]}}' \
     /model/elements/0/spring/k
