@@ -175,6 +175,11 @@ check "a network's elements are read by simulate's parser: a misspelt law and a 
 check "...a Coulomb damper without phi0, a load on a missing node" same_as_simulate phi0 \
     '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1},
      "damper": {"law": "coulomb"}}], "forcing": [{"node": 3, "kind": "constant", "value": 1}]}}'
+printf '%s' '{"model": {"masses": [1, 0.5], "elements": [{"between": ["ground", 0], "contact": {"distance": 0}},
+  {"between": [0, 1], "spring": {"law": "linear", "k": 50}, "contact": {"distance": 0.1}}]}}' >"$T/contact.json"
+"$BIN" modes "$T/contact.json" >"$T/contact.out"
+check "a contact is left out, the linear spring beside it is not: omega^2 = k (1/m0 + 1/m1) = 150" pyjson \
+    "$T/contact.out" "d['left_out'] == [0, 1] and d['modes'][0]['rigid'] and abs(d['modes'][1]['omega'] ** 2 - 150) < 1e-9"
 check "an unknown member is named at its own pointer" bad unknown '{"model": {"masses": [1]}, "dampnig": {}}' /dampnig
 check "a repeated key in an element's spring: exit 2 at its pointer" bad dupk \
     '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1, "k": 2}}]}}' \

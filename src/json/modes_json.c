@@ -71,10 +71,6 @@ static void parse_model(ctx *c, const cJSON *doc, request *r)
             const at pe = { &pm, "elements", 0 }, pi = { &pe, NULL, i }, pb = { &pi, "between", 0 };
             jw_fail(c, &pb, "joins an end to itself");
         }
-    /* An element with a contact has been left out whole, its linear spring's k too: kept so for now. */
-    for (size_t i = 0; i < net->nel; i++)
-        if (net->el[i].has_contact)
-            r->spec.net->el[i].spring.k = 0;
     int els = net->nel > 0;
     r->pK = net->K ? "/model/stiffness_matrix" : els ? "/model/elements" : "/model";
     r->pC = net->C ? "/model/damping_matrix" : els ? "/model/elements" : "/damping/rayleigh";
