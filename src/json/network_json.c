@@ -2,9 +2,10 @@
  * stiffness and damping matrices, elements with their ends and the one-mass laws, loads per node, array
  * initial states, and the columns to write.
  *
- * Its own file because it is a part of the document of its own, read for simulate and wellposedness
- * (through spec_json.c); an element's spring, damper and contact are read by the code that reads the
- * one-mass ones (laws_json.c), with one list of law names.
+ * Its own file because every route that takes a network reads it here: simulate and wellposedness (through
+ * spec_json.c) and the linear analyses (modes_json.c); an element's spring, damper and contact are read by
+ * the code that reads the one-mass ones (laws_json.c). So a network is accepted or refused alike everywhere,
+ * with one list of law names.
  */
 #include <stdio.h>
 #include <stdlib.h>

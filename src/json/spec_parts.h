@@ -2,7 +2,8 @@
  * that live in files of their own, and what they share with it:
  *   laws_json.c        springs, dampers, forcings, contacts, graph points, and the tagged-object table
  *                      ({"law": name, params...}) they are read by;
- *   network_json.c     a network of masses and elements;
+ *   network_json.c     a network of masses and elements (also read by modes_json.c for /v1/modes and
+ *                      /v1/response, so a network is parsed by one parser);
  *   lcs_json.c         a linear complementarity system;
  *   right_hand_json.c  the right-hand friction models.
  * Each reads with the walker (walk.h) and writes into the dp_spec being built. spec_json.c calls into them,
