@@ -15,6 +15,9 @@
 #include <cmocka.h>
 
 #include "dashpot/json.h"
+#include "dashpot/lcp_json.h"
+#include "dashpot/modes_json.h"
+#include "dashpot/stability_json.h"
 
 /* ---- helpers ---------------------------------------------------------------------------------------- */
 
@@ -454,6 +457,85 @@ static void test_malformed_where_and_why(void **state)
     }
 }
 
+/* ---- one reader for every route ---------------------------------------------------------------------- */
+
+/* Every entry point that reads a body, the CLI's and the daemon's alike. */
+static int route(int k, const char *text, size_t len, dp_errors *e)
+{
+    dp_buf out = { 0 };
+    dp_spec s;
+    dp_wp_report rep;
+    dp_model m = { 0 };
+    int st;
+    dp_errors_init(e);
+    switch (k) {
+    case 0: dp_spec_init(&s); st = dp_spec_parse(text, len, 0, &s, e); dp_spec_clear(&s); break;
+    case 1: st = dp_stability_respond(text, len, DP_STABILITY_JSON, &out, e); break;
+    case 2: st = dp_lcp_respond(text, len, &out, e); break;
+    case 3: st = dp_modes_respond(text, len, &out, e); break;
+    case 4: st = dp_response_respond(text, len, DP_FORMAT_JSON, &out, e); break;
+    case 5: st = dp_wellposedness_parse(text, len, &rep, e); break;
+    default: st = dp_model_parse_lenient(text, len, &m, e); dp_model_clear(&m); break;
+    }
+    dp_buf_free(&out);
+    return st;
+}
+
+#define ROUTES 7
+static const char *const route_name[ROUTES] = { "simulate", "stability", "lcp", "modes", "response",
+                                                "wellposedness", "lenient model" };
+
+/* The same fault in a body gets the same status, pointer and words on every route: malformed JSON (one
+ * error), a non-object document, too deep a nesting, a NUL in a key, a repeated key at any depth. */
+static void test_same_words_on_every_route(void **state)
+{
+    (void)state;
+    static const struct { const char *doc; size_t len; int status; const char *pointer, *message; } cases[] = {
+        { "{\"model\": {\"mass\": NaN}}", 0, DP_ESYNTAX, "",
+          "malformed JSON near byte 19 (line 1, column 20): JSON has no NaN or Infinity; send a number or null" },
+        { "{\"M\": [[1]],\n \"q\": [1],}", 0, DP_ESYNTAX, "",
+          "malformed JSON near byte 22 (line 2, column 10): a trailing comma before }; remove it" },
+        { "{'mass': 1}", 0, DP_ESYNTAX, "",
+          "malformed JSON near byte 1 (line 1, column 2): JSON keys take double quotes, not single quotes" },
+        { "{\"model\": {}", 0, DP_ESYNTAX, "",
+          "malformed JSON near byte 12 (line 1, column 13): the document ends early: the { at line 1, column 1 "
+          "is never closed" },
+        { "", 0, DP_ESYNTAX, "", "malformed JSON near byte 0 (line 1, column 1): empty document: send one JSON object" },
+        { "[{\"model\": {}}]", 0, DP_EINVAL, "", "must be an object, got an array" },
+        { "{\"x\": {\"y\": [{\"z\": 1, \"z\": 2}]}}", 0, DP_EINVAL, "/x/y/0/z", "duplicate key \"z\"" },
+        { "{\"a/b\": 1, \"a/b\": 2}", 0, DP_EINVAL, "/a~1b", "duplicate key \"a/b\"" },
+        { "{\"k\\u0000ey\": 1}", 0, DP_EINVAL, "",
+          "a key of this object contains a NUL character (\\u0000), which no field may hold" },
+        { "{\"x\": [\"a\\u0000\"]}", 0, DP_EINVAL, "/x/0",
+          "this string contains a NUL character (\\u0000), which no field may hold" },
+    };
+    char deep[2 * (DP_JSON_MAX_DEPTH + 1) + 3];
+    memset(deep, '[', DP_JSON_MAX_DEPTH + 1);
+    memset(deep + DP_JSON_MAX_DEPTH + 1, ']', DP_JSON_MAX_DEPTH + 1);
+    deep[2 * (DP_JSON_MAX_DEPTH + 1)] = '\0';
+    for (size_t i = 0; i <= sizeof cases / sizeof cases[0]; i++) {
+        int last = i == sizeof cases / sizeof cases[0];
+        const char *doc = last ? deep : cases[i].doc;
+        const char *pointer = last ? "" : cases[i].pointer;
+        const char *message = last ? "malformed JSON near byte 64 (line 1, column 65): nested deeper than 64 levels"
+                                   : cases[i].message;
+        int status = last ? DP_ESYNTAX : cases[i].status;
+        for (int k = 0; k < ROUTES; k++) {
+            dp_errors e;
+            int st = route(k, doc, strlen(doc), &e);
+            if (st != status || !has_error(&e, pointer, message)) {
+                print_error("%s, %s: status %d, expected %d with \"%s\" at \"%s\"\n", route_name[k], doc, st,
+                            status, message, pointer);
+                print_errors(&e);
+            }
+            assert_int_equal(st, status);
+            assert_true(has_error(&e, pointer, message));
+            if (status == DP_ESYNTAX || !strcmp(message, "must be an object, got an array"))
+                assert_int_equal(e.n, 1);
+        }
+    }
+}
+
 /* Several independent mistakes are all reported, each at its own place. */
 static void test_multiple_errors(void **state)
 {
@@ -794,6 +876,7 @@ int main(void)
         cmocka_unit_test(test_length_not_nul),
         cmocka_unit_test(test_depth_boundary),
         cmocka_unit_test(test_malformed_where_and_why),
+        cmocka_unit_test(test_same_words_on_every_route),
         cmocka_unit_test(test_multiple_errors),
     };
     size_t nf = sizeof fixed / sizeof fixed[0], nr = sizeof rows / sizeof rows[0];
