@@ -432,6 +432,10 @@ static void test_malformed_where_and_why(void **state)
         { "{\"model\": {\"law\": \"\\x\"}}", 0,
           "malformed JSON near byte 19 (line 1, column 20): invalid escape \\ followed by 'x'; JSON's are \\\" \\\\ "
           "\\/ \\b \\f \\n \\r \\t \\uXXXX" },
+        { "{\"model\": {\"mass\": 1.5.5}}", 0,
+          "malformed JSON near byte 19 (line 1, column 20): \"1.5.5\" is not a number" },
+        { "{\"model\": {\"mass\": 1, \"k\": 12345678901234567890123456789012345678901234567890123456789012345678901234567890e}}", 0,
+          "malformed JSON near byte 27 (line 1, column 28): \"1234567890123456789012345678901234567890...\" is not a number" },
         { "{\"model\":\0{}}", 13,
           "malformed JSON near byte 9 (line 1, column 10): a NUL byte outside any string" },
         { "\n\n {} []", 0,

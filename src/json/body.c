@@ -156,22 +156,25 @@ static int not_a_value(syn *y, size_t i)
     return found(y, i, "expected a value, got %s", byte_text(y, i, b));
 }
 
-/* The number at s[i] as cJSON reads it (at most 63 of the characters 0-9 + - e E ., then strtod); its
+/* The number at s[i] as cJSON reads it (the characters 0-9 + - e E . as far as they go, then strtod): its
  * length, or 0 with the fault found. */
 static size_t number(syn *y, size_t i)
 {
-    char buf[64], *end;
     size_t n = 0;
-    while (i + n < y->len && n < sizeof buf - 1 && strchr("0123456789+-eE.", y->s[i + n]) && y->s[i + n])
-        buf[n] = y->s[i + n], n++;
-    buf[n] = '\0';
-    if (n == sizeof buf - 1 && i + n < y->len && strchr("0123456789+-eE.", y->s[i + n]) && y->s[i + n])
-        return found(y, i, "a number longer than %zu characters", sizeof buf - 1), 0;
-    if (n == 1 && buf[0] == '-' && (starts_with_ci(y, i + 1, "nan") || starts_with_ci(y, i + 1, "inf")))
+    while (i + n < y->len && y->s[i + n] && strchr("0123456789+-eE.", y->s[i + n]))
+        n++;
+    if (n == 1 && y->s[i] == '-' && (starts_with_ci(y, i + 1, "nan") || starts_with_ci(y, i + 1, "inf")))
         return found(y, i, "JSON has no NaN or Infinity; send a number or null"), 0;
+    char *buf = malloc(n + 1), *end;
+    if (buf == NULL)
+        return found(y, i, "not valid JSON here"), 0;
+    memcpy(buf, y->s + i, n);
+    buf[n] = '\0';
     strtod(buf, &end);
-    if ((size_t)(end - buf) != n)
-        return found(y, i, "\"%s\" is not a number", buf), 0;
+    size_t read = (size_t)(end - buf);
+    free(buf);
+    if (read != n)
+        return found(y, i, "\"%.*s%s\" is not a number", n > 40 ? 40 : (int)n, y->s + i, n > 40 ? "..." : ""), 0;
     return n;
 }
 
