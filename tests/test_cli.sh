@@ -57,6 +57,15 @@ check "nothing on stdout for an invalid spec" test ! -s "$tmp/bad.out"
 echo '{"model":' | "$bin" simulate - 2> "$tmp/syn.err" >/dev/null; rc=$?
 check "malformed JSON exits 2" test $rc -eq 2
 check "malformed JSON message" grep -q 'malformed JSON' "$tmp/syn.err"
+printf '{"model": {\n  "mass": 1,\n  "spring": {"law": "linear", "k": Infinity}}}\n' >"$tmp/inf.json"
+for sub in simulate wellposedness convergence stability lcp modes response; do
+    "$bin" $sub "$tmp/inf.json" >/dev/null 2>"$tmp/inf.$sub"; echo $? >>"$tmp/inf.$sub"
+done
+check "a file's malformed JSON: its line and column and a hint, in the same words for every subcommand" bash -c "
+for sub in simulate wellposedness convergence stability lcp modes response; do
+    printf '%s\n' 'dashpot: $tmp/inf.json: (document): malformed JSON near byte 60 (line 3, column 36): JSON has no NaN or Infinity; send a number or null' 2 |
+        cmp -s - '$tmp/inf.'\$sub || { echo \"    \$sub: \$(cat '$tmp/inf.'\$sub)\"; exit 1; }
+done"
 "$bin" simulate /nonexistent.json 2>/dev/null; rc=$?
 check "missing file exits 2" test $rc -eq 2
 "$bin" simulate "$tmp/decay.json" --format xml 2>/dev/null; rc=$?

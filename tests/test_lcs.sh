@@ -58,7 +58,12 @@ check "lcp: a short row named" bad row '{"M": [[1, 2], [3]], "q": [1, 1]}' /M/1
 check "lcp: q of another length named" bad q '{"M": [[1]], "q": [1, 2]}' /q
 check "lcp: a string entry named" bad entry '{"M": [[1, "x"], [0, 1]], "q": [1, 1]}' /M/0/1
 check "lcp: a missing M named" bad missing '{"q": [1]}' /M
-check "lcp: an unknown key" bad key '{"M": [[1]], "q": [1], "r": 1}' '(document)'
+check "lcp: an unknown key named at its pointer" bad key '{"M": [[1]], "q": [1], "r": 1}' /r
+check "lcp: a repeated key named, as on every route" bad dup '{"M": [[1]], "q": [1], "q": [2]}' /q
+check "lcp: a repeated key inside M's rows is no key, but one in a nested object is" bad dupdeep \
+    '{"M": [[1]], "q": [1], "r": {"a": 1, "a": 2}}' /r/a
+check "lcp: a NUL in a key (cJSON would read \"q\") named at its object" bad nulkey '{"M": [[1]], "q\u0000": [1]}' \
+    '(document)'
 
 # ---- LCS models in `dashpot simulate` (docs/lcs.md) ----
 # Series RLC with an ideal diode (Cibulka 2014 Ex. 1.9), R = 0.5, L = 1, C = 0.25, x = (charge, current), no source.
@@ -324,6 +329,15 @@ d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/q']"
 printf '{"M": ' >"$T/trunc.json"
 post /v1/lcp "$T/trunc.json"
 check "POST /v1/lcp, malformed JSON: 400" [ "$(cut -d' ' -f1 "$T/ct")" = 400 ]
+printf '{"M": [[1]],\n "q": [NaN]}' >"$T/nan.json"
+post /v1/lcp "$T/nan.json"
+check "POST /v1/lcp, NaN: 400 at line 2, column 8, the words of every route" pyjson "$T/body" "
+d['status'] == 400 and d['type'] == '/problems/malformed-json' and [(e['pointer'], e['detail']) for e in d['errors']] == [
+('', 'malformed JSON near byte 20 (line 2, column 8): JSON has no NaN or Infinity; send a number or null')]"
+printf '{"M": [[1]], "q": [1], "M": [[2]]}' >"$T/dup.json"
+post /v1/lcp "$T/dup.json"
+check "POST /v1/lcp, a repeated key: 422 problem at /M" pyjson "$T/body" "
+d['status'] == 422 and [(e['pointer'], e['detail']) for e in d['errors']] == [('/M', 'duplicate key \"M\"')]"
 check "/metrics counts /v1/lcp" bash -c "curl -s '$U/metrics' | grep -q 'route=\"/v1/lcp\"'"
 hcurl -X POST --data-binary @"$T/pd.json" -o "$T/body" "$U/v1/wellposedness"
 check "POST /v1/wellposedness with an LCS model: the CLI's answer" python3 -c "

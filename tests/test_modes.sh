@@ -160,6 +160,35 @@ check "force node out of range: exit 2 at /force_node" bad force \
     /force_node response
 check "negative Rayleigh alpha: exit 2 at /damping/rayleigh/alpha" bad alpha \
     '{"model": {"masses": [1]}, "damping": {"rayleigh": {"alpha": -1}}}' /damping/rayleigh/alpha
+same_as_simulate() { # same_as_simulate NAME JSON: modes and response refuse it with exactly simulate's errors
+    printf '%s' "$2" >"$T/$1.json"
+    "$BIN" simulate "$T/$1.json" >/dev/null 2>"$T/$1.sim"
+    "$BIN" modes "$T/$1.json" >/dev/null 2>"$T/$1.modes"
+    local rc=$?
+    [ $rc = 2 ] && [ -s "$T/$1.sim" ] && cmp -s "$T/$1.sim" "$T/$1.modes" ||
+        { echo "    exit $rc; simulate: $(cat "$T/$1.sim"); modes: $(cat "$T/$1.modes")"; return 1; }
+}
+check "a network's elements are read by simulate's parser: a misspelt law and a non-monotone graph in its words" \
+    same_as_simulate laws '{"model": {"masses": [1, 1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1}},
+     {"between": [0, 1], "damper": {"law": "colomb", "phi0": 1}},
+     {"between": [1, "ground"], "spring": {"law": "graph", "points": [[0, 1], [1, 0]]}}]}}'
+check "...a Coulomb damper without phi0, a load on a missing node" same_as_simulate phi0 \
+    '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1},
+     "damper": {"law": "coulomb"}}], "forcing": [{"node": 3, "kind": "constant", "value": 1}]}}'
+printf '%s' '{"model": {"masses": [1, 0.5], "elements": [{"between": ["ground", 0], "contact": {"distance": 0}},
+  {"between": [0, 1], "spring": {"law": "linear", "k": 50}, "contact": {"distance": 0.1}}]}}' >"$T/contact.json"
+"$BIN" modes "$T/contact.json" >"$T/contact.out"
+check "a contact is left out, the linear spring beside it is not: omega^2 = k (1/m0 + 1/m1) = 150" pyjson \
+    "$T/contact.out" "d['left_out'] == [0, 1] and d['modes'][0]['rigid'] and abs(d['modes'][1]['omega'] ** 2 - 150) < 1e-9"
+check "an unknown member is named at its own pointer" bad unknown '{"model": {"masses": [1]}, "dampnig": {}}' /dampnig
+check "a repeated key in an element's spring: exit 2 at its pointer" bad dupk \
+    '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1, "k": 2}}]}}' \
+    /model/elements/0/spring/k
+check "a repeated key in a member modes ignores (solver): still refused" bad dupsolver \
+    '{"model": {"masses": [1]}, "solver": {"dt": 1, "dt": 2}}' /solver/dt
+check "response: a repeated omega: exit 2 at /omega" bad dupomega \
+    '{"model": {"masses": [1]}, "force_node": 0, "response_node": 0, "omega": {"from": 0, "to": 1, "points": 5}, "omega": {}}' \
+    /omega response
 
 # ---- the daemon ----
 start_daemon modes || finish
@@ -188,6 +217,17 @@ d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/omega/to']"
 printf '{"model": ' >"$T/trunc.json"
 post /v1/modes application/json "$T/trunc.json"
 check "POST /v1/modes, malformed JSON: 400" [ "$(cut -d' ' -f1 "$T/ct")" = 400 ]
+printf '{"model": {"masses": [1],\n  "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1},}]}}' \
+    >"$T/comma.json"
+post /v1/response application/json "$T/comma.json"
+check "POST /v1/response, a trailing comma: 400 at line 2, column 78, the words of every route" pyjson "$T/body" "
+d['status'] == 400 and [(e['pointer'], e['detail']) for e in d['errors']] == [
+('', 'malformed JSON near byte 103 (line 2, column 78): a trailing comma before }; remove it')]"
+printf '{"model": {"masses": [1], "elements": [{"between": ["ground", 0], "damper": {"law": "linear", "c": 1}, "damper": {}}]}}' \
+    >"$T/dupel.json"
+post /v1/modes application/json "$T/dupel.json"
+check "POST /v1/modes, a repeated key in a network element: 422 at its pointer" pyjson "$T/body" "
+d['status'] == 422 and ('/model/elements/0/damper', 'duplicate key \"damper\"') in [(e['pointer'], e['detail']) for e in d['errors']]"
 check "/metrics counts /v1/modes and /v1/response" bash -c \
     "curl -s '$U/metrics' | grep -q 'route=\"/v1/modes\"' && curl -s '$U/metrics' | grep -q 'route=\"/v1/response\"'"
 stop_daemon modes

@@ -15,6 +15,9 @@
 #include <cmocka.h>
 
 #include "dashpot/json.h"
+#include "dashpot/lcp_json.h"
+#include "dashpot/modes_json.h"
+#include "dashpot/stability_json.h"
 
 /* ---- helpers ---------------------------------------------------------------------------------------- */
 
@@ -387,6 +390,156 @@ static void test_depth_boundary(void **state)
     }
 }
 
+/* A malformed document is one error at "", its place as byte, line and column (columns count characters),
+ * and what is wrong there (src/json/body.c). Raw text: no ' for " here, single quotes are one of the cases. */
+static void test_malformed_where_and_why(void **state)
+{
+    (void)state;
+    static const struct { const char *doc; size_t len; const char *message; } cases[] = {
+        { "{\"model\": {\"mass\": NaN}}", 0,
+          "malformed JSON near byte 19 (line 1, column 20): JSON has no NaN or Infinity; send a number or null" },
+        { "{\n  \"model\": {\n    \"mass\": -Infinity\n  }\n}", 0,
+          "malformed JSON near byte 27 (line 3, column 13): JSON has no NaN or Infinity; send a number or null" },
+        { "{'model': {}}", 0,
+          "malformed JSON near byte 1 (line 1, column 2): JSON keys take double quotes, not single quotes" },
+        { "{\"model\": {\"spring\": {\"law\": 'linear'}}}", 0,
+          "malformed JSON near byte 29 (line 1, column 30): JSON strings take double quotes, not single quotes" },
+        { "{\"model\": {\"mass\": 1,}}", 0,
+          "malformed JSON near byte 20 (line 1, column 21): a trailing comma before }; remove it" },
+        { "{\"solver\": {\"n\": [1, 2,]}}", 0,
+          "malformed JSON near byte 22 (line 1, column 23): a trailing comma before ]; remove it" },
+        { "{\"model\": {\"mass\": 1 /* kg */}}", 0,
+          "malformed JSON near byte 21 (line 1, column 22): JSON has no comments" },
+        { "{\n  // the oscillator\n  \"model\": {}\n}", 0,
+          "malformed JSON near byte 4 (line 2, column 3): JSON has no comments" },
+        { "{model: {}}", 0,
+          "malformed JSON near byte 1 (line 1, column 2): the key model must be in double quotes: \"model\"" },
+        { "{\"model\": {\"mass\": 1", 0,
+          "malformed JSON near byte 20 (line 1, column 21): the document ends early: the { at line 1, column 11 "
+          "is never closed" },
+        { "{\"model\": {\"damper\": {\"law\": \"coul", 0,
+          "malformed JSON near byte 34 (line 1, column 35): the document ends inside the string opened at line 1, "
+          "column 30" },
+        { "{\"model\": {} \"solver\": {}}", 0,
+          "malformed JSON near byte 13 (line 1, column 14): a comma is missing between two members" },
+        { "{\"model\": {\"mass\": True}}", 0,
+          "malformed JSON near byte 19 (line 1, column 20): unknown word \"True\"; JSON's literals are true, false "
+          "and null" },
+        { "{\"model\": {\"mass\": 1]}", 0,
+          "malformed JSON near byte 20 (line 1, column 21): this ] does not close the { at line 1, column 11" },
+        { "{\"model\": {\"nom\": \"\xc3\xa9t\xc3\xa9\", \"mass\": .5}}", 0,      /* é is one column, two bytes */
+          "malformed JSON near byte 35 (line 1, column 34): a JSON number needs a digit before its point (0.5, not .5)" },
+        { "{\"model\": {\"law\": \"\\x\"}}", 0,
+          "malformed JSON near byte 19 (line 1, column 20): invalid escape \\ followed by 'x'; JSON's are \\\" \\\\ "
+          "\\/ \\b \\f \\n \\r \\t \\uXXXX" },
+        { "{\"model\": {\"mass\": 1.5.5}}", 0,
+          "malformed JSON near byte 19 (line 1, column 20): \"1.5.5\" is not a number" },
+        { "{\"model\": {\"mass\": 1, \"k\": 12345678901234567890123456789012345678901234567890123456789012345678901234567890e}}", 0,
+          "malformed JSON near byte 27 (line 1, column 28): \"1234567890123456789012345678901234567890...\" is not a number" },
+        { "{\"model\":\0{}}", 13,
+          "malformed JSON near byte 9 (line 1, column 10): a NUL byte outside any string" },
+        { "\n\n {} []", 0,
+          "malformed JSON near byte 6 (line 3, column 5): data after the document (send one JSON object)" },
+        { " \n", 0, "malformed JSON near byte 2 (line 2, column 1): empty document: send one JSON object" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        size_t len = cases[i].len ? cases[i].len : strlen(cases[i].doc);
+        dp_spec s;
+        dp_errors e;
+        dp_spec_init(&s);
+        dp_errors_init(&e);
+        int st = dp_spec_parse(cases[i].doc, len, 0, &s, &e);
+        if (st != DP_ESYNTAX || e.n != 1 || strcmp(e.item[0].message, cases[i].message) != 0) {
+            print_error("case %zu: status %d for %s\n   expected: %s\n", i, st, cases[i].doc, cases[i].message);
+            print_errors(&e);
+        }
+        assert_int_equal(st, DP_ESYNTAX);
+        assert_int_equal(e.n, 1);
+        assert_string_equal(e.item[0].pointer, "");
+        assert_string_equal(e.item[0].message, cases[i].message);
+        dp_spec_clear(&s);
+    }
+}
+
+/* ---- one reader for every route ---------------------------------------------------------------------- */
+
+/* Every entry point that reads a body, the CLI's and the daemon's alike. */
+static int route(int k, const char *text, size_t len, dp_errors *e)
+{
+    dp_buf out = { 0 };
+    dp_spec s;
+    dp_wp_report rep;
+    dp_model m = { 0 };
+    int st;
+    dp_errors_init(e);
+    switch (k) {
+    case 0: dp_spec_init(&s); st = dp_spec_parse(text, len, 0, &s, e); dp_spec_clear(&s); break;
+    case 1: st = dp_stability_respond(text, len, DP_STABILITY_JSON, &out, e); break;
+    case 2: st = dp_lcp_respond(text, len, &out, e); break;
+    case 3: st = dp_modes_respond(text, len, &out, e); break;
+    case 4: st = dp_response_respond(text, len, DP_FORMAT_JSON, &out, e); break;
+    case 5: st = dp_wellposedness_parse(text, len, &rep, e); break;
+    default: st = dp_model_parse_lenient(text, len, &m, e); dp_model_clear(&m); break;
+    }
+    dp_buf_free(&out);
+    return st;
+}
+
+#define ROUTES 7
+static const char *const route_name[ROUTES] = { "simulate", "stability", "lcp", "modes", "response",
+                                                "wellposedness", "lenient model" };
+
+/* The same fault in a body gets the same status, pointer and words on every route: malformed JSON (one
+ * error), a non-object document, too deep a nesting, a NUL in a key, a repeated key at any depth. */
+static void test_same_words_on_every_route(void **state)
+{
+    (void)state;
+    static const struct { const char *doc; size_t len; int status; const char *pointer, *message; } cases[] = {
+        { "{\"model\": {\"mass\": NaN}}", 0, DP_ESYNTAX, "",
+          "malformed JSON near byte 19 (line 1, column 20): JSON has no NaN or Infinity; send a number or null" },
+        { "{\"M\": [[1]],\n \"q\": [1],}", 0, DP_ESYNTAX, "",
+          "malformed JSON near byte 22 (line 2, column 10): a trailing comma before }; remove it" },
+        { "{'mass': 1}", 0, DP_ESYNTAX, "",
+          "malformed JSON near byte 1 (line 1, column 2): JSON keys take double quotes, not single quotes" },
+        { "{\"model\": {}", 0, DP_ESYNTAX, "",
+          "malformed JSON near byte 12 (line 1, column 13): the document ends early: the { at line 1, column 1 "
+          "is never closed" },
+        { "", 0, DP_ESYNTAX, "", "malformed JSON near byte 0 (line 1, column 1): empty document: send one JSON object" },
+        { "[{\"model\": {}}]", 0, DP_EINVAL, "", "must be an object, got an array" },
+        { "{\"x\": {\"y\": [{\"z\": 1, \"z\": 2}]}}", 0, DP_EINVAL, "/x/y/0/z", "duplicate key \"z\"" },
+        { "{\"a/b\": 1, \"a/b\": 2}", 0, DP_EINVAL, "/a~1b", "duplicate key \"a/b\"" },
+        { "{\"k\\u0000ey\": 1}", 0, DP_EINVAL, "",
+          "a key of this object contains a NUL character (\\u0000), which no field may hold" },
+        { "{\"x\": [\"a\\u0000\"]}", 0, DP_EINVAL, "/x/0",
+          "this string contains a NUL character (\\u0000), which no field may hold" },
+    };
+    char deep[2 * (DP_JSON_MAX_DEPTH + 1) + 3];
+    memset(deep, '[', DP_JSON_MAX_DEPTH + 1);
+    memset(deep + DP_JSON_MAX_DEPTH + 1, ']', DP_JSON_MAX_DEPTH + 1);
+    deep[2 * (DP_JSON_MAX_DEPTH + 1)] = '\0';
+    for (size_t i = 0; i <= sizeof cases / sizeof cases[0]; i++) {
+        int last = i == sizeof cases / sizeof cases[0];
+        const char *doc = last ? deep : cases[i].doc;
+        const char *pointer = last ? "" : cases[i].pointer;
+        const char *message = last ? "malformed JSON near byte 64 (line 1, column 65): nested deeper than 64 levels"
+                                   : cases[i].message;
+        int status = last ? DP_ESYNTAX : cases[i].status;
+        for (int k = 0; k < ROUTES; k++) {
+            dp_errors e;
+            int st = route(k, doc, strlen(doc), &e);
+            if (st != status || !has_error(&e, pointer, message)) {
+                print_error("%s, %s: status %d, expected %d with \"%s\" at \"%s\"\n", route_name[k], doc, st,
+                            status, message, pointer);
+                print_errors(&e);
+            }
+            assert_int_equal(st, status);
+            assert_true(has_error(&e, pointer, message));
+            if (status == DP_ESYNTAX || !strcmp(message, "must be an object, got an array"))
+                assert_int_equal(e.n, 1);
+        }
+    }
+}
+
 /* Several independent mistakes are all reported, each at its own place. */
 static void test_multiple_errors(void **state)
 {
@@ -726,6 +879,8 @@ int main(void)
         cmocka_unit_test(test_regularized_fields),
         cmocka_unit_test(test_length_not_nul),
         cmocka_unit_test(test_depth_boundary),
+        cmocka_unit_test(test_malformed_where_and_why),
+        cmocka_unit_test(test_same_words_on_every_route),
         cmocka_unit_test(test_multiple_errors),
     };
     size_t nf = sizeof fixed / sizeof fixed[0], nr = sizeof rows / sizeof rows[0];

@@ -244,7 +244,7 @@ static int encode_event(dp_encoder *e, dp_buf *b, const dp_event *ev)
 }
 
 
-/* ---- rows: named groups of numbers over the run's columns (dp_columns, systems.md §1) --------------- */
+/* ---- rows: named groups of numbers over the run's columns (dp_columns, docs/systems.md §1) ---------- */
 
 /* Bytes a row may take: every number at most 25 characters plus a separator, a phase word, the keys and
  * framing, and DP_DECIMAL_MAX of scribble room after the last number. */

@@ -1,8 +1,9 @@
-/* src/json/lcp_json.c - POST /v1/lcp and `dashpot lcp`: one LCP w = Mz + q, 0 <= z ⊥ w >= 0 read from JSON,
- * solved by Lemke's method, every solution of a small one enumerated, and what seed 002's theory says
- * (Lemma 2.5, Theorem 2.3: µ = λ_min((M + Mᵀ)/2) > 0 gives one solution, Lipschitz in q with constant 1/µ;
- * a P-matrix gives one solution for every q). Why enumerate: for a general M Lemke finds one solution or
- * none, and the user asked about the problem, not about the algorithm (Example 2.4 with a < 0 has two).
+/* src/json/lcp_json.c - POST /v1/lcp and `dashpot lcp`: one LCP w = Mz + q, 0 <= z ⊥ w >= 0 read from JSON
+ * (with the body reader and the walker of every route, body.h and walk.h), solved by Lemke's method, every
+ * solution of a small one enumerated, and what Cibulka 2016's theory says (Lemma 2.5, Theorem 2.3:
+ * µ = λ_min((M + Mᵀ)/2) > 0 gives one solution, Lipschitz in q with constant 1/µ; a P-matrix gives one
+ * solution for every q). Why enumerate: for a general M Lemke finds one solution or none, and the user asked
+ * about the problem, not about the algorithm (Example 2.4 with a < 0 has two).
  */
 #include <math.h>
 #include <stdio.h>
@@ -15,147 +16,87 @@
 #include "dashpot/lcp.h"
 #include "dashpot/lcp_json.h"
 #include "dashpot/lcs.h"
+#include "walk.h"
 
-static const char *type_name(const cJSON *v)
-{
-    return v == NULL ? "nothing" : cJSON_IsNumber(v) ? "a number" : cJSON_IsString(v) ? "a string" :
-           cJSON_IsArray(v) ? "an array" : cJSON_IsObject(v) ? "an object" : cJSON_IsBool(v) ? "a boolean" : "null";
-}
-
-/* The document, or NULL with the error; nesting is bounded before cJSON recurses (an LCP needs 3 levels). */
-static cJSON *parse_doc(const char *text, size_t len, dp_errors *e, int *nomem)
-{
-    int depth = 0, in_string = 0;
-    for (size_t i = 0; i < len; i++) {
-        char ch = text[i];
-        if (in_string) {
-            if (ch == '\\')
-                i++; /* the escaped character cannot end the string */
-            else if (ch == '"')
-                in_string = 0;
-        } else if (ch == '"')
-            in_string = 1;
-        else if ((ch == '[' || ch == '{') && ++depth > DP_JSON_MAX_DEPTH) {
-            dp_errors_add(e, "", "malformed JSON near byte %zu: nested deeper than %d levels", i, DP_JSON_MAX_DEPTH);
-            return NULL;
-        } else if ((ch == ']' || ch == '}') && depth > 0)
-            depth--;
-    }
-    char *buf = malloc(len + 1);
-    if (buf == NULL) {
-        *nomem = 1;
-        return NULL;
-    }
-    memcpy(buf, text, len);
-    buf[len] = '\0';
-    const char *end = NULL;
-    cJSON *root = cJSON_ParseWithLengthOpts(buf, len, &end, 0);
-    if (root != NULL && end[strspn(end, " \t\r\n")] != '\0') {
-        cJSON_Delete(root);
-        root = NULL;
-    }
-    if (root == NULL)
-        dp_errors_add(e, "", "malformed JSON near byte %zu%s", end ? (size_t)(end - buf) : 0,
-                      len == 0 ? " (empty document)" : "");
-    free(buf);
-    return root;
-}
-
-/* A finite number at pointer p into *out; 0 (with the error) otherwise. */
-static int number_at(const cJSON *x, const char *p, double *out, dp_errors *e)
-{
-    if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble)) {
-        dp_errors_add(e, p, "must be a finite number, got %s", type_name(x));
-        return 0;
-    }
-    *out = x->valuedouble;
-    return 1;
-}
-
-/* M: a square array of m rows of m numbers, 1 <= m <= DP_LCP_MAX. NULL on error (added to e). */
-static gsl_matrix *read_matrix(const cJSON *a, dp_errors *e, int *nomem)
+/* M: a square array of m rows of m finite numbers, 1 <= m <= DP_LCP_MAX. NULL on error. */
+static gsl_matrix *read_matrix(ctx *c, const cJSON *a, const at *pm)
 {
     size_t m = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
     if (m == 0 || m > DP_LCP_MAX) {
-        dp_errors_add(e, "/M", "must be a square matrix: an array of 1 to %d rows, got %s", DP_LCP_MAX,
-                      cJSON_IsArray(a) ? (m ? "more rows" : "no rows") : type_name(a));
+        jw_fail(c, pm, "must be a square matrix: an array of 1 to %d rows, got %s", DP_LCP_MAX,
+                cJSON_IsArray(a) ? (m ? "more rows" : "no rows") : jw_type_name(a));
         return NULL;
     }
     gsl_matrix *M = gsl_matrix_alloc(m, m);
     if (M == NULL) {
-        *nomem = 1;
+        c->nomem = 1;
         return NULL;
     }
-    size_t i = 0, bad = 0;
-    char p[DP_POINTER_MAX];
+    size_t i = 0, before = c->nerr;
     for (const cJSON *r = a->child; r; r = r->next, i++) {
+        const at pr = { pm, NULL, i };
         if (!cJSON_IsArray(r) || (size_t)cJSON_GetArraySize(r) != m) {
-            snprintf(p, sizeof p, "/M/%zu", i);
-            dp_errors_add(e, p, "must be a row of %zu numbers (M is square: %zu rows)", m, m);
-            bad++;
+            jw_fail(c, &pr, "must be a row of %zu numbers (M is square: %zu rows)", m, m);
             continue;
         }
         size_t j = 0;
         for (const cJSON *x = r->child; x; x = x->next, j++) {
-            snprintf(p, sizeof p, "/M/%zu/%zu", i, j);
-            bad += !number_at(x, p, M->data + i * m + j, e);
+            const at px = { &pr, NULL, j };
+            jw_check_num(c, x, &px, &ANY, 0, M->data + i * m + j);
         }
     }
-    if (bad) {
+    if (c->nerr > before) {
         gsl_matrix_free(M);
         return NULL;
     }
     return M;
 }
 
-static gsl_vector *read_vector(const cJSON *a, size_t m, dp_errors *e, int *nomem)
+/* q: m finite numbers. NULL on error. */
+static gsl_vector *read_vector(ctx *c, const cJSON *a, const at *pq, size_t m)
 {
     if (!cJSON_IsArray(a) || (size_t)cJSON_GetArraySize(a) != m) {
-        dp_errors_add(e, "/q", "must be an array of %zu numbers (one per row of M), got %s", m,
-                      cJSON_IsArray(a) ? "another length" : type_name(a));
+        jw_fail(c, pq, "must be an array of %zu numbers (one per row of M), got %s", m,
+                cJSON_IsArray(a) ? "another length" : jw_type_name(a));
         return NULL;
     }
     gsl_vector *q = gsl_vector_alloc(m);
     if (q == NULL) {
-        *nomem = 1;
+        c->nomem = 1;
         return NULL;
     }
-    size_t i = 0, bad = 0;
-    char p[DP_POINTER_MAX];
+    size_t i = 0, before = c->nerr;
     for (const cJSON *x = a->child; x; x = x->next, i++) {
-        snprintf(p, sizeof p, "/q/%zu", i);
-        bad += !number_at(x, p, q->data + i, e);
+        const at px = { pq, NULL, i };
+        jw_check_num(c, x, &px, &ANY, 0, q->data + i);
     }
-    if (bad) {
+    if (c->nerr > before) {
         gsl_vector_free(q);
         return NULL;
     }
     return q;
 }
 
+/* {"M": [[...]], "q": [...]}, read and walked as every route's body (body.h, walk.h). */
 static int read_request(const char *body, size_t len, gsl_matrix **M, gsl_vector **q, dp_errors *e)
 {
-    int nomem = 0;
-    cJSON *doc = parse_doc(body, len, e, &nomem);
+    static const char *const keys[] = { "M", "q", NULL };
+    ctx c = { e, 0, 0, 0 };
+    int read;
+    cJSON *doc = jw_read(&c, body, len, &read);
     if (doc == NULL)
-        return nomem ? DP_ENOMEM : DP_ESYNTAX;
-    if (!cJSON_IsObject(doc))
-        dp_errors_add(e, "", "must be an object {\"M\": [[...]], \"q\": [...]}");
-    else {
-        for (const cJSON *k = doc->child; k; k = k->next)
-            if (strcmp(k->string, "M") != 0 && strcmp(k->string, "q") != 0)
-                dp_errors_add(e, "", "unknown key \"%.60s\"; expected M, q", k->string);
-        const cJSON *a = cJSON_GetObjectItemCaseSensitive(doc, "M");
-        *M = read_matrix(a, e, &nomem);
-        if (*M)
-            *q = read_vector(cJSON_GetObjectItemCaseSensitive(doc, "q"), (*M)->size1, e, &nomem);
-        else if (cJSON_GetObjectItemCaseSensitive(doc, "q") == NULL)
-            dp_errors_add(e, "/q", "missing required key \"q\" (an array of numbers)");
-    }
+        return read;
+    jw_check_keys(&c, doc, NULL, keys, NULL, NULL);
+    at pm, pq;
+    const cJSON *a = jw_member(&c, doc, NULL, "M", "a square matrix: an array of rows of numbers", &pm);
+    *M = a ? read_matrix(&c, a, &pm) : NULL;
+    const cJSON *b = jw_member(&c, doc, NULL, "q", "an array of numbers, one per row of M", &pq);
+    if (*M && b)
+        *q = read_vector(&c, b, &pq, (*M)->size1);
     cJSON_Delete(doc);
-    if (nomem)
+    if (c.nomem)
         return DP_ENOMEM;
-    return e->n + e->dropped > 0 ? DP_EINVAL : DP_OK;
+    return c.nerr > 0 ? DP_EINVAL : DP_OK;
 }
 
 /* ---- writing ---------------------------------------------------------------------------------------- */
@@ -222,7 +163,7 @@ static int put_theory(dp_buf *b, const dp_lcp_theory *t, size_t m)
 static void verdict(char *v, size_t cap, const dp_lcp_theory *t, const dp_lcp_solutions *s, int enumerated,
                     const dp_lcp_result *r)
 {
-    const char *why = t->pd_symmetric ? "positive definite symmetric part (seed 002 Lemma 2.5, Theorem 2.3)"
+    const char *why = t->pd_symmetric ? "positive definite symmetric part (Cibulka 2014, Lemma 2.5, Theorem 2.3)"
                       : t->p_matrix == 1 ? "M is a P-matrix" : NULL;
     if (why)
         snprintf(v, cap, "exactly one solution: %s", why);
@@ -322,7 +263,7 @@ static int put_matrix_theory(dp_buf *b, const char *key, const gsl_matrix *M)
         s = (i ? put(b, ",") : DP_OK) || put_vec(b, M->data + i * M->tda, M->size2);
     s = s || put(b, "]");
     s = s || put_theory(b, &t, M->size1);
-    const char *u = t.pd_symmetric ? "one u per step: positive definite symmetric part (seed 002 Lemma 2.5, Theorem 2.3)"
+    const char *u = t.pd_symmetric ? "one u per step: positive definite symmetric part (Cibulka 2014, Lemma 2.5, Theorem 2.3)"
                   : t.p_matrix == 1 ? "one u per step: a P-matrix"
                   : "uniqueness of u not guaranteed: Lemke's solution is taken when there are several";
     return s || put(b, ",\"uniqueness\":") || dp_json_quote(b, u) || put(b, "}");

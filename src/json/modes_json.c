@@ -2,14 +2,13 @@
  * dense M, K, C (dp_network_linear_parts, so the linear analysis sees exactly the network the solvers see),
  * the options of a linear analysis, and the answers as JSON, NDJSON or CSV.
  *
- * Why this file reads the model itself: a linear analysis needs only each element's ends, its linear
- * spring k and viscous c, and whether anything else is on it (then it is left out and listed). Those are
- * filled into a dp_network as the network parser would, so dp_network_linear_parts and
- * dp_network_nonlinear_elements decide what is linear; the nonlinear laws' own parameters are not checked
- * here (a simulation of the same document checks them).
+ * The model is read by the network parser of a simulation (network_json.c, with the body reader and the
+ * walker of every route), so a document is accepted or refused here as /v1/simulate would take its model,
+ * in the same words; dp_network_linear_parts and dp_network_nonlinear_elements then decide what is linear.
+ * What else a linear analysis needs (Rayleigh damping, the nodes and the frequency range of a response) is
+ * read here with the same walker.
  */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,22 +18,12 @@
 #include "dashpot/json.h"
 #include "dashpot/modes.h"
 #include "dashpot/modes_json.h"
-#include "json_read.h"
 #include "dashpot/network.h"
-
-/* A JSON Pointer into out[DP_POINTER_MAX], cut short if ever longer (ours are not). */
-static void ptrf(char *out, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-
-static void ptrf(char *out, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(out, DP_POINTER_MAX, fmt, ap);
-    va_end(ap);
-}
+#include "spec_parts.h"
 
 typedef struct request {
-    dp_network net;
+    dp_spec spec;                    /* the network, read as a simulation reads it (spec.net) */
+    const dp_network *net;
     double *M, *K, *C;
     const char *pM, *pK, *pC;        /* where a bad matrix came from */
     double alpha, beta;              /* Rayleigh damping added to C */
@@ -46,11 +35,7 @@ typedef struct request {
 
 static void request_clear(request *r)
 {
-    free(r->net.mass);
-    free(r->net.M);
-    free(r->net.K);
-    free(r->net.C);
-    free(r->net.el);
+    dp_spec_clear(&r->spec);
     free(r->M);
     free(r->K);
     free(r->C);
@@ -58,362 +43,129 @@ static void request_clear(request *r)
 
 /* ---- reading ---------------------------------------------------------------------------------------- */
 
-static const char *type_name(const cJSON *v)
+/* "model": a network, parsed by the network parser of a simulation (network_json.c); the few rules of a
+ * linear analysis on top: at most DP_MODES_MAX_NODES nodes, no element joining an end to itself. */
+static void parse_model(ctx *c, const cJSON *doc, request *r)
 {
-    return v == NULL ? "nothing" : cJSON_IsNumber(v) ? "a number" : cJSON_IsString(v) ? "a string" :
-           cJSON_IsArray(v) ? "an array" : cJSON_IsObject(v) ? "an object" : cJSON_IsBool(v) ? "a boolean" : "null";
-}
-
-/* Unknown or repeated members of o are errors. */
-static void check_keys(const cJSON *o, const char *ptr, const char *const *keys, const char *list, dp_errors *e)
-{
-    for (const cJSON *m = o->child; m; m = m->next) {
-        int known = 0;
-        for (const char *const *k = keys; *k; k++)
-            known |= strcmp(*k, m->string) == 0;
-        int repeated = 0;
-        for (const cJSON *q = o->child; q != m; q = q->next)
-            repeated |= strcmp(q->string, m->string) == 0;
-        if (!known)
-            dp_errors_add(e, ptr, "unknown key \"%.60s\"; expected one of: %s", m->string, list);
-        else if (repeated)
-            dp_errors_add(e, ptr, "duplicate key \"%.60s\"", m->string);
-    }
-}
-
-/* A finite number in [lo, hi]; `*out` is left alone when absent and not required. 1 when usable. */
-static int get_number(const cJSON *o, const char *ptr, const char *key, double lo, double hi, int required,
-                      double *out, dp_errors *e)
-{
-    char p[DP_POINTER_MAX];
-    ptrf(p, "%s/%s", ptr, key);
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
-    if (v == NULL) {
-        if (required)
-            dp_errors_add(e, p, "missing required key \"%s\" (a finite number in [%g, %g])", key, lo, hi);
-        return !required;
-    }
-    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble) || v->valuedouble < lo || v->valuedouble > hi) {
-        dp_errors_add(e, p, "must be a finite number in [%g, %g], got %s", lo, hi,
-                      cJSON_IsNumber(v) ? "a number outside it" : type_name(v));
-        return 0;
-    }
-    *out = v->valuedouble;
-    return 1;
-}
-
-static int get_index(const cJSON *o, const char *ptr, const char *key, size_t n, long *out, dp_errors *e)
-{
-    double x = -1;
-    if (!get_number(o, ptr, key, 0, n > 0 ? (double)n - 1 : 0, 1, &x, e))
-        return 0;
-    if (x != floor(x)) {
-        dp_errors_add(e, ptr, "\"%s\" must be a node index (an integer in [0, %zu])", key, n - 1);
-        return 0;
-    }
-    *out = (long)x;
-    return 1;
-}
-
-/* o[key] as an n x n matrix (n from the masses, or *n == 0: from this matrix). NULL when absent. */
-static double *get_matrix(const cJSON *o, const char *ptr, const char *key, size_t *n, dp_errors *e)
-{
-    char p[DP_POINTER_MAX], q[DP_POINTER_MAX];
-    ptrf(p, "%s/%s", ptr, key);
-    const cJSON *a = cJSON_GetObjectItemCaseSensitive(o, key);
-    if (a == NULL)
-        return NULL;
-    size_t rows = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
-    size_t want = *n ? *n : rows;
-    if (!cJSON_IsArray(a) || rows == 0 || rows != want || rows > DP_NETWORK_MAX_MATRIX_NODES) {
-        dp_errors_add(e, p, "must be an array of %zu rows (a square matrix of at most %d nodes), got %s%s", want,
-                      DP_NETWORK_MAX_MATRIX_NODES, cJSON_IsArray(a) ? "" : type_name(a),
-                      cJSON_IsArray(a) ? "another number of rows" : "");
-        return NULL;
-    }
-    double *A = malloc(rows * rows * sizeof *A);
-    if (A == NULL)
-        return NULL;
-    size_t i = 0, bad = 0;
-    for (const cJSON *r = a->child; r; r = r->next, i++) {
-        ptrf(q, "%s/%zu", p, i);
-        if (!cJSON_IsArray(r) || (size_t)cJSON_GetArraySize(r) != rows) {
-            dp_errors_add(e, q, "must be a row of %zu numbers", rows);
-            bad++;
-            continue;
-        }
-        size_t j = 0;
-        for (const cJSON *x = r->child; x; x = x->next, j++) {
-            if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble)) {
-                ptrf(q, "%s/%zu/%zu", p, i, j);
-                dp_errors_add(e, q, "must be a finite number, got %s", type_name(x));
-                bad++;
-            } else
-                A[i * rows + j] = x->valuedouble;
-        }
-    }
-    if (bad) {
-        free(A);
-        return NULL;
-    }
-    *n = rows;
-    return A;
-}
-
-/* One end of an element: "ground" or a node index. */
-static int get_end(const cJSON *v, const char *p, size_t n, long *end, dp_errors *e)
-{
-    if (cJSON_IsString(v) && strcmp(v->valuestring, "ground") == 0) {
-        *end = DP_GROUND;
-        return 1;
-    }
-    if (cJSON_IsNumber(v) && v->valuedouble >= 0 && v->valuedouble < (double)n && v->valuedouble == floor(v->valuedouble)) {
-        *end = (long)v->valuedouble;
-        return 1;
-    }
-    dp_errors_add(e, p, "must be \"ground\" or a node index in [0, %zu]", n - 1);
-    return 0;
-}
-
-static const char *law_of(const cJSON *o, const char *p, const char *const *laws, const char *list, dp_errors *e,
-                          int *id)
-{
-    const cJSON *l = cJSON_GetObjectItemCaseSensitive(o, "law");
-    for (int i = 0; laws[i] && cJSON_IsString(l); i++)
-        if (strcmp(l->valuestring, laws[i]) == 0) {
-            *id = i;
-            return laws[i];
-        }
-    char q[DP_POINTER_MAX];
-    ptrf(q, "%s/law", p);
-    dp_errors_add(e, q, "must be one of: %s", list);
-    return NULL;
-}
-
-/* The law table's names (dashpot/model.h), NULL-terminated, as the list "a, b, c". */
-static void law_list(const char *const *names, char *list, size_t cap)
-{
-    size_t len = 0;
-    list[0] = '\0';
-    for (size_t i = 0; names[i]; i++)
-        len += (size_t)snprintf(list + len, len < cap ? cap - len : 0, "%s%s", i ? ", " : "", names[i]);
-}
-
-/* The spring and damper of an element: what is linear in them, and a law that marks the rest. */
-static void parse_laws(const cJSON *el, const char *p, dp_element *x, dp_errors *e)
-{
-    const char *springs[DP_SPRING_LAW_COUNT + 1], *dampers[DP_DAMPER_LAW_COUNT + 1];
-    char slist[256], dlist[256];
-    for (size_t i = 0; i <= DP_SPRING_LAW_COUNT; i++)
-        springs[i] = i < DP_SPRING_LAW_COUNT ? dp_spring_laws[i].row.name : NULL;
-    for (size_t i = 0; i <= DP_DAMPER_LAW_COUNT; i++)
-        dampers[i] = i < DP_DAMPER_LAW_COUNT ? dp_damper_laws[i].row.name : NULL;
-    law_list(springs, slist, sizeof slist);
-    law_list(dampers, dlist, sizeof dlist);
-    char q[DP_POINTER_MAX];
-    const cJSON *s = cJSON_GetObjectItemCaseSensitive(el, "spring"), *d = cJSON_GetObjectItemCaseSensitive(el, "damper");
-    int id;
-    ptrf(q, "%s/spring", p);
-    if (s && (!cJSON_IsObject(s) ? (dp_errors_add(e, q, "must be an object"), 0) : 1) &&
-        law_of(s, q, springs, slist, e, &id)) {
-        int linear = dp_spring_laws[id].linear;
-        x->has_spring = 1;
-        x->spring.law = linear ? (dp_spring_law)id : DP_SPRING_GRAPH; /* anything but linear is left out */
-        if (linear)
-            get_number(s, q, "k", 0, INFINITY, 1, &x->spring.k, e);
-    }
-    ptrf(q, "%s/damper", p);
-    if (d && (!cJSON_IsObject(d) ? (dp_errors_add(e, q, "must be an object"), 0) : 1) &&
-        law_of(d, q, dampers, dlist, e, &id)) {
-        const dp_damper_law_info *L = &dp_damper_laws[id];
-        x->has_damper = 1;
-        x->damper.law = (dp_damper_law)id;
-        if (L->viscous) /* linear and Bingham: their viscous c is linear */
-            get_number(d, q, dp_law_member_key(&L->row, L->viscous), 0, INFINITY, 1, &x->damper.c, e);
-        const cJSON *relax = cJSON_GetObjectItemCaseSensitive(d, "relaxation");
-        if (relax && !cJSON_IsNull(relax))
-            x->damper.relaxation.kind = DP_RELAX_RATIONAL; /* left out: only its presence matters here */
-    }
-    if (cJSON_GetObjectItemCaseSensitive(el, "contact"))
-        x->has_spring = 1, x->spring.law = DP_SPRING_GRAPH; /* a contact is set-valued: left out */
-}
-
-static void parse_elements(const cJSON *model, request *r, dp_errors *e)
-{
-    static const char *const keys[] = { "between", "spring", "damper", "contact", NULL };
-    const cJSON *a = cJSON_GetObjectItemCaseSensitive(model, "elements");
-    if (a == NULL)
+    at pm;
+    const cJSON *model = jw_member(c, doc, NULL, "model", "a network", &pm);
+    if (model == NULL || !jw_want_object(c, model, &pm))
         return;
-    size_t n = r->net.n, m = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
-    if (!cJSON_IsArray(a) || m > DP_NETWORK_MAX_ELEMENTS) {
-        dp_errors_add(e, "/model/elements", "must be an array of at most %d elements", DP_NETWORK_MAX_ELEMENTS);
+    if (!js_is_network(model)) {
+        jw_fail(c, &pm, "needs exactly one of \"masses\" (a list) and \"mass_matrix\"");
         return;
     }
-    r->net.el = calloc(m ? m : 1, sizeof *r->net.el);
-    if (r->net.el == NULL)
+    size_t before = c->nerr;
+    js_parse_network(c, model, &pm, &r->spec);
+    const dp_network *net = r->net = r->spec.net;
+    if (net == NULL || net->n == 0)
         return;
-    size_t i = 0;
-    char p[DP_POINTER_MAX], q[DP_POINTER_MAX];
-    for (const cJSON *el = a->child; el; el = el->next, i++) {
-        ptrf(p, "/model/elements/%zu", i);
-        dp_element *x = &r->net.el[r->net.nel++];
-        if (!cJSON_IsObject(el)) {
-            dp_errors_add(e, p, "must be an object with \"between\" and a spring, damper or contact");
-            continue;
-        }
-        check_keys(el, p, keys, "between, spring, damper, contact", e);
-        const cJSON *b = cJSON_GetObjectItemCaseSensitive(el, "between");
-        ptrf(q, "%s/between", p);
-        if (!cJSON_IsArray(b) || cJSON_GetArraySize(b) != 2)
-            dp_errors_add(e, q, "must be a pair [a, b] of node indices or \"ground\"");
-        else {
-            char q0[DP_POINTER_MAX], q1[DP_POINTER_MAX];
-            ptrf(q0, "%s/0", q);
-            ptrf(q1, "%s/1", q);
-            if (get_end(b->child, q0, n, &x->a, e) & get_end(b->child->next, q1, n, &x->b, e) && x->a == x->b)
-                dp_errors_add(e, q, "joins an end to itself");
-        }
-        if (!cJSON_GetObjectItemCaseSensitive(el, "spring") && !cJSON_GetObjectItemCaseSensitive(el, "damper") &&
-            !cJSON_GetObjectItemCaseSensitive(el, "contact"))
-            dp_errors_add(e, p, "needs at least one of \"spring\", \"damper\", \"contact\"");
-        parse_laws(el, p, x, e);
+    int has_masses = cJSON_GetObjectItemCaseSensitive(model, "masses") != NULL;
+    r->pM = has_masses ? "/model/masses" : "/model/mass_matrix";
+    if (net->n > DP_MODES_MAX_NODES) {
+        const at p = { &pm, "masses", 0 };
+        jw_fail(c, &p, "a linear analysis takes at most %d nodes, got %zu", DP_MODES_MAX_NODES, net->n);
     }
+    for (size_t i = 0; i < net->nel && c->nerr == before; i++)
+        if (net->el[i].a == net->el[i].b) {
+            const at pe = { &pm, "elements", 0 }, pi = { &pe, NULL, i }, pb = { &pi, "between", 0 };
+            jw_fail(c, &pb, "joins an end to itself");
+        }
+    int els = net->nel > 0;
+    r->pK = net->K ? "/model/stiffness_matrix" : els ? "/model/elements" : "/model";
+    r->pC = net->C ? "/model/damping_matrix" : els ? "/model/elements" : "/damping/rayleigh";
 }
 
-static void parse_model(const cJSON *doc, request *r, dp_errors *e)
-{
-    static const char *const keys[] = { "masses", "mass_matrix", "stiffness_matrix", "damping_matrix", "elements",
-                                        "forcing", NULL };
-    const cJSON *model = cJSON_GetObjectItemCaseSensitive(doc, "model");
-    if (!cJSON_IsObject(model)) {
-        dp_errors_add(e, "/model", model ? "must be an object" : "missing required key \"model\" (a network)");
-        return;
-    }
-    check_keys(model, "/model", keys, "masses, mass_matrix, stiffness_matrix, damping_matrix, elements, forcing", e);
-    const cJSON *ms = cJSON_GetObjectItemCaseSensitive(model, "masses");
-    int has_mm = cJSON_GetObjectItemCaseSensitive(model, "mass_matrix") != NULL;
-    if ((ms != NULL) == has_mm) {
-        dp_errors_add(e, "/model", "needs exactly one of \"masses\" (a list) and \"mass_matrix\"");
-        return;
-    }
-    size_t n = 0;
-    r->pM = ms ? "/model/masses" : "/model/mass_matrix";
-    if (ms) {
-        n = cJSON_IsArray(ms) ? (size_t)cJSON_GetArraySize(ms) : 0;
-        if (n == 0 || n > DP_MODES_MAX_NODES) {
-            dp_errors_add(e, r->pM, "must be an array of 1 to %d masses", DP_MODES_MAX_NODES);
-            return;
-        }
-        r->net.mass = malloc(n * sizeof *r->net.mass);
-        size_t i = 0;
-        for (const cJSON *x = ms->child; x && r->net.mass; x = x->next, i++) {
-            char p[DP_POINTER_MAX];
-            ptrf(p, "/model/masses/%zu", i);
-            if (!cJSON_IsNumber(x) || !isfinite(x->valuedouble) || x->valuedouble <= 0)
-                dp_errors_add(e, p, "must be a finite number > 0");
-            else
-                r->net.mass[i] = x->valuedouble;
-        }
-    } else if ((r->net.M = get_matrix(model, "/model", "mass_matrix", &n, e)) == NULL)
-        return;
-    r->net.n = n;
-    r->net.K = get_matrix(model, "/model", "stiffness_matrix", &n, e);
-    r->net.C = get_matrix(model, "/model", "damping_matrix", &n, e);
-    parse_elements(model, r, e);
-    const cJSON *f = cJSON_GetObjectItemCaseSensitive(model, "forcing");
-    if (f && !cJSON_IsArray(f))
-        dp_errors_add(e, "/model/forcing", "must be an array (a linear analysis does not use it)");
-    int els = r->net.nel > 0;
-    r->pK = r->net.K ? "/model/stiffness_matrix" : els ? "/model/elements" : "/model";
-    r->pC = r->net.C ? "/model/damping_matrix" : els ? "/model/elements" : "/damping/rayleigh";
-}
+static const range RAYLEIGH = { 0, 1e12, 0, " in [0, 1e12]" };
 
-static void parse_damping(const cJSON *doc, request *r, dp_errors *e)
+static void parse_rayleigh(ctx *c, const cJSON *doc, request *r)
 {
     static const char *const keys[] = { "rayleigh", NULL }, *const rk[] = { "alpha", "beta", NULL };
-    const cJSON *d = cJSON_GetObjectItemCaseSensitive(doc, "damping");
-    if (d == NULL)
+    at pd, pr;
+    const cJSON *d = jw_member(c, doc, NULL, "damping", NULL, &pd);
+    if (d == NULL || !jw_want_object(c, d, &pd))
         return;
-    if (!cJSON_IsObject(d)) {
-        dp_errors_add(e, "/damping", "must be an object {\"rayleigh\": {\"alpha\", \"beta\"}}");
+    jw_check_keys(c, d, &pd, keys, NULL, NULL);
+    const cJSON *ray = jw_member(c, d, &pd, "rayleigh", "an object {\"alpha\": a, \"beta\": b}", &pr);
+    if (ray == NULL || !jw_want_object(c, ray, &pr))
         return;
-    }
-    check_keys(d, "/damping", keys, "rayleigh", e);
-    const cJSON *ray = cJSON_GetObjectItemCaseSensitive(d, "rayleigh");
-    if (!cJSON_IsObject(ray)) {
-        dp_errors_add(e, "/damping/rayleigh", "must be an object {\"alpha\": a, \"beta\": b}");
-        return;
-    }
-    check_keys(ray, "/damping/rayleigh", rk, "alpha, beta", e);
-    get_number(ray, "/damping/rayleigh", "alpha", 0, 1e12, 0, &r->alpha, e);
-    get_number(ray, "/damping/rayleigh", "beta", 0, 1e12, 0, &r->beta, e);
+    jw_check_keys(c, ray, &pr, rk, NULL, NULL);
+    jw_get_num(c, ray, &pr, "alpha", &RAYLEIGH, 0, 0, &r->alpha);
+    jw_get_num(c, ray, &pr, "beta", &RAYLEIGH, 0, 0, &r->beta);
 }
 
-static void parse_range(const cJSON *doc, request *r, dp_errors *e)
+/* force_node, response_node: node indices of the network. */
+static void parse_nodes(ctx *c, const cJSON *doc, request *r)
+{
+    char text[48];
+    snprintf(text, sizeof text, " in [0, %zu]", r->net->n - 1);
+    const range node = { 0, (double)r->net->n - 1, 0, text };
+    double x;
+    if (jw_get_num(c, doc, NULL, "force_node", &node, 1, 1, &x))
+        r->force_node = (long)x;
+    if (jw_get_num(c, doc, NULL, "response_node", &node, 1, 1, &x))
+        r->response_node = (long)x;
+}
+
+static const range OMEGA = { 0, 1e15, 0, " in [0, 1e15]" };
+static const range POINTS = { 1, DP_RESPONSE_MAX_POINTS, 0, " in [1, 100000]" };
+
+static void parse_range(ctx *c, const cJSON *doc, request *r)
 {
     static const char *const keys[] = { "from", "to", "points", "spacing", NULL };
-    const cJSON *o = cJSON_GetObjectItemCaseSensitive(doc, "omega");
-    if (!cJSON_IsObject(o)) {
-        dp_errors_add(e, "/omega", o ? "must be an object {\"from\", \"to\", \"points\"}"
-                                     : "missing required key \"omega\" ({\"from\", \"to\", \"points\"} in rad/s)");
+    static const char *const spacings[] = { "linear", "log", NULL };
+    at po;
+    const cJSON *o = jw_member(c, doc, NULL, "omega", "{\"from\", \"to\", \"points\"} in rad/s", &po);
+    if (o == NULL || !jw_want_object(c, o, &po))
         return;
-    }
-    check_keys(o, "/omega", keys, "from, to, points, spacing", e);
+    jw_check_keys(c, o, &po, keys, NULL, NULL);
     double pts = 0;
-    int ok = get_number(o, "/omega", "from", 0, 1e15, 1, &r->from, e);
-    ok &= get_number(o, "/omega", "to", 0, 1e15, 1, &r->to, e);
-    if (get_number(o, "/omega", "points", 1, DP_RESPONSE_MAX_POINTS, 1, &pts, e)) {
-        if (pts != floor(pts))
-            dp_errors_add(e, "/omega/points", "must be an integer in [1, %d]", DP_RESPONSE_MAX_POINTS);
+    int ok = jw_get_num(c, o, &po, "from", &OMEGA, 1, 0, &r->from);
+    ok &= jw_get_num(c, o, &po, "to", &OMEGA, 1, 0, &r->to);
+    if (jw_get_num(c, o, &po, "points", &POINTS, 1, 1, &pts))
         r->points = (long)pts;
-    }
-    const cJSON *sp = cJSON_GetObjectItemCaseSensitive(o, "spacing");
-    if (sp && !(cJSON_IsString(sp) && (strcmp(sp->valuestring, "linear") == 0 || strcmp(sp->valuestring, "log") == 0)))
-        dp_errors_add(e, "/omega/spacing", "must be \"linear\" or \"log\"");
-    r->log_spacing = sp && cJSON_IsString(sp) && strcmp(sp->valuestring, "log") == 0;
+    r->log_spacing = jw_get_enum(c, o, &po, "spacing", spacings, 0) == 1;
+    const at pto = { &po, "to", 0 }, pfrom = { &po, "from", 0 };
     if (ok && r->to < r->from)
-        dp_errors_add(e, "/omega/to", "the range is reversed: to = %g is below from = %g", r->to, r->from);
+        jw_fail(c, &pto, "the range is reversed: to = %g is below from = %g", r->to, r->from);
     else if (ok && r->to == r->from && r->points > 1)
-        dp_errors_add(e, "/omega/to", "the range is empty (from = to) but %ld points were asked for", r->points);
+        jw_fail(c, &pto, "the range is empty (from = to) but %ld points were asked for", r->points);
     if (ok && r->log_spacing && r->from <= 0)
-        dp_errors_add(e, "/omega/from", "must be > 0 with \"spacing\": \"log\"");
+        jw_fail(c, &pfrom, "must be > 0 with \"spacing\": \"log\"");
 }
 
-
-/* The whole request; M, K, C assembled when there are no field errors. */
+/* The whole request, read and walked as every route's body (body.h, walk.h); M, K, C assembled when there
+ * are no field errors. */
 static int parse_request(const char *body, size_t len, int response, request *r, dp_errors *e)
 {
     static const char *const keys[] = { "model", "damping", "force_node", "response_node", "omega", "initial",
                                         "solver", "output", NULL };
     memset(r, 0, sizeof *r);
-    int nomem = 0;
-    cJSON *doc = dp_json_read(body, len, e, &nomem);
+    dp_spec_init(&r->spec);
+    ctx c = { e, 0, 0, 0 };
+    int read;
+    cJSON *doc = jw_read(&c, body, len, &read);
     if (doc == NULL)
-        return nomem ? DP_ENOMEM : DP_ESYNTAX;
-    size_t before = e->n + e->dropped;
-    dp_json_refuse_nul(e, body, len);
-    if (!cJSON_IsObject(doc))
-        dp_errors_add(e, "", "must be an object {\"model\": ...}");
-    else {
-        check_keys(doc, "", keys, "model, damping, force_node, response_node, omega (initial, solver, output ignored)", e);
-        parse_model(doc, r, e);
-        parse_damping(doc, r, e);
-        if (response && r->net.n > 0) {
-            get_index(doc, "", "force_node", r->net.n, &r->force_node, e);
-            get_index(doc, "", "response_node", r->net.n, &r->response_node, e);
-            parse_range(doc, r, e);
-        }
+        return read;
+    jw_check_keys(&c, doc, NULL, keys, NULL, NULL);
+    parse_model(&c, doc, r);
+    parse_rayleigh(&c, doc, r);
+    if (response && r->net != NULL && r->net->n > 0) {
+        parse_nodes(&c, doc, r);
+        parse_range(&c, doc, r);
     }
     cJSON_Delete(doc);
-    if (e->n + e->dropped > before || r->net.n == 0)
-        return e->n + e->dropped > before ? DP_EINVAL : DP_ENOMEM;
-    size_t n = r->net.n;
+    if (c.nomem)
+        return DP_ENOMEM;
+    if (c.nerr > 0 || r->net == NULL || r->net->n == 0)
+        return c.nerr > 0 ? DP_EINVAL : DP_ENOMEM;
+    size_t n = r->net->n;
     r->M = malloc(n * n * sizeof *r->M);
     r->K = malloc(n * n * sizeof *r->K);
     r->C = malloc(n * n * sizeof *r->C);
     if (!r->M || !r->K || !r->C)
         return DP_ENOMEM;
-    dp_network_linear_parts(&r->net, r->M, r->K, r->C);
+    dp_network_linear_parts(r->net, r->M, r->K, r->C);
     for (size_t k = 0; k < n * n; k++)
         r->C[k] += r->alpha * r->M[k] + r->beta * r->K[k];
     return DP_OK;
@@ -440,10 +192,10 @@ static int put_num(dp_buf *b, const char *key, double x)
 
 static int put_left_out(dp_buf *b, const request *r)
 {
-    size_t *idx = malloc((r->net.nel ? r->net.nel : 1) * sizeof *idx);
+    size_t *idx = malloc((r->net->nel ? r->net->nel : 1) * sizeof *idx);
     if (idx == NULL)
         return DP_ENOMEM;
-    size_t m = dp_network_nonlinear_elements(&r->net, idx);
+    size_t m = dp_network_nonlinear_elements(r->net, idx);
     int s = put(b, "\"left_out\":[");
     for (size_t k = 0; k < m && s == DP_OK; k++) {
         char t[32];
@@ -521,9 +273,9 @@ static int modes_json(const request *r, const dp_modes *md, dp_buf *b)
 static int solve_modes(request *r, dp_modes *md, dp_errors *e)
 {
     int damped = 0;
-    for (size_t k = 0; k < r->net.n * r->net.n; k++)
+    for (size_t k = 0; k < r->net->n * r->net->n; k++)
         damped |= r->C[k] != 0;
-    return dp_modes_solve(r->net.n, r->M, r->K, damped ? r->C : NULL, r->pM, r->pK, r->pC, md, e);
+    return dp_modes_solve(r->net->n, r->M, r->K, damped ? r->C : NULL, r->pM, r->pK, r->pC, md, e);
 }
 
 int dp_modes_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
@@ -629,11 +381,11 @@ int dp_response_respond(const char *body, size_t len, int format, dp_buf *out, d
     int s = parse_request(body, len, 1, &r, errs);
     s = s ? s : solve_modes(&r, &md, errs);
     if (s == DP_OK) {
-        s = dp_response_solve(r.net.n, r.M, r.K, r.C, &md, (size_t)r.force_node, (size_t)r.response_node, r.from,
+        s = dp_response_solve(r.net->n, r.M, r.K, r.C, &md, (size_t)r.force_node, (size_t)r.response_node, r.from,
                               r.to, (size_t)r.points, r.log_spacing, &rs);
         if (s == DP_ELIMIT)
             dp_errors_add(errs, "/omega/points", "with non-proportional damping each point is a complex solve of "
-                          "%zu nodes; ask for fewer points (at most about 2e10 / n^3)", r.net.n);
+                          "%zu nodes; ask for fewer points (at most about 2e10 / n^3)", r.net->n);
         else if (s == DP_EINVAL)
             dp_errors_add(errs, "/omega", "not a valid range");
     }

@@ -2,15 +2,15 @@
  *
  * cJSON decodes "\u0000" (and copies a raw NUL byte) into C strings, which end there: "linear\u0000xx"
  * would be read as "linear" and a key "ma\u0000ss" as "ma". No document field may hold a NUL, so the
- * parsers refuse one, naming the value (or, for a key, the object holding it). This walks the text of a
- * document cJSON has already accepted (so its syntax is known good) once, keeping the path to the current
- * value; it costs a pass over the bytes, no allocation.
+ * body reader (body.c) refuses one, naming the value (or, for a key, the object holding it). This walks the
+ * text of a document cJSON has already accepted (so its syntax is known good) once, keeping the path to the
+ * current value; it costs a pass over the bytes, no allocation.
  */
 #include <stdio.h>
 #include <string.h>
 
-#include "dashpot/status.h"
 #include "nul_scan.h"
+#include "pointer.h"
 
 typedef struct frame {
     int object;                  /* 1: object (key holds the current member's name), 0: array */
@@ -18,32 +18,13 @@ typedef struct frame {
     char key[DP_POINTER_MAX];
 } frame;
 
-/* Appends the pointer token of one frame ("/" + key with ~ and / escaped, or "/" + index). */
-static void token(char *p, size_t cap, const frame *f)
+/* The pointer of the first `depth` frames, built as jp_text builds any other (pointer.c). */
+static void pointer(char *p, const frame *st, int depth)
 {
-    size_t n = strlen(p);
-    if (!f->object) {
-        snprintf(p + n, cap - n, "/%zu", f->index);
-        return;
-    }
-    if (n + 1 < cap)
-        p[n++] = '/';
-    for (const char *k = f->key; *k && n + 2 < cap; k++) {
-        if (*k == '~' || *k == '/') {
-            p[n++] = '~';
-            p[n++] = *k == '~' ? '0' : '1';
-        } else {
-            p[n++] = *k;
-        }
-    }
-    p[n < cap ? n : cap - 1] = '\0';
-}
-
-static void pointer(char *p, size_t cap, const frame *st, int depth)
-{
+    size_t n = 0;
     p[0] = '\0';
     for (int i = 0; i < depth; i++)
-        token(p, cap, &st[i]);
+        n = st[i].object ? jp_append_key(p, n, st[i].key) : jp_append_index(p, n, st[i].index);
 }
 
 static int hex4(const char *s, unsigned *v)
@@ -88,7 +69,7 @@ static int string(const char *s, size_t len, size_t *i, char *out, size_t cap)
     return nul;
 }
 
-int dp_json_find_nul(const char *s, size_t len, char *ptr, size_t cap, int *in_key)
+int dp_json_find_nul(const char *s, size_t len, char ptr[DP_POINTER_MAX], int *in_key)
 {
     frame st[DP_NUL_SCAN_DEPTH];
     int depth = 0, expect_key = 0;
@@ -114,12 +95,12 @@ int dp_json_find_nul(const char *s, size_t len, char *ptr, size_t cap, int *in_k
                 int nul = string(s, len, &i, f->key, sizeof f->key);
                 expect_key = 0;
                 if (nul) {
-                    pointer(ptr, cap, st, depth - 1); /* the object holding the key */
+                    pointer(ptr, st, depth - 1); /* the object holding the key */
                     *in_key = 1;
                     return 1;
                 }
             } else if (string(s, len, &i, NULL, 0)) {
-                pointer(ptr, cap, st, depth);
+                pointer(ptr, st, depth);
                 *in_key = 0;
                 return 1;
             }

@@ -1,6 +1,7 @@
-/* src/json/right_hand_meta.c - the meta line of a right-hand friction run (systems.md §6): the model and
- * its parameters, what each row's groups hold, the conditions (1.2), (2.3), (6.2)-(6.4) with their margins
- * at the initial state, and the theorems of seed 004 that cover it (right_hand_wp.c). */
+/* src/json/right_hand_meta.c - the meta line of a right-hand friction run (docs/systems.md §6): the model
+ * and its parameters, what each row's groups hold, the conditions (1.2), (2.3), (6.2)-(6.4) with their
+ * margins at the initial state, and the theorems of Matrosov & Finogenko 1995 that cover it
+ * (src/core/analysis/right_hand_wp.c). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

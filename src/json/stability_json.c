@@ -2,8 +2,9 @@
  * errors, and the analysis / map encoded as JSON or CSV (SVG: stability_svg.c).
  *
  * The request mirrors dp_law (stability.h): {"mass", "law": {"lambda", "mu"}, "map"?}. Every field is
- * checked here for type and shape, then by the core (dp_law_check, dp_map_axis_check) for domain and limits,
- * so that each error names its JSON Pointer. The wire format is documented in docs/stability.md.
+ * checked here for type and shape with the walker every route uses (walk.h), then by the core (dp_law_check,
+ * dp_map_axis_check) for domain and limits, so that each error names its JSON Pointer. The wire format is
+ * documented in docs/stability.md.
  */
 #include <math.h>
 #include <stdio.h>
@@ -14,9 +15,8 @@
 
 #include "dashpot/stability.h"
 #include "dashpot/stability_json.h"
-#include "json_read.h"
-#include "nul_scan.h"
 #include "stability_out.h"
+#include "walk.h"
 
 typedef struct request {
     dp_law law;
@@ -24,9 +24,11 @@ typedef struct request {
     dp_map_axis x, y;
 } request;
 
+/* The walk (walk.h) and the request's status: DP_EINVAL (any error of the walk) outranks DP_ELIMIT (a
+ * documented limit, from the coefficient count or the core's checks) outranks DP_OK. */
 typedef struct pctx {
-    dp_errors *errs;
-    int status;             /* DP_EINVAL outranks DP_ELIMIT outranks DP_OK */
+    ctx w;
+    int status;
 } pctx;
 
 static void merge(pctx *c, int s)
@@ -35,160 +37,116 @@ static void merge(pctx *c, int s)
         c->status = s;
 }
 
-/* Adds a located error (printf-style message) and ranks the request's status. */
-#define bad(c, status, ptr, ...) (dp_errors_add((c)->errs, (ptr), __VA_ARGS__), merge((c), (status)))
+/* The status so far, the walk's errors counted in. */
+static int status(pctx *c)
+{
+    merge(c, c->w.nerr > 0 ? DP_EINVAL : DP_OK);
+    return c->status;
+}
 
 /* ---- parsing ---- */
 
-static int want_object(pctx *c, const cJSON *v, const char *ptr)
+/* law[key]: 1..DP_STAB_MAX_ORDER + 1 finite numbers, lowest derivative first. */
+static void get_coefs(pctx *c, const cJSON *law, const at *pl, const char *key, double *dst, int *n)
 {
-    if (cJSON_IsObject(v))
-        return 1;
-    bad(c, DP_EINVAL, ptr, "expected an object");
-    return 0;
-}
-
-/* Reports every member of o not in `keys` and every repeated one (cJSON keeps both; the first would win
- * silently). O(members x keys), as the spec parser's check. */
-static void check_keys(pctx *c, const cJSON *o, const char *ptr, const char *const *keys, const char *list)
-{
-    unsigned char seen[16] = { 0 };
-    for (const cJSON *m = o->child; m != NULL; m = m->next) {
-        int known = -1;
-        for (int k = 0; keys[k] != NULL && known < 0; k++)
-            if (strcmp(m->string, keys[k]) == 0)
-                known = k;
-        char p[DP_POINTER_MAX];
-        snprintf(p, sizeof p, "%s/%s", ptr, m->string);
-        if (known < 0)
-            bad(c, DP_EINVAL, p, "unknown member (expected %s)", list);
-        else if (known < (int)sizeof seen && seen[known]++)
-            bad(c, DP_EINVAL, p, "duplicate key \"%s\"", m->string);
-    }
-}
-
-/* p = ptr + "/" + key: pointers are written only for errors, a valid request needs none. */
-static const char *join(char p[DP_POINTER_MAX], const char *ptr, const char *key)
-{
-    snprintf(p, DP_POINTER_MAX, "%s/%s", ptr, key);
-    return p;
-}
-
-/* The member `key` of o, or NULL with a "required" error. */
-static const cJSON *need(pctx *c, const cJSON *o, const char *ptr, const char *key)
-{
-    char p[DP_POINTER_MAX];
-    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, key);
-    if (v == NULL)
-        bad(c, DP_EINVAL, join(p, ptr, key), "required");
-    return v;
-}
-
-static int get_number(pctx *c, const cJSON *o, const char *ptr, const char *key, double *out)
-{
-    char p[DP_POINTER_MAX];
-    const cJSON *v = need(c, o, ptr, key);
-    if (v == NULL)
-        return 0;
-    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) {
-        bad(c, DP_EINVAL, join(p, ptr, key), "expected a finite number");
-        return 0;
-    }
-    *out = v->valuedouble;
-    return 1;
-}
-
-static void get_coefs(pctx *c, const cJSON *law, const char *key, double *dst, int *n)
-{
-    char p[DP_POINTER_MAX], q[DP_POINTER_MAX];
-    const cJSON *a = need(c, law, "/law", key);
+    at p;
+    const cJSON *a = jw_member(&c->w, law, pl, key, "an array of numbers, lowest derivative first", &p);
     *n = 0;
     if (a == NULL)
         return;
     if (!cJSON_IsArray(a)) {
-        bad(c, DP_EINVAL, join(p, "/law", key), "expected an array of numbers, lowest derivative first");
+        jw_fail(&c->w, &p, "must be an array of numbers, lowest derivative first, got %s", jw_type_name(a));
         return;
     }
     int count = cJSON_GetArraySize(a);
-    if (count == 0 || count > DP_STAB_MAX_ORDER + 1) {
-        join(p, "/law", key);
-        bad(c, count ? DP_ELIMIT : DP_EINVAL, p, count ? "at most %d coefficients (derivative order <= %d)"
-                                                       : "expected at least one coefficient",
-            DP_STAB_MAX_ORDER + 1, DP_STAB_MAX_ORDER);
+    if (count == 0) {
+        jw_fail(&c->w, &p, "must be an array of at least one number (lowest derivative first), got an empty "
+                "array");
+        return;
+    }
+    if (count > DP_STAB_MAX_ORDER + 1) {
+        char ptr[DP_POINTER_MAX];
+        jp_text(&p, ptr);
+        dp_errors_add(c->w.errs, ptr, "at most %d coefficients (derivative order <= %d)", DP_STAB_MAX_ORDER + 1,
+                      DP_STAB_MAX_ORDER);
+        merge(c, DP_ELIMIT);
         return;
     }
     int i = 0;
     for (const cJSON *e = a->child; e != NULL; e = e->next, i++) {
-        if (cJSON_IsNumber(e) && isfinite(e->valuedouble)) {
-            dst[i] = e->valuedouble;
-            continue;
-        }
-        snprintf(q, sizeof q, "/law/%s/%d", key, i);
-        bad(c, DP_EINVAL, q, "expected a finite number");
+        const at q = { &p, NULL, (size_t)i };
+        jw_check_num(&c->w, e, &q, &ANY, 0, &dst[i]);
     }
     *n = count;
 }
 
-static void parse_axis(pctx *c, const cJSON *o, const char *ptr, const dp_law *law, dp_map_axis *ax)
+static void parse_axis(pctx *c, const cJSON *o, const at *pa, const dp_law *law, dp_map_axis *ax)
 {
     static const char *const keys[] = { "param", "from", "to", "steps", NULL };
-    char p[DP_POINTER_MAX];
-    if (!want_object(c, o, ptr))
+    if (!jw_want_object(&c->w, o, pa))
         return;
-    check_keys(c, o, ptr, keys, "param, from, to, steps");
-    int before = c->status;
-    const cJSON *v = need(c, o, ptr, "param");
-    if (v != NULL && (!cJSON_IsString(v) || dp_param_parse(v->valuestring, &ax->kind, &ax->index) != 0))
-        bad(c, DP_EINVAL, join(p, ptr, "param"), "expected \"mass\", \"lambda[i]\" or \"mu[j]\" with i, j in 0..%d",
-            DP_STAB_MAX_ORDER);
-    get_number(c, o, ptr, "from", &ax->from);
-    get_number(c, o, ptr, "to", &ax->to);
+    jw_check_keys(&c->w, o, pa, keys, NULL, NULL);
+    int before = status(c);
+    size_t nerr = c->w.nerr;
+    at p;
+    char what[96], sb[64];
+    snprintf(what, sizeof what, "\"mass\", \"lambda[i]\" or \"mu[j]\" with i, j in 0..%d", DP_STAB_MAX_ORDER);
+    const cJSON *v = jw_member(&c->w, o, pa, "param", what, &p);
+    if (v != NULL && !cJSON_IsString(v))
+        jw_fail(&c->w, &p, "must be %s, got %s", what, jw_type_name(v));
+    else if (v != NULL && dp_param_parse(v->valuestring, &ax->kind, &ax->index) != 0)
+        jw_fail(&c->w, &p, "must be %s, got \"%s\"", what, jw_shown(v->valuestring, sb));
+    jw_get_num(&c->w, o, pa, "from", &ANY, 1, 0, &ax->from);
+    jw_get_num(&c->w, o, pa, "to", &ANY, 1, 0, &ax->to);
     double steps = 0;
-    if (get_number(c, o, ptr, "steps", &steps) && steps != floor(steps)) {
-        snprintf(p, sizeof p, "%s/steps", ptr);
-        bad(c, DP_EINVAL, p, "expected an integer");
-    }
+    jw_get_num(&c->w, o, pa, "steps", &ANY, 1, 1, &steps);
     ax->steps = steps < 0 ? -1 : steps > DP_STAB_MAP_MAX_STEPS ? DP_STAB_MAP_MAX_STEPS + 1 : (int)steps;
-    if (c->status == before && c->status == DP_OK)
-        merge(c, dp_map_axis_check(ax, law, ptr, c->errs));
+    if (c->w.nerr == nerr && before == DP_OK) {
+        char ptr[DP_POINTER_MAX];
+        jp_text(pa, ptr);
+        merge(c, dp_map_axis_check(ax, law, ptr, c->w.errs));
+    }
 }
 
-static void parse_map(pctx *c, const cJSON *o, request *r)
+static void parse_map(pctx *c, const cJSON *o, const at *pm, request *r)
 {
     static const char *const keys[] = { "x", "y", NULL };
-    if (!want_object(c, o, "/map"))
+    static const char *const axis = "an object {\"param\", \"from\", \"to\", \"steps\"}";
+    if (!jw_want_object(&c->w, o, pm))
         return;
     r->has_map = 1;
-    check_keys(c, o, "/map", keys, "x, y");
-    const cJSON *x = need(c, o, "/map", "x"), *y = need(c, o, "/map", "y");
+    jw_check_keys(&c->w, o, pm, keys, NULL, NULL);
+    at px, py;
+    const cJSON *x = jw_member(&c->w, o, pm, "x", axis, &px), *y = jw_member(&c->w, o, pm, "y", axis, &py);
     if (x != NULL)
-        parse_axis(c, x, "/map/x", &r->law, &r->x);
+        parse_axis(c, x, &px, &r->law, &r->x);
     if (y != NULL)
-        parse_axis(c, y, "/map/y", &r->law, &r->y);
-    if (c->status == DP_OK && r->x.kind == r->y.kind && r->x.index == r->y.index)
-        bad(c, DP_EINVAL, "/map/y/param", "the two axes sweep the same coefficient");
+        parse_axis(c, y, &py, &r->law, &r->y);
+    if (status(c) == DP_OK && r->x.kind == r->y.kind && r->x.index == r->y.index) {
+        const at pp = { &py, "param", 0 };
+        jw_fail(&c->w, &pp, "the two axes sweep the same coefficient");
+    }
 }
 
 static void parse_request(pctx *c, const cJSON *root, request *r)
 {
     static const char *const keys[] = { "mass", "law", "map", NULL }, *const law_keys[] = { "lambda", "mu", NULL };
     memset(r, 0, sizeof *r);
-    if (!want_object(c, root, ""))
+    jw_check_keys(&c->w, root, NULL, keys, NULL, NULL);
+    int have_mass = jw_get_num(&c->w, root, NULL, "mass", &ANY, 1, 0, &r->law.mass);
+    at pl, pm;
+    const cJSON *law = jw_member(&c->w, root, NULL, "law", "an object {\"lambda\": [...], \"mu\": [...]}", &pl);
+    if (law == NULL || !jw_want_object(&c->w, law, &pl))
         return;
-    check_keys(c, root, "", keys, "mass, law, map");
-    int have_mass = get_number(c, root, "", "mass", &r->law.mass);
-    const cJSON *law = need(c, root, "", "law");
-    if (law == NULL || !want_object(c, law, "/law"))
+    jw_check_keys(&c->w, law, &pl, law_keys, NULL, NULL);
+    get_coefs(c, law, &pl, "lambda", r->law.lambda, &r->law.nlambda);
+    get_coefs(c, law, &pl, "mu", r->law.mu, &r->law.nmu);
+    if (!have_mass || status(c) != DP_OK)
         return;
-    check_keys(c, law, "/law", law_keys, "lambda, mu");
-    get_coefs(c, law, "lambda", r->law.lambda, &r->law.nlambda);
-    get_coefs(c, law, "mu", r->law.mu, &r->law.nmu);
-    if (!have_mass || c->status != DP_OK)
-        return;
-    merge(c, dp_law_check(&r->law, "", c->errs));
-    const cJSON *map = cJSON_GetObjectItemCaseSensitive(root, "map");
+    merge(c, dp_law_check(&r->law, "", c->w.errs));
+    const cJSON *map = jw_member(&c->w, root, NULL, "map", NULL, &pm);
     if (map != NULL && c->status == DP_OK)
-        parse_map(c, map, r);
+        parse_map(c, map, &pm, r);
 }
 
 /* ---- the analysis as JSON ---- */
@@ -528,24 +486,21 @@ int dp_stability_respond(const char *body, size_t len, int want, dp_buf *out, dp
 int dp_stability_respond_ws(dp_stability_ws *w, const char *body, size_t len, int want, dp_buf *out,
                             dp_errors *errs)
 {
-    pctx c = { errs, DP_OK };
-    int nomem = 0;
-    cJSON *root = dp_json_read(body ? body : "", body ? len : 0, errs, &nomem);
+    pctx c = { { errs, 0, 0, 0 }, DP_OK };
+    int read;
+    cJSON *root = jw_read(&c.w, body, len, &read);   /* a NUL or a repeated key: counted, the rest still checked */
     if (root == NULL)
-        return nomem ? DP_ENOMEM : DP_ESYNTAX;
-    char nul_at[DP_POINTER_MAX];
-    int in_key = 0;
-    if (dp_json_find_nul(body, len, nul_at, sizeof nul_at, &in_key)) /* cJSON would cut the string there */
-        bad(&c, DP_EINVAL, nul_at, "%s contains a NUL character (\\u0000), which no field may hold",
-            in_key ? "a key of this object" : "this string");
+        return read;
     request r;
     parse_request(&c, root, &r);
     cJSON_Delete(root);
-    if (c.status == DP_OK && want != DP_STABILITY_JSON && !r.has_map)
-        bad(&c, DP_EINVAL, "/map", "CSV and SVG describe a map: add a \"map\" member, or ask for JSON");
-    if (c.status == DP_OK && (want < DP_STABILITY_JSON || want > DP_STABILITY_SVG))
-        bad(&c, DP_EINVAL, "", "unknown response format %d", want);
-    if (c.status != DP_OK)
+    if (status(&c) == DP_OK && want != DP_STABILITY_JSON && !r.has_map) {
+        const at map = { NULL, "map", 0 };
+        jw_fail(&c.w, &map, "CSV and SVG describe a map: add a \"map\" member, or ask for JSON");
+    }
+    if (status(&c) == DP_OK && (want < DP_STABILITY_JSON || want > DP_STABILITY_SVG))
+        jw_fail(&c.w, NULL, "unknown response format %d", want);
+    if (status(&c) != DP_OK)
         return c.status;
     size_t before = out->len;
     stab_out o = { out, 0 };

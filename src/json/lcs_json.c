@@ -1,4 +1,4 @@
-/* src/json/lcs_json.inc - the linear complementarity system document (docs/lcs.md) for dp_spec_parse:
+/* src/json/lcs_json.c - the linear complementarity system document (docs/lcs.md) for dp_spec_parse:
  *
  *     "model": {"lcs": {"A": n x n, "B": n x m, "C": m x n, "D": m x m, "p": n, "q": m}, "laws": [m laws]},
  *     "initial": {"x": [n numbers]}
@@ -7,17 +7,23 @@
  * (constant, harmonic, table, sum: the one-mass model's "forcing"), a source in time. A law is {"law": "complementarity"}
  * (0 <= u ⊥ w >= 0), {"law": "interval", "min": lo, "max": hi} (w ∈ -N_[lo,hi](u)), or a graph law
  * -w ∈ G(u): {"law": "graph", "points": [[u, F], ...]} (the one-mass model's graph parser), {"law": "coulomb",
- * "phi0"} or {"law": "rope", "k", "length"} (its builders). Included by
- * spec_json.c, not compiled alone: the same helpers and messages as the rest of the document.
+ * "phi0"} or {"law": "rope", "k", "length"} (its builders).
+ *
+ * Its own file for the parts only an LCS has (its matrices and sizes, its law list); its forcings and graph
+ * laws are read by laws_json.c, so they get the same messages as anywhere else in a document.
  */
+#include <stdio.h>
+#include <stdlib.h>
+
 #include "dashpot/lcs.h"
+#include "spec_parts.h"
 
 /* Sizes of an LCS document: checking a spec factors I - hθA (n^3) and solves an LCP of up to 2m rows, so a
  * request stays within milliseconds. */
 #define LCS_MAX_STATES 200
 #define LCS_MAX_COMPONENTS (DP_LCP_MAX / 2)
 
-static int is_lcs(const cJSON *o)
+int js_is_lcs(const cJSON *o)
 {
     return cJSON_IsObject(o) && cJSON_GetObjectItemCaseSensitive(o, "lcs") != NULL;
 }
@@ -28,8 +34,8 @@ static void lcs_matrix(ctx *c, const cJSON *v, const at *p, size_t rows, size_t 
 {
     size_t r = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
     if (!cJSON_IsArray(v) || r != rows) {
-        fail(c, p, "must be %s: an array of %zu rows of %zu numbers, got %s%s", what, rows, cols,
-             cJSON_IsArray(v) ? "an array of another length" : type_name(v), "");
+        jw_fail(c, p, "must be %s: an array of %zu rows of %zu numbers, got %s%s", what, rows, cols,
+             cJSON_IsArray(v) ? "an array of another length" : jw_type_name(v), "");
         return;
     }
     size_t i = 0;
@@ -37,14 +43,14 @@ static void lcs_matrix(ctx *c, const cJSON *v, const at *p, size_t rows, size_t 
         const at q = { p, NULL, i };
         size_t k = cJSON_IsArray(row) ? (size_t)cJSON_GetArraySize(row) : 0;
         if (!cJSON_IsArray(row) || k != cols) {
-            fail(c, &q, "must be a row of %zu numbers (%s), got %s", cols, what,
-                 cJSON_IsArray(row) ? "another length" : type_name(row));
+            jw_fail(c, &q, "must be a row of %zu numbers (%s), got %s", cols, what,
+                 cJSON_IsArray(row) ? "another length" : jw_type_name(row));
             continue;
         }
         size_t j = 0;
         for (const cJSON *x = row->child; x; x = x->next, j++) {
             const at e = { &q, NULL, j };
-            check_num(c, x, &e, &ANY, 0, &out[i * cols + j]);
+            jw_check_num(c, x, &e, &ANY, 0, &out[i * cols + j]);
         }
     }
 }
@@ -53,14 +59,14 @@ static void lcs_vector(ctx *c, const cJSON *v, const at *p, size_t n, const char
 {
     size_t k = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
     if (!cJSON_IsArray(v) || k != n) {
-        fail(c, p, "must be an array of %zu numbers (%s), got %s", n, what,
-             cJSON_IsArray(v) ? "another length" : type_name(v));
+        jw_fail(c, p, "must be an array of %zu numbers (%s), got %s", n, what,
+             cJSON_IsArray(v) ? "another length" : jw_type_name(v));
         return;
     }
     size_t i = 0;
     for (const cJSON *x = v->child; x; x = x->next, i++) {
         const at e = { p, NULL, i };
-        check_num(c, x, &e, &ANY, 0, &out[i]);
+        jw_check_num(c, x, &e, &ANY, 0, &out[i]);
     }
 }
 
@@ -69,21 +75,21 @@ static void lcs_offsets(ctx *c, const cJSON *v, const at *p, dp_lcs_model *lm)
 {
     size_t k = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0, i = 0;
     if (!cJSON_IsArray(v) || k != lm->n) {
-        fail(c, p, "must be an array of %zu entries (one per state), each a number or a forcing object, got %s",
-             lm->n, cJSON_IsArray(v) ? "another length" : type_name(v));
+        jw_fail(c, p, "must be an array of %zu entries (one per state), each a number or a forcing object, got %s",
+             lm->n, cJSON_IsArray(v) ? "another length" : jw_type_name(v));
         return;
     }
     for (const cJSON *x = v->child; x; x = x->next, i++) {
         const at e = { p, NULL, i };
         if (!cJSON_IsObject(x)) {
-            check_num(c, x, &e, &ANY, 0, &lm->p[i]);
+            jw_check_num(c, x, &e, &ANY, 0, &lm->p[i]);
             continue;
         }
         if (lm->pf == NULL && (lm->pf = calloc(lm->n, sizeof *lm->pf)) == NULL) {
             c->nomem = 1;
             return;
         }
-        parse_forcing(c, x, &e, &lm->pf[i], 1);
+        js_parse_forcing(c, x, &e, &lm->pf[i], 1);
     }
 }
 
@@ -95,7 +101,7 @@ static void lcs_named_graph(ctx *c, const at *ptr, dp_lcs_law *law)
     if (s == DP_ENOMEM)
         c->nomem = 1;
     else if (s != DP_OK)
-        fail(c, ptr, "does not make a monotone graph (%s)", dp_strerror(s));
+        jw_fail(c, ptr, "does not make a monotone graph (%s)", dp_strerror(s));
 }
 
 /* {"law": ...}: complementarity, interval, or a graph law -w ∈ G(u) (user points, coulomb, rope). */
@@ -103,24 +109,25 @@ static void lcs_law(ctx *c, const cJSON *o, const at *ptr, dp_lcs_law *law)
 {
     variant laws[DP_LCS_LAW_COUNT];
     for (size_t i = 0; i < DP_LCS_LAW_COUNT; i++)
-        law_variant(&dp_lcs_laws[i].row, &laws[i]);
+        js_law_variant(&dp_lcs_laws[i].row, &laws[i]);
     size_t before = c->nerr;
-    const variant *v = parse_tagged(c, o, ptr, "law", -1, laws, DP_LCS_LAW_COUNT, NULL, law);
+    const variant *v = js_parse_tagged(c, o, ptr, "law", -1, laws, DP_LCS_LAW_COUNT, NULL, law);
     if (v == NULL)
         return;
     law->kind = (dp_lcs_law_kind)v->id;
     const dp_lcs_law_info *L = &dp_lcs_laws[law->kind];
-    law_defaults(&L->row, o, law);
+    js_law_defaults(&L->row, o, law);
     if (L->shape == DP_LCS_SHAPE_INTERVAL && c->nerr == before && !(law->lo <= law->hi)) {
         const dp_law_row *r = &L->row;
         const at p = { ptr, dp_law_member_key(r, offsetof(dp_lcs_law, hi)), 0 };
-        fail(c, &p, "must be >= %s = %g, got %g", dp_law_member_key(r, offsetof(dp_lcs_law, lo)), law->lo, law->hi);
+        jw_fail(c, &p, "must be >= %s = %g, got %g", dp_law_member_key(r, offsetof(dp_lcs_law, lo)), law->lo,
+                law->hi);
     } else if (L->row.points) {
         size_t mark = c->nerr;
-        parse_graph(c, o, ptr, L->row.points, &law->graph);
+        js_parse_graph(c, o, ptr, L->row.points, &law->graph);
         const at p = { ptr, "points", 0 };
         if (c->nerr == mark && !c->nomem && !dp_lcs_law_valid(law))
-            fail(c, &p, "a piece's slope is not a finite number (the points span too much of the double range)");
+            jw_fail(c, &p, "a piece's slope is not a finite number (the points span too much of the double range)");
     } else if (L->build && c->nerr == before) {
         lcs_named_graph(c, ptr, law);
     }
@@ -133,7 +140,7 @@ static void lcs_rows(ctx *c, const at *ptr, const dp_lcs_model *lm)
     for (size_t i = 0; i < lm->m; i++)
         rows += dp_lcs_law_rows(&lm->law[i]);
     if (rows > DP_LCP_MAX)
-        fail(c, ptr, "the laws make a step's LCP of %zu rows (1 per complementarity, 2 per interval, 1 per "
+        jw_fail(c, ptr, "the laws make a step's LCP of %zu rows (1 per complementarity, 2 per interval, 1 per "
              "non-vertical end ray and 2 per non-vertical segment between turns of a graph), more than %d", rows, DP_LCP_MAX);
 }
 
@@ -142,29 +149,29 @@ static int lcs_sizes(ctx *c, const cJSON *model, const cJSON *sys, const at *ptr
                      size_t *m)
 {
     at p;
-    const cJSON *a = member(c, sys, psys, "A", "an n x n matrix", &p);
+    const cJSON *a = jw_member(c, sys, psys, "A", "an n x n matrix", &p);
     *n = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
     if (a != NULL && (*n == 0 || *n > LCS_MAX_STATES))
-        fail(c, &p, "must be an n x n matrix with 1 <= n <= %d, got %s", LCS_MAX_STATES,
-             cJSON_IsArray(a) ? (*n ? "more rows" : "no rows") : type_name(a));
-    const cJSON *l = member(c, model, ptr, "laws", "an array of one law per component of u", &p);
+        jw_fail(c, &p, "must be an n x n matrix with 1 <= n <= %d, got %s", LCS_MAX_STATES,
+             cJSON_IsArray(a) ? (*n ? "more rows" : "no rows") : jw_type_name(a));
+    const cJSON *l = jw_member(c, model, ptr, "laws", "an array of one law per component of u", &p);
     *m = cJSON_IsArray(l) ? (size_t)cJSON_GetArraySize(l) : 0;
     if (l != NULL && (*m == 0 || *m > LCS_MAX_COMPONENTS))
-        fail(c, &p, "must be an array of 1 to %d laws (one per component of u), got %s", LCS_MAX_COMPONENTS,
-             cJSON_IsArray(l) ? (*m ? "more" : "none") : type_name(l));
+        jw_fail(c, &p, "must be an array of 1 to %d laws (one per component of u), got %s", LCS_MAX_COMPONENTS,
+             cJSON_IsArray(l) ? (*m ? "more" : "none") : jw_type_name(l));
     return *n >= 1 && *n <= LCS_MAX_STATES && *m >= 1 && *m <= LCS_MAX_COMPONENTS;
 }
 
-static void parse_lcs(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+void js_parse_lcs(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
     static const char *const keys[] = { "lcs", "laws", NULL };
     static const char *const skeys[] = { "A", "B", "C", "D", "p", "q", NULL };
     at ps, p;
-    check_keys(c, o, ptr, keys, NULL, NULL);
-    const cJSON *sys = member(c, o, ptr, "lcs", NULL, &ps);
-    if (!want_object(c, sys, &ps))
+    jw_check_keys(c, o, ptr, keys, NULL, NULL);
+    const cJSON *sys = jw_member(c, o, ptr, "lcs", NULL, &ps);
+    if (!jw_want_object(c, sys, &ps))
         return;
-    check_keys(c, sys, &ps, skeys, NULL, NULL);
+    jw_check_keys(c, sys, &ps, skeys, NULL, NULL);
     size_t n, m;
     if (!lcs_sizes(c, o, sys, ptr, &ps, &n, &m))
         return;
@@ -184,19 +191,19 @@ static void parse_lcs(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     snprintf(wc, sizeof wc, "m x n, m = %zu laws, n = %zu", m, n);
     snprintf(wd, sizeof wd, "m x m, m = %zu laws", m);
     snprintf(wq, sizeof wq, "one per law, m = %zu", m);
-    const cJSON *v = member(c, sys, &ps, "A", NULL, &p);
+    const cJSON *v = jw_member(c, sys, &ps, "A", NULL, &p);
     lcs_matrix(c, v, &p, n, n, wa, lm->A);
-    if ((v = member(c, sys, &ps, "B", "an n x m matrix", &p)) != NULL)
+    if ((v = jw_member(c, sys, &ps, "B", "an n x m matrix", &p)) != NULL)
         lcs_matrix(c, v, &p, n, m, wb, lm->B);
-    if ((v = member(c, sys, &ps, "C", "an m x n matrix", &p)) != NULL)
+    if ((v = jw_member(c, sys, &ps, "C", "an m x n matrix", &p)) != NULL)
         lcs_matrix(c, v, &p, m, n, wc, lm->C);
-    if ((v = member(c, sys, &ps, "D", NULL, &p)) != NULL)
+    if ((v = jw_member(c, sys, &ps, "D", NULL, &p)) != NULL)
         lcs_matrix(c, v, &p, m, m, wd, lm->D);
-    if ((v = member(c, sys, &ps, "p", NULL, &p)) != NULL)
+    if ((v = jw_member(c, sys, &ps, "p", NULL, &p)) != NULL)
         lcs_offsets(c, v, &p, lm);
-    if ((v = member(c, sys, &ps, "q", NULL, &p)) != NULL)
+    if ((v = jw_member(c, sys, &ps, "q", NULL, &p)) != NULL)
         lcs_vector(c, v, &p, m, wq, lm->q);
-    const cJSON *laws = member(c, o, ptr, "laws", NULL, &p);
+    const cJSON *laws = jw_member(c, o, ptr, "laws", NULL, &p);
     size_t i = 0;
     for (const cJSON *l = laws->child; l; l = l->next, i++) {
         const at q = { &p, NULL, i };
@@ -205,14 +212,14 @@ static void parse_lcs(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     lcs_rows(c, &p, lm);
 }
 
-static void parse_lcs_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+void js_parse_lcs_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
     static const char *const keys[] = { "x", NULL };
     at p;
-    if (!want_object(c, o, ptr))
+    if (!jw_want_object(c, o, ptr))
         return;
-    check_keys(c, o, ptr, keys, NULL, NULL);
-    const cJSON *v = member(c, o, ptr, "x", NULL, &p);
+    jw_check_keys(c, o, ptr, keys, NULL, NULL);
+    const cJSON *v = jw_member(c, o, ptr, "x", NULL, &p);
     char what[48];
     snprintf(what, sizeof what, "one per state, n = %zu", s->lcs->n);
     if (v != NULL)

@@ -1,11 +1,17 @@
-/* src/json/network_json.inc - the network document (systems.md §1) for dp_spec_parse: masses or a mass
- * matrix, optional stiffness and damping matrices, elements with their ends and the one-mass laws, loads
- * per node, array initial states, and the columns to write.
+/* src/json/network_json.c - the network document (docs/systems.md §1): masses or a mass matrix, optional
+ * stiffness and damping matrices, elements with their ends and the one-mass laws, loads per node, array
+ * initial states, and the columns to write.
  *
- * Included by spec_json.c, not compiled alone: it walks the document with spec_json.c's own helpers
- * (pointers built only on error, the same messages), so a network element's spring is read by exactly the
- * code that reads the one-mass spring.
+ * Its own file because every route that takes a network reads it here: simulate and wellposedness (through
+ * spec_json.c) and the linear analyses (modes_json.c); an element's spring, damper and contact are read by
+ * the code that reads the one-mass ones (laws_json.c). So a network is accepted or refused alike everywhere,
+ * with one list of law names.
  */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "spec_parts.h"
 
 static const range INDEX_ANY = { 0, 9007199254740992.0, 0, " >= 0" };
 
@@ -13,27 +19,14 @@ static const range INDEX_ANY = { 0, 9007199254740992.0, 0, " >= 0" };
 static int parse_index(ctx *c, const cJSON *v, const at *p, size_t n, const char *noun, size_t *out)
 {
     double x;
-    if (!check_num(c, v, p, &INDEX_ANY, 1, &x))
+    if (!jw_check_num(c, v, p, &INDEX_ANY, 1, &x))
         return 0;
     if (!(x < (double)n)) {
-        fail(c, p, "must be %s index in [0, %zu], got %.0f", noun, n - 1, x);
+        jw_fail(c, p, "must be %s index in [0, %zu], got %.0f", noun, n - 1, x);
         return 0;
     }
     *out = (size_t)x;
     return 1;
-}
-
-/* An array of 1..max items; its size, or 0 with an error. */
-static size_t array_size(ctx *c, const cJSON *v, const at *p, size_t max, const char *what)
-{
-    size_t n = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
-    if (!cJSON_IsArray(v))
-        fail(c, p, "must be %s, got %s", what, type_name(v));
-    else if (n > max)
-        fail(c, p, "must be %s: %zu is over the limit of %zu", what, n, max);
-    else if (n == 0)
-        fail(c, p, "must be %s, got an empty array", what);
-    return cJSON_IsArray(v) && n <= max ? n : 0;
 }
 
 /* Exactly n numbers in r into out. */
@@ -44,15 +37,15 @@ static void parse_vector(ctx *c, const cJSON *v, const at *p, size_t n, const ra
     size_t m = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
     if (!cJSON_IsArray(v) || m != n) {
         if (cJSON_IsArray(v))
-            fail(c, p, "must be %s, got %zu", what, m);
+            jw_fail(c, p, "must be %s, got %zu", what, m);
         else
-            fail(c, p, "must be %s, got %s", what, type_name(v));
+            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(v));
         return;
     }
     size_t i = 0;
     for (const cJSON *el = v->child; el; el = el->next, i++) {
         const at q = { p, NULL, i };
-        check_num(c, el, &q, r, 0, &out[i]);
+        jw_check_num(c, el, &q, r, 0, &out[i]);
     }
 }
 
@@ -64,9 +57,9 @@ static double *parse_matrix(ctx *c, const cJSON *v, const at *p, size_t n)
     size_t m = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
     if (!cJSON_IsArray(v) || m != n) {
         if (cJSON_IsArray(v))
-            fail(c, p, "must be %s, got %zu", what, m);
+            jw_fail(c, p, "must be %s, got %zu", what, m);
         else
-            fail(c, p, "must be %s, got %s", what, type_name(v));
+            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(v));
         return NULL;
     }
     double *A = calloc(n * n, sizeof *A);
@@ -91,35 +84,35 @@ static void parse_end(ctx *c, const cJSON *v, const at *p, size_t n, long *out)
     else if (cJSON_IsNumber(v) && parse_index(c, v, p, n, "a node", &i))
         *out = (long)i;
     else if (!cJSON_IsNumber(v))
-        fail(c, p, "must be \"ground\" or a node index in [0, %zu], got %s", n - 1, type_name(v));
+        jw_fail(c, p, "must be \"ground\" or a node index in [0, %zu], got %s", n - 1, jw_type_name(v));
 }
 
 static void parse_element(ctx *c, const cJSON *o, const at *ptr, size_t n, dp_element *e)
 {
     static const char *const keys[] = { "between", "spring", "damper", "contact", NULL };
     at p;
-    if (!want_object(c, o, ptr))
+    if (!jw_want_object(c, o, ptr))
         return;
-    check_keys(c, o, ptr, keys, NULL, NULL);
-    const cJSON *b = member(c, o, ptr, "between", "[end, end], each \"ground\" or a node index", &p);
+    jw_check_keys(c, o, ptr, keys, NULL, NULL);
+    const cJSON *b = jw_member(c, o, ptr, "between", "[end, end], each \"ground\" or a node index", &p);
     if (b != NULL) {
         if (!cJSON_IsArray(b) || cJSON_GetArraySize(b) != 2) {
-            fail(c, &p, "must be [end, end], each \"ground\" or a node index");
+            jw_fail(c, &p, "must be [end, end], each \"ground\" or a node index");
         } else {
             const at q0 = { &p, NULL, 0 }, q1 = { &p, NULL, 1 };
             parse_end(c, b->child, &q0, n, &e->a);
             parse_end(c, b->child->next, &q1, n, &e->b);
         }
     }
-    const cJSON *v = member(c, o, ptr, "spring", NULL, &p);
+    const cJSON *v = jw_member(c, o, ptr, "spring", NULL, &p);
     if (v != NULL)
-        e->has_spring = 1, parse_spring(c, v, &p, &e->spring);
-    if ((v = member(c, o, ptr, "damper", NULL, &p)) != NULL)
-        e->has_damper = 1, parse_damper(c, v, &p, &e->damper);
-    if ((v = member(c, o, ptr, "contact", NULL, &p)) != NULL)
-        e->has_contact = 1, parse_contact(c, v, &p, &e->contact);
+        e->has_spring = 1, js_parse_spring(c, v, &p, &e->spring);
+    if ((v = jw_member(c, o, ptr, "damper", NULL, &p)) != NULL)
+        e->has_damper = 1, js_parse_damper(c, v, &p, &e->damper);
+    if ((v = jw_member(c, o, ptr, "contact", NULL, &p)) != NULL)
+        e->has_contact = 1, js_parse_contact(c, v, &p, &e->contact);
     if (!e->has_spring && !e->has_damper && !e->has_contact)
-        fail(c, ptr, "an element needs a \"spring\", a \"damper\" or a \"contact\" (or several)");
+        jw_fail(c, ptr, "an element needs a \"spring\", a \"damper\" or a \"contact\" (or several)");
 }
 
 static void parse_elements(ctx *c, const cJSON *v, const at *p, dp_network *net)
@@ -129,9 +122,9 @@ static void parse_elements(ctx *c, const cJSON *v, const at *p, dp_network *net)
     size_t m = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
     if (!cJSON_IsArray(v) || m > DP_NETWORK_MAX_ELEMENTS) {
         if (cJSON_IsArray(v))
-            fail(c, p, "must be %s: %zu is over the limit", what, m);
+            jw_fail(c, p, "must be %s: %zu is over the limit", what, m);
         else
-            fail(c, p, "must be %s, got %s", what, type_name(v));
+            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(v));
         return;
     }
     if (m == 0)
@@ -151,7 +144,7 @@ static void parse_elements(ctx *c, const cJSON *v, const at *p, dp_network *net)
 static void parse_node_forcings(ctx *c, const cJSON *v, const at *p, dp_network *net)
 {
     static const char *const common[] = { "node", NULL };
-    size_t m = array_size(c, v, p, 4 * (size_t)DP_NETWORK_MAX_NODES, "an array of loads {\"node\", \"kind\", ...}");
+    size_t m = jw_array_size(c, v, p, 4 * (size_t)DP_NETWORK_MAX_NODES, "an array of loads {\"node\", \"kind\", ...}");
     if (m == 0)
         return;
     if ((net->force = calloc(m, sizeof *net->force)) == NULL) {
@@ -163,12 +156,12 @@ static void parse_node_forcings(ctx *c, const cJSON *v, const at *p, dp_network 
     for (const cJSON *el = v->child; el; el = el->next, i++) {
         const at q = { p, NULL, i };
         at pn;
-        if (!want_object(c, el, &q))
+        if (!jw_want_object(c, el, &q))
             continue;
-        const cJSON *node = member(c, el, &q, "node", "the index of the node it loads", &pn);
+        const cJSON *node = jw_member(c, el, &q, "node", "the index of the node it loads", &pn);
         if (node != NULL)
             parse_index(c, node, &pn, net->n, "a node", &net->force[i].node);
-        parse_forcing_with(c, el, &q, &net->force[i].f, 1, common);
+        js_parse_forcing_with(c, el, &q, &net->force[i].f, 1, common);
     }
 }
 
@@ -178,13 +171,13 @@ static size_t network_size(ctx *c, const cJSON *o, const at *ptr, dp_network *ne
     char what[64];
     snprintf(what, sizeof what, "an array of 1..%d masses", DP_NETWORK_MAX_NODES);
     at p, q;
-    const cJSON *m = member(c, o, ptr, "masses", NULL, &p), *mm = member(c, o, ptr, "mass_matrix", NULL, &q);
+    const cJSON *m = jw_member(c, o, ptr, "masses", NULL, &p), *mm = jw_member(c, o, ptr, "mass_matrix", NULL, &q);
     if (m != NULL && mm != NULL) {
-        fail(c, &q, "give \"masses\" or \"mass_matrix\", not both");
+        jw_fail(c, &q, "give \"masses\" or \"mass_matrix\", not both");
         return 0;
     }
     if (m != NULL) {
-        size_t n = array_size(c, m, &p, DP_NETWORK_MAX_NODES, what);
+        size_t n = jw_array_size(c, m, &p, DP_NETWORK_MAX_NODES, what);
         if (n && (net->mass = calloc(n, sizeof *net->mass)) == NULL)
             c->nomem = 1;
         if (n && net->mass)
@@ -192,25 +185,25 @@ static size_t network_size(ctx *c, const cJSON *o, const at *ptr, dp_network *ne
         return net->mass ? n : 0;
     }
     snprintf(what, sizeof what, "an array of 1..%d rows", DP_NETWORK_MAX_MATRIX_NODES);
-    size_t n = array_size(c, mm, &q, DP_NETWORK_MAX_MATRIX_NODES, what);
+    size_t n = jw_array_size(c, mm, &q, DP_NETWORK_MAX_MATRIX_NODES, what);
     if (n)
         net->M = parse_matrix(c, mm, &q, n);
     return net->M ? n : 0;
 }
 
 /* Whether a model object is a network document. */
-static int is_network(const cJSON *o)
+int js_is_network(const cJSON *o)
 {
     return cJSON_IsObject(o) && (cJSON_GetObjectItemCaseSensitive(o, "masses") != NULL ||
                                  cJSON_GetObjectItemCaseSensitive(o, "mass_matrix") != NULL);
 }
 
-static void parse_network(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+void js_parse_network(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
     static const char *const keys[] = { "masses", "mass_matrix", "stiffness_matrix", "damping_matrix",
                                         "elements", "forcing", NULL };
     at p;
-    check_keys(c, o, ptr, keys, NULL, NULL);
+    jw_check_keys(c, o, ptr, keys, NULL, NULL);
     dp_network *net = calloc(1, sizeof *net);
     if (net == NULL) {
         c->nomem = 1;
@@ -222,18 +215,18 @@ static void parse_network(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
         return;
     char limit[96];
     snprintf(limit, sizeof limit, "full matrices are taken up to %d nodes", DP_NETWORK_MAX_MATRIX_NODES);
-    const cJSON *v = member(c, o, ptr, "stiffness_matrix", NULL, &p);
+    const cJSON *v = jw_member(c, o, ptr, "stiffness_matrix", NULL, &p);
     if (v != NULL && net->n > DP_NETWORK_MAX_MATRIX_NODES)
-        fail(c, &p, "%s", limit);
+        jw_fail(c, &p, "%s", limit);
     else if (v != NULL)
         net->K = parse_matrix(c, v, &p, net->n);
-    if ((v = member(c, o, ptr, "damping_matrix", NULL, &p)) != NULL && net->n > DP_NETWORK_MAX_MATRIX_NODES)
-        fail(c, &p, "%s", limit);
+    if ((v = jw_member(c, o, ptr, "damping_matrix", NULL, &p)) != NULL && net->n > DP_NETWORK_MAX_MATRIX_NODES)
+        jw_fail(c, &p, "%s", limit);
     else if (v != NULL)
         net->C = parse_matrix(c, v, &p, net->n);
-    if ((v = member(c, o, ptr, "elements", NULL, &p)) != NULL)
+    if ((v = jw_member(c, o, ptr, "elements", NULL, &p)) != NULL)
         parse_elements(c, v, &p, net);
-    if ((v = member(c, o, ptr, "forcing", NULL, &p)) != NULL)
+    if ((v = jw_member(c, o, ptr, "forcing", NULL, &p)) != NULL)
         parse_node_forcings(c, v, &p, net);
     s->x0v = calloc(net->n, sizeof *s->x0v);
     s->v0v = calloc(net->n, sizeof *s->v0v);
@@ -241,41 +234,41 @@ static void parse_network(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
         c->nomem = 1;
 }
 
-static void parse_network_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+void js_parse_network_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
     static const char *const keys[] = { "x", "v", NULL };
     at p;
-    if (!want_object(c, o, ptr))
+    if (!jw_want_object(c, o, ptr))
         return;
-    check_keys(c, o, ptr, keys, NULL, NULL);
-    const cJSON *v = member(c, o, ptr, "x", NULL, &p);
+    jw_check_keys(c, o, ptr, keys, NULL, NULL);
+    const cJSON *v = jw_member(c, o, ptr, "x", NULL, &p);
     if (v != NULL)
         parse_vector(c, v, &p, s->net->n, &ANY, s->x0v);
-    if ((v = member(c, o, ptr, "v", NULL, &p)) != NULL)
+    if ((v = jw_member(c, o, ptr, "v", NULL, &p)) != NULL)
         parse_vector(c, v, &p, s->net->n, &ANY, s->v0v);
 }
 
 /* output.nodes / output.elements: indices into [0, n) (networks only). */
-static void parse_columns(ctx *c, const cJSON *o, const at *ptr, const char *key, const char *noun,
+void js_parse_columns(ctx *c, const cJSON *o, const at *ptr, const char *key, const char *noun,
                           const dp_spec *s, size_t n, size_t **out, size_t *count)
 {
     at p;
-    const cJSON *v = member(c, o, ptr, key, NULL, &p);
+    const cJSON *v = jw_member(c, o, ptr, key, NULL, &p);
     if (v == NULL)
         return;
     if (s->net == NULL) {
-        fail(c, &p, "%s are chosen only for a network (\"masses\" or \"mass_matrix\")", key);
+        jw_fail(c, &p, "%s are chosen only for a network (\"masses\" or \"mass_matrix\")", key);
         return;
     }
     if (s->net->n == 0)
         return;              /* the model's own error says why there are no nodes */
     if (n == 0) {
-        fail(c, &p, "the network has no %ss to choose", noun + 3);
+        jw_fail(c, &p, "the network has no %ss to choose", noun + 3);
         return;
     }
     char what[64];
     snprintf(what, sizeof what, "an array of 1..%zu indices", n);
-    size_t m = array_size(c, v, &p, n, what);
+    size_t m = jw_array_size(c, v, &p, n, what);
     if (m == 0)
         return;
     if ((*out = calloc(m, sizeof **out)) == NULL) {

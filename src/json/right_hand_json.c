@@ -1,26 +1,30 @@
-/* src/json/right_hand_json.inc - the right-hand friction models (systems.md §6) for dp_spec_parse:
+/* src/json/right_hand_json.c - the right-hand friction models (docs/systems.md §6) for dp_spec_parse:
  * {"kind": "piston-hinge", "m1", "m2", "J_C", "r", "alpha", "f1", "f2", "g"} and {"kind": "painleve-rod",
  * "m", "length", "mu", "g"}, with "initial": {"x": [q0, q1], "v": [q0', q1']}.
  *
- * Included by spec_json.c, not compiled alone: it reads with spec_json.c's own helpers so that a bad field
- * gets the same message and pointer as anywhere else. The cross-field rules are in right_hand_check.c.
+ * Its own file for what only these models have; it reads with the walker (walk.h) so that a bad field gets
+ * the same message and pointer as anywhere else. The cross-field rules are in
+ * src/core/rules/right_hand_check.c.
  */
+#include <stdlib.h>
+
 #include "dashpot/right_hand.h"
+#include "spec_parts.h"
 
 static const range ALPHA = { 0, M_PI / 2, 0, " in [0, pi/2] (radians)" };
 
 /* A model with a "kind" is one of these (the one-mass model and networks have none). */
-static int is_right_hand(const cJSON *o)
+int js_is_right_hand(const cJSON *o)
 {
     return cJSON_IsObject(o) && cJSON_GetObjectItemCaseSensitive(o, "kind") != NULL;
 }
 
-static void parse_right_hand(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+void js_parse_right_hand(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
     static const char *const piston[] = { "kind", "m1", "m2", "J_C", "r", "alpha", "f1", "f2", "g", NULL };
     static const char *const rod[] = { "kind", "m", "length", "mu", "g", NULL };
     static const char *const kinds[] = { "piston-hinge", "painleve-rod", NULL };
-    int kind = get_enum(c, o, ptr, "kind", kinds, -1);
+    int kind = jw_get_enum(c, o, ptr, "kind", kinds, -1);
     if (kind < 0)
         return;
     dp_rh_model *m = calloc(1, sizeof *m);
@@ -37,22 +41,22 @@ static void parse_right_hand(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     m->g = 9.81;
     if (kind == DP_RH_ROD) {
         m->kind = DP_RH_ROD;
-        check_keys(c, o, ptr, rod, "kind", "painleve-rod");
-        get_num(c, o, ptr, "m", &POSITIVE, 1, 0, &m->m);
-        get_num(c, o, ptr, "length", &POSITIVE, 1, 0, &m->length);
-        get_num(c, o, ptr, "mu", &NONNEG, 1, 0, &m->mu);
+        jw_check_keys(c, o, ptr, rod, "kind", "painleve-rod");
+        jw_get_num(c, o, ptr, "m", &POSITIVE, 1, 0, &m->m);
+        jw_get_num(c, o, ptr, "length", &POSITIVE, 1, 0, &m->length);
+        jw_get_num(c, o, ptr, "mu", &NONNEG, 1, 0, &m->mu);
     } else {
         m->kind = DP_RH_PISTON_HINGE;
-        check_keys(c, o, ptr, piston, "kind", "piston-hinge");
-        get_num(c, o, ptr, "m1", &POSITIVE, 1, 0, &m->m1);
-        get_num(c, o, ptr, "m2", &POSITIVE, 1, 0, &m->m2);
-        get_num(c, o, ptr, "J_C", &NONNEG, 0, 0, &m->J_C);
-        get_num(c, o, ptr, "r", &POSITIVE, 1, 0, &m->r);
-        get_num(c, o, ptr, "alpha", &ALPHA, 1, 0, &m->alpha);
-        get_num(c, o, ptr, "f1", &NONNEG, 1, 0, &m->f1);
-        get_num(c, o, ptr, "f2", &NONNEG, 0, 0, &m->f2);
+        jw_check_keys(c, o, ptr, piston, "kind", "piston-hinge");
+        jw_get_num(c, o, ptr, "m1", &POSITIVE, 1, 0, &m->m1);
+        jw_get_num(c, o, ptr, "m2", &POSITIVE, 1, 0, &m->m2);
+        jw_get_num(c, o, ptr, "J_C", &NONNEG, 0, 0, &m->J_C);
+        jw_get_num(c, o, ptr, "r", &POSITIVE, 1, 0, &m->r);
+        jw_get_num(c, o, ptr, "alpha", &ALPHA, 1, 0, &m->alpha);
+        jw_get_num(c, o, ptr, "f1", &NONNEG, 1, 0, &m->f1);
+        jw_get_num(c, o, ptr, "f2", &NONNEG, 0, 0, &m->f2);
     }
-    get_num(c, o, ptr, "g", &POSITIVE, 0, 0, &m->g);
+    jw_get_num(c, o, ptr, "g", &POSITIVE, 0, 0, &m->g);
 }
 
 /* Two finite numbers [q0, q1] into out. */
@@ -60,47 +64,47 @@ static void parse_pair_of(ctx *c, const cJSON *v, const at *p, const char *names
 {
     if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 2) {
         if (cJSON_IsArray(v))
-            fail(c, p, "must be an array of 2 numbers %s, got %d", names, cJSON_GetArraySize(v));
+            jw_fail(c, p, "must be an array of 2 numbers %s, got %d", names, cJSON_GetArraySize(v));
         else
-            fail(c, p, "must be an array of 2 numbers %s, got %s", names, type_name(v));
+            jw_fail(c, p, "must be an array of 2 numbers %s, got %s", names, jw_type_name(v));
         return;
     }
     size_t i = 0;
     for (const cJSON *el = v->child; el; el = el->next, i++) {
         const at q = { p, NULL, i };
-        check_num(c, el, &q, &ANY, 0, &out[i]);
+        jw_check_num(c, el, &q, &ANY, 0, &out[i]);
     }
 }
 
-static void parse_right_hand_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+void js_parse_right_hand_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
     static const char *const keys[] = { "x", "v", NULL };
     at p;
-    if (!want_object(c, o, ptr))
+    if (!jw_want_object(c, o, ptr))
         return;
-    check_keys(c, o, ptr, keys, NULL, NULL);
+    jw_check_keys(c, o, ptr, keys, NULL, NULL);
     if (s->rh == NULL)
         return;                 /* the model's own error says what is wrong */
     int rod = s->rh->kind == DP_RH_ROD;
-    const cJSON *v = member(c, o, ptr, "x", NULL, &p);
+    const cJSON *v = jw_member(c, o, ptr, "x", NULL, &p);
     if (v != NULL)
         parse_pair_of(c, v, &p, rod ? "[x_A, theta]" : "[x, beta]", s->x0v);
-    if ((v = member(c, o, ptr, "v", NULL, &p)) != NULL)
+    if ((v = jw_member(c, o, ptr, "v", NULL, &p)) != NULL)
         parse_pair_of(c, v, &p, rod ? "[x_A', theta']" : "[x', beta']", s->v0v);
 }
 
-/* /v1/wellposedness for these models: parsed as strictly as a run's, then the theorems of seed 004 at the
- * initial state (right_hand_wp.c). Consumes root. */
-static int right_hand_wellposedness(ctx *c, const cJSON *root, const cJSON *model, const at *mp, dp_wp_report *rep)
+/* /v1/wellposedness for these models: parsed as strictly as a run's, then the theorems of Matrosov &
+ * Finogenko 1995 at the initial state (src/core/analysis/right_hand_wp.c). */
+int js_right_hand_wellposedness(ctx *c, const cJSON *root, const cJSON *model, const at *mp, dp_wp_report *rep)
 {
     dp_spec spec;
     dp_spec_init(&spec);
     c->lenient = 0;
-    parse_right_hand(c, model, mp, &spec);
+    js_parse_right_hand(c, model, mp, &spec);
     at p;
-    const cJSON *v = member(c, root, NULL, "initial", NULL, &p);
+    const cJSON *v = jw_member(c, root, NULL, "initial", NULL, &p);
     if (v != NULL && spec.rh != NULL)
-        parse_right_hand_initial(c, v, &p, &spec);
+        js_parse_right_hand_initial(c, v, &p, &spec);
     int s = c->nomem ? DP_ENOMEM : c->nerr ? DP_EINVAL : DP_OK;
     if (s == DP_OK) {
         size_t before = c->errs->n + c->errs->dropped;
