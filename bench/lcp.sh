@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/lcp.sh - LCP solves per second, dashpot's Lemke (src/core/lemke.c) against Siconos numerics'
+# bench/lcp.sh - LCP solves per second, dashpot's Lemke (src/core/lcp/lemke.c) against Siconos numerics'
 # lcp_lexicolemke on the same random problems of sizes 2, 10 and 100, printed side by side with the ratio
 # (bench/lcp_bench.c). The issue's goal is >= 10x Siconos at every size; it is measured and reported, not
 # enforced. Exits non-zero if the two disagree beyond 1e-9 relative on any problem.

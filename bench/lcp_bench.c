@@ -1,4 +1,4 @@
-/* bench/lcp_bench.c - LCP solves per second: dashpot's Lemke (src/core/lemke.c) against Siconos numerics'
+/* bench/lcp_bench.c - LCP solves per second: dashpot's Lemke (src/core/lcp/lemke.c) against Siconos numerics'
  * lexicographic Lemke (lcp_lexicolemke, SICONOS_LCP_LEMKE) on the same random problems of sizes 2, 10 and
  * 100 (M = B Bᵀ + I/m + a skew part: positive definite symmetric part, so each has one solution and both
  * must find it), printed side by side with the ratio. Run by bench/lcp.sh.

@@ -34,7 +34,7 @@ SPEC='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law
  "forcing": {"kind": "harmonic", "amplitude": 1, "omega": 0.5}}, "initial": {"x": 1, "v": 0},
  "solver": {"kind": "stick-slip", "dt": 0.01, "t_end": 20}}'
 # t_end / dt steps at output every 1: LONG is 10^8 steps (the default --max-steps), BIG is 10^7.
-long_spec() { echo "{\"model\": {\"mass\": 1, \"spring\": {\"law\": \"linear\", \"k\": 1}, \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.3}, \"forcing\": {\"kind\": \"harmonic\", \"amplitude\": 0.5, \"omega\": 1.3}}, \"initial\": {\"x\": 1, \"v\": 0}, \"solver\": {\"dt\": 1e-6, \"t_end\": $1}}"; }
+long_spec() { echo "{\"model\": {\"mass\": 1, \"spring\": {\"law\": \"linear\", \"k\": 1}, \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.3}, \"forcing\": {\"kind\": \"harmonic\", \"amplitude\": 0.5, \"omega\": 1.3}}, \"initial\": {\"x\": 1, \"v\": 0}, \"solver\": {\"dt\": 1e-6, \"t_end\": $1}, \"output\": {\"every\": 1}}"; }
 
 TINY_SPEC='{"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.3}}, "solver": {"dt": 1, "t_end": 2}}'
 

@@ -154,7 +154,7 @@ static void test_bingham_step_by_hand(void **state)
     char spec[400];
     traj t;
     run_ok(SPEC(spec, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"linear\",\"k\":2},\"damper\":{\"law\":"
-                "\"bingham\",\"tau\":0.5,\"c\":3}},\"initial\":{\"x\":1},\"solver\":{\"dt\":0.1,\"t_end\":0.1}}"),
+                "\"bingham\",\"tau\":0.5,\"c\":3}},\"initial\":{\"x\":1},\"solver\":{\"dt\":0.1,\"t_end\":0.1,\"theta\":1}}"),
            &t);
     assert_int_equal(t.n, 2);
     double v1 = -0.15 / 1.32;
@@ -224,8 +224,8 @@ static void test_harmonic_forcing_cross_check(void **state)
     traj ref, t1, t2;
     run_ok(SPEC(a, "{\"model\":%s,\"solver\":{\"dt\":1e-4,\"t_end\":20,\"theta\":0.5},\"output\":{\"every\":100}}",
                 model), &ref);
-    run_ok(SPEC(b, "{\"model\":%s,\"solver\":{\"dt\":1e-2,\"t_end\":20},\"output\":{\"every\":1}}", model), &t1);
-    run_ok(SPEC(c, "{\"model\":%s,\"solver\":{\"dt\":1e-3,\"t_end\":20},\"output\":{\"every\":10}}", model), &t2);
+    run_ok(SPEC(b, "{\"model\":%s,\"solver\":{\"dt\":1e-2,\"t_end\":20,\"theta\":1},\"output\":{\"every\":1}}", model), &t1);
+    run_ok(SPEC(c, "{\"model\":%s,\"solver\":{\"dt\":1e-3,\"t_end\":20,\"theta\":1},\"output\":{\"every\":10}}", model), &t2);
     assert_int_equal(ref.n, t1.n);
     assert_int_equal(ref.n, t2.n);
     double e1 = 0, e2 = 0;

@@ -184,7 +184,8 @@ cat >"$T/proj.json" <<'JSON'
                    "p": [{"kind": "harmonic", "amplitude": 1, "omega": 1, "phase": -1.5707963267948966}]},
            "laws": [{"law": "complementarity"}]},
  "initial": {"x": [0]},
- "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 12.566370614359172, "theta": 0.5}}
+ "solver": {"kind": "stick-slip", "dt": 0.001, "t_end": 12.566370614359172, "theta": 0.5},
+ "output": {"every": 1}}
 JSON
 "$BIN" simulate "$T/proj.json" --format ndjson >"$T/proj.ndjson"
 check "a harmonic source in p: the projected ODE's closed form over two periods" python3 -c "

@@ -344,7 +344,7 @@ static void test_coulomb_chain_energy_balance(void **state)
         "{\"between\":[1,2],\"spring\":{\"law\":\"linear\",\"k\":1.5},\"damper\":{\"law\":\"coulomb\",\"phi0\":0.4}},"
         "{\"between\":[2,\"ground\"],\"spring\":{\"law\":\"linear\",\"k\":0.5}}]},"
         "\"initial\":{\"x\":[2,-1,3],\"v\":[0,1,0]},\"solver\":{\"dt\":0.0005,\"t_end\":25,\"theta\":0.5,"
-        "\"events\":\"none\"}}";
+        "\"events\":\"none\"},\"output\":{\"every\":1}}";
     rows r;
     rows_run(json, 509, &r);
     assert_int_equal(r.status, DP_DONE);

@@ -1,4 +1,4 @@
-/* tests/test_network_step.c - the network's exact theta-step (src/core/network_step.c) against brute force:
+/* tests/test_network_step.c - the network's exact theta-step (src/core/network/network_step.c) against brute force:
  * on random small networks of Coulomb elements (between the ground and a mass, between two masses, on
  * belts), every stick/slip pattern is tried as a linear system and the one that satisfies its own sign and
  * interval conditions is the minimizer; the active-set solution must be it, to rounding, with the sticking

@@ -371,7 +371,7 @@ static void test_steppers_agree(void **state)
     }
 }
 
-/* ---- samples between the integrator's steps (src/core/dense.c) --------------------------------------- */
+/* ---- samples between the integrator's steps (src/core/base/dense.c) --------------------------------------- */
 
 /* The quintic Hermite interpolant reproduces a quintic from its ends' values and two derivatives, and misses
  * t^6 by its error term h^6/720 s^3 (s - 1)^3 exactly; Neville's polynomial reproduces its degree. */

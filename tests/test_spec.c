@@ -138,10 +138,12 @@ static void test_architecture_example(void **state)
     /* dp_model_prepare has run: both graphs exist. */
     assert_true(s.model.spring.graph.n >= 1);
     assert_true(s.model.damper.graph.n >= 1);
-    /* Defaults (spec.h, the schema). */
+    /* Defaults (spec.h, the schema): theta chosen (1/2: a linear spring, the exact variant); every chosen,
+     * 1: 10^4 steps are within the sample budget of 10 001. */
     check_run_fields(w, &s, &(dp_spec){ .x0 = 0, .v0 = 0,
-        .solver = { DP_SOLVER_STICK_SLIP, 1e-3, 10, 1, DP_VARIANT_EXACT, 100, 1e-4, DP_EVENTS_LOCATE },
+        .solver = { DP_SOLVER_STICK_SLIP, 1e-3, 10, 0.5, DP_VARIANT_EXACT, 100, 1e-4, DP_EVENTS_LOCATE },
         .output = { 1, 1, 1 } });
+    assert_int_equal(s.chosen, DP_CHOSEN_THETA | DP_CHOSEN_EVERY);
     dp_spec_clear(&s);
 }
 
@@ -824,7 +826,7 @@ static const row rows[] = {
       "must be true or false, got a string", 0 },
     { "events a number", TOP(",'output':{'events':1}"), NULL, DP_EINVAL, "/output/events",
       "must be true or false, got a number", 0 },
-    /* the core's cross-field rules (src/core/spec.c dp_spec_check) */
+    /* the core's cross-field rules (src/core/rules/spec.c dp_spec_check) */
     { "steps over the hard ceiling", TOP(",'solver':{'t_end':1e6,'dt':1e-6}"), NULL, DP_ELIMIT, "/solver/dt",
       "exceeds the limit", 1e9 },
     { "steps over a front end's limit", TOP(",'solver':{'t_end':10,'dt':1e-3}"), NULL, DP_ELIMIT, "/solver/dt",

@@ -149,7 +149,7 @@ static double thesis_vs_exact(int x0, double eps, double *dv)
     run_ok(SPEC(a, "{\"model\":%s,\"initial\":{\"x\":%d},\"solver\":{\"dt\":1e-3,\"variant\":\"thesis\","
                 "\"Z\":100,\"eps\":%.17g}}", model, x0, eps), &t1);
     run_ok(SPEC(b, "{\"model\":%s,\"initial\":{\"x\":%d},\"solver\":{\"dt\":1e-3,\"variant\":\"exact\","
-                "\"events\":\"none\"}}",
+                "\"events\":\"none\",\"theta\":1}}",
                 model, x0), &t2);
     double dx = max_diff_x(&t1, &t2, dv);
     assert_int_equal(t1.ne, t2.ne);
@@ -185,7 +185,7 @@ static void test_exact_sticking(void **state)
     char spec[512];
     traj t;
     run_ok(SPEC(spec, "{\"model\":" COULOMB_MODEL ",\"initial\":{\"x\":4.5},\"solver\":{\"dt\":1e-3,"
-                "\"t_end\":20,\"theta\":0.5}}"), &t);
+                "\"t_end\":20,\"theta\":0.5},\"output\":{\"every\":1}}"), &t);
     size_t first = 0;
     while (first < t.n && t.s[first].phase != DP_PHASE_STICK)
         first++;
@@ -208,7 +208,7 @@ static void test_graph_damper_equals_coulomb(void **state)
     (void)state;
     char a[600], b[600];
     traj t1, t2;
-    const char *solver = "\"solver\":{\"dt\":1e-3,\"events\":\"none\"}";
+    const char *solver = "\"solver\":{\"dt\":1e-3,\"events\":\"none\",\"theta\":1}";
     run_ok(SPEC(a, "{\"model\":" COULOMB_MODEL ",\"initial\":{\"x\":5},%s}", solver), &t1);
     run_ok(SPEC(b, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"graph\",\"points\":[[-1,-1],[1,1]]},"
                 "\"damper\":{\"law\":\"graph\",\"points\":[[-1,-1],[0,-1],[0,1],[1,1]]}},"
@@ -399,7 +399,7 @@ static void test_rope_breaks_stick_at_its_length(void **state)
 {
     (void)state;
     const char *fmt = "{\"model\":{\"mass\":1,\"spring\":{%s},\"damper\":{\"law\":\"coulomb\",\"phi0\":1,"
-                      "\"belt_velocity\":0.4}},\"initial\":{\"x\":0},\"solver\":{\"dt\":1e-2,\"t_end\":3}}";
+                      "\"belt_velocity\":0.4}},\"initial\":{\"x\":0},\"solver\":{\"dt\":1e-2,\"t_end\":3,\"theta\":1}}";
     char a[600], b[600];
     traj rope, lin;
     run_ok(SPEC(a, fmt, "\"law\":\"rope\",\"k\":1,\"length\":0.5"), &rope);

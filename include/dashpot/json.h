@@ -36,6 +36,10 @@ int dp_wellposedness_parse(const char *text, size_t len, dp_wp_report *rep, dp_e
  * well-posedness report) as one JSON object to out. Shared by the CLI and the daemon so that both describe
  * a run in the same words. DP_OK or DP_ENOMEM. */
 int dp_spec_meta_json(const dp_spec *spec, dp_buf *out);
+
+/* Appends ,"chosen":[...] naming the members dashpot chose for the document (spec->chosen, dp_spec_choose),
+ * nothing when there are none; every meta line writes it after "every". 0, or nonzero when out of memory. */
+int dp_chosen_json(const dp_spec *spec, dp_buf *out);
 /* The meta object of a right-hand friction run (spec->rh set): right_hand_meta.c. */
 int dp_rh_meta_json(const dp_spec *spec, dp_buf *out);
 

@@ -78,6 +78,7 @@ typedef struct dp_spec {
     dp_network *net;      /* a network document ("masses" or "mass_matrix"); NULL for the one-mass model */
     double *x0v, *v0v;    /* networks: the initial state, net->n each; right-hand models: 2 each */
     struct dp_lcs_model *lcs; /* a linear complementarity system (lcs.h); NULL otherwise */
+    unsigned chosen;      /* DP_CHOSEN_* bits: the members dashpot chose because the document left them out */
     struct dp_rh_model *rh; /* a right-hand friction model (right_hand.h); NULL otherwise */
 } dp_spec;
 
@@ -122,5 +123,20 @@ void dp_rh_check(const dp_spec *s, dp_errors *errs);
 
 /* Number of steps the spec asks for: ceil(t_end / dt) (with a rounding guard). */
 double dp_spec_steps(const dp_spec *s);
+
+/* Members a document may leave out for dashpot to choose (dp_spec_choose), named in the meta line's "chosen":
+ *   DP_CHOSEN_THETA  solver.theta = 1/2 (the trapezoidal rule: second order) where the model's rules allow it
+ *                    (a stick-slip run of the exact variant whose springs are linear or elastoplastic, whose
+ *                    contacts are rigid and whose step stays uniquely solvable), else 1 (backward Euler);
+ *   DP_CHOSEN_EVERY  output.every, the smallest that keeps the run within DP_SPEC_SAMPLE_BUDGET samples. */
+#define DP_CHOSEN_THETA 1u
+#define DP_CHOSEN_EVERY 2u
+#define DP_SPEC_SAMPLE_BUDGET 10001   /* the initial state and 10 000 more: a default run of 10^4 steps keeps them all */
+double dp_spec_default_theta(const dp_spec *s);
+/* The smallest every that gives at most `samples` (>= 2) samples, the first and the last included. */
+long dp_spec_every_for(const dp_spec *s, double samples);
+/* Sets the members named by `which` (DP_CHOSEN_* bits) as above and records them in s->chosen (theta only for
+ * the theta-method, the stick-slip solver); the solver's kind, dt, t_end and the model must be parsed first. */
+void dp_spec_choose(dp_spec *s, unsigned which);
 
 #endif

@@ -2,12 +2,12 @@
 
 
 def coulomb_spec(x0=4.5, m=1.0, k=1.0, phi0=1.0, solver=None, output=None):
-    """A mass on a linear spring with Coulomb friction, released from rest at x0."""
+    """A mass on a linear spring with Coulomb friction, released from rest at x0; every step a sample unless
+    `output` says otherwise (the daemon's own default is a budget of 10 001 samples)."""
     spec = {"model": {"mass": m, "spring": {"law": "linear", "k": k}, "damper": {"law": "coulomb", "phi0": phi0}},
             "initial": {"x": x0, "v": 0},
             "solver": solver or {"kind": "stick-slip", "dt": 1e-3, "t_end": 10, "theta": 0.5}}
-    if output:
-        spec["output"] = output
+    spec["output"] = output or {"every": 1}
     return spec
 
 
@@ -27,4 +27,4 @@ CHAIN = {"model": {"masses": [1, 2, 1.5],
 # e^(25 t), and the daemon ends the 200 stream with an error line at t = 10.24 (docs/http.md).
 DIVERGING = {"model": {"mass": 1, "spring": {"law": "linear", "k": 1},
                        "damper": {"law": "linear", "c": 0, "relaxation": {"kind": "linear", "L": 50}}},
-             "initial": {"x": 1}, "solver": {"dt": 0.01, "t_end": 100}}
+             "initial": {"x": 1}, "solver": {"dt": 0.01, "t_end": 100, "theta": 1}}

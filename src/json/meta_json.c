@@ -141,7 +141,7 @@ static int network_meta(const dp_spec *s, dp_buf *out)
     int st = head(s, network_fields, sizeof network_fields / sizeof *network_fields, out);
     st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
     st |= num(out, "steps", dp_spec_steps(s));
-    st |= lit(out, ",\"every\":") | whole(out, s->output.every);
+    st |= lit(out, ",\"every\":") | whole(out, s->output.every) | dp_chosen_json(s, out);
     st |= lit(out, ",\"nodes\":") | whole(out, (long)net->n) | lit(out, ",\"elements\":") | whole(out, (long)net->nel);
     st |= lit(out, ",\"columns\":{\"nodes\":[");
     size_t nn = s->output.nodes ? s->output.nnodes : net->n, ne = s->output.elements ? s->output.nelements : net->nel;
@@ -184,7 +184,7 @@ static int one_mass_meta(const dp_spec *s, dp_buf *out)
     int st = head(s, one_mass_fields, sizeof one_mass_fields / sizeof *one_mass_fields, out);
     st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end);
     st |= num(out, "steps", dp_spec_steps(s));
-    st |= lit(out, ",\"every\":") | whole(out, s->output.every);
+    st |= lit(out, ",\"every\":") | whole(out, s->output.every) | dp_chosen_json(s, out);
     st |= lit(out, ",\"spring\":\"") | lit(out, dp_spring_law_name(s->model.spring.law));
     st |= lit(out, "\",\"damper\":\"") | lit(out, dp_damper_law_name(s->model.damper.law));
     st |= lit(out, "\",\"wellposedness\":");

@@ -58,7 +58,7 @@ int dp_rh_meta_json(const dp_spec *s, dp_buf *out)
                       "\"rk8pd\",\"events_mode\":\"locate\",\"model\":\"") | lit(out, dp_rh_kind_name(m->kind));
     st |= lit(out, "\"") | num(out, "rtol", sv->rtol) | num(out, "atol", sv->atol);
     st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end) | num(out, "steps", dp_spec_steps(s));
-    st |= num(out, "every", (double)s->output.every);
+    st |= num(out, "every", (double)s->output.every) | dp_chosen_json(s, out);
     st |= parameters(m, out);
     st |= lit(out, rod ? ",\"columns\":{\"q\":[\"x_A\",\"theta\"],\"N\":[\"N\"],\"margin\":[\"1.2\",\"2.3\"]}"
                        : ",\"columns\":{\"q\":[\"x\",\"beta\"],\"N\":[\"N1\",\"N2\"],"

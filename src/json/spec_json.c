@@ -167,10 +167,7 @@ static void sample_budget(ctx *c, const cJSON *o, const at *ptr, const dp_spec *
         jw_fail(c, &p, "give either every or max_samples, not both");
         return;
     }
-    if (s->solver.dt > 0 && isfinite(s->solver.t_end) && s->solver.t_end > 0) {
-        double every = ceil(dp_spec_steps(s) / (budget - 1));
-        out->every = every < 1 ? 1 : every > 9007199254740992.0 ? 9007199254740992L : (long)every;
-    }
+    out->every = dp_spec_every_for(s, budget);
 }
 
 static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
@@ -256,6 +253,25 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s, int keys_checked)
 /* ---- the entry points ------------------------------------------------------------------------------ */
 
 /* A spec from the document's tree (read by jw_read into c), then prepared and checked. */
+/* Whether the document's object `member` has `key` (the member itself may be absent). */
+static int has(const cJSON *root, const char *member, const char *key)
+{
+    const cJSON *o = cJSON_GetObjectItemCaseSensitive(root, member);
+    return cJSON_IsObject(o) && cJSON_GetObjectItemCaseSensitive(o, key) != NULL;
+}
+
+/* What the document leaves for dashpot to choose (dp_spec_choose): theta, and every unless max_samples or
+ * every is given. */
+static unsigned left_out(const cJSON *root)
+{
+    unsigned which = 0;
+    if (!has(root, "solver", "theta"))
+        which |= DP_CHOSEN_THETA;
+    if (!has(root, "output", "every") && !has(root, "output", "max_samples"))
+        which |= DP_CHOSEN_EVERY;
+    return which;
+}
+
 static int spec_from_tree(ctx *c, const cJSON *root, double max_steps, dp_spec *spec, int keys_checked)
 {
     dp_errors *errs = c->errs;
@@ -264,6 +280,7 @@ static int spec_from_tree(ctx *c, const cJSON *root, double max_steps, dp_spec *
         return DP_ENOMEM;
     if (c->nerr > 0)
         return DP_EINVAL;
+    dp_spec_choose(spec, left_out(root));
     int s = spec->rh ? DP_OK : spec->net ? dp_network_prepare(spec->net) : spec->lcs ? DP_OK : dp_model_prepare(&spec->model);
     if (s == DP_ENOMEM)
         return s;

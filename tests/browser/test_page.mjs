@@ -552,8 +552,8 @@ try {
     return { xv: document.getElementById('plot-xv').dataset.markers, phase: document.getElementById('plot-phase').dataset.markers,
       ink: [purple('plot-xv'), purple('plot-phase')], legend: [...new Set(legend)].sort().join() };
   });
-  check(/H\u00f6schl 1983 section 15/.test(await page.textContent('#wp-body')),
-    'elastoplastic: the well-posedness check names its source (H\u00f6schl 1983 section 15)');
+  check(/H\u00f6schl 1983, section 15/.test(await page.textContent('#wp-body')),
+    'elastoplastic: the well-posedness check names its source (H\u00f6schl 1983, section 15)');
   const want = `yield:${yields},unload:${unloads}`;
   check(epView.xv === want && epView.phase === want && epView.ink.every((n) => n > 20 * yields) && epView.legend === 'unload,yield',
     `elastoplastic: the ${yields} yield and ${unloads} unload events are marked on x(t) and the phase portrait, with their legend`,

@@ -1,4 +1,4 @@
-/* src/core/hurwitz.c - is a real polynomial Hurwitz? Two independent tests and an honest verdict.
+/* src/core/analysis/hurwitz.c - is a real polynomial Hurwitz? Two independent tests and an honest verdict.
  *
  * Test 1 (thesis Thm 1.1, Hurwitz): a0 z^n + ... + an with a0 > 0 has every root in Re z < 0 iff every leading
  * principal minor D_k of H_ij = a_(2i-j) (a_k = 0 outside 0..n) is positive. Each D_k is computed by Gaussian

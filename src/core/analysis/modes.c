@@ -1,4 +1,4 @@
-/* src/core/modes.c - natural modes and damped eigenvalues of M x'' + C x' + K x = 0 (docs/systems.md §2).
+/* src/core/analysis/modes.c - natural modes and damped eigenvalues of M x'' + C x' + K x = 0 (docs/systems.md §2).
  *
  * Why two routes for the undamped problem: a chain of masses has a diagonal M and a tridiagonal K, and
  * then M^-1/2 K M^-1/2 is a symmetric tridiagonal matrix whose eigenpairs bisection and inverse iteration

@@ -1,4 +1,4 @@
-/* src/core/network_wellposedness.c - what the theory guarantees for a network (docs/systems.md §1).
+/* src/core/analysis/network_wellposedness.c - what the theory guarantees for a network (docs/systems.md §1).
  *
  * With M positive definite, K and C positive semidefinite, every element graph maximal monotone and every
  * relaxation gamma Lipschitz, the network is M x'' + C x' + K x + B^T A(B x', B x) - B^T gamma(B x') = f(t):

@@ -1,4 +1,4 @@
-/* src/core/response.c - the receptance H_ji(omega) = [(K - omega^2 M + i omega C)^-1]_ji of node j to a
+/* src/core/analysis/response.c - the receptance H_ji(omega) = [(K - omega^2 M + i omega C)^-1]_ji of node j to a
  * harmonic force at node i (Höschl's dynamic compliance, 003 §10 (10.36), Ex. 29), with its resonances and
  * antiresonances.
  *

@@ -1,4 +1,4 @@
-/* src/core/right_hand_wp.c - which of Matrosov & Finogenko's theorems (Matrosov & Finogenko 1995) cover a right-hand friction
+/* src/core/analysis/right_hand_wp.c - which of Matrosov & Finogenko's theorems (Matrosov & Finogenko 1995) cover a right-hand friction
  * model from its initial state, as a well-posedness report (wellposedness.h) with each hypothesis and its
  * margin:
  *   Theorem 3.1: a local right-hand solution where (2.3) holds at a solution of (1.1) with |N_s| != 0

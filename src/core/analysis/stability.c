@@ -1,4 +1,4 @@
-/* src/core/stability.c - stability of a linear fully implicit law sum lambda_i F_V^(i) = sum mu_j x^(j)
+/* src/core/analysis/stability.c - stability of a linear fully implicit law sum lambda_i F_V^(i) = sum mu_j x^(j)
  * closing m x'' + F_V = 0 (thesis chapter 1; docs/mathematics.md section 2).
  *
  * Laplace: F_V = -m z^2 x, so p(z) = m z^2 lambda(z) + mu(z). Using x^(j) = -F_V^(j-2)/m for j >= 2 the law

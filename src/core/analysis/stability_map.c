@@ -1,4 +1,4 @@
-/* src/core/stability_map.c - stability maps: verdict and spectral abscissa over a grid of two coefficients,
+/* src/core/analysis/stability_map.c - stability maps: verdict and spectral abscissa over a grid of two coefficients,
  * and the closed-form boundary ((1.10), (1.12), (1.14)) traced over the same grid by marching squares.
  *
  * A map answers "where in the (x, y) plane is the law stable?" the way the thesis' conditions do in closed

@@ -1,4 +1,4 @@
-/* src/core/wellposedness.c - existence and uniqueness from the graphs' own properties (docs/mathematics.md §5).
+/* src/core/analysis/wellposedness.c - existence and uniqueness from the graphs' own properties (docs/mathematics.md §5).
  *
  * (PC), linear spring: Pražák & Rajagopal 2016, Theorem 3 gives existence when A is maximal monotone (6)-(7), coercive (8),
  * gamma continuous with linear growth (5) and F in L^2 (10); Theorem 2 adds uniqueness when gamma is

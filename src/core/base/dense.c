@@ -1,4 +1,4 @@
-/* src/core/dense.c - samples inside an integrator step. An adaptive integrator that lands on every output
+/* src/core/base/dense.c - samples inside an integrator step. An adaptive integrator that lands on every output
  * time takes a clipped step before each one (and msbdf then lowers its order); stepping freely and
  * interpolating costs a few evaluations per step that holds a sample instead. Two interpolants:
  *   - quintic Hermite from y, y', y'' at both ends: error h^6 |y^(6)| / 46080 on a smooth stretch, for

@@ -1,4 +1,4 @@
-/* src/core/dense.h - internal: values between the accepted steps of an adaptive integrator, so that it can
+/* src/core/base/dense.h - internal: values between the accepted steps of an adaptive integrator, so that it can
  * step freely and still report samples on a fixed output grid (regularized.c). */
 #ifndef DASHPOT_CORE_DENSE_H
 #define DASHPOT_CORE_DENSE_H

@@ -1,4 +1,4 @@
-/* src/core/root.c - a safeguarded Illinois method for a bracketed root (used at events and in the
+/* src/core/base/root.c - a safeguarded Illinois method for a bracketed root (used at events and in the
  * relaxation step, never per step of the closed-form path). Illinois halves the retained end's value when
  * the same end is kept twice, which restores superlinear convergence of regula falsi (Dowell & Jarratt
  * 1971); a bisection every third step without halving the bracket bounds the worst case. */

@@ -1,4 +1,4 @@
-/* src/core/root.h - internal: bracketed scalar root finding shared by the step solvers. */
+/* src/core/base/root.h - internal: bracketed scalar root finding shared by the step solvers. */
 #ifndef DASHPOT_CORE_ROOT_H
 #define DASHPOT_CORE_ROOT_H
 

@@ -1,4 +1,4 @@
-/* src/core/status.c - status descriptions and the located-error list (status.h). */
+/* src/core/base/status.c - status descriptions and the located-error list (status.h). */
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>

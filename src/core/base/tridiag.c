@@ -1,4 +1,4 @@
-/* src/core/tridiag.c - all eigenpairs of a symmetric tridiagonal matrix in O(n^2) (plus reorthogonalization
+/* src/core/base/tridiag.c - all eigenpairs of a symmetric tridiagonal matrix in O(n^2) (plus reorthogonalization
  * inside clusters): the chain route of modes.c.
  *
  * Why not a library: GSL has no tridiagonal eigensolver (its symmv is O(n^3) whatever the structure), and

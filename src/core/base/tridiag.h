@@ -1,4 +1,4 @@
-/* src/core/tridiag.h - internal: the symmetric tridiagonal eigensolver of the chain route (tridiag.c). */
+/* src/core/base/tridiag.h - internal: the symmetric tridiagonal eigensolver of the chain route (tridiag.c). */
 #ifndef DASHPOT_CORE_TRIDIAG_H
 #define DASHPOT_CORE_TRIDIAG_H
 

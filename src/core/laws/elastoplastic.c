@@ -1,4 +1,4 @@
-/* src/core/elastoplastic.c - the Jenkins element (a spring k in series with a Coulomb slider of yield
+/* src/core/laws/elastoplastic.c - the Jenkins element (a spring k in series with a Coulomb slider of yield
  * force F_y; Höschl 003 §15, docs/systems.md §3): its return mapping and its step graph.
  *
  * Why a separate graph per step: the law has memory (the plastic offset p), so the force at the step's end

@@ -1,4 +1,4 @@
-/* src/core/forcing.c - the load F(t): constant, harmonic amplitude*cos(omega t + phase), piecewise-linear
+/* src/core/laws/forcing.c - the load F(t): constant, harmonic amplitude*cos(omega t + phase), piecewise-linear
  * table (held constant beyond its ends), and sums of those (docs/architecture.md, "A model"). */
 #include <math.h>
 #include <stdlib.h>

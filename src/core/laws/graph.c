@@ -1,4 +1,4 @@
-/* src/core/graph.c - piecewise-linear monotone graphs: evaluation, inverse, resolvent, Yosida.
+/* src/core/laws/graph.c - piecewise-linear monotone graphs: evaluation, inverse, resolvent, Yosida.
  *
  * A graph is a curve through vertices (y_i, F_i), non-decreasing in both coordinates, with a ray at each
  * end. Along such a curve u = y + l*F is non-decreasing for l > 0, and strictly increasing except on

@@ -1,4 +1,4 @@
-/* src/core/inclusion.c - solving the implicit step K w - gamma(w) + A(w) + S(w) containing b exactly.
+/* src/core/laws/inclusion.c - solving the implicit step K w - gamma(w) + A(w) + S(w) containing b exactly.
  *
  * The step of any maximal monotone damper graph and monotone spring graph is one scalar inclusion
  * (docs/mathematics.md §4). Its set-valued part lives at the graphs' vertices, so the vertices are searched

@@ -1,4 +1,4 @@
-/* src/core/inclusion.h - internal: the scalar monotone inclusion every implicit step reduces to. */
+/* src/core/laws/inclusion.h - internal: the scalar monotone inclusion every implicit step reduces to. */
 #ifndef DASHPOT_CORE_INCLUSION_H
 #define DASHPOT_CORE_INCLUSION_H
 

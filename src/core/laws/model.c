@@ -1,4 +1,4 @@
-/* src/core/model.c - the model's lifetime: its laws' graphs built (by the law table, law_table.c), cleared and
+/* src/core/laws/model.c - the model's lifetime: its laws' graphs built (by the law table, law_table.c), cleared and
  * copied.
  */
 #include <string.h>

@@ -1,4 +1,4 @@
-/* src/core/relaxation.c - relaxation functions gamma with gamma(0) = 0 (docs/mathematics.md §1):
+/* src/core/laws/relaxation.c - relaxation functions gamma with gamma(0) = 0 (docs/mathematics.md §1):
  * rational a v/(b+|v|) (thesis ch. 4: Lipschitz a/b, |gamma| < a), linear L v, and the paper's
  * non-Lipschitz power law gamma_N(u) = N |u|^(1-1/N) sgn u (Pražák & Rajagopal 2016, (26)). */
 #include <math.h>

@@ -1,4 +1,4 @@
-/* src/core/yosida.c - the single-valued regularizations of a maximal monotone graph that the schemes (PCn)
+/* src/core/laws/yosida.c - the single-valued regularizations of a maximal monotone graph that the schemes (PCn)
  * and (PIk) integrate (docs/mathematics.md §3).
  *
  * (PCn), Pražák & Rajagopal 2016, (17): F_c = G_n(F_c, v) := n/(n+1) (v + phi(v + (n-1)/n F_c)), with phi the 45-degree

@@ -1,4 +1,4 @@
-/* src/core/lcp_enum.c - every solution of a small LCP w = Mz + q, 0 <= z ⊥ w >= 0, by its 2^m complementary
+/* src/core/lcp/lcp_enum.c - every solution of a small LCP w = Mz + q, 0 <= z ⊥ w >= 0, by its 2^m complementary
  * bases, and the uniqueness theory of M (Cibulka 2014, Lemma 2.5, Theorem 2.3, Examples 2.4, 2.6, 2.11).
  *
  * A solution has a set a of indices with w_a = 0 and z_rest = 0 (for a degenerate solution several sets), so

@@ -1,4 +1,4 @@
-/* src/core/lcs.c - the θ-step of a linear complementarity system (Cibulka 2014, (1.10); docs/systems.md §5):
+/* src/core/lcp/lcs.c - the θ-step of a linear complementarity system (Cibulka 2014, (1.10); docs/systems.md §5):
  * x+ = x + h (A (θ x+ + (1-θ) x) + B u+ + p), w+ = C x+ + D u+ + q, (u+, w+) in the laws, so
  * x+ = x^ + h W B u+ with W = (I - hθA)^-1, x^ = W ((I + h(1-θ)A) x + h p), and u+ solves one LCP
  * w+ = (D + h C W B) u+ + (C x^ + q) per step, by Lemke's method.

@@ -1,4 +1,4 @@
-/* src/core/lcs_model.c - the LCS model a spec owns (copy, free) and its spec rules: the stick-slip θ-step,
+/* src/core/lcp/lcs_model.c - the LCS model a spec owns (copy, free) and its spec rules: the stick-slip θ-step,
  * the step count, and an initial state the laws admit (Cibulka 2014, (1.10): at t = 0 some u must give
  * (u, C x0 + D u + q) in the laws; with D = 0 and an ideal diode that is C x0 + q >= 0, a current that
  * does not already flow backwards). */

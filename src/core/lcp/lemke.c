@@ -1,4 +1,4 @@
-/* src/core/lemke.c - Lemke's complementary pivoting for w = Mz + q, 0 <= z ⊥ w >= 0 (Cibulka 2014, (1.10);
+/* src/core/lcp/lemke.c - Lemke's complementary pivoting for w = Mz + q, 0 <= z ⊥ w >= 0 (Cibulka 2014, (1.10);
  * Cottle, Pang & Stone, The Linear Complementarity Problem, §4.4), with the lexicographic ratio test.
  *
  * The system w - M z - e z0 = q has 2m + 1 variables: w (0..m), z (m..2m), z0 (2m). The tableau is stored

@@ -1,4 +1,4 @@
-/* src/core/network.c - the network model's lifetime and its linear part (docs/systems.md §1).
+/* src/core/network/network.c - the network model's lifetime and its linear part (docs/systems.md §1).
  *
  * An element's laws are the one-mass model's (model.c builds their graphs), so a network is prepared by
  * preparing each element as a one-mass model would be: one set of law code for both.

@@ -1,4 +1,4 @@
-/* src/core/network_step.c - the network's theta-step solved exactly: a primal active-set method over the
+/* src/core/network/network_step.c - the network's theta-step solved exactly: a primal active-set method over the
  * pieces of the element graphs (network_step.h).
  *
  * Every element is either *fixed* at a vertex of its graph Sigma_e (z_e held, its force a multiplier in the

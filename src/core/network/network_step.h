@@ -1,4 +1,4 @@
-/* src/core/network_step.h - internal: the exact theta-step of a network (docs/systems.md §1) as one strictly
+/* src/core/network/network_step.h - internal: the exact theta-step of a network (docs/systems.md §1) as one strictly
  * convex, piecewise quadratic problem
  *
  *     min_v  1/2 v^T W v - rhs^T v + h sum_e Psi_e(b_e^T v),   Psi_e' = Sigma_e,

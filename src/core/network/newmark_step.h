@@ -1,4 +1,4 @@
-/* src/core/newmark_step.h - internal: one Newmark step in Höschl's incremental tangent-stiffness form
+/* src/core/network/newmark_step.h - internal: one Newmark step in Höschl's incremental tangent-stiffness form
  * (include/dashpot/newmark.h) over band matrices, shared by the one-mass run (newmark.c) and networks
  * (network_run.c). */
 #ifndef DASHPOT_CORE_NEWMARK_STEP_H

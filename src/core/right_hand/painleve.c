@@ -1,4 +1,4 @@
-/* src/core/painleve.c - the two models of friction with motion-dependent normal force (docs/systems.md §6) as
+/* src/core/right_hand/painleve.c - the two models of friction with motion-dependent normal force (docs/systems.md §6) as
  * frames A q'' = b + Q with their normal reactions affine in q'' (right_hand.h).
  *
  * Piston-hinge (Matrosov & Finogenko 1995, §6, with the corrections of docs/systems.md: beta'^2 in N1, beta'' in N2). Tube Ox

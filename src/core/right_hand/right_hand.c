@@ -1,4 +1,4 @@
-/* src/core/right_hand.c - the acceleration problem of friction with motion-dependent normal force (Matrosov & Finogenko 1995
+/* src/core/right_hand/right_hand.c - the acceleration problem of friction with motion-dependent normal force (Matrosov & Finogenko 1995
  * (1.1)/(1.3)) solved exactly by enumeration, and the paper's conditions (1.2), (2.3), (6.2)-(6.4).
  *
  * For one mode combination (each friction coordinate stuck, or sliding/starting with sign sigma) the

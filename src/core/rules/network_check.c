@@ -1,4 +1,4 @@
-/* src/core/network_check.c - the rules a network document must meet before it is stepped (docs/systems.md §1).
+/* src/core/rules/network_check.c - the rules a network document must meet before it is stepped (docs/systems.md §1).
  *
  * The step's matrix W = M + h theta C + h^2 theta^2 K must be positive definite and the element laws
  * maximal monotone for the step to be one strictly convex problem: so M must be positive definite, K and C

@@ -1,4 +1,4 @@
-/* src/core/right_hand_check.c - the cross-field rules of a right-hand friction spec (docs/systems.md §6): its
+/* src/core/rules/right_hand_check.c - the cross-field rules of a right-hand friction spec (docs/systems.md §6): its
  * models go with the right-hand solver and it with them; the parameters make a mechanism (masses and
  * lengths > 0, alpha in [0, pi/2], coefficients >= 0, gravity > 0) - the parser checks each number, this
  * restates them for specs built in C. */

@@ -1,4 +1,4 @@
-/* src/core/spec.c - spec defaults, lifetime and the cross-field rules a schema cannot state.
+/* src/core/rules/spec.c - spec defaults, lifetime and the cross-field rules a schema cannot state.
  *
  * The rules come from the mathematics: the thesis algorithm needs the contraction (4.10) and the bound
  * (4.8); the exact step is uniquely solvable only while m + h theta c + h^2 theta^2 k > h theta L_gamma
@@ -155,6 +155,62 @@ int dp_spec_copy(dp_spec *dst, const dp_spec *src)
         return DP_ENOMEM;
     }
     return DP_OK;
+}
+
+/* Whether theta < 1 is allowed for the exact step of a one-mass model: a linear or plastic spring (others are
+ * stepped by backward Euler) and a uniquely solvable step, m + h theta c + h^2 theta^2 k > h theta L_gamma
+ * (check_exact). */
+static int one_mass_takes_theta(const dp_spec *s, double th)
+{
+    const dp_model *m = &s->model;
+    if (!dp_spring_linear(&m->spring) && !dp_spring_plastic(&m->spring))
+        return 0;
+    double h = s->solver.dt, k = dp_spring_stiffness(&m->spring), c = dp_damper_viscous(&m->damper);
+    double L = dp_relaxation_lipschitz(&m->damper.relaxation);
+    return !isfinite(L) || m->mass + h * th * c + h * h * th * th * k > h * th * L;
+}
+
+/* The same for a network: every spring linear or plastic and no compliant contact (network_check.c). */
+static int network_takes_theta(const dp_network *net)
+{
+    for (size_t i = 0; i < net->nel; i++) {
+        const dp_element *el = &net->el[i];
+        if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring))
+            return 0;
+        if (el->has_contact && el->contact.compliance > 0)
+            return 0;
+    }
+    return 1;
+}
+
+double dp_spec_default_theta(const dp_spec *s)
+{
+    if (s->solver.kind != DP_SOLVER_STICK_SLIP || s->solver.variant != DP_VARIANT_EXACT || s->rh)
+        return 1;
+    if (s->lcs)
+        return 0.5;
+    if (s->net)
+        return network_takes_theta(s->net) ? 0.5 : 1;
+    return one_mass_takes_theta(s, 0.5) ? 0.5 : 1;
+}
+
+long dp_spec_every_for(const dp_spec *s, double samples)
+{
+    if (!(s->solver.dt > 0 && isfinite(s->solver.t_end) && s->solver.t_end > 0 && samples >= 2))
+        return 1;
+    double every = ceil(dp_spec_steps(s) / (samples - 1));
+    return every < 1 ? 1 : every > 9007199254740992.0 ? 9007199254740992L : (long)every;
+}
+
+void dp_spec_choose(dp_spec *s, unsigned which)
+{
+    if (s->solver.kind != DP_SOLVER_STICK_SLIP || s->rh)
+        which &= ~DP_CHOSEN_THETA;      /* only the theta-method has a theta to choose */
+    if (which & DP_CHOSEN_THETA)
+        s->solver.theta = dp_spec_default_theta(s);
+    if (which & DP_CHOSEN_EVERY)
+        s->output.every = dp_spec_every_for(s, DP_SPEC_SAMPLE_BUDGET);
+    s->chosen |= which;
 }
 
 double dp_spec_steps(const dp_spec *s)

@@ -1,4 +1,4 @@
-/* src/core/event_location.c - splitting a stick-slip step at the instants where its phase changes.
+/* src/core/solvers/event_location.c - splitting a stick-slip step at the instants where its phase changes.
  *
  * A step that reaches the belt's speed or breaks away from it is split at that instant, found to rounding,
  * so the nonsmooth instants cost the theta-method no order (theta = 1/2 stays second order). Two conditions,

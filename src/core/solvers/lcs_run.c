@@ -1,4 +1,4 @@
-/* src/core/lcs_run.c - a linear complementarity system run (docs/lcs.md): the θ-step of lcs.c driven
+/* src/core/solvers/lcs_run.c - a linear complementarity system run (docs/lcs.md): the θ-step of lcs.c driven
  * through the pull iterator, each sample a row of the groups x (n states), u and w (m components each).
  *
  * Rows only, no queue: a block takes as many rows as the caller's buffer has slots (within ROW_BUDGET

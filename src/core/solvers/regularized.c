@@ -1,4 +1,4 @@
-/* src/core/regularized.c - the regularized existence schemes (PCn) and (PIk) as solvers (docs/mathematics.md §3).
+/* src/core/solvers/regularized.c - the regularized existence schemes (PCn) and (PIk) as solvers (docs/mathematics.md §3).
  *
  *   (PCn), Pražák & Rajagopal 2016, (17)-(18):  m x'' + F_s(x) + F_c - gamma(u) = F(t),  u = x' - v_b,
  *                               F_c = c u + g_n(u),  g_n = A_(1/n) (yosida.c),

@@ -1,4 +1,4 @@
-/* src/core/right_hand_run.c - right-hand solutions (Matrosov & Finogenko 1995, §3: D+q = q', D+q' = G(t, q, q')) of the
+/* src/core/solvers/right_hand_run.c - right-hand solutions (Matrosov & Finogenko 1995, §3: D+q = q', D+q' = G(t, q, q')) of the
  * friction models of right_hand.h, as a dp_run of rows.
  *
  * A smooth phase keeps every coordinate's mode (stick, slip +/-, free) and is integrated by GSL odeiv2

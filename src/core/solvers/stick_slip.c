@@ -1,4 +1,4 @@
-/* src/core/stick_slip.c - exact stick-slip time stepping: the theta-method (Moreau-Jean, as Siconos'
+/* src/core/solvers/stick_slip.c - exact stick-slip time stepping: the theta-method (Moreau-Jean, as Siconos'
  * EulerMoreauOSI) for m x'' + c (x' - v_b) + k x + r - gamma = F(t), r in A(x' - v_b) (docs/mathematics.md §4).
  *
  * Each step is one scalar monotone inclusion in v+. For a linear spring, a damper whose law-table entry has

@@ -1,4 +1,4 @@
-/* src/core/convergence.c - how fast (PCn) / (PIk) approach the exact solution as n (or k) grows.
+/* src/core/studies/convergence.c - how fast (PCn) / (PIk) approach the exact solution as n (or k) grows.
  *
  * The existence proofs (Pražák & Rajagopal 2016, Thm 3, Babováková 2012, Thm 2.1) give uniform convergence of x and x' along a
  * subsequence; on a finite horizon the error is O(1/n), dominated by creep in stick phases: where the exact

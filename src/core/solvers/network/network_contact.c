@@ -1,4 +1,4 @@
-/* src/core/network_contact.c - unilateral contacts on a network (docs/systems.md §4, Cibulka 2014, §2.3): an element's
+/* src/core/solvers/network/network_contact.c - unilateral contacts on a network (docs/systems.md §4, Cibulka 2014, §2.3): an element's
  * elongation u kept at least its distance d.
  *
  * A rigid contact is one more element of the step's convex problem, armed for a step where it closes: the

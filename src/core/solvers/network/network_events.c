@@ -1,4 +1,4 @@
-/* src/core/network_events.c - located events on networks: a step whose exact solution changes some
+/* src/core/solvers/network/network_events.c - located events on networks: a step whose exact solution changes some
  * element's assignment is split at the earliest instant where the step's starting assignment, held over a
  * shorter step, stops being consistent (a bracketed root of the candidates' smallest margin); the elements
  * that fail there switch (a stick, a release, or a reversal through the belt speed without a stick) and the

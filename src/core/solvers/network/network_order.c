@@ -1,4 +1,4 @@
-/* src/core/network_order.c - the nodes of a network renumbered to keep W's band narrow (reverse
+/* src/core/solvers/network/network_order.c - the nodes of a network renumbered to keep W's band narrow (reverse
  * Cuthill-McKee).
  *
  * A step costs O(n p^2) with p the half-bandwidth of W = M + h theta C + h^2 theta^2 K, which is the largest

@@ -1,4 +1,4 @@
-/* src/core/network_output.c - what a network run hands out: rows over its columns, element events, the
+/* src/core/solvers/network/network_output.c - what a network run hands out: rows over its columns, element events, the
  * summary's final row, and the queue that holds what did not fit the caller's block (it grows, it never
  * drops: one step can change the phase of every element). Shared by the exact stepping and the regularized
  * scheme. */

@@ -1,4 +1,4 @@
-/* src/core/network_regularized.c - the existence scheme (PCn) on a network: every element's damper graph A
+/* src/core/solvers/network/network_regularized.c - the existence scheme (PCn) on a network: every element's damper graph A
  * replaced by its Yosida approximation A_(1/n) (Pražák & Rajagopal 2016, (17)), every graph spring likewise, so that
  *
  *     x' = v,   M v' = f(t) - K x - C v + sum_e c_e v_b,e b_e - sum_e b_e [S_1/n(u_e) + A_1/n(z_e - v_b) - gamma(z_e - v_b)]

@@ -1,4 +1,4 @@
-/* src/core/network_run.c - the stick-slip solver on a network: theta-steps solved exactly by
+/* src/core/solvers/network/network_run.c - the stick-slip solver on a network: theta-steps solved exactly by
  * network_step.c, samples as rows over the chosen columns, a phase change per element as an event.
  *
  * The linear parts are weighted exactly as the one-mass scheme weights them (docs/mathematics.md §4):
