@@ -31,10 +31,10 @@
 typedef struct pos { double B[2], C[2]; } pos;
 
 /* World positions (x right, y up) of the piston B and the body's centre C (or the rod's end A and centre G). */
-static pos where(const dp_rh_model *m, const double q[2])
+static pos where(const dp_right_hand_model *m, const double q[2])
 {
     pos p;
-    if (m->kind == DP_RH_ROD) {
+    if (m->kind == DP_RIGHT_HAND_ROD) {
         double l = m->length / 2;
         p.B[0] = q[0], p.B[1] = 0;
         p.C[0] = q[0] + l * cos(q[1]), p.C[1] = l * sin(q[1]);
@@ -49,7 +49,7 @@ static pos where(const dp_rh_model *m, const double q[2])
 }
 
 /* The velocities of B and C: the positions' derivative along q' (4th-order stencil). */
-static void velocities(const dp_rh_model *m, const double q[2], const double qd[2], double vB[2], double vC[2])
+static void velocities(const dp_right_hand_model *m, const double q[2], const double qd[2], double vB[2], double vC[2])
 {
     const double h = 1e-3;
     pos p[4];
@@ -64,12 +64,12 @@ static void velocities(const dp_rh_model *m, const double q[2], const double qd[
     }
 }
 
-static double lagrangian(const dp_rh_model *m, const double q[2], const double qd[2])
+static double lagrangian(const dp_right_hand_model *m, const double q[2], const double qd[2])
 {
     double vB[2], vC[2];
     velocities(m, q, qd, vB, vC);
     pos o = where(m, q);
-    if (m->kind == DP_RH_ROD) {
+    if (m->kind == DP_RIGHT_HAND_ROD) {
         double l = m->length / 2, I = m->m * l * l / 3;
         return 0.5 * m->m * (vC[0] * vC[0] + vC[1] * vC[1]) + 0.5 * I * qd[1] * qd[1] - m->m * m->g * o.C[1];
     }
@@ -79,7 +79,7 @@ static double lagrangian(const dp_rh_model *m, const double q[2], const double q
 }
 
 /* dL/dqd_i: L is quadratic in qd, so the central difference is exact for any step (1 here). */
-static double p_i(const dp_rh_model *m, const double q[2], const double qd[2], int i)
+static double p_i(const dp_right_hand_model *m, const double q[2], const double qd[2], int i)
 {
     double a[2] = { qd[0], qd[1] }, b[2] = { qd[0], qd[1] };
     a[i] += 1, b[i] -= 1;
@@ -87,7 +87,7 @@ static double p_i(const dp_rh_model *m, const double q[2], const double qd[2], i
 }
 
 /* A_ij = d p_i/dqd_j (exact, L quadratic in qd), b_i = dL/dq_i - sum_j dp_i/dq_j qd_j (4th-order in q). */
-static void lagrange(const dp_rh_model *m, const double q[2], const double qd[2], double A[2][2], double b[2])
+static void lagrange(const dp_right_hand_model *m, const double q[2], const double qd[2], double A[2][2], double b[2])
 {
     const double hq = 1e-3, k[4] = { 2, 1, -1, -2 }, w[4] = { -1, 8, -8, 1 };
     for (int i = 0; i < 2; i++) {
@@ -111,7 +111,7 @@ static void lagrange(const dp_rh_model *m, const double q[2], const double qd[2]
 
 /* Normal reactions by Newton: the centre's acceleration a = d2/dt2 C(q + qd t + qdd t^2/2) at t = 0 by the
  * 4th-order stencil for the second derivative (step 1e-3: truncation ~1e-12, rounding ~1e-10). */
-static void reactions(const dp_rh_model *m, const double q[2], const double qd[2], const double qdd[2],
+static void reactions(const dp_right_hand_model *m, const double q[2], const double qd[2], const double qdd[2],
                       double N[2])
 {
     const double h = 1e-3, k[5] = { 2, 1, 0, -1, -2 }, w[5] = { -1, 16, -30, 16, -1 };
@@ -121,7 +121,7 @@ static void reactions(const dp_rh_model *m, const double q[2], const double qd[2
         pos p = where(m, x);
         aC[0] += w[s] * p.C[0] / (12 * h * h), aC[1] += w[s] * p.C[1] / (12 * h * h);
     }
-    if (m->kind == DP_RH_ROD) {
+    if (m->kind == DP_RIGHT_HAND_ROD) {
         N[0] = m->m * (aC[1] + m->g), N[1] = 0;
         return;
     }
@@ -136,15 +136,15 @@ static double urand(uint64_t *s, double lo, double hi)
     return lo + (hi - lo) * (double)(*s >> 11) / 9007199254740992.0;
 }
 
-static dp_rh_model piston(double m1, double m2, double JC, double r, double alpha, double f1, double f2)
+static dp_right_hand_model piston(double m1, double m2, double JC, double r, double alpha, double f1, double f2)
 {
-    return (dp_rh_model){ .kind = DP_RH_PISTON_HINGE, .m1 = m1, .m2 = m2, .J_C = JC, .r = r, .alpha = alpha,
+    return (dp_right_hand_model){ .kind = DP_RIGHT_HAND_PISTON_HINGE, .m1 = m1, .m2 = m2, .J_C = JC, .r = r, .alpha = alpha,
                           .f1 = f1, .f2 = f2, .g = 9.81 };
 }
 
-static dp_rh_model rod(double m, double length, double mu)
+static dp_right_hand_model rod(double m, double length, double mu)
 {
-    return (dp_rh_model){ .kind = DP_RH_ROD, .m = m, .length = length, .mu = mu, .g = 9.81 };
+    return (dp_right_hand_model){ .kind = DP_RIGHT_HAND_ROD, .m = m, .length = length, .mu = mu, .g = 9.81 };
 }
 
 /* The solver's accelerations at random sliding states satisfy A qdd = b - sgn(qd) f |N| with A, b from the
@@ -156,17 +156,17 @@ static void test_equations_from_lagrangian(void **state)
     int checked = 0;
     for (int it = 0; it < 400; it++) {
         int isrod = it % 2;
-        dp_rh_model m = isrod ? rod(urand(&seed, 0.5, 3), urand(&seed, 0.5, 2), urand(&seed, 0, 1.2))
+        dp_right_hand_model m = isrod ? rod(urand(&seed, 0.5, 3), urand(&seed, 0.5, 2), urand(&seed, 0, 1.2))
                               : piston(urand(&seed, 0.5, 3), urand(&seed, 0.5, 3), urand(&seed, 0, 0.5),
                                        urand(&seed, 0.2, 1.5), urand(&seed, 0, M_PI / 2), urand(&seed, 0, 0.6),
                                        urand(&seed, 0, 0.1));
         double q[2] = { urand(&seed, -1, 1), isrod ? urand(&seed, 0.2, 1.4) : urand(&seed, -M_PI, M_PI) };
         double qd[2] = { urand(&seed, 0.1, 2) * (urand(&seed, 0, 1) < 0.5 ? -1 : 1), urand(&seed, -2, 2) };
-        dp_rh_result res;
-        dp_rh_solve(&m, q, qd, NULL, &res);
+        dp_right_hand_result res;
+        dp_right_hand_solve(&m, q, qd, NULL, &res);
         if (res.n != 1 || res.continuum || res.sol[0].liftoff)
             continue;
-        const dp_rh_sol *s = &res.sol[0];
+        const dp_right_hand_sol *s = &res.sol[0];
         double A[2][2], b[2], N[2];
         lagrange(&m, q, qd, A, b);
         reactions(&m, q, qd, s->qdd, N);
@@ -188,15 +188,15 @@ static void test_equations_from_lagrangian(void **state)
         fail_msg("only %d of 400 random states had one solution", checked);
 }
 
-static int unique_at(const dp_rh_model *m, const double q[2], const double qd[2])
+static int unique_at(const dp_right_hand_model *m, const double q[2], const double qd[2])
 {
-    dp_rh_result res;
-    dp_rh_solve(m, q, qd, NULL, &res);
+    dp_right_hand_result res;
+    dp_right_hand_solve(m, q, qd, NULL, &res);
     return res.n == 1 && !res.continuum;
 }
 
 /* The edge between a unique angle `ok` and a paradoxical one `bad`, by bisection on the enumeration. */
-static double edge(const dp_rh_model *m, double ok, double bad, double x, double xd, double ad)
+static double edge(const dp_right_hand_model *m, double ok, double bad, double x, double xd, double ad)
 {
     while (fabs(bad - ok) > 1e-12) {
         double mid = 0.5 * (ok + bad);
@@ -217,19 +217,19 @@ static void test_painleve_condition(void **state)
     const double f1s[] = { 2.9, 3.5, 5, 8, 20 };
     for (size_t i = 0; i < sizeof f1s / sizeof *f1s; i++) {
         double f1 = f1s[i], d = sqrt(f1 * f1 - 8);
-        dp_rh_model m = piston(1, 1, 0, 0.8, 0, f1, 0);
+        dp_right_hand_model m = piston(1, 1, 0, 0.8, 0, f1, 0);
         double lo = atan((f1 - d) / 4), hi = atan((f1 + d) / 4), mid = atan(f1 / 4);
         double a = edge(&m, 1e-3, mid, 0, 1, 0), b = edge(&m, M_PI / 2 - 1e-3, mid, 0, 1, 0);
         if (fabs(a - lo) > 1e-9 || fabs(b - hi) > 1e-9)
             fail_msg("f1 = %g: edges %.15g, %.15g; expected %.15g, %.15g", f1, a, b, lo, hi);
         /* beta' = 0: h(0) > 0 in the band, no solution (inconsistency) */
-        dp_rh_result res;
+        dp_right_hand_result res;
         double q[2] = { 0, mid }, qd[2] = { 1, 0 };
-        dp_rh_solve(&m, q, qd, NULL, &res);
+        dp_right_hand_solve(&m, q, qd, NULL, &res);
         assert_int_equal(res.n, 0);
     }
     /* below 2 sqrt(2) no angle is paradoxical */
-    dp_rh_model m = piston(1, 1, 0, 0.8, 0, 2 * sqrt(2) - 1e-6, 0);
+    dp_right_hand_model m = piston(1, 1, 0, 0.8, 0, 2 * sqrt(2) - 1e-6, 0);
     for (int k = 1; k < 2000; k++) {
         double q[2] = { 0, k * (M_PI / 2) / 2000 }, qd[2] = { 1, 0 };
         if (!unique_at(&m, q, qd))
@@ -243,15 +243,15 @@ static void test_painleve_indeterminacy(void **state)
 {
     (void)state;
     double f = 5, r = 0.8, g = 9.81, beta = M_PI + atan(f / 4), bd = 10;
-    dp_rh_model m = piston(1, 1, 0, r, 0, f, 0);
+    dp_right_hand_model m = piston(1, 1, 0, r, 0, f, 0);
     double s = sin(beta), c = cos(beta), sc = s * c;
     double K = g * (1 + c * c) + r * bd * bd * c, P = r * bd * bd * s + g * sc;
     double rhs = P - (1 + s * s) * K / sc;
     double Np = rhs / (f - (1 + s * s) / sc), Nm = rhs / (-(1 + s * s) / sc - f);
     assert_true(Np > 0 && Nm < 0);
-    dp_rh_result res;
+    dp_right_hand_result res;
     double q[2] = { 0, beta }, qd[2] = { 1, bd };
-    dp_rh_solve(&m, q, qd, NULL, &res);
+    dp_right_hand_solve(&m, q, qd, NULL, &res);
     assert_int_equal(res.n, 2);
     double a = fmax(res.sol[0].N[0], res.sol[1].N[0]), b = fmin(res.sol[0].N[0], res.sol[1].N[0]);
     if (fabs(a - Np) > 1e-9 * fabs(Np) || fabs(b - Nm) > 1e-9 * fabs(Nm))
@@ -266,17 +266,17 @@ static void test_rod_threshold(void **state)
     const double mus[] = { 1.34, 1.5, 2, 3, 6 };
     for (size_t i = 0; i < sizeof mus / sizeof *mus; i++) {
         double mu = mus[i], d = sqrt(9 * mu * mu - 16);
-        dp_rh_model m = rod(1.3, 1.7, mu);
+        dp_right_hand_model m = rod(1.3, 1.7, mu);
         double lo = atan((3 * mu - d) / 2), hi = atan((3 * mu + d) / 2), mid = atan(3 * mu / 2);
         double a = edge(&m, 1e-3, mid, 0, -1, 0), b = edge(&m, M_PI / 2 - 1e-3, mid, 0, -1, 0);
         if (fabs(a - lo) > 1e-9 || fabs(b - hi) > 1e-9)
             fail_msg("mu = %g: edges %.15g, %.15g; expected %.15g, %.15g", mu, a, b, lo, hi);
-        dp_rh_result res;
+        dp_right_hand_result res;
         double q[2] = { 0, mid }, qd[2] = { -1, 0 };
-        dp_rh_solve(&m, q, qd, NULL, &res);
+        dp_right_hand_solve(&m, q, qd, NULL, &res);
         assert_int_equal(res.n, 0);          /* g - l sin theta'^2 > 0: inconsistency */
         qd[1] = 6;                           /* g - l sin theta'^2 < 0: indeterminacy */
-        dp_rh_solve(&m, q, qd, NULL, &res);
+        dp_right_hand_solve(&m, q, qd, NULL, &res);
         assert_int_equal(res.n, 2);
         qd[0] = 1;                           /* sliding the other way is never paradoxical */
         assert_true(unique_at(&m, q, qd));
@@ -284,7 +284,7 @@ static void test_rod_threshold(void **state)
     double ok = 1, bad = 2, t2[2] = { 0, atan(2) }, v[2] = { -1, 0 };
     while (bad - ok > 1e-12) {
         double mid = 0.5 * (ok + bad);
-        dp_rh_model m = rod(1, 1, mid);
+        dp_right_hand_model m = rod(1, 1, mid);
         if (unique_at(&m, t2, v))
             ok = mid;
         else
@@ -292,7 +292,7 @@ static void test_rod_threshold(void **state)
     }
     if (fabs(ok - 4.0 / 3.0) > 1e-9)
         fail_msg("mu threshold %.15g, expected 4/3", ok);
-    dp_rh_model m = rod(1, 1, 4.0 / 3.0 - 1e-6);
+    dp_right_hand_model m = rod(1, 1, 4.0 / 3.0 - 1e-6);
     for (int k = 1; k < 4000; k++) {
         double q[2] = { 0, k * (M_PI / 2) / 4000 };
         if (!unique_at(&m, q, v))
@@ -300,10 +300,10 @@ static void test_rod_threshold(void **state)
     }
 }
 
-static const dp_rh_sol *stuck_solution(const dp_rh_result *res, int k)
+static const dp_right_hand_sol *stuck_solution(const dp_right_hand_result *res, int k)
 {
-    for (int i = 0; i < res->n && i < DP_RH_MAX_SOL; i++)
-        if (res->sol[i].mode[k] == DP_RH_STICK)
+    for (int i = 0; i < res->n && i < DP_RIGHT_HAND_MAX_SOL; i++)
+        if (res->sol[i].mode[k] == DP_RIGHT_HAND_STICK)
             return &res->sol[i];
     return NULL;
 }
@@ -312,52 +312,52 @@ static const dp_rh_sol *stuck_solution(const dp_rh_result *res, int k)
 static void test_exceptional_states(void **state)
 {
     (void)state;
-    dp_rh_conditions c;
-    dp_rh_result res;
+    dp_right_hand_conditions c;
+    dp_right_hand_result res;
     /* case 2: alpha = pi/2, beta' = 0: free fall x'' = -g with the hinge on its cone at N2 = 0 */
-    dp_rh_model m = piston(1, 1, 0.1, 0.5, M_PI / 2, 0.3, 0.05);
+    dp_right_hand_model m = piston(1, 1, 0.1, 0.5, M_PI / 2, 0.3, 0.05);
     double q[2] = { 0, 0.6 }, qd[2] = { 0.7, 0 };
-    dp_rh_solve(&m, q, qd, NULL, &res);
-    const dp_rh_sol *s = stuck_solution(&res, 1);
+    dp_right_hand_solve(&m, q, qd, NULL, &res);
+    const dp_right_hand_sol *s = stuck_solution(&res, 1);
     assert_non_null(s);
     assert_true(fabs(s->qdd[0] + 9.81) < 1e-12 && fabs(s->qdd[1]) < 1e-12 && fabs(s->N[1]) < 1e-12);
-    dp_rh_conditions_at(&m, q, qd, s, &c);
+    dp_right_hand_conditions_at(&m, q, qd, s, &c);
     assert_int_equal(c.in_A, 0);
     qd[1] = 0.4;
-    dp_rh_solve(&m, q, qd, NULL, &res);
+    dp_right_hand_solve(&m, q, qd, NULL, &res);
     assert_int_equal(res.n, 1);
-    dp_rh_conditions_at(&m, q, qd, &res.sol[0], &c);
+    dp_right_hand_conditions_at(&m, q, qd, &res.sol[0], &c);
     assert_int_equal(c.in_A, 1);
 
     /* case 3: f2 = 0, x' = 0, beta = pi - alpha, beta'^2 = xi = m g/(m2 r): N1 = 0 and Q1 = 0 */
     double alpha = 0.4, xi = 3 * 9.81 / (2 * 0.5);
     m = piston(1, 2, 0.1, 0.5, alpha, 0.3, 0);
     double q3[2] = { 0, M_PI - alpha }, qd3[2] = { 0, sqrt(xi) };
-    dp_rh_solve(&m, q3, qd3, NULL, &res);
+    dp_right_hand_solve(&m, q3, qd3, NULL, &res);
     s = stuck_solution(&res, 0);
     assert_non_null(s);
     if (fabs(s->N[0]) > 1e-12 * 3 * 9.81 || fabs(s->Q[0]) > 1e-12 * 3 * 9.81)
         fail_msg("case 3: N1 = %g, Q1 = %g, expected 0", s->N[0], s->Q[0]);
-    dp_rh_conditions_at(&m, q3, qd3, s, &c);
+    dp_right_hand_conditions_at(&m, q3, qd3, s, &c);
     assert_int_equal(c.in_A, 0);
     /* the printed N1 (beta' where beta'^2 belongs) does not vanish there: the paper's own case 3 needs the
      * correction */
     double printed = m.m2 * m.r * (s->qdd[1] * sin(q3[1]) + qd3[1] * cos(q3[1])) + 3 * m.g * cos(alpha);
     assert_true(fabs(printed) > 1);
     qd3[1] *= 1.01;
-    dp_rh_solve(&m, q3, qd3, NULL, &res);
+    dp_right_hand_solve(&m, q3, qd3, NULL, &res);
     assert_true(res.n >= 1);
-    dp_rh_conditions_at(&m, q3, qd3, &res.sol[0], &c);
+    dp_right_hand_conditions_at(&m, q3, qd3, &res.sol[0], &c);
     assert_int_equal(c.in_A, 1);
 
     /* the closing remark: Painleve's example, beta = pi, beta' = +-sqrt(2 g/r) */
     m = piston(1, 1, 0, 0.7, 0, 0.5, 0);
     for (int sg = -1; sg <= 1; sg += 2) {
         double qp[2] = { 0, M_PI }, qdp[2] = { 0, sg * sqrt(2 * 9.81 / 0.7) };
-        dp_rh_solve(&m, qp, qdp, NULL, &res);
+        dp_right_hand_solve(&m, qp, qdp, NULL, &res);
         s = stuck_solution(&res, 0);
         assert_non_null(s);
-        dp_rh_conditions_at(&m, qp, qdp, s, &c);
+        dp_right_hand_conditions_at(&m, qp, qdp, s, &c);
         assert_int_equal(c.in_A, 0);
     }
 }
@@ -369,12 +369,12 @@ static void test_condition_23_sign(void **state)
 {
     (void)state;
     double r = 0.8, f = 4, beta = atan(1 / sqrt(2)), s = sin(beta), c = cos(beta);
-    dp_rh_model m = piston(1, 1, 0, r, 0, f, 0);
+    dp_right_hand_model m = piston(1, 1, 0, r, 0, f, 0);
     double q[2] = { 0, beta }, qd[2] = { 1, 0 };
     assert_false(unique_at(&m, q, qd));
-    dp_rh_sol sol = { .qdd = { 0, 0 }, .mode = { DP_RH_SLIP_POS, DP_RH_FREE } };
-    dp_rh_conditions k;
-    dp_rh_conditions_at(&m, q, qd, &sol, &k);
+    dp_right_hand_sol sol = { .qdd = { 0, 0 }, .mode = { DP_RIGHT_HAND_SLIP_POS, DP_RIGHT_HAND_FREE } };
+    dp_right_hand_conditions k;
+    dp_right_hand_conditions_at(&m, q, qd, &sol, &k);
     double a12 = r * c, a22 = r * r, dN = r * s; /* N1 > 0 at qdd = 0 */
     double printed = 2 - fabs((a12 - f * dN) * a12 / a22);
     assert_true(printed > 0);
@@ -386,7 +386,7 @@ static void test_condition_23_sign(void **state)
 /* ---- an independent integration: RK4, accelerations by Newton on the Lagrangian's equations ---- */
 
 /* The smooth phase's accelerations: friction -sg_i f_i |N_i| with the phase's signs sg held. */
-static void accel_ref(const dp_rh_model *m, const double q[2], const double qd[2], const double sg[2],
+static void accel_ref(const dp_right_hand_model *m, const double q[2], const double qd[2], const double sg[2],
                       double qdd[2])
 {
     double A[2][2], b[2], f[2] = { m->f1, m->f2 };
@@ -403,7 +403,7 @@ static void accel_ref(const dp_rh_model *m, const double q[2], const double qd[2
 }
 
 /* One RK4 step within the phase of the signs of y's velocities at its start. */
-static void rk4(const dp_rh_model *m, double y[4], double h)
+static void rk4(const dp_right_hand_model *m, double y[4], double h)
 {
     double k[4][4], t[4], sg[2] = { y[2] > 0 ? 1 : -1, y[3] > 0 ? 1 : -1 };
     for (int s = 0; s < 4; s++) {
@@ -416,7 +416,7 @@ static void rk4(const dp_rh_model *m, double y[4], double h)
         y[i] += h / 6 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
 }
 
-static dp_run *start(const dp_rh_model *m, const double x0[2], const double v0[2], double t_end, double dt)
+static dp_run *start(const dp_right_hand_model *m, const double x0[2], const double v0[2], double t_end, double dt)
 {
     dp_spec spec;
     dp_spec_init(&spec);
@@ -442,7 +442,7 @@ static dp_run *start(const dp_rh_model *m, const double x0[2], const double v0[2
 /* The reference from (t, y) to t1: RK4 steps of h in the phase of the velocities' signs; a step in which
  * a velocity changes sign is cut at the zero (bisection on one RK4 step's length), the velocity set to 0
  * and the next phase sliding the other way (this test's data reverse, they do not stick). */
-static void ref_advance(const dp_rh_model *m, double y[4], double *t, double t1, double *tcross)
+static void ref_advance(const dp_right_hand_model *m, double y[4], double *t, double t1, double *tcross)
 {
     const double h = 1e-3;
     while (*t < t1 - 1e-13) {
@@ -479,7 +479,7 @@ static void ref_advance(const dp_rh_model *m, double y[4], double *t, double t1,
 static void test_trajectory_against_rk4(void **state)
 {
     (void)state;
-    dp_rh_model m = piston(1.5, 1, 0.05, 0.6, 0.3, 0.25, 0.03);
+    dp_right_hand_model m = piston(1.5, 1, 0.05, 0.6, 0.3, 0.25, 0.03);
     double x0[2] = { 0, 0.4 }, v0[2] = { 2, 1.5 };
     dp_run *r = start(&m, x0, v0, 0.5, 0.05);
     dp_record buf[64];
@@ -514,7 +514,7 @@ static void test_trajectory_against_rk4(void **state)
 static void test_paradox_stops_run(void **state)
 {
     (void)state;
-    dp_rh_model m = piston(1, 1, 0, 0.8, 0, 5, 0);
+    dp_right_hand_model m = piston(1, 1, 0, 0.8, 0, 5, 0);
     double x0[2] = { 0, atan(5.0 / 4) }, v0[2] = { 1, 0 };
     dp_run *r = start(&m, x0, v0, 1, 0.1);
     dp_record buf[8];
@@ -536,7 +536,7 @@ static void test_paradox_stops_run(void **state)
 
 /* x held (x'' = 0), beta sliding with sign sg: beta'' by fixed point on the Lagrangian's second row, the
  * force that holds x, Q1 = a_12 beta'' - b_1, and the cone's margin f1 |N1| - |Q1|. */
-static double held(const dp_rh_model *m, const double y[4], double sg, double *bdd)
+static double held(const dp_right_hand_model *m, const double y[4], double sg, double *bdd)
 {
     double A[2][2], b[2], N[2], qdd[2] = { 0, 0 };
     lagrange(m, y, y + 2, A, b);
@@ -549,7 +549,7 @@ static double held(const dp_rh_model *m, const double y[4], double sg, double *b
     return m->f1 * fabs(N[0]) - fabs(A[0][1] * qdd[1] - b[0]);
 }
 
-static void rk4_held(const dp_rh_model *m, double y[4], double h, double sg)
+static void rk4_held(const dp_right_hand_model *m, double y[4], double h, double sg)
 {
     double k[4][2], t[4];
     for (int s = 0; s < 4; s++) {
@@ -572,7 +572,7 @@ static void rk4_held(const dp_rh_model *m, double y[4], double h, double sg)
 static void test_stick_until_cone(void **state)
 {
     (void)state;
-    dp_rh_model m = piston(1, 1, 0.1, 0.5, 0.3, 0.2, 0.02);
+    dp_right_hand_model m = piston(1, 1, 0.1, 0.5, 0.3, 0.2, 0.02);
     double x0[2] = { 0, 0.8 }, v0[2] = { 0, 0 }, h = 1e-3, bdd;
     dp_run *r = start(&m, x0, v0, 0.45, 0.05);
     dp_record buf[64];
@@ -632,15 +632,15 @@ static void test_contraction_where_23_holds(void **state)
     uint64_t seed = 4;
     int checked = 0;
     for (int it = 0; it < 300; it++) {
-        dp_rh_model m = piston(urand(&seed, 1, 3), urand(&seed, 0.2, 1), urand(&seed, 0.5, 2), urand(&seed, 0.2, 0.6),
+        dp_right_hand_model m = piston(urand(&seed, 1, 3), urand(&seed, 0.2, 1), urand(&seed, 0.5, 2), urand(&seed, 0.2, 0.6),
                                urand(&seed, 0, M_PI / 2), urand(&seed, 0, 0.4), urand(&seed, 0.01, 0.1));
         double q[2] = { 0, urand(&seed, -M_PI, M_PI) };
         double qd[2] = { urand(&seed, 0.1, 2) * (it % 2 ? 1 : -1), urand(&seed, 0.1, 2) * (it % 3 ? 1 : -1) };
-        dp_rh_result res;
-        dp_rh_solve(&m, q, qd, NULL, &res);
+        dp_right_hand_result res;
+        dp_right_hand_solve(&m, q, qd, NULL, &res);
         assert_int_equal(res.n, 1);
-        dp_rh_conditions c;
-        dp_rh_conditions_at(&m, q, qd, &res.sol[0], &c);
+        dp_right_hand_conditions c;
+        dp_right_hand_conditions_at(&m, q, qd, &res.sol[0], &c);
         if (!(c.c23 > 0.05))
             continue;
         double A[2][2], b[2], x[2] = { 0, 0 }, f[2] = { m.f1, m.f2 };
@@ -668,24 +668,24 @@ static void test_contraction_where_23_holds(void **state)
 static void test_rod_theorems(void **state)
 {
     (void)state;
-    dp_rh_model m = rod(2, 1, 1);
+    dp_right_hand_model m = rod(2, 1, 1);
     double q[2] = { 0, 1.1 }, qd[2] = { -0.5, 0 }, s = sin(1.1), c = cos(1.1);
     dp_wp_report rep;
-    dp_rh_wellposedness(&m, q, qd, &rep);
+    dp_right_hand_wellposedness(&m, q, qd, &rep);
     assert_true(rep.existence.guaranteed && rep.uniqueness.guaranteed);
     assert_string_equal(rep.existence.theorem, "Matrosov-Finogenko Theorems 4.1, 4.2");
     assert_string_equal(rep.uniqueness.theorem, "Matrosov-Finogenko Theorem 5.1");
-    dp_rh_result res;
-    dp_rh_solve(&m, q, qd, NULL, &res);
+    dp_right_hand_result res;
+    dp_right_hand_solve(&m, q, qd, NULL, &res);
     assert_int_equal(res.n, 1);
-    dp_rh_conditions k;
-    dp_rh_conditions_at(&m, q, qd, &res.sol[0], &k);
+    dp_right_hand_conditions k;
+    dp_right_hand_conditions_at(&m, q, qd, &res.sol[0], &k);
     double expect = 2 - 0.75 * 2 * (s * s + s * c);
     if (fabs(k.c23 - expect) > 1e-12)
         fail_msg("(2.3) margin %.15g, expected %.15g", k.c23, expect);
     m.mu = 1.5;
     double q2[2] = { 0, atan(2) };
-    dp_rh_wellposedness(&m, q2, qd, &rep);
+    dp_right_hand_wellposedness(&m, q2, qd, &rep);
     assert_false(rep.existence.guaranteed);
     assert_null(rep.existence.theorem);
     assert_false(rep.check[0].holds);
@@ -697,7 +697,7 @@ static void test_rod_theorems(void **state)
 static void test_indeterminacy_mid_run(void **state)
 {
     (void)state;
-    dp_rh_model m = piston(2.2125135032518366, 3.6782720695148559, 0.6876667405886886, 0.41610333722368964,
+    dp_right_hand_model m = piston(2.2125135032518366, 3.6782720695148559, 0.6876667405886886, 0.41610333722368964,
                            0.73521748059865155, 5.2067753128738961, 0.25320956192594468);
     double x0[2] = { 0, -1.2396900130422936 }, v0[2] = { -0.68885202598238937, -4.7616041916243752 };
     dp_run *r = start(&m, x0, v0, 1, 0.05);
@@ -724,15 +724,15 @@ static void test_indeterminacy_mid_run(void **state)
         fail_msg("stop at %.12g, last row at %.12g: %s", t, tl, why);
     /* the record's state (9 digits) lies within 1e-6 s of motion of the boundary: one solution just before it,
      * two just after, the new one from far away */
-    dp_rh_result res;
+    dp_right_hand_result res;
     double qa[2] = { q[0] + 1e-6 * qd[0], q[1] + 1e-6 * qd[1] }, qe[2] = { q[0] - 1e-6 * qd[0], q[1] - 1e-6 * qd[1] };
-    dp_rh_solve(&m, qa, qd, NULL, &res);
+    dp_right_hand_solve(&m, qa, qd, NULL, &res);
     assert_int_equal(res.n, 2);
     double big = fmax(fabs(res.sol[0].qdd[0]), fabs(res.sol[1].qdd[0]));
     double small = fmin(fabs(res.sol[0].qdd[0]), fabs(res.sol[1].qdd[0]));
     if (!(big > 1e4 && small < 100))
         fail_msg("candidates %g and %g", small, big);
-    dp_rh_solve(&m, qe, qd, NULL, &res);
+    dp_right_hand_solve(&m, qe, qd, NULL, &res);
     assert_int_equal(res.n, 1);
 }
 
@@ -747,7 +747,7 @@ static void test_random_runs_end(void **state)
     int stopped = 0, done = 0;
     for (int it = 0; it < 400; it++) {
         int isrod = it % 3 == 0;
-        dp_rh_model m = isrod ? rod(urand(&seed, 0.1, 5), urand(&seed, 0.1, 3), urand(&seed, 0, 3))
+        dp_right_hand_model m = isrod ? rod(urand(&seed, 0.1, 5), urand(&seed, 0.1, 3), urand(&seed, 0, 3))
                               : piston(urand(&seed, 0.1, 5), urand(&seed, 0.1, 5), it % 4 ? urand(&seed, 0, 2) : 0,
                                        urand(&seed, 0.05, 2), it % 5 ? urand(&seed, 0, M_PI / 2) : (it % 2) * M_PI / 2,
                                        urand(&seed, 0, it % 4 ? 1 : 6), it % 3 ? urand(&seed, 0, 0.5) : 0);

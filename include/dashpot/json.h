@@ -41,7 +41,7 @@ int dp_spec_meta_json(const dp_spec *spec, dp_buf *out);
  * nothing when there are none; every meta line writes it after "every". 0, or nonzero when out of memory. */
 int dp_chosen_json(const dp_spec *spec, dp_buf *out);
 /* The meta object of a right-hand friction run (spec->rh set): right_hand_meta.c. */
-int dp_rh_meta_json(const dp_spec *spec, dp_buf *out);
+int dp_right_hand_meta_json(const dp_spec *spec, dp_buf *out);
 
 /* Appends the well-posedness report as a JSON object. DP_OK or DP_ENOMEM. */
 int dp_wellposedness_json(const dp_wp_report *r, dp_buf *out);

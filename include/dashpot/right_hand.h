@@ -14,57 +14,57 @@
 
 #include <stddef.h>
 
-typedef enum dp_rh_kind { DP_RH_PISTON_HINGE = 0, DP_RH_ROD = 1 } dp_rh_kind;
+typedef enum dp_right_hand_kind { DP_RIGHT_HAND_PISTON_HINGE = 0, DP_RIGHT_HAND_ROD = 1 } dp_right_hand_kind;
 
 /* piston-hinge (Matrosov & Finogenko 1995 §6): q = (x, beta), parameters m1, m2, J_C, r, alpha, f1 (a coefficient), f2 (a
  * length: the hinge's friction moment is f2 |N2|), g.
  * painleve-rod: a uniform rod of mass m and length `length` whose lower end A rests on a rough floor with
  * coefficient mu; q = (x_A, theta), theta the angle between the rod and the floor. */
-typedef struct dp_rh_model {
-    dp_rh_kind kind;
+typedef struct dp_right_hand_model {
+    dp_right_hand_kind kind;
     double m1, m2, J_C, r, alpha, f1, f2;
     double m, length, mu;
     double g;
-} dp_rh_model;
+} dp_right_hand_model;
 
-typedef enum dp_rh_mode {
-    DP_RH_FREE = 0,      /* no friction on this coordinate */
-    DP_RH_STICK = 1,
-    DP_RH_SLIP_POS = 2,  /* sliding (or starting) with q_s' > 0: friction -f|N| */
-    DP_RH_SLIP_NEG = 3
-} dp_rh_mode;
+typedef enum dp_right_hand_mode {
+    DP_RIGHT_HAND_FREE = 0,      /* no friction on this coordinate */
+    DP_RIGHT_HAND_STICK = 1,
+    DP_RIGHT_HAND_SLIP_POS = 2,  /* sliding (or starting) with q_s' > 0: friction -f|N| */
+    DP_RIGHT_HAND_SLIP_NEG = 3
+} dp_right_hand_mode;
 
-#define DP_RH_MAX_SOL 16
+#define DP_RIGHT_HAND_MAX_SOL 16
 
 /* One solution of the acceleration problem. N: the normal reactions (signed for an affine N, the norm for
  * the hinge's N2; the rod has only N[0]); Q: the friction generalized forces. */
-typedef struct dp_rh_sol {
+typedef struct dp_right_hand_sol {
     double qdd[2], N[2], Q[2];
-    dp_rh_mode mode[2];
+    dp_right_hand_mode mode[2];
     int liftoff;      /* the rod leaving the floor (N = 0, free flight): a candidate this model does not follow */
-} dp_rh_sol;
+} dp_right_hand_sol;
 
-typedef struct dp_rh_result {
-    int n;            /* distinct solutions found (those past DP_RH_MAX_SOL are counted, not stored) */
+typedef struct dp_right_hand_result {
+    int n;            /* distinct solutions found (those past DP_RIGHT_HAND_MAX_SOL are counted, not stored) */
     int continuum;    /* a mode whose equations are singular and consistent: infinitely many solutions */
-    dp_rh_sol sol[DP_RH_MAX_SOL];
-} dp_rh_result;
+    dp_right_hand_sol sol[DP_RIGHT_HAND_MAX_SOL];
+} dp_right_hand_result;
 
 /* The model's equations at one state: A q'' = b + Q and the normal reactions' affine maps. */
-typedef struct dp_rh_frame {
+typedef struct dp_right_hand_frame {
     double A[2][2], b[2];
     int fric[2];              /* coordinate s carries friction (f_s > 0) */
     double f[2];
     int ndim[2];              /* 1: N_s = W[s][0] . q'' + w[s][0] (signed); 2: |N_s| = ||W[s] q'' + w[s]|| */
     int unilateral[2];        /* a floor: N_s >= 0 while in contact (the rod) */
     double W[2][2][2], w[2][2];
-} dp_rh_frame;
+} dp_right_hand_frame;
 
 /* Fills the frame of model m at (q, qd). */
-void dp_rh_frame_at(const dp_rh_model *m, const double q[2], const double qd[2], dp_rh_frame *fr);
+void dp_right_hand_frame_at(const dp_right_hand_model *m, const double q[2], const double qd[2], dp_right_hand_frame *fr);
 
 /* The force tolerance of the cone and sign tests at a frame (1e-10 of its force scale). */
-double dp_rh_force_tol(const dp_rh_frame *fr);
+double dp_right_hand_force_tol(const dp_right_hand_frame *fr);
 
 /* Every solution of the acceleration problem at (q, qd): modes forced by the velocities' signs where they
  * move, all three (stick, start +, start -) where they rest (qd_s == 0 exactly); for the rod also leaving
@@ -72,28 +72,28 @@ double dp_rh_force_tol(const dp_rh_frame *fr);
  * only that mode combination is solved and the stick cone is not checked: the solver's smooth phases,
  * where leaving the cone is a located event instead (a start's direction is checked: it tells the two
  * solutions of a mode apart at the phase's first instant). Never fails. */
-void dp_rh_solve(const dp_rh_model *m, const double q[2], const double qd[2], const dp_rh_mode *fixed,
-                 dp_rh_result *res);
+void dp_right_hand_solve(const dp_right_hand_model *m, const double q[2], const double qd[2], const dp_right_hand_mode *fixed,
+                 dp_right_hand_result *res);
 
 /* The paper's conditions at a state and one solution of it (margins: > 0 holds, <= 0 fails). */
-typedef struct dp_rh_conditions {
+typedef struct dp_right_hand_conditions {
     double c12;        /* (1.2): min over friction coordinates of a_ss - f_s |d|N_s|/d q_s''| (none: min a_ss) */
     double c23;        /* (2.3) (signs corrected, docs/right-hand.md): min of a_ss/k* - |J_sv| */
     double c62, c63, c64; /* piston-hinge (6.2), (6.3), (6.4) (min of its three); NAN for the rod */
     int in_A;          /* the state is in the set A: no resting coordinate on its cone with N_s = 0 */
-} dp_rh_conditions;
+} dp_right_hand_conditions;
 
-void dp_rh_conditions_at(const dp_rh_model *m, const double q[2], const double qd[2], const dp_rh_sol *sol,
-                         dp_rh_conditions *c);
+void dp_right_hand_conditions_at(const dp_right_hand_model *m, const double q[2], const double qd[2], const dp_right_hand_sol *sol,
+                         dp_right_hand_conditions *c);
 
 struct dp_wp_report;
 /* The theorems of Matrosov & Finogenko 1995 (3.1, 4.1/4.2, 5.1) and their hypotheses at the initial state (q, qd). */
-void dp_rh_wellposedness(const dp_rh_model *m, const double q[2], const double qd[2], struct dp_wp_report *rep);
+void dp_right_hand_wellposedness(const dp_right_hand_model *m, const double q[2], const double qd[2], struct dp_wp_report *rep);
 
 /* "piston-hinge" or "painleve-rod". */
-const char *dp_rh_kind_name(dp_rh_kind k);
+const char *dp_right_hand_kind_name(dp_right_hand_kind k);
 
 /* Checks a model's parameters; on failure writes the offending key and a reason and returns 0. */
-int dp_rh_model_valid(const dp_rh_model *m, const char **key, const char **why);
+int dp_right_hand_model_valid(const dp_right_hand_model *m, const char **key, const char **why);
 
 #endif

@@ -79,7 +79,7 @@ typedef struct dp_spec {
     double *x0v, *v0v;    /* networks: the initial state, net->n each; right-hand models: 2 each */
     struct dp_lcs_model *lcs; /* a linear complementarity system (lcs.h); NULL otherwise */
     unsigned chosen;      /* DP_CHOSEN_* bits: the members dashpot chose because the document left them out */
-    struct dp_rh_model *rh; /* a right-hand friction model (right_hand.h); NULL otherwise */
+    struct dp_right_hand_model *rh; /* a right-hand friction model (right_hand.h); NULL otherwise */
 } dp_spec;
 
 /* A spec with every default set (stick-slip, exact, theta 1, dt 1e-3, t_end 10, every 1) and an empty model. */
@@ -119,7 +119,7 @@ dp_family dp_spec_family(const dp_spec *s);
 void dp_regularized_check(const dp_spec *s, dp_errors *errs);
 
 /* The right-hand solver's rules (right_hand_check.c): its models only with it, and it only with them. */
-void dp_rh_check(const dp_spec *s, dp_errors *errs);
+void dp_right_hand_check(const dp_spec *s, dp_errors *errs);
 
 /* Number of steps the spec asks for: ceil(t_end / dt) (with a rounding guard). */
 double dp_spec_steps(const dp_spec *s);

@@ -200,7 +200,7 @@ static int one_mass_meta(const dp_spec *s, dp_buf *out)
  * run, small ones included. */
 static int (*const family_meta[])(const dp_spec *s, dp_buf *out) = {
     [DP_FAMILY_ONE_MASS] = one_mass_meta, [DP_FAMILY_NETWORK] = network_meta,
-    [DP_FAMILY_LCS] = dp_lcs_meta_json, [DP_FAMILY_RIGHT_HAND] = dp_rh_meta_json,
+    [DP_FAMILY_LCS] = dp_lcs_meta_json, [DP_FAMILY_RIGHT_HAND] = dp_right_hand_meta_json,
 };
 
 int dp_spec_meta_json(const dp_spec *s, dp_buf *out)

@@ -27,7 +27,7 @@ void js_parse_right_hand(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     int kind = jw_get_enum(c, o, ptr, "kind", kinds, -1);
     if (kind < 0)
         return;
-    dp_rh_model *m = calloc(1, sizeof *m);
+    dp_right_hand_model *m = calloc(1, sizeof *m);
     s->x0v = calloc(2, sizeof *s->x0v);
     s->v0v = calloc(2, sizeof *s->v0v);
     if (m == NULL || s->x0v == NULL || s->v0v == NULL) {
@@ -39,14 +39,14 @@ void js_parse_right_hand(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     s->solver.kind = DP_SOLVER_RIGHT_HAND;
     s->solver.rtol = 1e-10, s->solver.atol = 1e-12;
     m->g = 9.81;
-    if (kind == DP_RH_ROD) {
-        m->kind = DP_RH_ROD;
+    if (kind == DP_RIGHT_HAND_ROD) {
+        m->kind = DP_RIGHT_HAND_ROD;
         jw_check_keys(c, o, ptr, rod, "kind", "painleve-rod");
         jw_get_num(c, o, ptr, "m", &POSITIVE, 1, 0, &m->m);
         jw_get_num(c, o, ptr, "length", &POSITIVE, 1, 0, &m->length);
         jw_get_num(c, o, ptr, "mu", &NONNEG, 1, 0, &m->mu);
     } else {
-        m->kind = DP_RH_PISTON_HINGE;
+        m->kind = DP_RIGHT_HAND_PISTON_HINGE;
         jw_check_keys(c, o, ptr, piston, "kind", "piston-hinge");
         jw_get_num(c, o, ptr, "m1", &POSITIVE, 1, 0, &m->m1);
         jw_get_num(c, o, ptr, "m2", &POSITIVE, 1, 0, &m->m2);
@@ -85,7 +85,7 @@ void js_parse_right_hand_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec 
     jw_check_keys(c, o, ptr, keys, NULL, NULL);
     if (s->rh == NULL)
         return;                 /* the model's own error says what is wrong */
-    int rod = s->rh->kind == DP_RH_ROD;
+    int rod = s->rh->kind == DP_RIGHT_HAND_ROD;
     const cJSON *v = jw_member(c, o, ptr, "x", NULL, &p);
     if (v != NULL)
         parse_pair_of(c, v, &p, rod ? "[x_A, theta]" : "[x, beta]", s->x0v);
@@ -108,11 +108,11 @@ int js_right_hand_wellposedness(ctx *c, const cJSON *root, const cJSON *model, c
     int s = c->nomem ? DP_ENOMEM : c->nerr ? DP_EINVAL : DP_OK;
     if (s == DP_OK) {
         size_t before = c->errs->n + c->errs->dropped;
-        dp_rh_check(&spec, c->errs);
+        dp_right_hand_check(&spec, c->errs);
         s = c->errs->n + c->errs->dropped > before ? DP_EINVAL : DP_OK;
     }
     if (s == DP_OK)
-        dp_rh_wellposedness(spec.rh, spec.x0v, spec.v0v, rep);
+        dp_right_hand_wellposedness(spec.rh, spec.x0v, spec.v0v, rep);
     dp_spec_clear(&spec);
     return s;
 }

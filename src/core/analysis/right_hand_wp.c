@@ -25,9 +25,9 @@ static dp_wp_check *add(dp_wp_report *rep, const char *name, int holds)
 
 /* Theorem 4.1's hypothesis, (2.3) for every state: the paper's sufficient (6.4) at its worst beta, or for
  * the rod (k* = 1, |J_11| = (3m/4)|sin^2 -+ mu sin cos| < m) mu < min (1 + 3cos^2)/(3 sin cos) = 4/3. */
-static int uniform(const dp_rh_model *m, dp_wp_report *rep)
+static int uniform(const dp_right_hand_model *m, dp_wp_report *rep)
 {
-    if (m->kind == DP_RH_ROD) {
+    if (m->kind == DP_RIGHT_HAND_ROD) {
         int ok = m->mu < 4.0 / 3.0;
         dp_wp_check *c = add(rep, "(2.3) for every state (Theorem 4.1): mu < 4/3", ok);
         snprintf(c->detail, sizeof c->detail, "mu = %g %s 4/3 = min over theta of (1 + 3cos^2)/(3 sin cos), at "
@@ -44,18 +44,18 @@ static int uniform(const dp_rh_model *m, dp_wp_report *rep)
     return ok;
 }
 
-static const char *mode_word(dp_rh_mode m)
+static const char *mode_word(dp_right_hand_mode m)
 {
     static const char *const w[] = { "free", "stick", "slip+", "slip-" };
     return w[m];
 }
 
-void dp_rh_wellposedness(const dp_rh_model *m, const double q[2], const double qd[2], dp_wp_report *rep)
+void dp_right_hand_wellposedness(const dp_right_hand_model *m, const double q[2], const double qd[2], dp_wp_report *rep)
 {
     memset(rep, 0, sizeof *rep);
     rep->framework = "right-hand solutions (Matrosov & Finogenko 1995)";
-    dp_rh_result res;
-    dp_rh_solve(m, q, qd, NULL, &res);
+    dp_right_hand_result res;
+    dp_right_hand_solve(m, q, qd, NULL, &res);
     int unique = res.n == 1 && !res.continuum;
     dp_wp_check *c = add(rep, "one acceleration at the initial state (every stick/slip mode enumerated)", unique);
     if (unique)
@@ -65,19 +65,19 @@ void dp_rh_wellposedness(const dp_rh_model *m, const double q[2], const double q
     else
         snprintf(c->detail, sizeof c->detail, "Painleve %s: %d solutions%s", res.n ? "indeterminacy" :
                  "inconsistency", res.n, res.continuum ? " and a continuum" : "");
-    dp_rh_conditions k = { 0 };
+    dp_right_hand_conditions k = { 0 };
     int c12 = 0, c23 = 0, nonzero = 0, n1empty = 0;
     if (res.n >= 1) {
-        const dp_rh_sol *s = &res.sol[0];
-        dp_rh_conditions_at(m, q, qd, s, &k);
+        const dp_right_hand_sol *s = &res.sol[0];
+        dp_right_hand_conditions_at(m, q, qd, s, &k);
         c12 = k.c12 > 0, c23 = k.c23 > 0;
         nonzero = k.in_A, n1empty = 1;
-        dp_rh_frame fr;
-        dp_rh_frame_at(m, q, qd, &fr);
+        dp_right_hand_frame fr;
+        dp_right_hand_frame_at(m, q, qd, &fr);
         for (int i = 0; i < 2; i++) {
-            int stuck = s->mode[i] == DP_RH_STICK;
-            int on_cone = stuck && fabs(s->Q[i]) >= fr.f[i] * fabs(s->N[i]) - dp_rh_force_tol(&fr);
-            if (fr.fric[i] && (!stuck || on_cone) && fabs(s->N[i]) <= dp_rh_force_tol(&fr))
+            int stuck = s->mode[i] == DP_RIGHT_HAND_STICK;
+            int on_cone = stuck && fabs(s->Q[i]) >= fr.f[i] * fabs(s->N[i]) - dp_right_hand_force_tol(&fr);
+            if (fr.fric[i] && (!stuck || on_cone) && fabs(s->N[i]) <= dp_right_hand_force_tol(&fr))
                 nonzero = 0;
             n1empty &= !on_cone;
         }
@@ -98,7 +98,7 @@ void dp_rh_wellposedness(const dp_rh_model *m, const double q[2], const double q
     snprintf(add(rep, "no resting coordinate on its friction cone, N1 empty (Theorem 5.1)", n1empty)->detail,
              DP_WP_TEXT, "%s", res.n < 1 ? none : n1empty ? "every resting coordinate strictly inside or sliding"
                                                            : "a resting coordinate holds exactly f|N|");
-    if (m->kind == DP_RH_PISTON_HINGE && res.n >= 1) {
+    if (m->kind == DP_RIGHT_HAND_PISTON_HINGE && res.n >= 1) {
         snprintf(add(rep, "(6.2) at the initial state", k.c62 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c62);
         snprintf(add(rep, "(6.3)", k.c63 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c63);
         snprintf(add(rep, "(6.4) at the initial state", k.c64 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c64);

@@ -33,7 +33,7 @@
 
 #include "dashpot/right_hand.h"
 
-static void piston_frame(const dp_rh_model *p, const double q[2], const double qd[2], dp_rh_frame *fr)
+static void piston_frame(const dp_right_hand_model *p, const double q[2], const double qd[2], dp_right_hand_frame *fr)
 {
     double s = sin(q[1]), c = cos(q[1]), w2 = qd[1] * qd[1];
     double m = p->m1 + p->m2, J = p->J_C + p->m2 * p->r * p->r, mr = p->m2 * p->r;
@@ -52,7 +52,7 @@ static void piston_frame(const dp_rh_model *p, const double q[2], const double q
     fr->w[1][1] = p->m2 * (p->r * w2 * c + p->g * ca);
 }
 
-static void rod_frame(const dp_rh_model *p, const double q[2], const double qd[2], dp_rh_frame *fr)
+static void rod_frame(const dp_right_hand_model *p, const double q[2], const double qd[2], dp_right_hand_frame *fr)
 {
     double s = sin(q[1]), c = cos(q[1]), w2 = qd[1] * qd[1], l = p->length / 2, m = p->m;
     fr->A[0][0] = m, fr->A[0][1] = fr->A[1][0] = -m * l * s, fr->A[1][1] = 4.0 / 3.0 * m * l * l;
@@ -65,10 +65,10 @@ static void rod_frame(const dp_rh_model *p, const double q[2], const double qd[2
     fr->w[0][0] = m * p->g - m * l * s * w2;
 }
 
-void dp_rh_frame_at(const dp_rh_model *m, const double q[2], const double qd[2], dp_rh_frame *fr)
+void dp_right_hand_frame_at(const dp_right_hand_model *m, const double q[2], const double qd[2], dp_right_hand_frame *fr)
 {
     memset(fr, 0, sizeof *fr);
-    if (m->kind == DP_RH_ROD)
+    if (m->kind == DP_RIGHT_HAND_ROD)
         rod_frame(m, q, qd, fr);
     else
         piston_frame(m, q, qd, fr);
@@ -76,9 +76,9 @@ void dp_rh_frame_at(const dp_rh_model *m, const double q[2], const double qd[2],
         fr->fric[s] = fr->f[s] > 0;
 }
 
-const char *dp_rh_kind_name(dp_rh_kind k)
+const char *dp_right_hand_kind_name(dp_right_hand_kind k)
 {
-    return k == DP_RH_ROD ? "painleve-rod" : "piston-hinge";
+    return k == DP_RIGHT_HAND_ROD ? "painleve-rod" : "piston-hinge";
 }
 
 static int bad(const char **key, const char **why, const char *k, const char *w)
@@ -87,11 +87,11 @@ static int bad(const char **key, const char **why, const char *k, const char *w)
     return 0;
 }
 
-int dp_rh_model_valid(const dp_rh_model *m, const char **key, const char **why)
+int dp_right_hand_model_valid(const dp_right_hand_model *m, const char **key, const char **why)
 {
     if (!(m->g > 0 && isfinite(m->g)))
         return bad(key, why, "g", "must be a finite number > 0 (without gravity the normal forces vanish)");
-    if (m->kind == DP_RH_ROD) {
+    if (m->kind == DP_RIGHT_HAND_ROD) {
         if (!(m->m > 0 && isfinite(m->m)))
             return bad(key, why, "m", "must be a finite number > 0");
         if (!(m->length > 0 && isfinite(m->length)))

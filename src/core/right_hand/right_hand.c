@@ -10,7 +10,7 @@
  * (|Q_s| <= f_s |N_s|) or the start goes the way its friction opposes (sigma q_s'' > 0). Every combination
  * is tried, so no solution and several solutions are both seen: Painlevé's inconsistency and
  * indeterminacy. The paper's contraction (Section 2) proves uniqueness where (2.3) holds; the enumeration
- * needs no such hypothesis, and (2.3)'s margin is reported beside it (dp_rh_conditions_at).
+ * needs no such hypothesis, and (2.3)'s margin is reported beside it (dp_right_hand_conditions_at).
  */
 #include <math.h>
 #include <string.h>
@@ -30,29 +30,29 @@ typedef struct cand {
 } cand;
 
 typedef struct prob {
-    const dp_rh_frame *fr;
+    const dp_right_hand_frame *fr;
     const double *qd;
-    const dp_rh_mode *mode;
+    const dp_right_hand_mode *mode;
     int check_rest;
     double u[2], z[2][2];   /* q'' = u + sum_k lam_k z[k] */
     double fscale;
-    dp_rh_result *res;
+    dp_right_hand_result *res;
 } prob;
 
-static int sigma_of(dp_rh_mode m)
+static int sigma_of(dp_right_hand_mode m)
 {
-    return m == DP_RH_SLIP_POS ? 1 : m == DP_RH_SLIP_NEG ? -1 : 0;
+    return m == DP_RIGHT_HAND_SLIP_POS ? 1 : m == DP_RIGHT_HAND_SLIP_NEG ? -1 : 0;
 }
 
 /* The affine normal force vector of coordinate s at q'' (d = 1 or 2 entries). */
-static void normal_vec(const dp_rh_frame *fr, int s, const double qdd[2], double v[2])
+static void normal_vec(const dp_right_hand_frame *fr, int s, const double qdd[2], double v[2])
 {
     for (int r = 0; r < fr->ndim[s]; r++)
         v[r] = fr->W[s][r][0] * qdd[0] + fr->W[s][r][1] * qdd[1] + fr->w[s][r];
 }
 
 /* N_s as reported: signed for an affine reaction, the length for a vector one. */
-static double normal_of(const dp_rh_frame *fr, int s, const double qdd[2])
+static double normal_of(const dp_right_hand_frame *fr, int s, const double qdd[2])
 {
     double v[2];
     normal_vec(fr, s, qdd, v);
@@ -60,9 +60,9 @@ static double normal_of(const dp_rh_frame *fr, int s, const double qdd[2])
 }
 
 /* u and z_k: A_FF x = rhs on the free (non-stuck) coordinates, zero on the stuck ones. */
-static void free_solve(const dp_rh_frame *fr, const dp_rh_mode *mode, const double rhs[2], double x[2])
+static void free_solve(const dp_right_hand_frame *fr, const dp_right_hand_mode *mode, const double rhs[2], double x[2])
 {
-    int f0 = mode[0] != DP_RH_STICK, f1 = mode[1] != DP_RH_STICK;
+    int f0 = mode[0] != DP_RIGHT_HAND_STICK, f1 = mode[1] != DP_RIGHT_HAND_STICK;
     x[0] = x[1] = 0;
     if (f0 && f1) {
         double det = fr->A[0][0] * fr->A[1][1] - fr->A[0][1] * fr->A[1][0]; /* A is positive definite */
@@ -84,9 +84,9 @@ static int same(const double a[2], const double b[2])
 /* Checks a candidate of the current mode and records it when it is a new solution. */
 static void accept(prob *p, const cand *c)
 {
-    const dp_rh_frame *fr = p->fr;
+    const dp_right_hand_frame *fr = p->fr;
     double tol = TOL_FORCE * p->fscale;
-    dp_rh_sol s = { .qdd = { c->qdd[0], c->qdd[1] } };
+    dp_right_hand_sol s = { .qdd = { c->qdd[0], c->qdd[1] } };
     for (int k = 0; k < 2; k++) {
         s.mode[k] = p->mode[k];
         s.N[k] = normal_of(fr, k, c->qdd); /* the rod's second is identically 0 */
@@ -100,17 +100,17 @@ static void accept(prob *p, const cand *c)
             if (p->qd[k] == 0 && !(sg * c->qdd[k] > 0))
                 return;                      /* a start against its own friction (in a phase too: its first
                                               * instant, where the velocity is still 0) */
-        } else if (p->mode[k] == DP_RH_STICK) {
+        } else if (p->mode[k] == DP_RIGHT_HAND_STICK) {
             s.Q[k] = fr->A[k][0] * c->qdd[0] + fr->A[k][1] * c->qdd[1] - fr->b[k];
             if (p->check_rest && fabs(s.Q[k]) > fr->f[k] * fabs(s.N[k]) + tol)
                 return;                      /* the force needed to hold is outside the cone */
         }
     }
-    dp_rh_result *r = p->res;
-    for (int i = 0; i < r->n && i < DP_RH_MAX_SOL; i++)
+    dp_right_hand_result *r = p->res;
+    for (int i = 0; i < r->n && i < DP_RIGHT_HAND_MAX_SOL; i++)
         if (same(r->sol[i].qdd, s.qdd))
             return;
-    if (r->n < DP_RH_MAX_SOL)
+    if (r->n < DP_RIGHT_HAND_MAX_SOL)
         r->sol[r->n] = s;
     r->n++;
 }
@@ -125,7 +125,7 @@ static void at_lambda(const prob *p, const double lam[2], cand *c)
 /* All sliding reactions affine: lambda_k - f_k eps_k W_k.(sum_j lambda_j z_j) = f_k eps_k (W_k.u + w_k). */
 static void solve_linear(prob *p, const int *K, int nk, const int eps[2])
 {
-    const dp_rh_frame *fr = p->fr;
+    const dp_right_hand_frame *fr = p->fr;
     double G[2][2] = { { 1, 0 }, { 0, 1 } }, h[2] = { 0, 0 }, lam[2] = { 0, 0 };
     for (int a = 0; a < nk; a++) {
         int k = K[a];
@@ -160,7 +160,7 @@ static void solve_linear(prob *p, const int *K, int nk, const int eps[2])
  * lam_p = f ||W (u0 + lam_p d0) + w||, squared: (1 - f^2|D|^2) lam^2 - 2 f^2 (a.D) lam - f^2 |a|^2 = 0. */
 static void solve_quadratic(prob *p, int pc, int k, double a0, double a1)
 {
-    const dp_rh_frame *fr = p->fr;
+    const dp_right_hand_frame *fr = p->fr;
     double u0[2], d0[2], a[2], D[2], f = fr->f[pc];
     for (int i = 0; i < 2; i++) {
         u0[i] = p->u[i] + (k >= 0 ? a0 * p->z[k][i] : 0);
@@ -205,7 +205,7 @@ static void solve_quadratic(prob *p, int pc, int k, double a0, double a1)
 /* One mode combination with one choice of signs eps for its affine sliding reactions. */
 static void solve_signs(prob *p, const int *K, int nk, const int eps[2])
 {
-    const dp_rh_frame *fr = p->fr;
+    const dp_right_hand_frame *fr = p->fr;
     int pc = -1, lin[2], nl = 0, le[2];
     for (int a = 0; a < nk; a++) {
         if (fr->ndim[K[a]] == 2)
@@ -234,8 +234,8 @@ static void solve_signs(prob *p, const int *K, int nk, const int eps[2])
     solve_quadratic(p, pc, k, h / g, gp / g);
 }
 
-static void solve_mode(const dp_rh_frame *fr, const double qd[2], const dp_rh_mode mode[2], int check_rest,
-                       double fscale, dp_rh_result *res)
+static void solve_mode(const dp_right_hand_frame *fr, const double qd[2], const dp_right_hand_mode mode[2], int check_rest,
+                       double fscale, dp_right_hand_result *res)
 {
     prob p = { .fr = fr, .qd = qd, .mode = mode, .check_rest = check_rest, .fscale = fscale, .res = res };
     free_solve(fr, mode, fr->b, p.u);
@@ -265,7 +265,7 @@ static void solve_mode(const dp_rh_frame *fr, const double qd[2], const dp_rh_mo
     }
 }
 
-static double force_scale(const dp_rh_frame *fr)
+static double force_scale(const dp_right_hand_frame *fr)
 {
     double s = 1;
     for (int k = 0; k < 2; k++) {
@@ -279,60 +279,60 @@ static double force_scale(const dp_rh_frame *fr)
 /* The rod's free flight from the floor (painleve.c): a candidate when it lifts A, g - l sin theta'^2 < 0.
  * A contact solution with the same accelerations (N = 0 to the tolerance) is that same motion: it becomes
  * the lift-off rather than a second solution. */
-static void liftoff(const dp_rh_model *m, const double q[2], const double qd[2], dp_rh_result *res)
+static void liftoff(const dp_right_hand_model *m, const double q[2], const double qd[2], dp_right_hand_result *res)
 {
     double l = m->length / 2, up = m->m * (l * sin(q[1]) * qd[1] * qd[1] - m->g);
     if (!(up > 0))
         return;
-    dp_rh_sol s = { .qdd = { l * cos(q[1]) * qd[1] * qd[1], 0 }, .mode = { DP_RH_FREE, DP_RH_FREE },
+    dp_right_hand_sol s = { .qdd = { l * cos(q[1]) * qd[1] * qd[1], 0 }, .mode = { DP_RIGHT_HAND_FREE, DP_RIGHT_HAND_FREE },
                     .liftoff = 1 };
-    for (int i = 0; i < res->n && i < DP_RH_MAX_SOL; i++)
+    for (int i = 0; i < res->n && i < DP_RIGHT_HAND_MAX_SOL; i++)
         if (same(res->sol[i].qdd, s.qdd)) {
             res->sol[i].liftoff = 1;
             return;
         }
-    if (res->n < DP_RH_MAX_SOL)
+    if (res->n < DP_RIGHT_HAND_MAX_SOL)
         res->sol[res->n] = s;
     res->n++;
 }
 
-double dp_rh_force_tol(const dp_rh_frame *fr)
+double dp_right_hand_force_tol(const dp_right_hand_frame *fr)
 {
     return TOL_FORCE * force_scale(fr);
 }
 
-void dp_rh_solve(const dp_rh_model *m, const double q[2], const double qd[2], const dp_rh_mode *fixed,
-                 dp_rh_result *res)
+void dp_right_hand_solve(const dp_right_hand_model *m, const double q[2], const double qd[2], const dp_right_hand_mode *fixed,
+                 dp_right_hand_result *res)
 {
-    dp_rh_frame fr;
-    dp_rh_frame_at(m, q, qd, &fr);
+    dp_right_hand_frame fr;
+    dp_right_hand_frame_at(m, q, qd, &fr);
     memset(res, 0, sizeof *res);
     double fs = force_scale(&fr);
     if (fixed) {
         solve_mode(&fr, qd, fixed, 0, fs, res);
         return;
     }
-    dp_rh_mode opts[2][3];
+    dp_right_hand_mode opts[2][3];
     int nopt[2];
     for (int s = 0; s < 2; s++) {
         if (!fr.fric[s])
-            opts[s][0] = DP_RH_FREE, nopt[s] = 1;
+            opts[s][0] = DP_RIGHT_HAND_FREE, nopt[s] = 1;
         else if (qd[s] != 0)
-            opts[s][0] = qd[s] > 0 ? DP_RH_SLIP_POS : DP_RH_SLIP_NEG, nopt[s] = 1;
+            opts[s][0] = qd[s] > 0 ? DP_RIGHT_HAND_SLIP_POS : DP_RIGHT_HAND_SLIP_NEG, nopt[s] = 1;
         else
-            opts[s][0] = DP_RH_STICK, opts[s][1] = DP_RH_SLIP_POS, opts[s][2] = DP_RH_SLIP_NEG, nopt[s] = 3;
+            opts[s][0] = DP_RIGHT_HAND_STICK, opts[s][1] = DP_RIGHT_HAND_SLIP_POS, opts[s][2] = DP_RIGHT_HAND_SLIP_NEG, nopt[s] = 3;
     }
     for (int i = 0; i < nopt[0]; i++)
         for (int j = 0; j < nopt[1]; j++) {
-            dp_rh_mode md[2] = { opts[0][i], opts[1][j] };
+            dp_right_hand_mode md[2] = { opts[0][i], opts[1][j] };
             solve_mode(&fr, qd, md, 1, fs, res);
         }
-    if (m->kind == DP_RH_ROD)
+    if (m->kind == DP_RIGHT_HAND_ROD)
         liftoff(m, q, qd, res);
 }
 
 /* d|N_s|/dq''_v at q'' (for a vector reaction of length 0, the largest value over its directions). */
-static double dnorm(const dp_rh_frame *fr, int s, const double qdd[2], int v)
+static double dnorm(const dp_right_hand_frame *fr, int s, const double qdd[2], int v)
 {
     double nv[2];
     normal_vec(fr, s, qdd, nv);
@@ -348,7 +348,7 @@ static double dnorm(const dp_rh_frame *fr, int s, const double qdd[2], int v)
  * a_ss dF_s/dq''_v = -[a_sv gamma_sv + f_s Delta_s d_v|N_s| - sum_j (a_sj + f_s Delta_s d_j|N_s|) sum_i
  * at_ji a_iv] (j, i frictionless, at the inverse of their block). The paper prints the Delta terms with
  * the opposite sign; this form is the one whose contraction the enumeration confirms (docs/right-hand.md). */
-static double cond23(const dp_rh_frame *fr, const dp_rh_sol *sol)
+static double cond23(const dp_right_hand_frame *fr, const dp_right_hand_sol *sol)
 {
     int kstar = fr->fric[0] + fr->fric[1];
     double margin = INFINITY;
@@ -356,12 +356,12 @@ static double cond23(const dp_rh_frame *fr, const dp_rh_sol *sol)
         if (!fr->fric[s])
             continue;
         double delta;
-        if (sol->mode[s] == DP_RH_STICK) {
+        if (sol->mode[s] == DP_RIGHT_HAND_STICK) {
             if (fabs(sol->Q[s]) < fr->f[s] * fabs(sol->N[s]) * (1 - TOL_SAME))
                 continue;                     /* strictly inside the cone: not in (2.3) */
             delta = sol->Q[s] > 0 ? -1 : 1;
         } else {
-            delta = sol->mode[s] == DP_RH_SLIP_POS ? 1 : -1;
+            delta = sol->mode[s] == DP_RIGHT_HAND_SLIP_POS ? 1 : -1;
         }
         double fd = fr->f[s] * delta, bound = fr->A[s][s] / kstar;
         for (int v = 0; v < 2; v++) {
@@ -377,11 +377,11 @@ static double cond23(const dp_rh_frame *fr, const dp_rh_sol *sol)
     return isfinite(margin) ? margin : fmin(fr->A[0][0], fr->A[1][1]);
 }
 
-void dp_rh_conditions_at(const dp_rh_model *m, const double q[2], const double qd[2], const dp_rh_sol *sol,
-                         dp_rh_conditions *c)
+void dp_right_hand_conditions_at(const dp_right_hand_model *m, const double q[2], const double qd[2], const dp_right_hand_sol *sol,
+                         dp_right_hand_conditions *c)
 {
-    dp_rh_frame fr;
-    dp_rh_frame_at(m, q, qd, &fr);
+    dp_right_hand_frame fr;
+    dp_right_hand_frame_at(m, q, qd, &fr);
     double tol = TOL_FORCE * force_scale(&fr);
     c->c12 = INFINITY;
     c->in_A = 1;
@@ -389,14 +389,14 @@ void dp_rh_conditions_at(const dp_rh_model *m, const double q[2], const double q
         if (!fr.fric[s])
             continue;
         c->c12 = fmin(c->c12, fr.A[s][s] - fr.f[s] * fabs(dnorm(&fr, s, sol->qdd, s)));
-        if (qd[s] == 0 && sol->mode[s] == DP_RH_STICK && fabs(sol->N[s]) <= tol &&
+        if (qd[s] == 0 && sol->mode[s] == DP_RIGHT_HAND_STICK && fabs(sol->N[s]) <= tol &&
             fabs(sol->Q[s]) >= fr.f[s] * fabs(sol->N[s]) - tol)
             c->in_A = 0;                      /* on the cone (set N1) with N_s = 0 */
     }
     if (!isfinite(c->c12))
         c->c12 = fmin(fr.A[0][0], fr.A[1][1]); /* no friction: vacuous, reported as the smallest a_ss */
     c->c23 = cond23(&fr, sol);
-    if (m->kind == DP_RH_ROD) {
+    if (m->kind == DP_RIGHT_HAND_ROD) {
         c->c62 = c->c63 = c->c64 = NAN;
         return;
     }

@@ -8,7 +8,7 @@
 #include "dashpot/right_hand.h"
 #include "dashpot/spec.h"
 
-void dp_rh_check(const dp_spec *s, dp_errors *e)
+void dp_right_hand_check(const dp_spec *s, dp_errors *e)
 {
     if (s->rh == NULL) {
         dp_errors_add(e, "/solver/kind", "the right-hand solver takes a model of kind \"piston-hinge\" or "
@@ -17,9 +17,9 @@ void dp_rh_check(const dp_spec *s, dp_errors *e)
     }
     if (s->solver.kind != DP_SOLVER_RIGHT_HAND)
         dp_errors_add(e, "/solver/kind", "a %s model is solved by the solver of kind \"right-hand\"",
-                      dp_rh_kind_name(s->rh->kind));
+                      dp_right_hand_kind_name(s->rh->kind));
     const char *key, *why;
-    if (!dp_rh_model_valid(s->rh, &key, &why)) {
+    if (!dp_right_hand_model_valid(s->rh, &key, &why)) {
         char ptr[64];
         snprintf(ptr, sizeof ptr, "/model/%s", key);
         dp_errors_add(e, ptr, "%s", why);
@@ -34,7 +34,7 @@ void dp_rh_check(const dp_spec *s, dp_errors *e)
     }
     if (!(s->solver.rtol > 0 && s->solver.rtol < 1))
         dp_errors_add(e, "/solver/rtol", "must be in (0, 1), got %g", s->solver.rtol);
-    if (s->rh->kind == DP_RH_ROD && s->x0v && !(s->x0v[1] > 0 && s->x0v[1] < M_PI))
+    if (s->rh->kind == DP_RIGHT_HAND_ROD && s->x0v && !(s->x0v[1] > 0 && s->x0v[1] < M_PI))
         dp_errors_add(e, "/initial/x/1", "the rod's angle to the floor must be in (0, pi) with its end A on "
                       "the floor and the rod above it, got %g", s->x0v[1]);
 }

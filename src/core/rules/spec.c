@@ -421,6 +421,6 @@ int dp_rules_network(const dp_spec *s, double max_steps, dp_errors *e)
 int dp_rules_right_hand(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
-    dp_rh_check(s, e);
+    dp_right_hand_check(s, e);
     return finish(s, max_steps, e, before);
 }

@@ -6,7 +6,7 @@
  * event: a sliding velocity reaching zero, a stuck coordinate's force leaving its cone, the mode's problem
  * losing its unique solution, the rod's N turning negative. Each is found by bisection on the length of one
  * step from the step's start (the step is the one the error control accepted, so its local error holds).
- * At the event the full enumeration (dp_rh_solve) picks the next mode: accelerations may jump there. When
+ * At the event the full enumeration (dp_right_hand_solve) picks the next mode: accelerations may jump there. When
  * it finds no solution or several, the run stops with the time, state and candidates in its error:
  * Painlevé's inconsistency or indeterminacy, never guessed.
  */
@@ -39,11 +39,11 @@
  * that a front end's deadline and cancellation are checked between calls): the segment resumes next call. */
 #define CALL_STEPS 100000
 
-struct dp_rh_run {
-    dp_rh_model m;
+struct dp_right_hand_run {
+    dp_right_hand_model m;
     double t, y[4];                 /* q0, q1, q0', q1' */
-    dp_rh_mode mode[2];
-    dp_rh_sol sol;                  /* the mode's solution at (t, y): the right-hand derivative */
+    dp_right_hand_mode mode[2];
+    dp_right_hand_sol sol;                  /* the mode's solution at (t, y): the right-hand derivative */
     gsl_odeiv2_system sys;
     gsl_odeiv2_step *st;
     gsl_odeiv2_control *ctl;
@@ -68,9 +68,9 @@ struct dp_rh_run {
 static int rhs(double t, const double y[], double dydt[], void *params)
 {
     (void)t;
-    struct dp_rh_run *rr = params;
-    dp_rh_result res;
-    dp_rh_solve(&rr->m, y, y + 2, rr->mode, &res);
+    struct dp_right_hand_run *rr = params;
+    dp_right_hand_result res;
+    dp_right_hand_solve(&rr->m, y, y + 2, rr->mode, &res);
     if (res.n != 1 || res.continuum || !isfinite(res.sol[0].qdd[0]) || !isfinite(res.sol[0].qdd[1]))
         return GSL_EDOM; /* the mode's acceleration problem has no unique solution here */
     dydt[0] = y[2], dydt[1] = y[3];
@@ -80,40 +80,40 @@ static int rhs(double t, const double y[], double dydt[], void *params)
 
 /* Whether the state y lies inside the current phase: its mode solvable uniquely, sliding velocities on
  * their side, stick forces within their cones, the rod on the floor. */
-static int in_phase(struct dp_rh_run *rr, const double y[4], dp_rh_sol *out)
+static int in_phase(struct dp_right_hand_run *rr, const double y[4], dp_right_hand_sol *out)
 {
-    dp_rh_result res;
-    dp_rh_solve(&rr->m, y, y + 2, rr->mode, &res);
+    dp_right_hand_result res;
+    dp_right_hand_solve(&rr->m, y, y + 2, rr->mode, &res);
     if (res.n != 1 || res.continuum)
         return 0;
-    const dp_rh_sol *s = &res.sol[0];
+    const dp_right_hand_sol *s = &res.sol[0];
     if (out)
         *out = *s;
-    dp_rh_frame fr;
-    dp_rh_frame_at(&rr->m, y, y + 2, &fr);
-    double tol = dp_rh_force_tol(&fr);
+    dp_right_hand_frame fr;
+    dp_right_hand_frame_at(&rr->m, y, y + 2, &fr);
+    double tol = dp_right_hand_force_tol(&fr);
     for (int k = 0; k < 2; k++) {
-        if (rr->mode[k] == DP_RH_SLIP_POS && y[2 + k] < 0)
+        if (rr->mode[k] == DP_RIGHT_HAND_SLIP_POS && y[2 + k] < 0)
             return 0;
-        if (rr->mode[k] == DP_RH_SLIP_NEG && y[2 + k] > 0)
+        if (rr->mode[k] == DP_RIGHT_HAND_SLIP_NEG && y[2 + k] > 0)
             return 0;
-        if (rr->mode[k] == DP_RH_STICK && fabs(s->Q[k]) > fr.f[k] * fabs(s->N[k]) + tol)
+        if (rr->mode[k] == DP_RIGHT_HAND_STICK && fabs(s->Q[k]) > fr.f[k] * fabs(s->N[k]) + tol)
             return 0;
     }
     /* the rod's floor: the same tolerance as the acceptance of a contact solution (right_hand.c) */
-    return !(rr->m.kind == DP_RH_ROD && (s->N[0] < -tol || !(y[1] > 0 && y[1] < M_PI)));
+    return !(rr->m.kind == DP_RIGHT_HAND_ROD && (s->N[0] < -tol || !(y[1] > 0 && y[1] < M_PI)));
 }
 
 /* Coordinates stuck in the current mode (the summary's stick time counts each). */
-static int stuck(const struct dp_rh_run *rr)
+static int stuck(const struct dp_right_hand_run *rr)
 {
-    return (rr->mode[0] == DP_RH_STICK) + (rr->mode[1] == DP_RH_STICK);
+    return (rr->mode[0] == DP_RIGHT_HAND_STICK) + (rr->mode[1] == DP_RIGHT_HAND_STICK);
 }
 
 /* The second-order Taylor step y0 + h y0' + h^2/2 y0'' with y0'' of the current mode at y0 (0: none). */
-static int taylor(struct dp_rh_run *rr, const double y0[4], double h, double y[4])
+static int taylor(struct dp_right_hand_run *rr, const double y0[4], double h, double y[4])
 {
-    dp_rh_sol s;
+    dp_right_hand_sol s;
     if (!in_phase(rr, y0, &s))
         return 0;
     for (int k = 0; k < 2; k++) {
@@ -127,7 +127,7 @@ static int taylor(struct dp_rh_run *rr, const double y0[4], double h, double y[4
  * step shorter than TAYLOR_MAX whose inner stages leave the phase (its problem has no unique solution there)
  * is taken by the Taylor step instead, so that a phase boundary is located at the state where it lies rather
  * than at the stages that cross it (error O(h^3) ~ 1e-21 there). */
-static int step_to(struct dp_rh_run *rr, double t0, const double y0[4], double h, double y[4])
+static int step_to(struct dp_right_hand_run *rr, double t0, const double y0[4], double h, double y[4])
 {
     double yerr[4];
     memcpy(y, y0, 4 * sizeof *y);
@@ -142,7 +142,7 @@ static int step_to(struct dp_rh_run *rr, double t0, const double y0[4], double h
 
 /* The phase ends in (t0, t0 + hi] (a step of hi leaves it): bisection to LOCATE_REL, then t and y just
  * past the end (or just before it when the step past it cannot be taken). */
-static void locate(struct dp_rh_run *rr, double t0, const double y0[4], double hi)
+static void locate(struct dp_right_hand_run *rr, double t0, const double y0[4], double hi)
 {
     double lo = 0, y[4];
     while (hi - lo > LOCATE_REL * fmax(1, fabs(t0) + hi)) {
@@ -157,8 +157,8 @@ static void locate(struct dp_rh_run *rr, double t0, const double y0[4], double h
     rr->t = t0 + hi;
     memcpy(rr->y, y, sizeof y);
     for (int k = 0; k < 2; k++) /* a sliding velocity that reached zero is zero: the coordinate rests */
-        if ((rr->mode[k] == DP_RH_SLIP_POS && rr->y[2 + k] <= 0) ||
-            (rr->mode[k] == DP_RH_SLIP_NEG && rr->y[2 + k] >= 0))
+        if ((rr->mode[k] == DP_RIGHT_HAND_SLIP_POS && rr->y[2 + k] <= 0) ||
+            (rr->mode[k] == DP_RIGHT_HAND_SLIP_NEG && rr->y[2 + k] >= 0))
             rr->y[2 + k] = 0;
 }
 
@@ -167,7 +167,7 @@ static void locate(struct dp_rh_run *rr, double t0, const double y0[4], double h
 
 static int queue(dp_run *r, const dp_record *rec, const double *row)
 {
-    struct dp_rh_run *rr = r->state;
+    struct dp_right_hand_run *rr = r->state;
     size_t w = rr->cols.width;
     if (rr->nq == rr->qcap) {
         size_t cap = rr->qcap ? 2 * rr->qcap : QCAP0;
@@ -189,7 +189,7 @@ static int queue(dp_run *r, const dp_record *rec, const double *row)
 
 static void flush(dp_run *r)
 {
-    struct dp_rh_run *rr = r->state;
+    struct dp_right_hand_run *rr = r->state;
     size_t w = rr->cols.width;
     while (rr->iq < rr->nq && r->out_n < r->out_cap && rr->block_used < rr->block_cap) {
         dp_record rec = rr->q[rr->iq];
@@ -205,16 +205,16 @@ static void flush(dp_run *r)
         rr->iq = rr->nq = 0;
 }
 
-static double phase_code(dp_rh_mode m)
+static double phase_code(dp_right_hand_mode m)
 {
-    return m == DP_RH_STICK ? DP_PHASE_STICK : m == DP_RH_FREE ? DP_PHASE_NONE : DP_PHASE_SLIP;
+    return m == DP_RIGHT_HAND_STICK ? DP_PHASE_STICK : m == DP_RIGHT_HAND_FREE ? DP_PHASE_NONE : DP_PHASE_SLIP;
 }
 
 /* q, q', q'', N, mode, margins of the current state into row. */
-static void fill_row(const struct dp_rh_run *rr, double *row)
+static void fill_row(const struct dp_right_hand_run *rr, double *row)
 {
-    dp_rh_conditions c;
-    dp_rh_conditions_at(&rr->m, rr->y, rr->y + 2, &rr->sol, &c);
+    dp_right_hand_conditions c;
+    dp_right_hand_conditions_at(&rr->m, rr->y, rr->y + 2, &rr->sol, &c);
     size_t i = 0;
     for (int k = 0; k < 2; k++)
         row[i++] = rr->y[k];
@@ -227,13 +227,13 @@ static void fill_row(const struct dp_rh_run *rr, double *row)
     for (int k = 0; k < 2; k++)
         row[i++] = phase_code(rr->mode[k]);
     row[i++] = c.c12, row[i++] = c.c23;
-    if (rr->m.kind == DP_RH_PISTON_HINGE)
+    if (rr->m.kind == DP_RIGHT_HAND_PISTON_HINGE)
         row[i++] = c.c62, row[i++] = c.c64;
 }
 
 static int emit_row(dp_run *r)
 {
-    struct dp_rh_run *rr = r->state;
+    struct dp_right_hand_run *rr = r->state;
     double row[MAX_WIDTH];
     fill_row(rr, row);
     memcpy(rr->final_row, row, sizeof row);
@@ -247,14 +247,14 @@ static int emit_row(dp_run *r)
     return queue(r, &rec, row);
 }
 
-static const char *mode_name(dp_rh_mode m)
+static const char *mode_name(dp_right_hand_mode m)
 {
     static const char *const names[] = { "free", "stick", "slip+", "slip-" };
     return names[m];
 }
 
 /* The stop record: time, state, which paradox, the candidate accelerations. */
-static void paradox(struct dp_rh_run *rr, const dp_rh_result *res)
+static void paradox(struct dp_right_hand_run *rr, const dp_right_hand_result *res)
 {
     char *p = rr->why, *end = rr->why + sizeof rr->why;
     char what[48];
@@ -266,7 +266,7 @@ static void paradox(struct dp_rh_run *rr, const dp_rh_result *res)
                   rr->y[0], rr->y[1], rr->y[2], rr->y[3]);
     if (res->n == 0 && p < end)
         snprintf(p, (size_t)(end - p), "no candidates");
-    for (int i = 0; i < res->n && i < DP_RH_MAX_SOL && p < end; i++)
+    for (int i = 0; i < res->n && i < DP_RIGHT_HAND_MAX_SOL && p < end; i++)
         p += snprintf(p, (size_t)(end - p), "%sqdd=[%.6g,%.6g] N=[%.6g,%.6g] (%s,%s)", i ? "; " : "",
                       res->sol[i].qdd[0], res->sol[i].qdd[1], res->sol[i].N[0], res->sol[i].N[1],
                       res->sol[i].liftoff ? "lift-off" : mode_name(res->sol[i].mode[0]),
@@ -278,21 +278,21 @@ static void paradox(struct dp_rh_run *rr, const dp_rh_result *res)
  * stick/slip changed); 0 when the run must stop (a paradox, the rod lifting off). */
 static int classify(dp_run *r, int initial)
 {
-    struct dp_rh_run *rr = r->state;
-    if (rr->m.kind == DP_RH_ROD && !(rr->y[1] > 0 && rr->y[1] < M_PI)) {
+    struct dp_right_hand_run *rr = r->state;
+    if (rr->m.kind == DP_RIGHT_HAND_ROD && !(rr->y[1] > 0 && rr->y[1] < M_PI)) {
         snprintf(rr->why, sizeof rr->why, "the rod reaches the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
                  "an impact this model (end A on the floor, 0 < theta < pi) does not follow", rr->t, rr->y[0],
                  rr->y[1], rr->y[2], rr->y[3]);
         rr->fail = 1;
         return 0;
     }
-    dp_rh_result res;
-    dp_rh_solve(&rr->m, rr->y, rr->y + 2, NULL, &res);
+    dp_right_hand_result res;
+    dp_right_hand_solve(&rr->m, rr->y, rr->y + 2, NULL, &res);
     if (res.n != 1 || res.continuum) {
         paradox(rr, &res);
         return 0;
     }
-    const dp_rh_sol *s = &res.sol[0];
+    const dp_right_hand_sol *s = &res.sol[0];
     if (s->liftoff) {
         snprintf(rr->why, sizeof rr->why, "the rod lifts off the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
                  "its only motion is free flight, which this model (end A on the floor) does not follow",
@@ -301,8 +301,8 @@ static int classify(dp_run *r, int initial)
         return 0;
     }
     for (int k = 0; k < 2 && !initial; k++) {
-        int now = s->mode[k] == DP_RH_STICK;
-        if (rr->mode[k] == s->mode[k] || s->mode[k] == DP_RH_FREE)
+        int now = s->mode[k] == DP_RIGHT_HAND_STICK;
+        if (rr->mode[k] == s->mode[k] || s->mode[k] == DP_RIGHT_HAND_FREE)
             continue;                    /* a reversal slip+ -> slip- is a new slip phase */
         r->sum.events++;
         rr->events++;
@@ -319,7 +319,7 @@ static int classify(dp_run *r, int initial)
 
 /* The first of 4^k LOCATE_REL-scaled lengths (up to 1e-3) at which a step from (t0, y0) leaves the phase,
  * or 0 when none does. */
-static double ahead(struct dp_rh_run *rr, double t0, const double y0[4])
+static double ahead(struct dp_right_hand_run *rr, double t0, const double y0[4])
 {
     double y[4];
     for (double h = LOCATE_REL * fmax(1, fabs(t0)); h < 1e-3; h *= 4)
@@ -331,7 +331,7 @@ static double ahead(struct dp_rh_run *rr, double t0, const double y0[4])
 /* Integrates the phases up to t1 (the next sample), locating and crossing the events on the way. */
 static int segment(dp_run *r, double t1)
 {
-    struct dp_rh_run *rr = r->state;
+    struct dp_right_hand_run *rr = r->state;
     while (rr->t < t1) {
         double t0 = rr->t, y0[4], hb = fmin(rr->h, t1 - t0), hi;
         memcpy(y0, rr->y, sizeof y0);
@@ -370,7 +370,7 @@ static int segment(dp_run *r, double t1)
 /* Row slots for this block: one per record the caller can take (rows are narrow). */
 static int reserve(dp_run *r)
 {
-    struct dp_rh_run *rr = r->state;
+    struct dp_right_hand_run *rr = r->state;
     rr->block_used = 0;
     if (r->out_cap <= rr->block_cap)
         return DP_OK;
@@ -383,7 +383,7 @@ static int reserve(dp_run *r)
 
 static int rh_run_advance(dp_run *r)
 {
-    struct dp_rh_run *rr = r->state;
+    struct dp_right_hand_run *rr = r->state;
     if (reserve(r) != DP_OK)
         return dp_run_fail(r, DP_ENOMEM, "out of memory for a block's rows");
     rr->call_steps = 0;
@@ -423,15 +423,15 @@ static int rh_run_advance(dp_run *r)
 
 static int rh_run_pending(const dp_run *r)
 {
-    const struct dp_rh_run *rr = r->state;
+    const struct dp_right_hand_run *rr = r->state;
     return rr->nq > rr->iq;
 }
 
-static void setup_columns(struct dp_rh_run *rr)
+static void setup_columns(struct dp_right_hand_run *rr)
 {
     static const char *const names[] = { "q", "qd", "qdd", "N", "mode", "margin" };
-    rr->nN = rr->m.kind == DP_RH_ROD ? 1 : 2;
-    rr->nmargin = rr->m.kind == DP_RH_ROD ? 2 : 4;
+    rr->nN = rr->m.kind == DP_RIGHT_HAND_ROD ? 1 : 2;
+    rr->nmargin = rr->m.kind == DP_RIGHT_HAND_ROD ? 2 : 4;
     size_t n[] = { 2, 2, 2, rr->nN, 2, rr->nmargin };
     rr->cols.ngroups = 6;
     rr->cols.width = 0;
@@ -443,7 +443,7 @@ static void setup_columns(struct dp_rh_run *rr)
 
 static int rh_run_init(dp_run *r)
 {
-    struct dp_rh_run *rr = calloc(1, sizeof *rr);
+    struct dp_right_hand_run *rr = calloc(1, sizeof *rr);
     if (rr == NULL)
         return DP_ENOMEM;
     r->state = rr;
@@ -467,7 +467,7 @@ static int rh_run_init(dp_run *r)
 
 static void rh_run_free(void *state)
 {
-    struct dp_rh_run *rr = state;
+    struct dp_right_hand_run *rr = state;
     if (rr == NULL)
         return;
     if (rr->ev)
