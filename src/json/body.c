@@ -355,18 +355,18 @@ static void malformed(dp_errors *errs, const char *s, size_t pos, const char *wh
 
 /* ---- after cJSON: the object, its NULs and its repeated keys ---------------------------------------- */
 
-static const char *type_name(const cJSON *v)
+const char *jb_type_name(const cJSON *v)
 {
     if (cJSON_IsNumber(v)) return "a number";
     if (cJSON_IsString(v)) return "a string";
     if (cJSON_IsBool(v)) return "a boolean";
     if (cJSON_IsNull(v)) return "null";
     if (cJSON_IsArray(v)) return "an array";
+    if (cJSON_IsObject(v)) return "an object";
     return "an unknown value";
 }
 
-/* A key fit for a message: at most 48 bytes (then "..."), control characters as '?'. */
-static const char *shown(const char *s, char buf[64])
+const char *jb_shown(const char *s, char buf[64])
 {
     size_t n = 0;
     for (; s[n] && n < 48; n++)
@@ -397,7 +397,7 @@ static void repeated(dp_errors *errs, const at *where, const char *key, size_t *
     char ptr[DP_POINTER_MAX], sb[64];
     const at p = { where, key, 0 };
     jp_text(&p, ptr);
-    dp_errors_add(errs, ptr, "duplicate key \"%s\"", shown(key, sb));
+    dp_errors_add(errs, ptr, "duplicate key \"%s\"", jb_shown(key, sb));
     (*count)++;
 }
 
@@ -497,7 +497,7 @@ int dp_body_read(const char *text, size_t len, dp_errors *errs, cJSON **root)
     }
     free(buf);
     if (!cJSON_IsObject(doc)) {
-        dp_errors_add(errs, "", "must be an object, got %s", type_name(doc));
+        dp_errors_add(errs, "", "must be an object, got %s", jb_type_name(doc));
         cJSON_Delete(doc);
         return DP_EINVAL;
     }

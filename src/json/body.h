@@ -22,4 +22,9 @@
  * The caller frees *root with cJSON_Delete. */
 int dp_body_read(const char *text, size_t len, dp_errors *errs, cJSON **root);
 
+/* How messages name a value's type ("a number", "an array", ...), and a user string fit for a message: at
+ * most 48 bytes (then "..."), control characters as '?'. Shared by the reader and the walker (walk.h). */
+const char *jb_type_name(const cJSON *v);
+const char *jb_shown(const char *s, char buf[64]);
+
 #endif

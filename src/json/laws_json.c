@@ -64,7 +64,7 @@ static int parse_pair(ctx *c, const cJSON *el, const at *p, const char *yname, d
         if (cJSON_IsArray(el))
             jw_fail(c, p, "must have exactly 2 elements [%s, F], got %d", yname, n);
         else
-            jw_fail(c, p, "must be a pair [%s, F] of numbers, got %s", yname, jw_type_name(el));
+            jw_fail(c, p, "must be a pair [%s, F] of numbers, got %s", yname, jb_type_name(el));
         return 0;
     }
     at q0 = { p, NULL, 0 }, q1 = { p, NULL, 1 };
@@ -111,7 +111,7 @@ int js_parse_points(ctx *c, const cJSON *o, const at *ptr, const char *yname, in
         else if (cJSON_IsArray(a))
             jw_fail(c, p, "must be %s, got %zu", what, count);
         else
-            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(a));
+            jw_fail(c, p, "must be %s, got %s", what, jb_type_name(a));
         return 0;
     }
     *y = malloc(count * sizeof **y);
@@ -245,7 +245,7 @@ static void parse_terms(ctx *c, const cJSON *o, const at *ptr, dp_forcing *f, in
         if (cJSON_IsArray(a))
             jw_fail(c, p, "must be %s, got %d", what, n);
         else
-            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(a));
+            jw_fail(c, p, "must be %s, got %s", what, jb_type_name(a));
         return;
     }
     f->terms = calloc((size_t)n, sizeof *f->terms);

@@ -24,7 +24,7 @@ static gsl_matrix *read_matrix(ctx *c, const cJSON *a, const at *pm)
     size_t m = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
     if (m == 0 || m > DP_LCP_MAX) {
         jw_fail(c, pm, "must be a square matrix: an array of 1 to %d rows, got %s", DP_LCP_MAX,
-                cJSON_IsArray(a) ? (m ? "more rows" : "no rows") : jw_type_name(a));
+                cJSON_IsArray(a) ? (m ? "more rows" : "no rows") : jb_type_name(a));
         return NULL;
     }
     gsl_matrix *M = gsl_matrix_alloc(m, m);
@@ -57,7 +57,7 @@ static gsl_vector *read_vector(ctx *c, const cJSON *a, const at *pq, size_t m)
 {
     if (!cJSON_IsArray(a) || (size_t)cJSON_GetArraySize(a) != m) {
         jw_fail(c, pq, "must be an array of %zu numbers (one per row of M), got %s", m,
-                cJSON_IsArray(a) ? "another length" : jw_type_name(a));
+                cJSON_IsArray(a) ? "another length" : jb_type_name(a));
         return NULL;
     }
     gsl_vector *q = gsl_vector_alloc(m);

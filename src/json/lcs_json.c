@@ -35,7 +35,7 @@ static void lcs_matrix(ctx *c, const cJSON *v, const at *p, size_t rows, size_t 
     size_t r = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
     if (!cJSON_IsArray(v) || r != rows) {
         jw_fail(c, p, "must be %s: an array of %zu rows of %zu numbers, got %s%s", what, rows, cols,
-             cJSON_IsArray(v) ? "an array of another length" : jw_type_name(v), "");
+             cJSON_IsArray(v) ? "an array of another length" : jb_type_name(v), "");
         return;
     }
     size_t i = 0;
@@ -44,7 +44,7 @@ static void lcs_matrix(ctx *c, const cJSON *v, const at *p, size_t rows, size_t 
         size_t k = cJSON_IsArray(row) ? (size_t)cJSON_GetArraySize(row) : 0;
         if (!cJSON_IsArray(row) || k != cols) {
             jw_fail(c, &q, "must be a row of %zu numbers (%s), got %s", cols, what,
-                 cJSON_IsArray(row) ? "another length" : jw_type_name(row));
+                 cJSON_IsArray(row) ? "another length" : jb_type_name(row));
             continue;
         }
         size_t j = 0;
@@ -60,7 +60,7 @@ static void lcs_vector(ctx *c, const cJSON *v, const at *p, size_t n, const char
     size_t k = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
     if (!cJSON_IsArray(v) || k != n) {
         jw_fail(c, p, "must be an array of %zu numbers (%s), got %s", n, what,
-             cJSON_IsArray(v) ? "another length" : jw_type_name(v));
+             cJSON_IsArray(v) ? "another length" : jb_type_name(v));
         return;
     }
     size_t i = 0;
@@ -76,7 +76,7 @@ static void lcs_offsets(ctx *c, const cJSON *v, const at *p, dp_lcs_model *lm)
     size_t k = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0, i = 0;
     if (!cJSON_IsArray(v) || k != lm->n) {
         jw_fail(c, p, "must be an array of %zu entries (one per state), each a number or a forcing object, got %s",
-             lm->n, cJSON_IsArray(v) ? "another length" : jw_type_name(v));
+             lm->n, cJSON_IsArray(v) ? "another length" : jb_type_name(v));
         return;
     }
     for (const cJSON *x = v->child; x; x = x->next, i++) {
@@ -153,12 +153,12 @@ static int lcs_sizes(ctx *c, const cJSON *model, const cJSON *sys, const at *ptr
     *n = cJSON_IsArray(a) ? (size_t)cJSON_GetArraySize(a) : 0;
     if (a != NULL && (*n == 0 || *n > LCS_MAX_STATES))
         jw_fail(c, &p, "must be an n x n matrix with 1 <= n <= %d, got %s", LCS_MAX_STATES,
-             cJSON_IsArray(a) ? (*n ? "more rows" : "no rows") : jw_type_name(a));
+             cJSON_IsArray(a) ? (*n ? "more rows" : "no rows") : jb_type_name(a));
     const cJSON *l = jw_member(c, model, ptr, "laws", "an array of one law per component of u", &p);
     *m = cJSON_IsArray(l) ? (size_t)cJSON_GetArraySize(l) : 0;
     if (l != NULL && (*m == 0 || *m > LCS_MAX_COMPONENTS))
         jw_fail(c, &p, "must be an array of 1 to %d laws (one per component of u), got %s", LCS_MAX_COMPONENTS,
-             cJSON_IsArray(l) ? (*m ? "more" : "none") : jw_type_name(l));
+             cJSON_IsArray(l) ? (*m ? "more" : "none") : jb_type_name(l));
     return *n >= 1 && *n <= LCS_MAX_STATES && *m >= 1 && *m <= LCS_MAX_COMPONENTS;
 }
 

@@ -39,7 +39,7 @@ static void parse_vector(ctx *c, const cJSON *v, const at *p, size_t n, const ra
         if (cJSON_IsArray(v))
             jw_fail(c, p, "must be %s, got %zu", what, m);
         else
-            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(v));
+            jw_fail(c, p, "must be %s, got %s", what, jb_type_name(v));
         return;
     }
     size_t i = 0;
@@ -59,7 +59,7 @@ static double *parse_matrix(ctx *c, const cJSON *v, const at *p, size_t n)
         if (cJSON_IsArray(v))
             jw_fail(c, p, "must be %s, got %zu", what, m);
         else
-            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(v));
+            jw_fail(c, p, "must be %s, got %s", what, jb_type_name(v));
         return NULL;
     }
     double *A = calloc(n * n, sizeof *A);
@@ -84,7 +84,7 @@ static void parse_end(ctx *c, const cJSON *v, const at *p, size_t n, long *out)
     else if (cJSON_IsNumber(v) && parse_index(c, v, p, n, "a node", &i))
         *out = (long)i;
     else if (!cJSON_IsNumber(v))
-        jw_fail(c, p, "must be \"ground\" or a node index in [0, %zu], got %s", n - 1, jw_type_name(v));
+        jw_fail(c, p, "must be \"ground\" or a node index in [0, %zu], got %s", n - 1, jb_type_name(v));
 }
 
 static void parse_element(ctx *c, const cJSON *o, const at *ptr, size_t n, dp_element *e)
@@ -124,7 +124,7 @@ static void parse_elements(ctx *c, const cJSON *v, const at *p, dp_network *net)
         if (cJSON_IsArray(v))
             jw_fail(c, p, "must be %s: %zu is over the limit", what, m);
         else
-            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(v));
+            jw_fail(c, p, "must be %s, got %s", what, jb_type_name(v));
         return;
     }
     if (m == 0)

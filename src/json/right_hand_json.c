@@ -66,7 +66,7 @@ static void parse_pair_of(ctx *c, const cJSON *v, const at *p, const char *names
         if (cJSON_IsArray(v))
             jw_fail(c, p, "must be an array of 2 numbers %s, got %d", names, cJSON_GetArraySize(v));
         else
-            jw_fail(c, p, "must be an array of 2 numbers %s, got %s", names, jw_type_name(v));
+            jw_fail(c, p, "must be an array of 2 numbers %s, got %s", names, jb_type_name(v));
         return;
     }
     size_t i = 0;

@@ -86,7 +86,7 @@ static void parse_nlist(ctx *c, const cJSON *o, const at *ptr, dp_solver_spec *s
         if (cJSON_IsArray(v))
             jw_fail(c, p, "must be %s, got %d elements", what, n);
         else
-            jw_fail(c, p, "must be %s, got %s", what, jw_type_name(v));
+            jw_fail(c, p, "must be %s, got %s", what, jb_type_name(v));
         return;
     }
     size_t before = c->nerr, i = 0;

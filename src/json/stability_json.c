@@ -55,7 +55,7 @@ static void get_coefs(pctx *c, const cJSON *law, const at *pl, const char *key, 
     if (a == NULL)
         return;
     if (!cJSON_IsArray(a)) {
-        jw_fail(&c->w, &p, "must be an array of numbers, lowest derivative first, got %s", jw_type_name(a));
+        jw_fail(&c->w, &p, "must be an array of numbers, lowest derivative first, got %s", jb_type_name(a));
         return;
     }
     int count = cJSON_GetArraySize(a);
@@ -93,9 +93,9 @@ static void parse_axis(pctx *c, const cJSON *o, const at *pa, const dp_law *law,
     snprintf(what, sizeof what, "\"mass\", \"lambda[i]\" or \"mu[j]\" with i, j in 0..%d", DP_STAB_MAX_ORDER);
     const cJSON *v = jw_member(&c->w, o, pa, "param", what, &p);
     if (v != NULL && !cJSON_IsString(v))
-        jw_fail(&c->w, &p, "must be %s, got %s", what, jw_type_name(v));
+        jw_fail(&c->w, &p, "must be %s, got %s", what, jb_type_name(v));
     else if (v != NULL && dp_param_parse(v->valuestring, &ax->kind, &ax->index) != 0)
-        jw_fail(&c->w, &p, "must be %s, got \"%s\"", what, jw_shown(v->valuestring, sb));
+        jw_fail(&c->w, &p, "must be %s, got \"%s\"", what, jb_shown(v->valuestring, sb));
     jw_get_num(&c->w, o, pa, "from", &ANY, 1, 0, &ax->from);
     jw_get_num(&c->w, o, pa, "to", &ANY, 1, 0, &ax->to);
     double steps = 0;

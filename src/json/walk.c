@@ -33,21 +33,6 @@ void jw_fail(ctx *c, const at *where, const char *fmt, ...)
     c->nerr++;
 }
 
-/* A user string fit for a message: at most 48 bytes (then "..."), control characters as '?'. */
-const char *jw_shown(const char *s, char buf[64])
-{
-    size_t n = 0;
-    for (; s[n] && n < 48; n++)
-        buf[n] = (unsigned char)s[n] < 0x20 ? '?' : s[n];
-    if (s[n]) {
-        n = jp_utf8_trim(buf, n);
-        memcpy(buf + n, "...", 3);
-        n += 3;
-    }
-    buf[n] = '\0';
-    return buf;
-}
-
 /* The shortest of %.15g / %.17g that reads back as v, so 0.1 shows as "0.1" and nothing is misreported. */
 const char *jw_num_text(double v, char buf[32])
 {
@@ -55,17 +40,6 @@ const char *jw_num_text(double v, char buf[32])
     if (strtod(buf, NULL) != v)
         snprintf(buf, 32, "%.17g", v);
     return buf;
-}
-
-const char *jw_type_name(const cJSON *v)
-{
-    if (cJSON_IsNumber(v)) return "a number";
-    if (cJSON_IsString(v)) return "a string";
-    if (cJSON_IsBool(v)) return "a boolean";
-    if (cJSON_IsNull(v)) return "null";
-    if (cJSON_IsArray(v)) return "an array";
-    if (cJSON_IsObject(v)) return "an object";
-    return "an unknown value";
 }
 
 /* "a, b, c" from a NULL-terminated list. */
@@ -94,7 +68,7 @@ int jw_want_object(ctx *c, const cJSON *v, const at *ptr)
 {
     if (cJSON_IsObject(v))
         return 1;
-    jw_fail(c, ptr, "must be an object, got %s", jw_type_name(v));
+    jw_fail(c, ptr, "must be an object, got %s", jb_type_name(v));
     return 0;
 }
 
@@ -109,7 +83,7 @@ int jw_check_num(ctx *c, const cJSON *v, const at *ptr, const range *r, int inte
     const char *what = integral ? "an integer" : "a finite number";
     char nb[32];
     if (!cJSON_IsNumber(v)) {
-        jw_fail(c, ptr, "must be %s%s, got %s", what, r->text, jw_type_name(v));
+        jw_fail(c, ptr, "must be %s%s, got %s", what, r->text, jb_type_name(v));
         return 0;
     }
     double x = v->valuedouble;
@@ -148,7 +122,7 @@ void jw_get_bool(ctx *c, const cJSON *o, const at *ptr, const char *key, int *ou
     if (cJSON_IsBool(v))
         *out = cJSON_IsTrue(v);
     else
-        jw_fail(c, &p, "must be true or false, got %s", jw_type_name(v));
+        jw_fail(c, &p, "must be true or false, got %s", jb_type_name(v));
 }
 
 /* Index of the string member `key` in `names`; `def` when absent (-1 and an error when def < 0), -1 and an
@@ -167,13 +141,13 @@ int jw_get_enum(ctx *c, const cJSON *o, const at *ptr, const char *key, const ch
     if (v == NULL)
         return def;
     if (!cJSON_IsString(v)) {
-        jw_fail(c, &p, "must be a string, one of: %s; got %s", jw_joined(names, list, sizeof list), jw_type_name(v));
+        jw_fail(c, &p, "must be a string, one of: %s; got %s", jw_joined(names, list, sizeof list), jb_type_name(v));
         return -1;
     }
     for (int i = 0; names[i]; i++)
         if (strcmp(v->valuestring, names[i]) == 0)
             return i;
-    jw_fail(c, &p, "unknown %s \"%s\"; expected one of: %s", key, jw_shown(v->valuestring, sb),
+    jw_fail(c, &p, "unknown %s \"%s\"; expected one of: %s", key, jb_shown(v->valuestring, sb),
          jw_joined(names, list, sizeof list));
     return -1;
 }
@@ -199,7 +173,7 @@ void jw_check_keys(ctx *c, const cJSON *o, const at *ptr, const char *const *key
             why[0] = '\0';
             if (tag != NULL)
                 snprintf(why, sizeof why, " for %s \"%s\"", tag, value);
-            jw_fail(c, &p, "unknown key \"%s\"%s; expected one of: %s", jw_shown(m->string, sb), why,
+            jw_fail(c, &p, "unknown key \"%s\"%s; expected one of: %s", jb_shown(m->string, sb), why,
                  jw_joined(keys, list, sizeof list));
         }
     }
@@ -210,7 +184,7 @@ size_t jw_array_size(ctx *c, const cJSON *v, const at *p, size_t max, const char
 {
     size_t n = cJSON_IsArray(v) ? (size_t)cJSON_GetArraySize(v) : 0;
     if (!cJSON_IsArray(v))
-        jw_fail(c, p, "must be %s, got %s", what, jw_type_name(v));
+        jw_fail(c, p, "must be %s, got %s", what, jb_type_name(v));
     else if (n > max)
         jw_fail(c, p, "must be %s: %zu is over the limit of %zu", what, n, max);
     else if (n == 0)

@@ -19,6 +19,7 @@
 #include <cjson/cJSON.h>
 
 #include "dashpot/status.h"
+#include "body.h"
 #include "pointer.h"
 
 /* The walk's state: where errors go, how many this parse added, whether an allocation failed. */
@@ -48,14 +49,8 @@ cJSON *jw_read(ctx *c, const char *text, size_t len, int *status);
 /* One error at `where`, counted. */
 void jw_fail(ctx *c, const at *where, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
-/* A user string fit for a message: at most 48 bytes (then "..."), control characters as '?'. */
-const char *jw_shown(const char *s, char buf[64]);
-
 /* The shortest of %.15g / %.17g that reads back as v, so 0.1 shows as "0.1" and nothing is misreported. */
 const char *jw_num_text(double v, char buf[32]);
-
-/* "a number", "a string", "an array", ... for "got ..." */
-const char *jw_type_name(const cJSON *v);
 
 /* "a, b, c" from a NULL-terminated list. */
 const char *jw_joined(const char *const *names, char *buf, size_t cap);

@@ -20,6 +20,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "dashpot/right_hand.h"
+#include "record/row_queue.h"
 #include "record/sink.h"
 #include "rules/rules.h"
 #include "solvers/run_types.h"
@@ -52,11 +53,8 @@ struct dp_right_hand_run {
     unsigned long long k;           /* samples emitted; the next is at k dt */
     dp_columns cols;
     size_t nN, nmargin;
-    dp_record *q;                   /* FIFO of records not yet handed out; rows' numbers in qrows */
-    double *qrows;
-    size_t nq, iq, qcap;
-    double *block;                  /* row slots of the block being produced */
-    size_t block_cap, block_used;
+    dp_row_queue queue;             /* records not yet handed out (an event and a row may fall due together) */
+    dp_row_slots slots;             /* row slots of the block being produced */
     double final_row[MAX_WIDTH];
     int ended;                      /* no more records will be produced */
     int fail;                       /* stop with `why` once the FIFO is drained */
@@ -162,49 +160,6 @@ static void locate(struct dp_right_hand_run *rr, double t0, const double y0[4], 
             rr->y[2 + k] = 0;
 }
 
-/* ---- records: a FIFO that grows (an event and a row may fall due together), rows copied into the block's
- * own slots as they are handed out ---- */
-
-static int queue(dp_run *r, const dp_record *rec, const double *row)
-{
-    struct dp_right_hand_run *rr = r->state;
-    size_t w = rr->cols.width;
-    if (rr->nq == rr->qcap) {
-        size_t cap = rr->qcap ? 2 * rr->qcap : QCAP0;
-        dp_record *q = realloc(rr->q, cap * sizeof *q);
-        if (q == NULL)
-            return DP_ENOMEM;
-        rr->q = q;
-        double *rows = realloc(rr->qrows, cap * w * sizeof *rows);
-        if (rows == NULL)
-            return DP_ENOMEM;
-        rr->qrows = rows, rr->qcap = cap;
-    }
-    rr->q[rr->nq] = *rec;
-    if (row)
-        memcpy(rr->qrows + rr->nq * w, row, w * sizeof *row);
-    rr->nq++;
-    return DP_OK;
-}
-
-static void flush(dp_run *r)
-{
-    struct dp_right_hand_run *rr = r->state;
-    size_t w = rr->cols.width;
-    while (rr->iq < rr->nq && r->out_n < r->out_cap && rr->block_used < rr->block_cap) {
-        dp_record rec = rr->q[rr->iq];
-        if (rec.type == DP_RECORD_ROW) {
-            double *d = rr->block + rr->block_used++ * w;
-            memcpy(d, rr->qrows + rr->iq * w, w * sizeof *d);
-            rec.u.row.val = d;
-        }
-        r->out[r->out_n++] = rec;
-        rr->iq++;
-    }
-    if (rr->iq == rr->nq)
-        rr->iq = rr->nq = 0;
-}
-
 static double phase_code(dp_right_hand_mode m)
 {
     return m == DP_RIGHT_HAND_STICK ? DP_PHASE_STICK : m == DP_RIGHT_HAND_FREE ? DP_PHASE_NONE : DP_PHASE_SLIP;
@@ -244,7 +199,7 @@ static int emit_row(dp_run *r)
         return DP_OK;
     r->sum.samples++;
     dp_record rec = { .type = DP_RECORD_ROW, .u.row = { .t = rr->t, .val = NULL } };
-    return queue(r, &rec, row);
+    return dp_row_queue_push(&rr->queue, &rec, row);
 }
 
 static const char *mode_name(dp_right_hand_mode m)
@@ -309,7 +264,7 @@ static int classify(dp_run *r, int initial)
         dp_record rec = { .type = DP_RECORD_EVENT };
         rec.u.event = (dp_event){ .kind = now ? DP_EVENT_STICK : DP_EVENT_SLIP, .t = rr->t, .x = rr->y[k],
                                   .v = rr->y[2 + k], .element = (size_t)k };
-        if (r->spec.output.events && queue(r, &rec, NULL) != DP_OK)
+        if (r->spec.output.events && dp_row_queue_push(&rr->queue, &rec, NULL) != DP_OK)
             return dp_run_fail(r, DP_ENOMEM, "out of memory for the events"), 0;
     }
     memcpy(rr->mode, s->mode, sizeof rr->mode);
@@ -367,28 +322,14 @@ static int segment(dp_run *r, double t1)
     return DP_OK;
 }
 
-/* Row slots for this block: one per record the caller can take (rows are narrow). */
-static int reserve(dp_run *r)
-{
-    struct dp_right_hand_run *rr = r->state;
-    rr->block_used = 0;
-    if (r->out_cap <= rr->block_cap)
-        return DP_OK;
-    double *b = realloc(rr->block, r->out_cap * rr->cols.width * sizeof *b);
-    if (b == NULL)
-        return DP_ENOMEM;
-    rr->block = b, rr->block_cap = r->out_cap;
-    return DP_OK;
-}
-
 static int rh_run_advance(dp_run *r)
 {
     struct dp_right_hand_run *rr = r->state;
-    if (reserve(r) != DP_OK)
+    if (dp_row_slots_reserve(&rr->slots, r->out_cap) != DP_OK)   /* rows are narrow: one per record */
         return dp_run_fail(r, DP_ENOMEM, "out of memory for a block's rows");
     rr->call_steps = 0;
-    flush(r);
-    while (r->out_n < r->out_cap && rr->nq == 0 && !rr->ended && r->status == DP_OK) {
+    dp_row_queue_flush(&rr->queue, r, &rr->slots);
+    while (r->out_n < r->out_cap && !dp_row_queue_waiting(&rr->queue) && !rr->ended && r->status == DP_OK) {
         if (rr->fail) {
             rr->ended = 1;
             break;
@@ -408,10 +349,10 @@ static int rh_run_advance(dp_run *r)
         r->n = rr->k;
         if (rr->k++ >= r->nsteps)
             rr->ended = 1;
-        flush(r);
+        dp_row_queue_flush(&rr->queue, r, &rr->slots);
     }
-    flush(r);
-    if (rr->ended && rr->nq == 0) {
+    dp_row_queue_flush(&rr->queue, r, &rr->slots);
+    if (rr->ended && !dp_row_queue_waiting(&rr->queue)) {
         if (rr->fail && r->out_n > 0)
             return DP_OK;      /* the rows before the stop go out first; the next call fails with the record */
         if (rr->fail)
@@ -424,7 +365,7 @@ static int rh_run_advance(dp_run *r)
 static int rh_run_pending(const dp_run *r)
 {
     const struct dp_right_hand_run *rr = r->state;
-    return rr->nq > rr->iq;
+    return dp_row_queue_waiting(&rr->queue);
 }
 
 static void setup_columns(struct dp_right_hand_run *rr)
@@ -452,6 +393,9 @@ static int rh_run_init(dp_run *r)
     memcpy(rr->y + 2, r->spec.v0v, 2 * sizeof *rr->y);
     setup_columns(rr);
     r->cols = &rr->cols;
+    rr->slots.width = rr->cols.width;
+    if (dp_row_queue_init(&rr->queue, rr->cols.width, QCAP0) != DP_OK)
+        return DP_ENOMEM;
     double rtol = r->spec.solver.rtol > 0 ? r->spec.solver.rtol : 1e-10;
     double atol = r->spec.solver.atol > 0 ? r->spec.solver.atol : rtol * 1e-2;
     rr->sys = (gsl_odeiv2_system){ rhs, NULL, 4, rr };
@@ -476,9 +420,8 @@ static void rh_run_free(void *state)
         gsl_odeiv2_control_free(rr->ctl);
     if (rr->st)
         gsl_odeiv2_step_free(rr->st);
-    free(rr->q);
-    free(rr->qrows);
-    free(rr->block);
+    dp_row_queue_clear(&rr->queue);
+    free(rr->slots.data);
     free(rr);
 }
 

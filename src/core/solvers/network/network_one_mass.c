@@ -74,13 +74,13 @@ static int one_mass_rows(dp_run *r, dp_record *buf, size_t n)
             buf[i].u.event.element = 0;
             continue;
         }
-        if (buf[i].type != DP_RECORD_SAMPLE || nr->rows_used == nr->rows_cap)
+        double *slot = buf[i].type == DP_RECORD_SAMPLE ? dp_row_slots_take(&nr->slots) : NULL;
+        if (slot == NULL)
             continue;
         double t = buf[i].u.sample.t;
         take_sample(nr, &buf[i].u.sample);
-        size_t k = nr->rows_used++;
         buf[i].type = DP_RECORD_ROW;
-        buf[i].u.row = network_run_fill_row(nr, t, nr->rows + k * nr->row_len);
+        buf[i].u.row = network_run_fill_row(nr, t, slot);
     }
     take_sample(nr, &r->sum.final);
     r->sum.final_row = network_run_fill_row(nr, r->sum.final.t, nr->final_row);

@@ -34,19 +34,12 @@ dp_row network_run_fill_row(const struct dp_network_run *nr, double t, double *d
 void network_run_put(dp_run *r, const dp_record *rec)
 {
     struct dp_network_run *nr = r->state;
-    if (nr->nq == 0 && r->out && r->out_n < r->out_cap) {
+    if (!dp_row_queue_waiting(&nr->queue) && r->out && r->out_n < r->out_cap) {
         r->out[r->out_n++] = *rec;
         return;
     }
-    if (nr->nq == nr->qcap) {   /* a step with more changes than the queue held: grow it, never drop */
-        dp_record *q = realloc(nr->queue, 2 * nr->qcap * sizeof *q);
-        if (q == NULL) {
-            dp_run_fail(r, DP_ENOMEM, "out of memory for the events of one step");
-            return;
-        }
-        nr->queue = q, nr->qcap *= 2;
-    }
-    nr->queue[nr->nq++] = *rec;
+    if (dp_row_queue_push(&nr->queue, rec, rec->type == DP_RECORD_ROW ? rec->u.row.val : NULL) != DP_OK)
+        dp_run_fail(r, DP_ENOMEM, "out of memory for the events of one step");
 }
 
 void network_run_emit_row(dp_run *r)
@@ -56,13 +49,16 @@ void network_run_emit_row(dp_run *r)
     if (!r->spec.output.samples)
         return;
     dp_record rec = { .type = DP_RECORD_ROW };
-    if (nr->nq == 0 && r->out && r->out_n < r->out_cap && nr->rows_used < nr->rows_cap) {
-        size_t s = nr->rows_used++;
-        rec.u.row = network_run_fill_row(nr, r->cur.t, nr->rows + s * nr->row_len);
-    } else {
+    double *slot = !dp_row_queue_waiting(&nr->queue) && r->out && r->out_n < r->out_cap ? dp_row_slots_take(&nr->slots)
+                                                                                         : NULL;
+    if (slot != NULL) {
+        rec.u.row = network_run_fill_row(nr, r->cur.t, slot);
+        r->out[r->out_n++] = rec;
+    } else {   /* made in the scratch row, copied by the queue */
         rec.u.row = network_run_fill_row(nr, r->cur.t, nr->pending_row);
+        if (dp_row_queue_push(&nr->queue, &rec, nr->pending_row) != DP_OK)
+            dp_run_fail(r, DP_ENOMEM, "out of memory for the events of one step");
     }
-    network_run_put(r, &rec);
     r->sum.samples++;
 }
 
@@ -153,21 +149,7 @@ int network_run_state_finite(const struct dp_network_run *nr)
 void network_run_flush(dp_run *r)
 {
     struct dp_network_run *nr = r->state;
-    while (nr->iq < nr->nq && r->out_n < r->out_cap) {
-        dp_record rec = nr->queue[nr->iq];
-        if (rec.type == DP_RECORD_ROW) {
-            if (nr->rows_used == nr->rows_cap)
-                break;
-            size_t s = nr->rows_used++;
-            double *d = nr->rows + s * nr->row_len;
-            memcpy(d, nr->pending_row, nr->row_len * sizeof *d);
-            rec.u.row.val = d;
-        }
-        r->out[r->out_n++] = rec;
-        nr->iq++;
-    }
-    if (nr->iq == nr->nq)
-        nr->iq = nr->nq = 0;
+    dp_row_queue_flush(&nr->queue, r, &nr->slots);
 }
 
 /* Row slots for this block: one per record the caller can take, within ROW_BUDGET numbers. */
@@ -177,13 +159,5 @@ int network_run_reserve_rows(dp_run *r)
     size_t want = r->out_cap, fit = ROW_BUDGET / (nr->row_len ? nr->row_len : 1);
     if (want > fit)
         want = fit ? fit : 1;
-    nr->rows_used = 0;
-    if (want <= nr->rows_cap)
-        return DP_OK;
-    double *rows = realloc(nr->rows, want * (nr->row_len ? nr->row_len : 1) * sizeof *rows);
-    if (rows == NULL)
-        return DP_ENOMEM;
-    nr->rows = rows;
-    nr->rows_cap = want;
-    return DP_OK;
+    return dp_row_slots_reserve(&nr->slots, want);
 }

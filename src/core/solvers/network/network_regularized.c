@@ -274,7 +274,7 @@ int dp_network_regularized_advance(dp_run *r)
     if (network_run_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
     network_run_flush(r);
-    while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
+    while (r->out_n < r->out_cap && !dp_row_queue_waiting(&nr->queue) && nr->slots.used < nr->slots.cap && !r->finished) {
         unsigned long long next = r->n + (unsigned long long)(r->countdown > 0 ? r->countdown : 1);
         if (next > r->nsteps || !r->spec.output.samples)
             next = r->nsteps;

@@ -87,11 +87,9 @@ static int alloc_all(struct dp_network_run *nr)
     nr->ep_cols = calloc(ne, sizeof *nr->ep_cols);
     if (!nr->ep_p || !nr->ep_F || !nr->ep_flow || !nr->ep_flow_prev || !nr->ep_graph || !nr->ep_cols)
         return DP_ENOMEM;
-    nr->qcap = ne + 2;
-    nr->queue = calloc(nr->qcap, sizeof *nr->queue);
     return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->act_el && nr->gamma && nr->static_A && nr->held && nr->broke && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
            nr->rhs && nr->tmp && nr->u && nr->force && nr->Fs && nr->Fd && nr->phase && nr->phase_prev && nr->can_stick &&
-           nr->all_nodes && nr->all_elements && nr->queue ? DP_OK : DP_ENOMEM;
+           nr->all_nodes && nr->all_elements ? DP_OK : DP_ENOMEM;
 }
 
 /* B += w b b^T in band storage for an element's incidence vector b. */
@@ -202,6 +200,9 @@ static int setup_columns(struct dp_network_run *nr, const dp_output_spec *o)
     size_t rl = nr->row_len ? nr->row_len : 1;
     nr->final_row = calloc(rl, sizeof(double));
     nr->pending_row = calloc(rl, sizeof(double));
+    nr->slots.width = nr->row_len;
+    if (dp_row_queue_init(&nr->queue, nr->row_len, ne + 2) != DP_OK)
+        return DP_ENOMEM;
     return nr->final_row && nr->pending_row ? DP_OK : DP_ENOMEM;
 }
 
@@ -216,9 +217,10 @@ void network_run_free(void *state)
         dp_graph_clear(&nr->static_A[i]);
     dp_nm_free(nr->nm);
     network_run_contacts_free(nr);
+    dp_row_queue_clear(&nr->queue);
     void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
-                  nr->all_elements, nr->rows, nr->final_row, nr->queue, nr->pending_row };
+                  nr->all_elements, nr->slots.data, nr->final_row, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
     free(nr);
@@ -423,7 +425,7 @@ static int network_run_advance(dp_run *r)
     if (network_run_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
     network_run_flush(r);
-    while (r->out_n < r->out_cap && nr->nq == 0 && nr->rows_used < nr->rows_cap && !r->finished) {
+    while (r->out_n < r->out_cap && !dp_row_queue_waiting(&nr->queue) && nr->slots.used < nr->slots.cap && !r->finished) {
         /* a solve costs about a unit per node and element: 10^4 blocks poll every step or so, one mass every
          * 4096 steps, both about the same work apart */
         if (dp_run_stopped(r, (r->n + r->sum.iterations) * (nr->n + nr->nel)))
@@ -499,7 +501,7 @@ int dp_network_locates(const dp_spec *s)
 
 int network_run_pending(const dp_run *r)
 {
-    return network_run_of(r)->nq > network_run_of(r)->iq;
+    return dp_row_queue_waiting(&network_run_of(r)->queue);
 }
 
 const char *network_run_events_mode(const dp_spec *s)

@@ -5,6 +5,7 @@
 #define DASHPOT_CORE_NETWORK_RUN_H
 
 #include "network/network_step.h"
+#include "record/row_queue.h"
 #include "record/sink.h"
 #include "rules/rules.h"
 #include "solvers/run_types.h"
@@ -47,12 +48,11 @@ struct dp_network_run {
     dp_columns cols;
     size_t *all_nodes, *all_elements;
     size_t *node_pos;           /* user node -> the run's (network_order.c), NULL when not renumbered */
-    size_t row_len, rows_cap, rows_used;
-    double *rows;               /* rows_cap rows of row_len (= cols.width) numbers */
+    size_t row_len;             /* = cols.width */
+    dp_row_slots slots;         /* the block's rows */
     double *final_row;          /* the summary's row */
-    dp_record *queue;           /* records that did not fit the caller's block */
-    size_t nq, iq, qcap;
-    double *pending_row;        /* the data of a queued row */
+    dp_row_queue queue;         /* records that did not fit the caller's block */
+    double *pending_row;        /* a row made while records wait, before the queue copies it */
     /* elastoplastic (Jenkins) springs, per element (network_run.c): the plastic offset, the force, whether
      * the slider slid in the last step (+1/-1, 0) and in the one before, the step graph to move with p */
     int has_ep;
