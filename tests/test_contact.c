@@ -421,7 +421,7 @@ static void test_impact_oscillator(void **state)
     assert_true(c / d > 1.7 && c / d < 2.3);
 }
 
-/* ---- found by the review of issue #19, fixed ------------------------------------------------------- */
+/* ---- found by the review of the contacts, fixed ------------------------------------------------------- */
 
 /* A stack (review finding, fixed): a mass of 1 on the table and a mass of 2 on it at distance 0.1 (two
  * contacts, e = 1/2, gravity), dropped from x = (0.5, 1). The alternating impacts accumulate near t = 0.6066;

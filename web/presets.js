@@ -92,8 +92,8 @@ PRESETS.push({
   },
 });
 PRESETS.push({
-  id: 'stability-1.2', group: 'Stability maps', label: 'Model 1.2: \u03bc\u2082 \u00d7 \u03bb', kind: 'stability',
-  note: 'F_V + \u03bb F_V\u2032 = \u03bc\u2081 x + \u03bc\u2082 x\u2032 (thesis model 1.2), swept over \u03bc\u2082 = mu[1] and \u03bb = lambda[1]; the black line is ' +
+  id: 'stability-1.2', group: 'Stability maps', label: '\u00a71.2 model: \u03bc\u2082 \u00d7 \u03bb', kind: 'stability',
+  note: 'F_V + \u03bb F_V\u2032 = \u03bc\u2081 x + \u03bc\u2082 x\u2032 (the model of \u00a71.2 of Babov\u00e1kov\u00e1 2012), swept over \u03bc\u2082 = mu[1] and \u03bb = lambda[1]; the black line is ' +
     'the thesis condition (1.10) \u03bc\u2082 \u2212 \u03bb\u03bc\u2081 = 0.',
   spec: {
     mass: 1, law: { lambda: [1, 0.5], mu: [1, 1] },
@@ -101,15 +101,15 @@ PRESETS.push({
   },
 });
 PRESETS.push({
-  id: 'stability-1.3', group: 'Stability maps', label: 'Model 1.3: \u03bb\u2081 \u00d7 \u03bb\u2082', kind: 'stability',
-  note: 'F_V + \u03bb\u2081 F_V\u2032 + \u03bb\u2082 F_V\u2033 = \u03bc\u2081 x + \u03bc\u2082 x\u2032 (thesis model 1.3), swept over \u03bb\u2081 and \u03bb\u2082.',
+  id: 'stability-1.3', group: 'Stability maps', label: '\u00a71.3 model: \u03bb\u2081 \u00d7 \u03bb\u2082', kind: 'stability',
+  note: 'F_V + \u03bb\u2081 F_V\u2032 + \u03bb\u2082 F_V\u2033 = \u03bc\u2081 x + \u03bc\u2082 x\u2032 (the model of \u00a71.3 of Babov\u00e1kov\u00e1 2012), swept over \u03bb\u2081 and \u03bb\u2082.',
   spec: {
     mass: 1, law: { lambda: [1, 1, 0.5], mu: [1, 2] },
     map: { x: { param: 'lambda[1]', from: 0, to: 3, steps: 240 }, y: { param: 'lambda[2]', from: 0.01, to: 0.8, steps: 160 } },
   },
 });
 PRESETS.push({
-  id: 'stability-one', group: 'Stability maps', label: 'One law (no map): model 1.2', kind: 'stability',
+  id: 'stability-one', group: 'Stability maps', label: 'One law (no map): \u00a71.2 model', kind: 'stability',
   note: 'No map: the verdict, the roots with their error bounds and the Hurwitz minors of one law.',
   spec: { mass: 1, law: { lambda: [1, 0.5], mu: [1, 1] } },
 });

@@ -125,7 +125,7 @@ static void legend(stab_out *o, const dp_map *map)
     if (map->closed_value != NULL) {
         int x = LEFT + SIDE + 20, y = TOP + 10 + 24 * 7 + 8;
         stab_printf(o, "<path d=\"M%d %dh16\" stroke=\"#000\" stroke-width=\"2.5\"/>"
-                       "<text x=\"%d\" y=\"%d\">model %s, %s = 0</text>\n",
+                       "<text x=\"%d\" y=\"%d\">Babováková 2012 §%s, %s = 0</text>\n",
                     x, y, x + 24, y + 5, map->closed.name, map->closed.condition);
     }
     stab_printf(o, "<text x=\"%d\" y=\"%d\">max |spectral abscissa| = %.4g</text>\n", LEFT + SIDE + 20,
