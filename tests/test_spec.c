@@ -394,6 +394,31 @@ static void test_depth_boundary(void **state)
 
 /* A malformed document is one error at "", its place as byte, line and column (columns count characters),
  * and what is wrong there (src/json/body.c). Raw text: no ' for " here, single quotes are one of the cases. */
+/* A body is not NUL-terminated: a document cut inside a literal ("fal", "tru", "nul") is described from its
+ * own bytes only (found by tests/fuzz/fuzz_spec.c: the reader compared 5 bytes of a 3-byte body; the
+ * sanitizer build reads past an exact-size allocation here). */
+static void test_cut_literal_reads_no_further(void **state)
+{
+    (void)state;
+    static const char *const cut[] = { "fal", "tru", "nul", "f", "[tr", "{\"a\":nu" };
+    for (size_t i = 0; i < sizeof cut / sizeof *cut; i++) {
+        size_t n = strlen(cut[i]);
+        char *exact = malloc(n);
+        assert_non_null(exact);
+        memcpy(exact, cut[i], n);
+        dp_spec s;
+        dp_errors e;
+        dp_spec_init(&s);
+        dp_errors_init(&e);
+        int st = dp_spec_parse(exact, n, 0, &s, &e);
+        free(exact);
+        dp_spec_clear(&s);
+        assert_int_equal(st, DP_ESYNTAX);
+        assert_int_equal(e.n, 1);
+        assert_string_equal(e.item[0].pointer, "");
+    }
+}
+
 static void test_malformed_where_and_why(void **state)
 {
     (void)state;
@@ -882,6 +907,7 @@ int main(void)
         cmocka_unit_test(test_length_not_nul),
         cmocka_unit_test(test_depth_boundary),
         cmocka_unit_test(test_malformed_where_and_why),
+        cmocka_unit_test(test_cut_literal_reads_no_further),
         cmocka_unit_test(test_same_words_on_every_route),
         cmocka_unit_test(test_multiple_errors),
     };

@@ -116,6 +116,14 @@ static const char *word_at(const syn *y, size_t i, char buf[48])
     return buf;
 }
 
+/* Whether the text at i begins with the literal w (case-sensitive), within the body's length: the body is
+ * not NUL-terminated (a fuzzer's "fal" would read past it). */
+static int starts_with(const syn *y, size_t i, const char *w)
+{
+    size_t n = strlen(w);
+    return i + n <= y->len && memcmp(y->s + i, w, n) == 0;
+}
+
 static int starts_with_ci(const syn *y, size_t i, const char *w)
 {
     size_t n = strlen(w);
@@ -287,9 +295,9 @@ static int syntax_fault(syn *y)
                 if (n == 0)
                     return 1;
                 i += n, want = AFTER_VALUE;
-            } else if (strncmp(y->s + i, "true", 4) == 0 || strncmp(y->s + i, "null", 4) == 0) {
+            } else if (starts_with(y, i, "true") || starts_with(y, i, "null")) {
                 i += 4, want = AFTER_VALUE;   /* a prefix match, as cJSON's: "nullx" is null, then x */
-            } else if (strncmp(y->s + i, "false", 5) == 0) {
+            } else if (starts_with(y, i, "false")) {
                 i += 5, want = AFTER_VALUE;
             } else {
                 return not_a_value(y, i);
