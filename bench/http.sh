@@ -66,7 +66,7 @@ status=$(curl -s -o /dev/null -w '%{http_code}' -d '{"mass": 1, "law": {"lambda"
 [ "$status" = 200 ] || { echo "http: the stability request answered $status"; exit 1; }
 
 # ---- 2. streaming: t_end = samples * dt, a sample every step ----
-spec="{\"model\": {\"mass\": 1, \"spring\": {\"law\": \"linear\", \"k\": 1}, \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.3}, \"forcing\": {\"kind\": \"harmonic\", \"amplitude\": 0.5, \"omega\": 1.3}}, \"initial\": {\"x\": 1, \"v\": 0}, \"solver\": {\"dt\": 1e-6, \"t_end\": $(awk -v n="$samples" 'BEGIN { print n * 1e-6 }')}}"
+spec="{\"model\": {\"mass\": 1, \"spring\": {\"law\": \"linear\", \"k\": 1}, \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.3}, \"forcing\": {\"kind\": \"harmonic\", \"amplitude\": 0.5, \"omega\": 1.3}}, \"initial\": {\"x\": 1, \"v\": 0}, \"solver\": {\"dt\": 1e-6, \"t_end\": $(awk -v n="$samples" 'BEGIN { print n * 1e-6 }'), \"theta\": 1}, \"output\": {\"every\": 1}}"
 curl -s -H 'Accept: application/x-ndjson' --data-binary "$spec" "$url/v1/simulate" -o "$tmp/static.ndjson"
 bytes=$(stat -c %s "$tmp/static.ndjson")
 best() { # best of 3 wall times of a curl to /dev/null
