@@ -19,6 +19,10 @@
  * JSON Pointer), DP_ELIMIT (Lemke's pivot guard), DP_ENOMEM; on failure `out` is as it was. */
 int dp_lcp_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs);
 
+/* The same, polling `stop` (may be NULL) through the pivots and the enumeration; DP_ECANCEL once it said
+ * stop. */
+int dp_lcp_respond_until(const char *body, size_t len, const dp_stop *stop, dp_buf *out, dp_errors *errs);
+
 /* The meta line of an LCS run (dp_spec_meta_json's branch for spec->lcs): solver parameters, sizes, laws,
  * and the theory of D and of the step's matrix D + hCWB (P-matrix, µ, Lipschitz bound), with what it means
  * for uniqueness of each step. DP_OK, DP_ENOMEM. */

@@ -26,4 +26,9 @@ int dp_modes_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
 /* The same for a receptance curve, written as DP_FORMAT_JSON, DP_FORMAT_NDJSON or DP_FORMAT_CSV. */
 int dp_response_respond(const char *body, size_t len, int format, dp_buf *out, dp_errors *errs);
 
+/* The same two, polling `stop` (may be NULL) through the work; DP_ECANCEL once it said stop. */
+int dp_modes_respond_until(const char *body, size_t len, const dp_stop *stop, dp_buf *out, dp_errors *errs);
+int dp_response_respond_until(const char *body, size_t len, int format, const dp_stop *stop, dp_buf *out,
+                              dp_errors *errs);
+
 #endif

@@ -52,4 +52,18 @@ void dp_errors_init(dp_errors *e);
 void dp_errors_add(dp_errors *e, const char *pointer, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
+/* A stop hook for one computation (a network step, Lemke's pivots, an eigensolver, a response curve): `fn`
+ * returns > 0 when the work must end now (a deadline passed, the client left, shutdown), 0 to go on.
+ * Computations poll it every so often (at most ~DP_RUN_POLL_WORK units of work apart) and then return
+ * DP_ECANCEL. A NULL dp_stop, or one whose fn is NULL, never stops. */
+typedef struct dp_stop {
+    int (*fn)(void *ctx);
+    void *ctx;
+} dp_stop;
+
+static inline int dp_stop_now(const dp_stop *stop)
+{
+    return stop && stop->fn && stop->fn(stop->ctx) > 0;
+}
+
 #endif

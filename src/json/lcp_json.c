@@ -232,6 +232,12 @@ static int solve(const gsl_matrix *M, const gsl_vector *q, dp_buf *out)
 
 int dp_lcp_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
 {
+    return dp_lcp_respond_until(body, len, NULL, out, errs);
+}
+
+int dp_lcp_respond_until(const char *body, size_t len, const dp_stop *stop, dp_buf *out, dp_errors *errs)
+{
+    (void)stop; /* not yet polled */
     gsl_matrix *M = NULL;
     gsl_vector *q = NULL;
     size_t mark = out->len;

@@ -280,6 +280,12 @@ static int solve_modes(request *r, dp_modes *md, dp_errors *e)
 
 int dp_modes_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
 {
+    return dp_modes_respond_until(body, len, NULL, out, errs);
+}
+
+int dp_modes_respond_until(const char *body, size_t len, const dp_stop *stop, dp_buf *out, dp_errors *errs)
+{
+    (void)stop; /* not yet polled */
     request r;
     dp_modes md = { 0 };
     size_t mark = out->len;
@@ -374,6 +380,13 @@ static int response_write(const request *r, const dp_modes *md, const dp_respons
 
 int dp_response_respond(const char *body, size_t len, int format, dp_buf *out, dp_errors *errs)
 {
+    return dp_response_respond_until(body, len, format, NULL, out, errs);
+}
+
+int dp_response_respond_until(const char *body, size_t len, int format, const dp_stop *stop, dp_buf *out,
+                              dp_errors *errs)
+{
+    (void)stop; /* not yet polled */
     request r;
     dp_modes md = { 0 };
     dp_response rs = { 0 };
