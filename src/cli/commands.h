@@ -31,5 +31,6 @@ int dp_cli_convergence(int argc, char **argv);
 int dp_cli_modes(int argc, char **argv);
 int dp_cli_response(int argc, char **argv);
 int dp_cli_lcp(int argc, char **argv);
+int dp_cli_sweep(int argc, char **argv);
 
 #endif

@@ -19,6 +19,7 @@ static int usage(FILE *to)
             "  dashpot modes SPEC.json|-\n"
             "  dashpot response SPEC.json|- [--format json|ndjson|csv]\n"
             "  dashpot lcp PROBLEM.json|-\n"
+            "  dashpot sweep SWEEP.json|- [--shard i/N] [--threads T]\n"
             "  dashpot --help | --version | COMMAND --help\n\n"
             "Exit codes: 0 success, 1 failure while running, 2 bad usage or invalid spec.\n"
             "Specs: see README.md and api/openapi.yaml.\n", DP_VERSION);
@@ -58,6 +59,12 @@ static const struct { const char *name, *text; } command_help[] = {
       "Solves w = Mz + q, 0 <= z _|_ w >= 0 for {\"M\": [[...]], \"q\": [...]} by Lemke's method, lists every\n"
       "solution when M has at most 12 rows, and says whether M is a P-matrix, mu = lambda_min((M+M^T)/2)\n"
       "(docs/lcs.md).\n" },
+    { "sweep",
+      "usage: dashpot sweep SWEEP.json|- [--shard i/N] [--threads T]\n\n"
+      "Runs a simulate document over a grid of one or two parameters and writes one NDJSON line per run\n"
+      "(its features and Poincare section) as it completes, between a meta and a summary line (docs/sweep.md).\n"
+      "  --shard i/N   only the runs whose index is i mod N: N parts' run lines, sorted by index, are the whole\n"
+      "  --threads T   T runs at once (default 1)\n" },
 };
 
 /* 1 when argv[2..] asks for help. */
@@ -97,6 +104,8 @@ int main(int argc, char **argv)
         return (argv[1][0] == 'm' ? dp_cli_modes : dp_cli_response)(argc - 1, argv + 1);
     if (strcmp(argv[1], "lcp") == 0)
         return dp_cli_lcp(argc - 1, argv + 1);
+    if (strcmp(argv[1], "sweep") == 0)
+        return dp_cli_sweep(argc - 1, argv + 1);
     fprintf(stderr, "dashpot: unknown command \"%s\"\n", argv[1]);
     return usage(stderr);
 }
