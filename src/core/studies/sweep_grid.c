@@ -12,12 +12,10 @@ int dp_sweep_axis_fill(dp_sweep_axis *a, double from, double to, size_t count, i
     if (a->values == NULL)
         return DP_ENOMEM;
     a->n = count;
-    double lo = log_scale ? log(from) : from, hi = log_scale ? log(to) : to;
     for (size_t j = 0; j < count; j++) {
-        /* from + (to - from) j / (count - 1): the ends exactly, no drift from adding a step */
+        /* from + (to - from) u, from (to / from)^u with u = j / (count - 1): no drift from adding a step */
         double u = count > 1 ? (double)j / (double)(count - 1) : 0;
-        double y = lo + (hi - lo) * u;
-        a->values[j] = log_scale ? exp(y) : y;
+        a->values[j] = log_scale ? from * pow(to / from, u) : from + (to - from) * u;
     }
     a->values[0] = from;
     if (count > 1)
