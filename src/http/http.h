@@ -62,7 +62,7 @@ int data_path(const char *given, const char *installed, int want_dir, char *out,
 
 /* ---- metrics (metrics.c) ---- */
 
-enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_CONVERGENCE, ROUTE_MODES, ROUTE_RESPONSE, ROUTE_LCP, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
+enum { ROUTE_SIMULATE, ROUTE_STABILITY, ROUTE_WELLPOSEDNESS, ROUTE_CONVERGENCE, ROUTE_MODES, ROUTE_RESPONSE, ROUTE_LCP, ROUTE_SWEEP, ROUTE_HEALTHZ, ROUTE_READYZ, ROUTE_METRICS, ROUTE_OPENAPI,
        ROUTE_STATIC, ROUTE_PAGE, ROUTE_NONE, NROUTES };
 enum { NSTATUS = 12, NBUCKETS = 12 };
 
@@ -185,6 +185,8 @@ enum MHD_Result handle_modes(struct MHD_Connection *c, request *r);
 enum MHD_Result handle_response(struct MHD_Connection *c, request *r);
 /* POST /v1/lcp (lcp.c). */
 enum MHD_Result handle_lcp(struct MHD_Connection *c, request *r);
+/* POST /v1/sweep (sweep.c): a stream of one line per run. */
+enum MHD_Result handle_sweep(struct MHD_Connection *c, request *r);
 /* GET /bench/static: the --bench-static file through the same chunked content-reader path as a stream. */
 enum MHD_Result handle_bench_static(struct MHD_Connection *c, request *r);
 /* Called by the stream's free callback: the run is gone; counts it as cancelled if it had not finished. */

@@ -19,7 +19,7 @@ static const char *const bucket_text[NBUCKETS] = {
 const char *route_name(int route)
 {
     static const char *const names[NROUTES] = { "/v1/simulate", "/v1/stability", "/v1/wellposedness",
-                                                "/v1/convergence", "/v1/modes", "/v1/response", "/v1/lcp", "/healthz",
+                                                "/v1/convergence", "/v1/modes", "/v1/response", "/v1/lcp", "/v1/sweep", "/healthz",
                                                 "/readyz", "/metrics", "/openapi.yaml", "/bench/static", "/",
                                                 "unmatched" };
     return route >= 0 && route < NROUTES ? names[route] : "unmatched";

@@ -28,6 +28,7 @@ static const struct route {
     { "/v1/modes", "POST", "POST", ROUTE_MODES, 1, handle_modes },
     { "/v1/response", "POST", "POST", ROUTE_RESPONSE, 1, handle_response },
     { "/v1/lcp", "POST", "POST", ROUTE_LCP, 1, handle_lcp },
+    { "/v1/sweep", "POST", "POST", ROUTE_SWEEP, 1, handle_sweep },
     { "/healthz", "GET", "GET, HEAD", ROUTE_HEALTHZ, 0, handle_healthz },
     { "/readyz", "GET", "GET, HEAD", ROUTE_READYZ, 0, handle_readyz },
     { "/metrics", "GET", "GET, HEAD", ROUTE_METRICS, 0, handle_metrics },

@@ -1,0 +1,123 @@
+#!/usr/bin/env bash
+# tests/test_sweep.sh - `dashpot sweep` and POST /v1/sweep end to end (docs/sweep.md): Den Hartog's (1931)
+# non-stop amplitude of a forced Coulomb oscillator against his closed form (computed here in Python),
+# shards (--shard i/N) and threads whose run lines, sorted by index, are the whole sweep's byte for byte, the
+# daemon's lines equal to the CLI's, the three formats by Accept, bad documents by pointer (422, CLI exit 2),
+# a bad value failing its run alone, and the simulate rules for the whole sweep: --max-wall ends it with an
+# error line, the step budget (--max-steps x 100) too, and a client's hang-up frees the run.
+# Env BUILD (default build). Prints "N passed, M failed"; exit 1 on any failure.
+source "$(dirname "$0")/lib/daemon.bash"
+
+BIN=$BUILD/dashpot
+T=$SCRATCH
+
+# runs FILE: the run lines of FILE sorted by index.
+runs() {
+    python3 -c '
+import json, sys
+lines = [l for l in open(sys.argv[1]) if l.startswith("{\"type\":\"run\"")]
+sys.stdout.write("".join(sorted(lines, key=lambda l: json.loads(l)["index"])))' "$1"
+}
+
+cat >"$T/den_hartog.json" <<'JSON'
+{"base": {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.1},
+                    "forcing": {"kind": "harmonic", "amplitude": 1, "omega": 2}},
+          "solver": {"dt": 0.005, "t_end": 1500}},
+ "vary": [{"pointer": "/model/forcing/omega", "values": [0.7, 1.5, 2.5]}],
+ "record": {"after": 1200, "features": ["amplitude", "period", "stick_fraction"]}}
+JSON
+"$BIN" sweep "$T/den_hartog.json" >"$T/dh.ndjson"
+check "cli: Den Hartog 1931, the non-stop amplitude sqrt(1/(1-b^2)^2 - (F U/P)^2), U = sin(pi/b)/(b(1+cos(pi/b)))" python3 -c "
+import json, math
+lines = [json.loads(l) for l in open('$T/dh.ndjson')]
+assert lines[0]['type'] == 'meta' and lines[-1] == {'type': 'summary', 'runs': 3, 'completed': 3, 'failed': 0, 'steps': 900000}
+for d in lines[1:-1]:
+    b = d['values'][0]; U = math.sin(math.pi / b) / (b * (1 + math.cos(math.pi / b)))
+    X = math.sqrt(1 / (1 - b * b) ** 2 - (0.1 * U) ** 2)
+    f = d['features']
+    assert abs(f['amplitude'] / X - 1) < 5e-5, (b, f, X)
+    assert abs(f['period'] - 2 * math.pi / b) < 1e-6 and f['stick_fraction'] == 0
+    assert set(f) == {'amplitude', 'period', 'stick_fraction'} and 'section' not in d
+"
+
+cat >"$T/grid.json" <<'JSON'
+{"base": {"model": {"mass": 1, "spring": {"law": "linear", "k": 1},
+                    "damper": {"law": "generalized-coulomb", "phi0": 0.8, "phi1": 1, "belt_velocity": 0.4}},
+          "initial": {"v": 0.4}, "solver": {"dt": 0.01, "t_end": 40}},
+ "vary": [{"pointer": "/model/damper/belt_velocity", "from": 0.1, "to": 1, "count": 4},
+          {"pointer": "/model/damper/phi1", "values": [1, 1.2, 1.5]}],
+ "record": {"after": 10, "section": {"event": "stick", "count": 5}}}
+JSON
+"$BIN" sweep "$T/grid.json" >"$T/whole.ndjson"
+for i in 0 1 2; do "$BIN" sweep "$T/grid.json" --shard $i/3 >"$T/part$i.ndjson"; done
+cat "$T"/part*.ndjson >"$T/parts.ndjson"
+check "cli: a 4 x 3 grid is 12 run lines" [ "$(grep -c '"type":"run"' "$T/whole.ndjson")" = 12 ]
+runs "$T/whole.ndjson" >"$T/whole.runs"
+runs "$T/parts.ndjson" >"$T/parts.runs"
+check "cli: shards concatenate to the whole, byte for byte" cmp -s "$T/whole.runs" "$T/parts.runs"
+check "cli: shard 1/3 runs indices 1, 4, 7, 10" bash -c \
+    "[ \"\$(grep -o '\"index\":[0-9]*' '$T/part1.ndjson' | tr '\n' ' ')\" = '\"index\":1 \"index\":4 \"index\":7 \"index\":10 ' ]"
+"$BIN" sweep "$T/grid.json" --threads 3 >"$T/threads.ndjson"
+runs "$T/threads.ndjson" >"$T/threads.runs"
+check "cli: --threads 3 gives the same run lines" cmp -s "$T/whole.runs" "$T/threads.runs"
+
+echo '{"base": {"model": {}}, "vary": [{"pointer": "/model/forcing/omega", "values": [1]}], "record": {"after": -1}}' >"$T/bad.json"
+"$BIN" sweep "$T/bad.json" >/dev/null 2>"$T/bad.err"
+check "cli: a bad document exits 2, each fault by pointer" bash -c \
+    "[ $? = 2 ] && grep -q '/vary/0/pointer: names no member' '$T/bad.err' && grep -q '/record/after: must be' '$T/bad.err'"
+"$BIN" sweep "$T/grid.json" --shard 3/3 >/dev/null 2>&1
+check "cli: --shard 3/3 is a usage error" [ $? = 2 ]
+
+start_daemon sweep || finish
+U=$URL_sweep/v1/sweep
+hcurl -X POST --data-binary @"$T/grid.json" "$U" >"$T/http.ndjson"
+runs "$T/http.ndjson" >"$T/http.runs"
+check "http: NDJSON by default, its run lines the CLI's" cmp -s "$T/whole.runs" "$T/http.runs"
+hcurl -H 'Accept: application/json' -X POST --data-binary @"$T/grid.json" "$U" >"$T/http.json"
+check "http: Accept application/json gives one document {meta, runs, summary} with the same runs" python3 -c "
+import json
+d = json.load(open('$T/http.json'))
+lines = [json.loads(l) for l in open('$T/whole.runs')]
+assert d['meta']['runs'] == 12 and d['runs'] == lines and d['summary']['completed'] == 12
+"
+hcurl -H 'Accept: text/event-stream' -X POST --data-binary @"$T/grid.json" "$U" >"$T/http.sse"
+check "http: Accept text/event-stream gives meta, 12 run and a summary event" bash -c \
+    "[ \"\$(grep -c '^event: run' '$T/http.sse')\" = 12 ] && grep -q '^event: summary' '$T/http.sse' && head -1 '$T/http.sse' | grep -q '^event: meta'"
+code=$(hcurl -o "$T/p.json" -w '%{http_code}' -X POST --data-binary @"$T/bad.json" "$U")
+check "http: a bad document is a 422 problem by pointer" bash -c \
+    "[ $code = 422 ] && python3 -c \"import json; d = json.load(open('$T/p.json')); assert {'/vary/0/pointer', '/record/after'} <= {e['pointer'] for e in d['errors']}\""
+echo '{"base": {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "none"}}, "initial": {"x": 1}},
+ "vary": [{"pointer": "/model/spring/k", "values": [1, -2, 3]}]}' >"$T/badrun.json"
+hcurl -X POST --data-binary @"$T/badrun.json" "$U" >"$T/badrun.ndjson"
+check "http: a value that breaks the base fails its run alone, by the base's pointer" python3 -c "
+import json
+l = [json.loads(x) for x in open('$T/badrun.ndjson')]
+assert [x.get('status') for x in l[1:4]] == [None, 422, None] and l[2]['errors'][0]['pointer'] == '/model/spring/k'
+assert l[-1]['completed'] == 2 and l[-1]['failed'] == 1
+"
+
+# The simulate rules for the whole sweep: hang-up, wall time, step budget. A run here takes seconds.
+cat >"$T/long.json" <<'JSON'
+{"base": {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.1}},
+          "initial": {"x": 100}, "solver": {"dt": 0.0001, "t_end": 1000}},
+ "vary": [{"pointer": "/initial/x", "from": 1, "to": 100, "count": 100}]}
+JSON
+hcurl --max-time 0.2 -X POST --data-binary @"$T/long.json" "$U" >/dev/null
+sleep 0.3
+check "http: a client's hang-up ends its sweep at once (nothing left in flight)" bash -c \
+    "curl -s --max-time 5 '$URL_sweep/metrics' | grep -q '^dashpot_runs_in_flight 0'"
+stop_daemon sweep
+start_daemon limits --max-wall 0.5 || finish
+hcurl -X POST --data-binary @"$T/long.json" "$URL_limits/v1/sweep" >"$T/wall.ndjson"
+check "http: --max-wall ends the sweep with an error line (503)" bash -c \
+    "tail -1 '$T/wall.ndjson' | grep -q '\"type\":\"error\",\"status\":503' && tail -1 '$T/wall.ndjson' | grep -q 'wall-time limit'"
+stop_daemon limits
+start_daemon budget --max-steps 1e5 || finish
+echo '{"base": {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "none"}}, "initial": {"x": 1},
+ "solver": {"dt": 0.01, "t_end": 1000}}, "vary": [{"pointer": "/initial/x", "from": 1, "to": 2, "count": 150}],
+ "record": {"features": ["x_max"]}}' >"$T/budget.json"
+hcurl -X POST --data-binary @"$T/budget.json" "$URL_budget/v1/sweep" >"$T/budget.ndjson"
+check "http: the sweep's step budget (--max-steps x 100) ends it after 100 runs with a 422 line" bash -c \
+    "[ \"\$(grep -c '\"type\":\"run\"' '$T/budget.ndjson')\" = 100 ] && tail -1 '$T/budget.ndjson' | grep -q '\"type\":\"error\",\"status\":422'"
+stop_daemon budget
+finish
