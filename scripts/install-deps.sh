@@ -14,7 +14,7 @@ test_pkgs=(python3 python3-yaml libcmocka-dev liblapack-dev curl               #
            python3-numpy python3-requests python3-pytest python3-pandas      # the Python client and its notebook:
            python3-matplotlib python3-tqdm python3-nbclient python3-nbformat # tests/test_python.sh, which installs
            python3-ipykernel python3-setuptools python3-wheel python3-pip    # python/ offline into a venv)
-           python3-venv)
+           python3-venv python3-distributed)                                 # Dask: python/tests/test_sweep.py
 [ "${1:-}" = "--run" ] || pkgs+=("${test_pkgs[@]}")
 [ "${1:-}" = "--bench" ] && pkgs+=(wrk python3-numpy python3-scipy valgrind)
 [ "${1:-}" = "--fuzz" ] && pkgs+=(clang libclang-rt-14-dev)
