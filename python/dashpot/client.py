@@ -194,6 +194,24 @@ class Client:
             builder.add(record)
         return builder.result()
 
+    def sweep(self, doc, timeout=None):
+        """POST /v1/sweep: the run lines (dicts, in index order) of a sweep document (docs/sweep.md). An
+        error line (wall time, step budget, shutdown) raises ProblemError, a cut stream StreamError. Over
+        several daemons or a Dask cluster: ``dashpot.sweep(doc, urls=[...])``."""
+        response = self._request("POST", "/v1/sweep", encode_spec(doc), accept="application/x-ndjson",
+                                 stream=True, timeout=timeout)
+        lines = []
+        with response:
+            for raw in response.iter_lines():
+                line = json.loads(raw) if raw else None
+                if line and line["type"] == "run":
+                    lines.append(line)
+                elif line and line["type"] == "error":
+                    raise ProblemError.from_document(line.get("status", 503), line, in_stream=True)
+                elif line and line["type"] == "summary":
+                    return sorted(lines, key=lambda l: l["index"])
+        raise StreamError("the sweep's stream ended without its summary line")
+
     # ---- analyses ----
     def stability(self, spec, timeout=None):
         """POST /v1/stability: a Stability (a dict, with ``roots`` as a complex array) for a law, or a
