@@ -376,6 +376,18 @@ static int is_rigid(size_t n, const double *K, int tridiagonal, int ks, const do
     return fabs(energy) <= RIGID_TOL * terms;
 }
 
+/* The sign of phi^T K phi (K scaled by 2^-ks). */
+static int rayleigh_sign(size_t n, const double *K, int ks, const double *phi)
+{
+    double big = 0, energy = 0;
+    for (size_t i = 0; i < n; i++)
+        big = big > fabs(phi[i]) ? big : fabs(phi[i]);
+    for (size_t i = 0; big > 0 && i < n; i++)
+        for (size_t j = 0; j < n; j++)
+            energy += (phi[i] / big) * ldexp(K[i * n + j], -ks) * (phi[j] / big);
+    return (energy > 0) - (energy < 0);
+}
+
 /* One mode: M-normalization (again, for round-off), the sign convention, the participation factor, the
  * rigid flag, omega^2 scaled back by 2^P, and the check that K has no negative mode. */
 static int finish_mode(const job *jb, dp_modes *out, size_t k, int P, int ks, double *Mphi)
@@ -400,12 +412,15 @@ static int finish_mode(const job *jb, dp_modes *out, size_t k, int P, int ks, do
     double lambda = ldexp(out->lambda[k], P);
     if (out->rigid[k])
         lambda = 0;
-    else if (!isfinite(lambda) || !isfinite(part)) {
-        blame_scale(jb, 0, !isfinite(part) ? "a participation factor phi^T M 1" : "omega^2 of a mode");
+    else if (!isfinite(part)) {
+        blame_scale(jb, 0, "a participation factor phi^T M 1");
         return DP_EINVAL;
-    } else if (lambda < 0) {
+    } else if (lambda < 0 && rayleigh_sign(n, jb->K, ks, phi) < 0) {
         dp_errors_add(jb->errs, jb->o->pointer_K,
                       "the stiffness is not positive semidefinite: it has a mode with omega^2 = %g < 0", lambda);
+        return DP_EINVAL;
+    } else if (lambda < 0) { /* phi^T K phi > 0: the eigenvalue, not K, is wrong: scales beyond resolution */
+        blame_scale(jb, 0, "omega^2 of a mode (the model's scales span more than double precision resolves)");
         return DP_EINVAL;
     }
     out->lambda[k] = lambda;
@@ -414,6 +429,11 @@ static int finish_mode(const job *jb, dp_modes *out, size_t k, int P, int ks, do
 
 static int finish_shapes(const job *jb, dp_modes *out, int P)
 {
+    for (size_t k = 0; k < jb->n; k++) /* the largest first: a lost small one is a consequence of it */
+        if (!isfinite(ldexp(out->lambda[k], P))) {
+            blame_scale(jb, 0, "omega^2 of a mode");
+            return DP_EINVAL;
+        }
     double kmax = max_abs(jb->n, jb->K);
     int ks = kmax > 0x1p256 ? exponent(kmax) : 0; /* the rigid test's sums of n^2 terms stay finite */
     double *Mphi = malloc(jb->n * sizeof *Mphi);
@@ -559,7 +579,8 @@ static int damped_eigs(const job *jb, dp_modes *out)
         }
         if (s != DP_OK || im < 0)
             continue;
-        double zeta = mag > 0 ? -re / mag : NAN;
+        re = re > 0 ? 0 : re; /* M, K, C semidefinite: Re lambda <= 0, a positive one is round-off (eps |lambda|) */
+        double zeta = mag > 0 ? (re == 0 ? 0 : -re / mag) : NAN;
         out->eig[out->ndamped++] = (dp_damped_eig){ re, im, zeta };
     }
     if (s == DP_OK)
