@@ -567,8 +567,15 @@ static int damped_eigs(const job *jb, dp_modes *out)
     s = s || !stopped(jb) ? s : DP_ECANCEL;
     if (s == DP_OK) {
         gsl_eigen_nonsymm_params(0, 1, ws); /* balance: M^-1 K of a badly scaled system spans decades */
-        if (gsl_eigen_nonsymm(A, w, ws) != GSL_SUCCESS) /* GSL_EMAXITER among others */
-            s = DP_ESOLVE;
+        if (gsl_eigen_nonsymm(A, w, ws) != GSL_SUCCESS) { /* GSL_EMAXITER: its Francis iteration's cap */
+            char which;
+            size_t row;
+            int rate;
+            culprit(jb, 1, &which, &row, &rate);
+            blame(jb, which, row, "the damped eigenvalues did not converge (GSL's Francis iteration reached its cap)%s",
+                  t != 0 ? ": the model's time scales span more than double precision resolves" : "");
+            s = DP_EINVAL;
+        }
     }
     for (size_t k = 0; s == DP_OK && k < N; k++) {
         gsl_complex z = gsl_vector_complex_get(w, k);
