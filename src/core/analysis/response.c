@@ -263,7 +263,7 @@ static int dynamic_scale(const scales *sc, double w)
     double big = sc->k + w * (w * sc->m) + w * sc->c;
     if (isfinite(big) && big <= 0x1p256 && big >= 0x1p-256)
         return 0;
-    int e = INT_MIN / 4, ew = w > 0 ? ilogb(w) : 0;
+    int e = INT_MIN / 4, ew = w > 0 && isfinite(w) ? ilogb(w) : 0;
     if (sc->k > 0)
         e = ilogb(sc->k);
     if (sc->m > 0 && w > 0 && ilogb(sc->m) + 2 * ew > e)
@@ -332,7 +332,9 @@ static int sample(size_t n, const double *M, const double *K, const double *C, c
             break;
         }
         double t = points == 1 ? 0 : (double)k / (double)(points - 1);
-        double w = log_spacing ? from * pow(to / from, t) : from + (to - from) * t;
+        double ratio = to / from, w = !log_spacing ? from + (to - from) * t
+                                    : isfinite(ratio) ? from * pow(ratio, t) /* as always */
+                                                      : exp(log(from) + t * (log(to) - log(from)));
         if (k + 1 == points)
             w = to;
         if (direct)
