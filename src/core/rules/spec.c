@@ -435,8 +435,8 @@ static int regularized_finite(const dp_spec *s, dp_errors *e)
         snprintf(p, sizeof p, "/solver/%s/%zu", sv->scheme == DP_SCHEME_PI ? "k" : "n", i);
         if (sv->n_count == 1)   /* a number, or an array of one whose own pointer the member's also names */
             snprintf(p, sizeof p, "/solver/%s", sv->scheme == DP_SCHEME_PI ? "k" : "n");
-        double n = sv->n_list[i], L = n + m->spring.k + dp_damper_viscous(&m->damper)
-                   + dp_relaxation_lipschitz(&m->damper.relaxation);
+        double lg = dp_relaxation_lipschitz(&m->damper.relaxation);   /* power's is infinite: refused apart */
+        double n = sv->n_list[i], L = n + m->spring.k + dp_damper_viscous(&m->damper) + (isfinite(lg) ? lg : 0);
         const factor N = { p, n }, M = { "/model/mass", m->mass }, X = { "/initial/x", s->x0 },
                      V = { "/initial/v", s->v0 }, VB = { "/model/damper/belt_velocity", m->damper.belt_velocity };
         ok = FORMED(e, n, 1, "the approximation's 1/n", N)

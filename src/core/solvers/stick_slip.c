@@ -287,6 +287,11 @@ int dp_stick_slip_init(dp_run *r)
     L->locate = r->spec.solver.events == DP_EVENTS_LOCATE && (L->closed ? L->tau > 0 : L->can_stick && !L->motion)
                 && SL->locate && DL->locate;
     initial_state(r);
+    if (!isfinite(r->cur.Fs) || !isfinite(r->cur.Fd) || !isfinite(r->cur.Fc)) {
+        snprintf(r->error_pointer, sizeof r->error_pointer, "/initial");
+        return dp_run_fail(r, DP_ESOLVE, "the forces at the initial state overflow double precision (a graph's "
+                           "piece or a law too steep for it there)");
+    }
     dp_run_emit_state(r); /* the initial state: queued, no block yet */
     return DP_OK;
 }
