@@ -133,6 +133,12 @@ static int answer_ok(const char *what, const char *text)
         dp_spec_clear(&spec);
         return ok;
     }
+    dp_buf meta = { 0 }; /* the meta line, with its well-posedness report, says no nan or inf either */
+    if (dp_spec_meta_json(&spec, &meta) != DP_OK || says_nonfinite(meta.data)) {
+        print_error("%s: meta line %s\n", what, meta.data ? meta.data : "(not written)");
+        ok = 0;
+    }
+    dp_buf_free(&meta);
     dp_run *run = dp_run_alloc(&spec, 1e5, &e, &st);
     dp_spec_clear(&spec);
     if (run == NULL) {
