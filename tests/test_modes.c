@@ -604,14 +604,16 @@ static void test_stiff_soft_pair(void **state)
     dp_modes_free(&md);
 }
 
-/* A chain of 2000 unit masses and springs whose node 0 is held by k = 1e12: node 0 is all but fixed, so the
- * other 1999 form a uniform chain fixed at one end and free at the other, omega_j = 2 sin((2j + 1) pi /
- * (2 (2N + 1))), N = 1999 (the perturbation of the finite ground spring is k / 1e12 relative). The old rigid
- * test dropped 667 of these modes, mode 0 among them. */
+/* A chain of 600 unit masses and springs whose node 0 is held by k = 1e12: node 0 is all but fixed, so the
+ * other 599 form a uniform chain fixed at one end and free at the other, omega_j = 2 sin((2j + 1) pi /
+ * (2 (2N + 1))), N = 599 (the perturbation of the finite ground spring is k / 1e12 relative). The old rigid
+ * test dropped every mode with omega < 1, a third of them, mode 0 among them (667 of 2000 in the review's
+ * 2000-mass chain; 600 masses show the same in a thirtieth of the time, since every soft eigenvalue lies
+ * within 1e-3 ||T|| of the others and their vectors are re-orthogonalized, tridiag.c). */
 static void test_grounded_chain(void **state)
 {
     (void)state;
-    size_t n = 2000, N = n - 1;
+    size_t n = 600, N = n - 1;
     double *M = malloc(n * n * sizeof *M), *K = malloc(n * n * sizeof *K);
     grounded_chain(n, 1, 1e12, 1, M, K);
     dp_modes md = solve(n, M, K, NULL);
