@@ -184,7 +184,7 @@ static int basic_z(const scaled *p, const sub *s, double *zs)
 static int basic_solution(const gsl_matrix *M, const gsl_vector *q, const scaled *p, const sub *s, double *zs,
                           double *z, double *w)
 {
-    long double scratch[2 * DP_LCP_ENUM_MAX];
+    long double scratch[LCP_SETTLE_SCRATCH(DP_LCP_ENUM_MAX)];
     int finite;
     if (!basic_z(p, s, zs))
         return 0;

@@ -7,9 +7,9 @@
 
 #include "lcp/lcp_scale.h"
 
-/* The weight of a row's normwise size against its componentwise one (lcp_scale.h): rounding level, 1e-14,
- * over the acceptance level 1e-9. */
-#define NORMWISE 1e-5L
+/* An entry of z this far below its largest, on the equilibrated problem, is rounding (an LU solve's, a
+ * tableau's) when keeping it fails the test: a degenerate component that is 0 in exact arithmetic. */
+#define Z_ROUNDING 1e-14
 
 /* Binades of q kept below its largest entry before the scaling lets the largest grow instead. */
 #define Q_SPAN 1000
@@ -66,33 +66,26 @@ int lcp_equilibrate(const gsl_matrix *M, const gsl_vector *q, double *Ms, double
     return 1;
 }
 
-/* Each row's size d_i = s_i + NORMWISE n_i: s_i = |q_i| + Σ_j |M_ij z_j|, its terms at z, and n_i = |q_i| +
- * max_j |M_ij| 2^c_j max_k |z_k| 2^-c_k, its size at the solution's overall magnitude on the equilibrated
- * problem (a row whose terms all vanish at z, a degenerate one, is still measured by what rounding does to
- * it). Then infl_j = max_i |M_ij| / d_i (0 for a zero column). */
-static void sizes_and_influence(const gsl_matrix *M, const gsl_vector *q, const lcp_scaling *sc, const double *z,
-                                long double *d, long double *infl)
+/* s_i = |q_i| + Σ_j |M_ij z_j|, row i's terms at z; then infl_j = max_i |M_ij| / s_i (0 for a zero column):
+ * setting z_j to 0 changes no w_i by more than |z_j| infl_j of its row's terms. */
+static void sizes_and_influence(const gsl_matrix *M, const gsl_vector *q, const double *z, long double *size,
+                                long double *infl)
 {
     size_t m = M->size1;
-    long double zbig = 0;
-    for (size_t k = 0; k < m; k++)
-        zbig = fmaxl(zbig, ldexpl(fabsl((long double)z[k]), -sc->c[k]));
     for (size_t i = 0; i < m; i++) {
         const double *Mi = M->data + i * M->tda;
-        long double qi = fabsl((long double)q->data[i * q->stride]), size = qi, rowbig = 0;
-        for (size_t j = 0; j < m; j++) {
-            size += fabsl((long double)Mi[j] * z[j]);
-            rowbig = fmaxl(rowbig, ldexpl(fabsl((long double)Mi[j]), sc->c[j]));
-        }
-        d[i] = size + NORMWISE * (qi + rowbig * zbig);
+        long double t = fabsl((long double)q->data[i * q->stride]);
+        for (size_t j = 0; j < m; j++)
+            t += fabsl((long double)Mi[j] * z[j]);
+        size[i] = t;
         infl[i] = 0;
     }
     for (size_t i = 0; i < m; i++) {
         const double *Mi = M->data + i * M->tda;
-        if (d[i] == 0)
+        if (size[i] == 0)
             continue; /* every term of the row is 0: nothing in it to compare with */
         for (size_t j = 0; j < m; j++)
-            infl[j] = fmaxl(infl[j], fabsl((long double)Mi[j]) / d[i]);
+            infl[j] = fmaxl(infl[j], fabsl((long double)Mi[j]) / size[i]);
     }
 }
 
@@ -115,35 +108,65 @@ static long double row_value(const gsl_matrix *M, const gsl_vector *q, const dou
     return acc;
 }
 
-double lcp_settle(const gsl_matrix *M, const gsl_vector *q, const lcp_scaling *sc, double *z, double *w,
-                  long double *scratch, int *finite)
+/* The violations of z, each relative to its row's terms (lcp_scale.h), the largest; zero[j] = 1 where z_j
+ * must go to 0 to settle (negative, or positive beside a w_j that is relatively larger). */
+static double violations(const gsl_matrix *M, const gsl_vector *q, const double *z, long double *scratch,
+                         char *zero)
 {
     size_t m = M->size1;
-    long double *s = scratch, *infl = scratch + m, worst = 0;
-    sizes_and_influence(M, q, sc, z, s, infl);
-    *finite = 1;
+    long double *size = scratch, *infl = scratch + m, worst = 0;
+    sizes_and_influence(M, q, z, size, infl);
     for (size_t i = 0; i < m; i++) {
-        long double wi = row_value(M, q, z, i), si = s[i];
+        long double wi = row_value(M, q, z, i), si = size[i];
         long double wr = si > 0 ? fabsl(wi) / si : (wi != 0 ? (long double)INFINITY : 0.0L);
         long double zr = zero_column(M, i) ? (z[i] < 0 ? (long double)INFINITY : 0.0L)
                                            : fabsl((long double)z[i]) * infl[i];
+        zero[i] = z[i] < 0;
         if (wi < 0)
             worst = fmaxl(worst, wr);
         if (z[i] < 0)
             worst = fmaxl(worst, zr);
         if (z[i] > 0 && wi > 0) {
             worst = fmaxl(worst, fminl(wr, zr));
-            if (wr <= zr)
-                wi = 0;
-            else
-                s[i] = -1; /* z_i to 0, once every row has read it (s_i is not read again) */
+            zero[i] = zr < wr;
         }
-        w[i] = wi > 0 ? (double)wi : 0.0;
+    }
+    return (double)worst;
+}
+
+/* z with the entries that are rounding next to its largest, on the equilibrated problem, set to 0. */
+static void clean(size_t m, const lcp_scaling *sc, const double *z, double *zc)
+{
+    double big = 0;
+    for (size_t j = 0; j < m; j++)
+        big = fmax(big, fabs(ldexp(z[j], -sc->c[j])));
+    for (size_t j = 0; j < m; j++)
+        zc[j] = fabs(ldexp(z[j], -sc->c[j])) <= Z_ROUNDING * big ? 0.0 : z[j];
+}
+
+double lcp_settle(const gsl_matrix *M, const gsl_vector *q, const lcp_scaling *sc, double *z, double *w,
+                  long double *scratch, int *finite)
+{
+    size_t m = M->size1;
+    char *zero = (char *)(scratch + 2 * m); /* 2m long doubles, then m flags */
+    double worst = violations(M, q, z, scratch, zero);
+    if (worst > LCP_ACCEPT) { /* a degenerate entry computed as rounding instead of 0? */
+        clean(m, sc, z, w);
+        double again = violations(M, q, w, scratch, zero);
+        if (again < worst)
+            memcpy(z, w, m * sizeof *z), worst = again;
+        else
+            violations(M, q, z, scratch, zero);
+    }
+    for (size_t j = 0; j < m; j++)
+        z[j] = zero[j] ? 0.0 : z[j];
+    *finite = 1;
+    for (size_t i = 0; i < m; i++) { /* w of the settled z: w_i = 0 beside z_i > 0, rounding below 0 cleared */
+        long double wi = row_value(M, q, z, i);
+        w[i] = z[i] > 0 || wi < 0 ? 0.0 : (double)wi;
         *finite &= isfinite(w[i]);
     }
-    for (size_t i = 0; i < m; i++)
-        z[i] = z[i] > 0 && s[i] >= 0 ? z[i] : 0.0;
-    return (double)worst;
+    return worst;
 }
 
 int lcp_unscale(size_t m, const lcp_scaling *sc, const double *zs, const double *ws, double *zo, double *wo)

@@ -32,20 +32,20 @@ typedef struct lcp_scaling {
  * 0 when an entry is not finite. */
 int lcp_equilibrate(const gsl_matrix *M, const gsl_vector *q, double *Ms, double *qs, lcp_scaling *sc);
 
-/* The relative residual of z (the problem's units) for w = Mz + q, 0 <= z ⊥ w >= 0: per row i, of size
- * d_i = s_i + 1e-5 n_i, s_i = |q_i| + Σ_j |M_ij z_j| (its terms at z) and n_i = |q_i| + |M_i| |z| measured on
- * the equilibrated problem (its size at the solution's overall magnitude: a degenerate row, whose terms all
- * vanish at z, is measured by what rounding does to it), the size of a negative w_i, of a negative z_j (the
- * change in w that setting it to 0 makes, relative to the d_i of the rows it enters), and of the smaller of w_i
- * and z_i when both are positive, each relative to d_i; the largest of them. So a candidate is accepted when
- * each violation is below 1e-9 of its row's terms or 1e-14 (rounding) of the row's normwise size. Invariant
- * under positive diagonal scalings of rows and columns and under scaling q with z. w = Mz + q is written;
- * then z and w are settled: negative parts set to 0 and, of a pair z_i, w_i both positive, the relatively
- * smaller one set to 0, so that the answer meets z >= 0, w >= 0, zᵀw = 0 exactly (a solution when the residual
- * is at most LCP_ACCEPT). The sums are formed in long double: x86-64's extended exponent holds every product
- * of two doubles, so the test sees the problem as given, also where the scaled problem lost an entry below
- * 2^-1022 of its row. sc: M's equilibration (its column exponents). *finite = 0 when a w_i is beyond the
- * doubles. scratch: 2m long doubles. */
+/* The relative residual of z (the problem's units) for w = Mz + q, 0 <= z ⊥ w >= 0: per row i, with
+ * s_i = |q_i| + Σ_j |M_ij z_j| (its terms at z), the size of a negative w_i, of a negative z_j (the change in
+ * w that setting it to 0 makes, relative to the s_i of the rows it enters), and of the smaller of w_i and z_i
+ * when both are positive, each relative to s_i; the largest of them. Invariant under positive diagonal
+ * scalings of rows and columns and under scaling q with z. When z fails, it is tried once more with its
+ * entries below 1e-14 of its largest (on the equilibrated problem, sc) set to 0: a degenerate component, 0 in
+ * exact arithmetic, whose rounding a row with no other term cannot absorb. Then z is settled (its negative
+ * parts, and of a pair z_i, w_i both positive the relatively smaller z_i, set to 0) and w = Mz + q recomputed
+ * for it (0 beside a positive z_i, rounding below 0 cleared), so that the answer meets z >= 0, w >= 0,
+ * zᵀw = 0 exactly; a solution when the residual is at most LCP_ACCEPT. The sums are formed in long double:
+ * x86-64's extended exponent holds every product of two doubles, so the test sees the problem as given, also
+ * where the scaled problem lost an entry below 2^-1022 of its row. *finite = 0 when a w_i is beyond the
+ * doubles. scratch: 2m long doubles and m bytes (LCP_SETTLE_SCRATCH). */
+#define LCP_SETTLE_SCRATCH(m) (2 * (m) + ((m) + sizeof(long double) - 1) / sizeof(long double))
 double lcp_settle(const gsl_matrix *M, const gsl_vector *q, const lcp_scaling *sc, double *z, double *w,
                   long double *scratch, int *finite);
 

@@ -58,7 +58,7 @@ struct dp_lcp {
     double *saved;       /* the right-hand side before refinement */
     double *z1, *w1;     /* the answer read from the refined tableau */
     double *z2, *w2;     /* the unrefined one, when the first fails its check */
-    long double *lscratch; /* 2m: the acceptance test's row sizes and column influences */
+    long double *lscratch; /* the acceptance test's (LCP_SETTLE_SCRATCH) */
     double *M, *q;       /* the equilibrated problem, row-major (lcp_scale.h) */
     int *r, *c;          /* its row and column exponents */
     lcp_scaling sc;
@@ -84,7 +84,7 @@ dp_lcp *dp_lcp_alloc(size_t m)
     int ok = 1;
     for (size_t k = 0; k < sizeof vec / sizeof *vec; k++)
         ok &= (*vec[k] = malloc(m * sizeof(double))) != NULL;
-    w->lscratch = malloc(2 * m * sizeof *w->lscratch);
+    w->lscratch = malloc(LCP_SETTLE_SCRATCH(m) * sizeof *w->lscratch);
     w->M = malloc(m * m * sizeof *w->M);
     w->r = malloc(m * sizeof *w->r), w->c = malloc(m * sizeof *w->c);
     w->sc = (lcp_scaling){ w->r, w->c, 0 };
