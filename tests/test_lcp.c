@@ -306,7 +306,7 @@ static void test_random_against_enumeration(void **state)
                 solved++;
                 CHECK(solves(&p, p.z->data, 1e-11), "kind %d m %zu #%d: Lemke's answer solves (residual %g)", kind,
                       m, n, r.residual);
-                CHECK(r.residual <= 1e-12, "kind %d: residual %g", kind, r.residual);
+                CHECK(r.residual <= 1e-12, "kind %d: relative residual %g", kind, r.residual);
                 size_t k = 0;
                 while (k < s.n && dist(s.z + k * m, p.z->data, m) > 1e-9 * (1 + fabs(s.z[k * m])))
                     k++;
@@ -447,7 +447,7 @@ static void test_ill_conditioned(void **state)
             e = fmax(e, fmax(fmax(-z, -w), fabs(fmin(z, w))));
         }
         CHECK(e <= 1e-12 * (qmax + zmax), "Hilbert m = %zu: residual %g", m, e);
-        CHECK(fabs(r.residual - e) <= 1e-13 * (qmax + zmax), "reported residual %g, measured %g", r.residual, e);
+        CHECK(r.residual <= 1e-12, "reported residual %g (relative to each row's terms)", r.residual);
         if (m <= 8)
             CHECK(dist(p.z->data, zs, m) <= 1e-5, "Hilbert m = %zu: z = z*", m);
         drop(&p);

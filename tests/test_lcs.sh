@@ -77,11 +77,13 @@ all(a * b == 0 for a, b in zip(s['z'], s['w'])) for s in d['solutions']) and
 }
 check "lcp: w = Mz + q at 1e9 has one solution listed, not two (the tolerance was absolute)" \
     lcpcount '{"M": [[1.42, 0], [2.84, 2]], "q": [8.9e9, -1.9e8]}' 1
-for c in 1e10 1e-10 1e60 1e-60 1e200 1e-200; do
-    python3 -c "import json; c=float('$c'); print(json.dumps({'M': [[2*c, c], [c, 2*c]], 'q': [-c, -c]}))" >"$T/spd.json"
-    check "lcp: the SPD problem times $c: one solution z = (1/3, 1/3), P-matrix true" bash -c "
-'$BIN' lcp '$T/spd.json' >'$T/spd.out'" && pyjson "$T/spd.out" "
+spd_scaled() { # spd_scaled C: [[2, 1], [1, 2]] z = (1, 1) times C answers one solution z = (1/3, 1/3), P-matrix
+    python3 -c "import json; c=float('$1'); print(json.dumps({'M': [[2*c, c], [c, 2*c]], 'q': [-c, -c]}))" >"$T/spd.json"
+    "$BIN" lcp "$T/spd.json" >"$T/spd.out" && pyjson "$T/spd.out" "
 d['count'] == 1 and all(abs(x - 1/3) < 1e-15 for x in d['solutions'][0]['z']) and d['theory']['p_matrix'] is True"
+}
+for c in 1e10 1e-10 1e60 1e-60 1e200 1e-200; do
+    check "lcp: the SPD problem times $c: one solution z = (1/3, 1/3), P-matrix true" spd_scaled $c
 done
 echo '{"M": [[1e200, 0], [0, 1e200]], "q": [-1, -1]}' | "$BIN" lcp - >"$T/big.out"
 check "lcp: 1e200 I solved with z = 1e-200, w = 0 (not w = -1)" pyjson "$T/big.out" "
