@@ -6,8 +6,10 @@
  * continuum of solutions can pass through it. The enumeration is the reference the tests hold Lemke to, and
  * the route's way of reporting several solutions. P-matrix: every principal minor > 0, which is exactly
  * "one solution for every q" (Samelson-Thrall-Wesler); the determinants come from the same LU factors.
+ * Both work on the problem equilibrated by powers of two and accept a basic solution by the relative test of
+ * lcp_scale.h, so no decision depends on the problem's units; the enumeration asks its stop hook every 256
+ * bases.
  */
-#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

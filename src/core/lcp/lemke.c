@@ -21,9 +21,7 @@
  * workspace is allocated once per size and reused: a solve does not allocate. The stop hook is asked every
  * POLL_WORK multiply-adds of pivoting (a few milliseconds).
  */
-#include <float.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
