@@ -11,7 +11,8 @@
 #   4. a client that hangs up mid-study frees its slot: /readyz 503 busy before, 200 within 2 s after;
 #   5. SIGTERM with a study in flight and --shutdown-grace 1: the client gets 503 /problems/shutting-down and
 #      the daemon exits 0 within grace + 1.5 s.
-# The bounds are coarse functional guarantees, not benchmarks. Env BUILD (default build).
+# The bounds are coarse functional guarantees, not benchmarks (the probes' is 2 s under DASHPOT_VALGRIND=1,
+# which runs one thread at a time). Env BUILD (default build), DASHPOT_VALGRIND (tests/lib/daemon.bash).
 source "$(dirname "$0")/lib/daemon.bash"
 
 is() { [ "$1" = "$2" ] || { echo "    got '$1', expected '$2'"; return 1; }; }
@@ -90,8 +91,10 @@ print("    slowest /healthz: %.3f s (kept-alive), %.3f s (new); studies answered
     ", ".join("%.2f" % s["seconds"] for s in d["studies"])))' "$SCRATCH/two.json"
 check "20 /healthz answered 200 while the studies computed" pyjson "$SCRATCH/two.json" \
     "len(d['probes']) == 20 and all(p['ok'] for p in d['probes']) and d['during']"
-check "...each within 0.5 s, on kept-alive and on new connections" pyjson "$SCRATCH/two.json" \
-    "max(p['seconds'] for p in d['probes']) < 0.5"
+PROBE_BOUND=0.5
+[ "${DASHPOT_VALGRIND:-0}" = 1 ] && PROBE_BOUND=2 # valgrind runs one thread at a time
+check "...each within $PROBE_BOUND s, on kept-alive and on new connections" pyjson "$SCRATCH/two.json" \
+    "max(p['seconds'] for p in d['probes']) < $PROBE_BOUND"
 check "both studies: 503 /problems/timeout naming the limit" pyjson "$SCRATCH/two.json" \
     "len(d['studies']) == 2 and all(s['status'] == 503 and s['body']['type'] == '/problems/timeout' and s['body']['detail'] == 'the study exceeded the wall-time limit of 5 s' for s in d['studies'])"
 check "...within --max-wall + 1.5 s" pyjson "$SCRATCH/two.json" "all(s['seconds'] < 6.5 for s in d['studies'])"
