@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "solvers/network/network_quakes.h"
 #include "solvers/network/network_run.h"
 
 /* Row storage per block: the block holds at most this many numbers of rows. */
@@ -66,6 +67,8 @@ void network_run_finalize_summary(dp_run *r)
 {
     struct dp_network_run *nr = r->state;
     r->sum.final_row = network_run_fill_row(nr, r->cur.t, nr->final_row);
+    if (r->finished)
+        network_quakes_finish(r);    /* the quakes still going at t_end, open */
 }
 
 
@@ -109,6 +112,7 @@ void network_run_step_events(dp_run *r, const unsigned char *before, double t)
                                                                     : network_run_rel(e->a, e->b, nr->v);
         element_event(r, nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP, t, i, du);
     }
+    network_quakes_step(r, before, t);
 }
 
 /* An elastoplastic spring's slider starting to slide (yield: from elastic, or reversed from the other
