@@ -274,6 +274,14 @@ static char *random_chain(int n, int law, const char *events)
     return b.s;
 }
 
+/* Two quakes equal member by member, to the bit (the struct's padding aside). */
+static int same_quake(const dp_quake *a, const dp_quake *b)
+{
+    return a->t == b->t && a->duration == b->duration && a->moment == b->moment && a->peak_rate == b->peak_rate &&
+           a->size == b->size && a->hypocentre == b->hypocentre && a->first == b->first && a->last == b->last &&
+           a->open == b->open;
+}
+
 /* The total slip off the rows: over every step and every element that slipped at its start or end,
  * |du - v_b dt|, du from the rows' positions. Belt speeds are read back from the document's order. */
 static double slip_from_rows(const catalogue *c, const double *belt, const long *ea, const long *eb)
@@ -342,7 +350,8 @@ static void test_moments_are_the_total_slip(void **state)
         strcpy(doc7 + (every - doc), "\"every\":7,\"samples\":false}}");
         catalogue *d = run_doc(doc7, 3);
         assert_int_equal(d->nq, c->nq);
-        assert_memory_equal(d->q, c->q, c->nq * sizeof *c->q);
+        for (size_t i = 0; i < c->nq; i++)
+            CHECK(same_quake(&d->q[i], &c->q[i]), "trial %d: quake %zu differs decimated", trial, i);
         catalogue_free(d), catalogue_free(c);
         free(doc7), free(doc), free(belt), free(ea), free(eb);
     }

@@ -40,6 +40,8 @@ struct dp_quakes {
     quake_slot *slot;
     long *free_slot, *cand;   /* the free slots (a stack); scratch: a start's candidate quakes */
     size_t nfree, ncand;
+    dp_quake *out;            /* the quakes a call ended, for the run to hand out (at most one per element) */
+    size_t nout;
     unsigned stamp;
     int done;
 };
@@ -49,7 +51,7 @@ void network_quakes_free(dp_quakes *q)
     if (q == NULL)
         return;
     void *p[] = { q->fric, q->fn_off, q->fn_el, q->sn_off, q->sn_node, q->q, q->next, q->u_last, q->slot,
-                  q->free_slot, q->cand };
+                  q->free_slot, q->cand, q->out };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
     free(q);
@@ -102,8 +104,9 @@ static int build(dp_quakes *q, const struct dp_network_run *nr)
     q->u_last = calloc(ne, sizeof *q->u_last);
     q->slot = calloc(ne, sizeof *q->slot);
     q->free_slot = malloc(ne * sizeof *q->free_slot), q->cand = malloc(ne * sizeof *q->cand);
+    q->out = malloc(ne * sizeof *q->out);
     if (!q->fric || !q->fn_off || !q->sn_off || !q->q || !q->next || !q->u_last || !q->slot || !q->free_slot ||
-        !q->cand)
+        !q->cand || !q->out)
         return DP_ENOMEM;
     for (size_t i = 0; i < q->nel; i++)
         q->fric[i] = nr->can_stick[i], q->q[i] = -1, q->next[i] = -1;
@@ -183,19 +186,17 @@ static long merge(dp_quakes *q, long a, long b)
     return a;
 }
 
-static void emit(dp_run *r, const quake_slot *k, double t, int open)
+static dp_quake as_quake(const quake_slot *k, double t, int open)
 {
-    dp_record rec = { .type = DP_RECORD_QUAKE };
-    rec.u.quake = (dp_quake){ .t = k->t, .duration = t - k->t, .moment = k->moment, .peak_rate = k->peak,
-                              .size = k->size, .hypocentre = k->hypocentre, .first = k->first,
-                              .last = k->last, .open = open };
-    network_run_put(r, &rec);
+    return (dp_quake){ .t = k->t, .duration = t - k->t, .moment = k->moment, .peak_rate = k->peak,
+                       .size = k->size, .hypocentre = k->hypocentre, .first = k->first, .last = k->last,
+                       .open = open };
 }
 
-/* Quake s has ended at t: handed out, its members free again, its slot back on the stack. */
-static void end_quake(dp_run *r, dp_quakes *q, long s, double t)
+/* Quake s has ended at t: kept for the run to hand out, its members free again, its slot back. */
+static void end_quake(dp_quakes *q, long s, double t)
 {
-    emit(r, &q->slot[s], t, 0);
+    q->out[q->nout++] = as_quake(&q->slot[s], t, 0);
     for (long m = q->slot[s].head, nx; m >= 0; m = nx)
         nx = q->next[m], q->q[m] = -1, q->next[m] = -1;
     q->free_slot[q->nfree++] = s;
@@ -255,9 +256,8 @@ static void start_slip(dp_quakes *q, const struct dp_network_run *nr, const unsi
 
 /* ---- the run's calls ----------------------------------------------------------------------------------- */
 
-int network_quakes_begin(dp_run *r)
+int network_quakes_begin(struct dp_network_run *nr, double t)
 {
-    struct dp_network_run *nr = r->state;
     dp_quakes *q = calloc(1, sizeof *q);
     if (q == NULL)
         return DP_ENOMEM;
@@ -266,21 +266,23 @@ int network_quakes_begin(dp_run *r)
     int s = build(q, nr);
     if (s != DP_OK)
         return s;
-    q->t_last = r->cur.t;
+    q->t_last = t;
     for (size_t i = 0; i < q->nel; i++) {
         q->u_last[i] = elongation(nr, i);
         if (q->fric[i] && nr->phase[i] == DP_PHASE_SLIP)
-            start_slip(q, nr, NULL, i, r->cur.t);
+            start_slip(q, nr, NULL, i, t);
     }
     return DP_OK;
 }
 
-void network_quakes_step(dp_run *r, const unsigned char *before, double t)
+size_t network_quakes_step(struct dp_network_run *nr, const unsigned char *before, double t,
+                           const dp_quake **ended)
 {
-    struct dp_network_run *nr = r->state;
     dp_quakes *q = nr->quakes;
     if (q == NULL)
-        return;
+        return 0;
+    q->nout = 0;
+    *ended = q->out;
     double dt = t - q->t_last;
     for (size_t i = 0; i < q->nel; i++)
         if (q->fric[i] && nr->phase[i] == DP_PHASE_SLIP && before[i] != DP_PHASE_SLIP)
@@ -303,38 +305,32 @@ void network_quakes_step(dp_run *r, const unsigned char *before, double t)
             continue;
         long s = q->q[i];
         if (--q->slot[s].nslip == 0)
-            end_quake(r, q, s, t);
+            end_quake(q, s, t);
     }
+    return q->nout;
 }
 
 static int by_start(const void *pa, const void *pb)
 {
-    const quake_slot *a = pa, *b = pb;
+    const dp_quake *a = pa, *b = pb;
     if (a->t != b->t)
         return a->t < b->t ? -1 : 1;
     return a->hypocentre < b->hypocentre ? -1 : a->hypocentre > b->hypocentre;
 }
 
-void network_quakes_finish(dp_run *r)
+size_t network_quakes_finish(struct dp_network_run *nr, double t, const dp_quake **open)
 {
-    struct dp_network_run *nr = r->state;
     dp_quakes *q = nr->quakes;
     if (q == NULL || q->done)
-        return;
+        return 0;
     q->done = 1;
-    size_t m = 0;     /* the live quakes, copied out and put in the order of their start */
-    quake_slot *live = malloc((q->nel ? q->nel : 1) * sizeof *live);
-    if (live == NULL) {
-        dp_run_fail(r, DP_ENOMEM, "out of memory for the open quakes at t_end");
-        return;
-    }
+    q->nout = 0;
     for (size_t i = 0; i < q->nel; i++) {
         long s = q->q[i];
         if (s >= 0 && q->slot[s].head == (long)i)    /* once per quake: at its list's head */
-            live[m++] = q->slot[s];
+            q->out[q->nout++] = as_quake(&q->slot[s], t, 1);
     }
-    qsort(live, m, sizeof *live, by_start);
-    for (size_t k = 0; k < m; k++)
-        emit(r, &live[k], r->cur.t, 1);
-    free(live);
+    qsort(q->out, q->nout, sizeof *q->out, by_start);
+    *open = q->out;
+    return q->nout;
 }

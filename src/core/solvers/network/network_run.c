@@ -413,7 +413,7 @@ static int network_run_init(dp_run *r)
     else
         network_run_element_forces(nr, 0);
     network_run_contacts_after_probe(nr);
-    if (r->spec.output.quakes && (s = network_quakes_begin(r)) != DP_OK)
+    if (r->spec.output.quakes && (s = network_quakes_begin(nr, r->cur.t)) != DP_OK)
         return s;
     r->countdown = 1;
     network_run_finalize_summary(r);
