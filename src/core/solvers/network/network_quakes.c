@@ -1,6 +1,6 @@
 /* src/core/solvers/network/network_quakes.c - the slip-event catalogue of a network run (output.quakes): a
  * Burridge–Knopoff chain is studied by its events, catalogued as Carlson & Langer 1989 and Mori & Kawamura
- * 2012 catalogue theirs (docs/quakes.md has the definition and its sources).
+ * 2005 catalogue theirs (docs/quakes.md has the definition and its sources).
  *
  * A quake is a connected slip episode of friction elements (those that can stick). It starts when an
  * element starts to slip with no slipping neighbour in a quake; an element that starts to slip while a
