@@ -4,18 +4,20 @@
  *
  * A quake is a connected slip episode of friction elements (those that can stick). It starts when an
  * element starts to slip with no slipping neighbour in a quake; an element that starts to slip while a
- * neighbour of a quake slips (at the start or the end of that (sub-)step), or while its own last quake still
- * goes on, joins that quake, and two quakes it joins merge: the earlier one's start and hypocentre survive
- * (at the same instant, the lower hypocentre's). A quake ends when all its elements stick again. Neighbours:
- * two friction elements that share a node (the ground does not count) or whose nodes are joined by an
- * element with a spring.
+ * neighbour of a quake slips (at the start or the end of that (sub-)step) joins that quake, and two quakes it
+ * joins merge: the earlier one's start and hypocentre survive (at the same instant, the lower hypocentre's).
+ * A quake ends when all its elements stick again. Neighbours: two friction elements that share a node (the
+ * ground does not count) or whose nodes are joined by an element with a spring.
  *
- * Each element belongs to at most one live quake; its slip over a (sub-)step, |du - v_b dt| with du the
- * elongation's change as the step moved it (the theta-rule's own displacement), goes to that quake when the
- * element slipped at the step's start or end. So the moments add up to the total slip of every element.
- * Merging relabels the smaller quake's members (a list through `next`): O(members log members) in all.
- * Memory: per element its quake, its list link and its last elongation; per node its friction elements and
- * spring neighbours; one slot per live quake, at most one per element. */
+ * Each element belongs to at most one live quake, the one of its latest slip: an element that starts to slip
+ * apart from its earlier quake, which goes on elsewhere, moves to the new one (the earlier keeps its slip, no
+ * longer counts it), so no element is counted twice when quakes merge. Its slip over a (sub-)step,
+ * |du - v_b dt| with du the elongation's change as the step moved it (the theta-rule's own displacement),
+ * goes to its quake when the element slipped at the step's start or end. So the moments add up to the total
+ * slip of every element.
+ * Merging relabels the smaller quake's members (a list through `next`, `prev`): O(members log members) in
+ * all. Memory: per element its quake, its list links and its last elongation; per node its friction
+ * elements and spring neighbours; one slot per live quake, at most one per element. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,7 +37,7 @@ struct dp_quakes {
     unsigned char *fric;      /* per element: it can stick */
     size_t *fn_off, *fn_el;   /* per node: the friction elements at it */
     size_t *sn_off, *sn_node; /* per node: the nodes a spring element joins it to */
-    long *q, *next;           /* per element: its live quake's slot (-1: none), the next member */
+    long *q, *next, *prev;    /* per element: its live quake's slot (-1: none), the next and previous member */
     double *u_last, t_last;   /* per element: the elongation at the last call, and its time */
     quake_slot *slot;
     long *free_slot, *cand;   /* the free slots (a stack); scratch: a start's candidate quakes */
@@ -50,7 +52,7 @@ void network_quakes_free(dp_quakes *q)
 {
     if (q == NULL)
         return;
-    void *p[] = { q->fric, q->fn_off, q->fn_el, q->sn_off, q->sn_node, q->q, q->next, q->u_last, q->slot,
+    void *p[] = { q->fric, q->fn_off, q->fn_el, q->sn_off, q->sn_node, q->q, q->next, q->prev, q->u_last, q->slot,
                   q->free_slot, q->cand, q->out };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
@@ -101,15 +103,16 @@ static int build(dp_quakes *q, const struct dp_network_run *nr)
     q->fric = calloc(ne, 1);
     q->fn_off = calloc(n + 1, sizeof *q->fn_off), q->sn_off = calloc(n + 1, sizeof *q->sn_off);
     q->q = malloc(ne * sizeof *q->q), q->next = malloc(ne * sizeof *q->next);
+    q->prev = malloc(ne * sizeof *q->prev);
     q->u_last = calloc(ne, sizeof *q->u_last);
     q->slot = calloc(ne, sizeof *q->slot);
     q->free_slot = malloc(ne * sizeof *q->free_slot), q->cand = malloc(ne * sizeof *q->cand);
     q->out = malloc(ne * sizeof *q->out);
-    if (!q->fric || !q->fn_off || !q->sn_off || !q->q || !q->next || !q->u_last || !q->slot || !q->free_slot ||
-        !q->cand || !q->out)
+    if (!q->fric || !q->fn_off || !q->sn_off || !q->q || !q->next || !q->prev || !q->u_last || !q->slot ||
+        !q->free_slot || !q->cand || !q->out)
         return DP_ENOMEM;
     for (size_t i = 0; i < q->nel; i++)
-        q->fric[i] = nr->can_stick[i], q->q[i] = -1, q->next[i] = -1;
+        q->fric[i] = nr->can_stick[i], q->q[i] = -1, q->next[i] = q->prev[i] = -1;
     for (size_t s = 0; s < ne; s++)
         q->free_slot[q->nfree++] = (long)(ne - 1 - s);
     adjacency(q, nr->net, 0);
@@ -147,7 +150,7 @@ static long slot_new(dp_quakes *q, double t, size_t hypocentre)
 static void member_add(dp_quakes *q, long s, size_t i)
 {
     quake_slot *k = &q->slot[s];
-    q->q[i] = s, q->next[i] = -1;
+    q->q[i] = s, q->next[i] = -1, q->prev[i] = k->tail;
     if (k->tail >= 0)
         q->next[k->tail] = (long)i;
     else
@@ -156,6 +159,23 @@ static void member_add(dp_quakes *q, long s, size_t i)
     k->size++;
     k->first = i < k->first ? i : k->first;
     k->last = i > k->last ? i : k->last;
+}
+
+/* Element i (sticking) leaves quake s for another: s keeps its slip and moment, no longer counts it. */
+static void member_remove(dp_quakes *q, long s, size_t i)
+{
+    quake_slot *k = &q->slot[s];
+    long p = q->prev[i], n = q->next[i];
+    if (p >= 0)
+        q->next[p] = n;
+    else
+        k->head = n;
+    if (n >= 0)
+        q->prev[n] = p;
+    else
+        k->tail = p;
+    k->size--;
+    q->q[i] = -1, q->next[i] = q->prev[i] = -1;
 }
 
 /* Quakes a and b as one: the smaller one's members relabelled into the larger one's slot, which takes the
@@ -170,6 +190,7 @@ static long merge(dp_quakes *q, long a, long b)
     for (long m = B->head; m >= 0; m = q->next[m])
         q->q[m] = a;
     if (B->head >= 0) {
+        q->prev[B->head] = A->tail;
         if (A->tail >= 0)
             q->next[A->tail] = B->head;
         else
@@ -198,7 +219,7 @@ static void end_quake(dp_quakes *q, long s, double t)
 {
     q->out[q->nout++] = as_quake(&q->slot[s], t, 0);
     for (long m = q->slot[s].head, nx; m >= 0; m = nx)
-        nx = q->next[m], q->q[m] = -1, q->next[m] = -1;
+        nx = q->next[m], q->q[m] = -1, q->next[m] = q->prev[m] = -1;
     q->free_slot[q->nfree++] = s;
 }
 
@@ -241,7 +262,6 @@ static void start_slip(dp_quakes *q, const struct dp_network_run *nr, const unsi
             q->slot[s].stamp = 0;
         q->stamp = 1;
     }
-    candidate(q, q->q[i]);   /* its own quake, if it still goes on */
     if (e->a >= 0)
         neighbours_at(q, nr, before, i, (size_t)e->a);
     if (e->b >= 0)
@@ -249,8 +269,11 @@ static void start_slip(dp_quakes *q, const struct dp_network_run *nr, const unsi
     long s = q->ncand ? q->cand[0] : slot_new(q, t, i);
     for (size_t c = 1; c < q->ncand; c++)
         s = merge(q, s, q->cand[c]);
-    if (q->q[i] != s)
+    if (q->q[i] != s) {
+        if (q->q[i] >= 0)    /* still in an earlier quake that goes on elsewhere: it moves to this one */
+            member_remove(q, q->q[i], i);
         member_add(q, s, i);
+    }
     q->slot[s].nslip++;
 }
 
