@@ -282,3 +282,18 @@ void js_parse_columns(ctx *c, const cJSON *o, const at *ptr, const char *key, co
         parse_index(c, el, &q, n, noun, &(*out)[i]);
     }
 }
+
+/* output.quakes: the slip-event catalogue (docs/quakes.md) of a network; a one-mass document has one block
+ * and no neighbours, so it is refused rather than ignored. */
+void js_parse_quakes(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, "quakes");
+    if (v == NULL)
+        return;
+    if (s->net == NULL && cJSON_IsTrue(v)) {
+        const at p = { ptr, "quakes", 0 };
+        jw_fail(c, &p, "quakes are catalogued only for a network (\"masses\" or \"mass_matrix\") with friction");
+        return;
+    }
+    jw_get_bool(c, o, ptr, "quakes", &s->output.quakes);
+}

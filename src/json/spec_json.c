@@ -172,7 +172,8 @@ static void sample_budget(ctx *c, const cJSON *o, const at *ptr, const dp_spec *
 
 static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
-    static const char *const keys[] = { "every", "max_samples", "samples", "events", "nodes", "elements", NULL };
+    static const char *const keys[] = { "every", "max_samples", "samples", "events", "nodes", "elements", "quakes",
+                                        NULL };
     dp_output_spec *out = &s->output;
     if (!jw_want_object(c, o, ptr))
         return;
@@ -186,6 +187,7 @@ static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     js_parse_columns(c, o, ptr, "nodes", "a node", s, s->net ? s->net->n : 0, &out->nodes, &out->nnodes);
     js_parse_columns(c, o, ptr, "elements", "an element", s, s->net ? s->net->nel : 0, &out->elements,
                   &out->nelements);
+    js_parse_quakes(c, o, ptr, s);
 }
 
 /* A one-mass document with a contact is the network it is: one node of its mass, one element [ground, 0]

@@ -211,6 +211,7 @@ int dp_network_is_one_mass(const dp_spec *s)
         return 0;
     if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
         return 0;
-    /* a plastic (elastoplastic) spring steps on the network solver, which writes its "p" columns */
-    return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring);
+    /* a plastic (elastoplastic) spring steps on the network solver, which writes its "p" columns; so does
+     * a block whose quakes are catalogued (network_quakes.c) */
+    return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring) && !s->output.quakes;
 }

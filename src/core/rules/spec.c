@@ -631,6 +631,7 @@ int dp_rules_network(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     dp_network_check(s, e);
+    dp_quakes_check(s, e);
     return finish(s, max_steps, e, before);
 }
 

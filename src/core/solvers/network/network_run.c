@@ -26,6 +26,7 @@
 #include "solvers/network/network_run.h"
 #include "network/newmark_step.h"
 #include "base/root.h"
+#include "solvers/network/network_quakes.h"
 
 
 
@@ -218,6 +219,7 @@ void network_run_free(void *state)
     dp_nm_free(nr->nm);
     network_run_contacts_free(nr);
     dp_row_queue_clear(&nr->queue);
+    network_quakes_free(nr->quakes);
     void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->slots.data, nr->final_row, nr->pending_row };
@@ -411,6 +413,8 @@ static int network_run_init(dp_run *r)
     else
         network_run_element_forces(nr, 0);
     network_run_contacts_after_probe(nr);
+    if (r->spec.output.quakes && (s = network_quakes_begin(nr, r->cur.t)) != DP_OK)
+        return s;
     r->countdown = 1;
     network_run_finalize_summary(r);
     network_run_emit_row(r);     /* the initial state: queued, no block yet */

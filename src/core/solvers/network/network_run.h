@@ -81,6 +81,7 @@ struct dp_network_run {
     dp_network_step_forces *iforce;
     double *iv;                 /* 2n: its right side and solution */
     unsigned long long impacts_step;
+    struct dp_quakes *quakes;   /* output.quakes: the slip-event catalogue (network_quakes.c), else NULL */
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */
