@@ -10,7 +10,10 @@
 #   3. several jobs in turn on one kept-alive connection, then /healthz on it: each answered right;
 #   4. a client that hangs up mid-study frees its slot: /readyz 503 busy before, 200 within 2 s after;
 #   5. SIGTERM with a study in flight and --shutdown-grace 1: the client gets 503 /problems/shutting-down and
-#      the daemon exits 0 within grace + 1.5 s.
+#      the daemon exits 0 within grace + 1.5 s;
+#   6. the library polls the hook inside Lemke's pivots and a response curve's points: with --max-wall 1,
+#      Murty's 300 x 300 LCP (2^300 pivots, cut at Lemke's limit of 61 000: seconds of work) and a 300-node
+#      response with non-proportional damping at its most points answer 503 /problems/timeout within 2.5 s.
 # The bounds are coarse functional guarantees, not benchmarks (the probes' is 2 s under DASHPOT_VALGRIND=1,
 # which runs one thread at a time). Env BUILD (default build), DASHPOT_VALGRIND (tests/lib/daemon.bash).
 source "$(dirname "$0")/lib/daemon.bash"
@@ -187,5 +190,32 @@ check "SIGTERM: exit 0" is "$RC_term" 0
 check "...within grace + 1.5 s" below "$took" 2.5
 check "...and the study was answered 503 /problems/shutting-down" pyjson "$SCRATCH/term" \
     "d['status'] == 503 and d['type'] == '/problems/shutting-down'"
+
+echo "# 6. the wall limit inside Lemke's pivots and a response curve (--max-wall 1)"
+start_daemon wall --threads 2 --max-wall 1 || finish
+python3 - >"$SCRATCH/murty.json" <<'PY'
+import json
+m = 300  # Murty 1978's matrix with 3/2 below the diagonal (tests/test_lcp.c): 2^m pivots
+print(json.dumps({"M": [[1 if i == j else 1.5 if j < i else 0 for j in range(m)] for i in range(m)], "q": [-1] * m}))
+PY
+python3 - >"$SCRATCH/resp.json" <<'PY'
+import json
+n = 300  # a chain with one damper: non-proportional damping, each point a complex solve of n nodes
+el = [{"between": ["ground" if i == 0 else i - 1, i], "spring": {"law": "linear", "k": 1}} for i in range(n)]
+el[0]["damper"] = {"law": "linear", "c": 0.1}
+print(json.dumps({"model": {"masses": [1] * n, "elements": el}, "force_node": 0, "response_node": n - 1,
+                  "omega": {"from": 0.01, "to": 2, "points": 700}}))
+PY
+for k in murty resp; do
+    route=/v1/lcp; [ $k = resp ] && route=/v1/response
+    curl -s -m 20 -o "$SCRATCH/$k.out" -w '%{time_total}' --data-binary @"$SCRATCH/$k.json" "$URL_wall$route" \
+        >"$SCRATCH/$k.time"
+    echo "    $route answered after $(cat "$SCRATCH/$k.time") s"
+    check "$route: 503 /problems/timeout" pyjson "$SCRATCH/$k.out" "d['status'] == 503 and d['type'] == '/problems/timeout'"
+    check "...within 1 s + 1.5 s" below "$(cat "$SCRATCH/$k.time")" 2.5
+done
+check "no slot left taken" is "$(metric "$URL_wall" dashpot_workers_busy)" 0
+stop_daemon wall
+check "exit 0" is "$RC_wall" 0
 
 finish
