@@ -18,83 +18,32 @@
 #include "dashpot/json.h"
 #include "dashpot/run.h"
 #include "check.h"
+#include "rows.h"
 
-#define MAX_QUAKES 20000
-#define MAX_EVENTS 4096
-
-/* A run's records: rows flattened (t, then the row), quakes, events. */
-typedef struct catalogue {
-    double *d;
-    size_t n, cap, width, nx, ne;
-    dp_quake q[MAX_QUAKES];
-    size_t nq;
-    dp_event ev[MAX_EVENTS];
-    size_t nev;
-} catalogue;
-
-static void push_row(catalogue *c, const dp_row *w)
-{
-    if (c->n == c->cap) {
-        c->cap = c->cap ? 2 * c->cap : 256;
-        c->d = realloc(c->d, c->cap * c->width * sizeof *c->d);
-        assert_non_null(c->d);
-    }
-    double *o = c->d + c->n++ * c->width;
-    o[0] = w->t;
-    memcpy(o + 1, w->val, (c->width - 1) * sizeof *o);
-}
+/* A run's records (tests/rows.h): rows flattened (t, then the row), events, quakes. */
+typedef rows catalogue;
 
 /* Runs the document to its end in blocks of `cap` records; the spec must parse and the run finish. */
 static catalogue *run_doc(const char *json, size_t cap)
 {
-    catalogue *c = calloc(1, sizeof *c);
+    catalogue *c = malloc(sizeof *c);
     assert_non_null(c);
-    dp_spec spec;
-    dp_errors errs;
-    dp_spec_init(&spec);
-    dp_errors_init(&errs);
-    int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
-    if (s != DP_OK && errs.n)
-        fprintf(stderr, "spec error %s: %s\n", errs.item[0].pointer, errs.item[0].message);
-    assert_int_equal(s, DP_OK);
-    dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
-    dp_spec_clear(&spec);
-    assert_non_null(run);
-    const dp_columns *cols = dp_run_columns(run);
-    c->nx = cols->nodes, c->ne = cols->elements, c->width = 1 + cols->width;
-    dp_record *buf = malloc(cap * sizeof *buf);
-    assert_non_null(buf);
-    size_t n;
-    do {
-        s = dp_run_next(run, buf, cap, &n);
-        for (size_t i = 0; i < n; i++) {
-            if (buf[i].type == DP_RECORD_ROW)
-                push_row(c, &buf[i].u.row);
-            else if (buf[i].type == DP_RECORD_QUAKE && c->nq < MAX_QUAKES)
-                c->q[c->nq++] = buf[i].u.quake;
-            else if (buf[i].type == DP_RECORD_EVENT && c->nev < MAX_EVENTS)
-                c->ev[c->nev++] = buf[i].u.event;
-        }
-    } while (s == DP_MORE);
-    if (s != DP_DONE)
-        fprintf(stderr, "run failed: %s\n", dp_run_error(run));
-    assert_int_equal(s, DP_DONE);
-    free(buf);
-    dp_run_free(run);
+    assert_int_equal(rows_collect(json, cap, c), DP_DONE);
     return c;
 }
 
 static void catalogue_free(catalogue *c)
 {
     free(c->d);
+    free(c->quakes);
     free(c);
 }
 
 static double total_moment(const catalogue *c)
 {
     double m = 0;
-    for (size_t i = 0; i < c->nq; i++)
-        m += c->q[i].moment;
+    for (size_t i = 0; i < c->nquakes; i++)
+        m += c->quakes[i].moment;
     return m;
 }
 
@@ -113,8 +62,8 @@ static void test_one_block_to_rest_and_open(void **state)
                  "\"initial\":{\"v\":[1]},\"solver\":{\"dt\":0.01,\"t_end\":%s},\"output\":{\"quakes\":true}}", 0,
                  open ? "1" : "5");
         catalogue *c = run_doc(json, 64);
-        assert_int_equal(c->nq, 1);
-        const dp_quake *q = &c->q[0];
+        assert_int_equal(c->nquakes, 1);
+        const dp_quake *q = &c->quakes[0];
         CHECK(q->open == open, "open %d, expected %d", q->open, open);
         NEAR(q->t, 0, 0);
         assert_int_equal(q->size, 1);
@@ -137,9 +86,9 @@ static void test_two_blocks_apart_and_together(void **state)
     snprintf(json, sizeof json, "{\"model\":{\"masses\":[1,1],\"elements\":[" BLOCK("0.5") "," BLOCK("0.5") "]},"
              "\"initial\":{\"v\":[1,2.003]},\"solver\":{\"dt\":0.01,\"t_end\":6},\"output\":{\"quakes\":true}}", 0, 1);
     catalogue *c = run_doc(json, 64);
-    assert_int_equal(c->nq, 2);
+    assert_int_equal(c->nquakes, 2);
     for (size_t i = 0; i < 2; i++) {
-        const dp_quake *q = &c->q[i];   /* handed out as they end: block 0's first */
+        const dp_quake *q = &c->quakes[i];   /* handed out as they end: block 0's first */
         assert_int_equal(q->hypocentre, i);
         assert_int_equal(q->size, 1);
         assert_false(q->open);
@@ -152,13 +101,13 @@ static void test_two_blocks_apart_and_together(void **state)
              "{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":1}}]},"
              "\"initial\":{\"v\":[1,1]},\"solver\":{\"dt\":0.01,\"t_end\":6},\"output\":{\"quakes\":true}}", 0, 1);
     c = run_doc(json, 64);
-    assert_int_equal(c->nq, 1);
-    assert_int_equal(c->q[0].size, 2);
-    assert_int_equal(c->q[0].hypocentre, 0);
-    assert_int_equal(c->q[0].first, 0);
-    assert_int_equal(c->q[0].last, 1);
-    NEAR(c->q[0].duration, 2, 1e-12);
-    NEAR(c->q[0].moment, 2, 1e-12);
+    assert_int_equal(c->nquakes, 1);
+    assert_int_equal(c->quakes[0].size, 2);
+    assert_int_equal(c->quakes[0].hypocentre, 0);
+    assert_int_equal(c->quakes[0].first, 0);
+    assert_int_equal(c->quakes[0].last, 1);
+    NEAR(c->quakes[0].duration, 2, 1e-12);
+    NEAR(c->quakes[0].moment, 2, 1e-12);
     catalogue_free(c);
 }
 
@@ -182,14 +131,14 @@ static void test_merge_keeps_the_earlier_start(void **state)
     catalogue *c = run_doc(json, 64);
     /* the slips as the events say: 2 and 3 at asin(0.1), then 1 */
     double t_slip[4] = { -1, -1, -1, -1 };
-    for (size_t i = 0; i < c->nev; i++)
+    for (size_t i = 0; i < c->events; i++)
         if (c->ev[i].kind == DP_EVENT_SLIP && c->ev[i].element < 4 && t_slip[c->ev[i].element] < 0)
             t_slip[c->ev[i].element] = c->ev[i].t;
     NEAR(t_slip[2], asin(0.1), 1e-9);
     NEAR(t_slip[3], asin(0.1), 1e-9);
     CHECK(t_slip[1] > t_slip[2], "block 1 slips at %g, after blocks 2, 3 at %g", t_slip[1], t_slip[2]);
-    assert_int_equal(c->nq, 1);
-    const dp_quake *q = &c->q[0];
+    assert_int_equal(c->nquakes, 1);
+    const dp_quake *q = &c->quakes[0];
     assert_true(q->open);
     NEAR(q->t, 0, 0);
     assert_int_equal(q->hypocentre, 0);
@@ -326,21 +275,22 @@ static void test_moments_are_the_total_slip(void **state)
         }
         dp_spec_clear(&spec);
         catalogue *c = run_doc(doc, 1000);
-        double rows = slip_from_rows(c, belt, ea, eb), moments = total_moment(c);
-        CHECK(c->nq > 3 && rows > 1, "trial %d: %zu quakes, slip %g: too little happened to test", trial, c->nq, rows);
+        double slip = slip_from_rows(c, belt, ea, eb), moments = total_moment(c);
+        CHECK(c->nquakes > 3 && slip > 1, "trial %d: %zu quakes, slip %g: too little happened to test", trial,
+              c->nquakes, slip);
         if (trial < 4)
-            CHECK(fabs(moments - rows) <= 1e-9 * rows, "trial %d: moments %.17g, slip from the rows %.17g", trial,
-                  moments, rows);
+            CHECK(fabs(moments - slip) <= 1e-9 * slip, "trial %d: moments %.17g, slip from the rows %.17g", trial,
+                  moments, slip);
         else   /* located: a step split where an element reverses counts both parts, the rows only the net */
-            CHECK(moments >= rows * (1 - 1e-12) && moments <= rows * (1 + 1e-5),
-                  "trial %d (located): moments %.17g, slip from the rows %.17g", trial, moments, rows);
+            CHECK(moments >= slip * (1 - 1e-12) && moments <= slip * (1 + 1e-5),
+                  "trial %d (located): moments %.17g, slip from the rows %.17g", trial, moments, slip);
         size_t sizes = 0;
-        for (size_t i = 0; i < c->nq; i++) {
-            sizes += c->q[i].size;
-            CHECK(c->q[i].first <= c->q[i].hypocentre && c->q[i].hypocentre <= c->q[i].last, "hypocentre in range");
-            CHECK(i == 0 || c->q[i].open || !c->q[i - 1].open, "open quakes come last");
+        for (size_t i = 0; i < c->nquakes; i++) {
+            sizes += c->quakes[i].size;
+            CHECK(c->quakes[i].first <= c->quakes[i].hypocentre && c->quakes[i].hypocentre <= c->quakes[i].last, "hypocentre in range");
+            CHECK(i == 0 || c->quakes[i].open || !c->quakes[i - 1].open, "open quakes come last");
         }
-        assert_true(sizes >= c->nq);
+        assert_true(sizes >= c->nquakes);
         /* decimated, without samples, in blocks of 3: the same quakes, bit for bit */
         char *every = strstr(doc, "\"every\":1}");
         assert_non_null(every);
@@ -349,9 +299,9 @@ static void test_moments_are_the_total_slip(void **state)
         memcpy(doc7, doc, (size_t)(every - doc));
         strcpy(doc7 + (every - doc), "\"every\":7,\"samples\":false}}");
         catalogue *d = run_doc(doc7, 3);
-        assert_int_equal(d->nq, c->nq);
-        for (size_t i = 0; i < c->nq; i++)
-            CHECK(same_quake(&d->q[i], &c->q[i]), "trial %d: quake %zu differs decimated", trial, i);
+        assert_int_equal(d->nquakes, c->nquakes);
+        for (size_t i = 0; i < c->nquakes; i++)
+            CHECK(same_quake(&d->quakes[i], &c->quakes[i]), "trial %d: quake %zu differs decimated", trial, i);
         catalogue_free(d), catalogue_free(c);
         free(doc7), free(doc), free(belt), free(ea), free(eb);
     }
@@ -427,12 +377,12 @@ static void test_long_run_slip_rate(void **state)
     char *doc = carlson_langer(n, 1, 0.01, 1, nu, 0.05, T);
     catalogue *c = run_doc(doc, 4096);
     double rate = total_moment(c) / (n * T);
-    CHECK(c->nq > 100, "%zu quakes", c->nq);
+    CHECK(c->nquakes > 100, "%zu quakes", c->nquakes);
     CHECK(fabs(rate - nu) <= 0.05 * nu, "slip rate %.6g, plate speed %g", rate, nu);
     size_t big = 0;
-    for (size_t i = 0; i < c->nq; i++)
-        big += c->q[i].size == (size_t)n;
-    CHECK(big > 0 && big < c->nq, "%zu of %zu quakes span the chain: sizes vary", big, c->nq);
+    for (size_t i = 0; i < c->nquakes; i++)
+        big += c->quakes[i].size == (size_t)n;
+    CHECK(big > 0 && big < c->nquakes, "%zu of %zu quakes span the chain: sizes vary", big, c->nquakes);
     catalogue_free(c);
     free(doc);
 }
