@@ -239,6 +239,8 @@ typedef struct watch {
     int fd;                      /* the connection's socket, watched for a hang-up (-1: not watched) */
     double peer_check;           /* monotonic seconds of the next look at the socket */
     int why;                     /* STOP_*: the first reason seen, which stays */
+    double slice_end;            /* streams: monotonic seconds when the work in hand yields (watch_slice) */
+    int yielded;                 /* ...and it did */
 } watch;
 
 /* Whether the client has closed or reset its connection: a recv that peeks (consumes nothing) without
@@ -250,6 +252,11 @@ void watch_init(watch *w, request *r, struct MHD_Connection *c);
 int watch_check(watch *w, double now);
 /* The dp_stop hook over a watch (ctx): 1 to stop, 0 to go on. */
 int watch_stop(void *ctx);
+/* Streams (simulate.c, sweep.c) compute in slices so that their thread serves its other connections too:
+ * watch_slice starts one of `seconds`, and watch_stop_sliced, the hook, then says 1 to stop (as watch_stop)
+ * or -1 to yield once the slice is over (w->yielded is set), 0 to go on. */
+void watch_slice(watch *w, double seconds);
+int watch_stop_sliced(void *ctx);
 /* Why it stopped, in words: "<what> exceeded the wall-time limit of N s", "the server is shutting down",
  * "the client has gone". */
 void watch_detail(const watch *w, const char *what, char *out, size_t cap);

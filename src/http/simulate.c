@@ -44,8 +44,6 @@ struct stream {
     int delivered;        /* MHD was told END_OF_STREAM: the client got everything */
     struct MHD_Connection *conn; /* parked there when no solver slot is free (slots.c) */
     watch w;              /* --max-wall, shutdown, the client's hang-up (watch.c); w.why: why the run stopped */
-    double slice_end;     /* monotonic seconds: the block being computed yields to the thread's other work */
-    int yielded;          /* ...and it did */
     dp_record recs[BLOCK];
 };
 
@@ -58,22 +56,6 @@ static const dp_format offer_format[] = { DP_FORMAT_JSON, DP_FORMAT_NDJSON, DP_F
  * (a health probe among them), however many threads are free. */
 #define SLICE 0.01
 
-/* The run's stop hook (dp_run_set_stop), asked by the solver every DP_RUN_POLL_WORK units of work, inside a
- * block: the end of the shutdown grace period, --max-wall and the client's hang-up (watch.c) end the run
- * within that bound whatever its output decimation; the end of a slice makes it yield (-1). */
-static int stream_stop(void *ctx)
-{
-    stream *st = ctx;
-    double now = now_seconds();
-    if (watch_check(&st->w, now) != STOP_NONE)
-        return 1;
-    if (now > st->slice_end) {
-        st->yielded = 1;
-        return -1;
-    }
-    return 0;
-}
-
 /* Writes the closing error (its encoding failing too leaves the stream to end as it is). */
 static void stream_fail(stream *st, int status, const char *detail)
 {
@@ -85,9 +67,8 @@ static void stream_fail(stream *st, int status, const char *detail)
 static int stream_fill(stream *st)
 {
     size_t n = 0, samples = 0;
-    st->slice_end = now_seconds() + SLICE;
-    st->yielded = 0;
-    int s = stream_stop(st) > 0 ? DP_ECANCEL : dp_run_next(st->run, st->recs, BLOCK, &n);
+    watch_slice(&st->w, SLICE);
+    int s = watch_stop_sliced(&st->w) > 0 ? DP_ECANCEL : dp_run_next(st->run, st->recs, BLOCK, &n);
     if (s == DP_ECANCEL && st->w.why != STOP_NONE) {
         char detail[128];
         watch_detail(&st->w, "the run", detail, sizeof detail);
@@ -128,11 +109,11 @@ static ssize_t stream_read(void *cls, uint64_t pos, char *buf, size_t max)
             return 0; /* parked (suspended): called again once a slot is handed over */
         st->out.len = st->off = 0;
         int s = stream_fill(st);
-        if (!st->yielded || st->off != st->out.len) /* a slice with nothing to send keeps its slot */
+        if (!st->w.yielded || st->off != st->out.len) /* a slice with nothing to send keeps its slot */
             slot_give(st->r);
         if (s == DP_ECANCEL && st->w.why == STOP_GONE)
             return MHD_CONTENT_READER_END_WITH_ERROR;
-        if (st->yielded && st->off == st->out.len) { /* a slice, nothing to send yet: let the thread */
+        if (st->w.yielded && st->off == st->out.len) { /* a slice, nothing to send yet: let the thread */
             MHD_suspend_connection(st->conn);         /* serve its other connections, then come back */
             MHD_resume_connection(st->conn);
             return 0;
@@ -213,7 +194,7 @@ static stream *stream_new(struct MHD_Connection *c, request *r, dp_run *run, dp_
     st->run = run;
     st->conn = c;
     watch_init(&st->w, r, c);
-    dp_run_set_stop(run, stream_stop, st);
+    dp_run_set_stop(run, watch_stop_sliced, &st->w);
     atomic_fetch_add(&r->refs, 1);
     atomic_fetch_add(&st->s->m.runs_started, 1);
     atomic_fetch_add(&st->s->m.runs_in_flight, 1);

@@ -39,23 +39,8 @@ typedef struct sweep_stream {
     size_t off, lines;
     int closed, delivered, failed;
     watch w;            /* --max-wall for the whole sweep, shutdown, the client's hang-up (watch.c) */
-    double slice_end;
-    int yielded;
     _Atomic unsigned long long budget;
 } sweep_stream;
-
-static int sweep_stop(void *ctx)
-{
-    sweep_stream *st = ctx;
-    double now = now_seconds();
-    if (watch_check(&st->w, now) != STOP_NONE)
-        return 1;
-    if (now > st->slice_end) {
-        st->yielded = 1;
-        return -1;
-    }
-    return 0;
-}
 
 static int put(dp_buf *b, const char *s)
 {
@@ -108,12 +93,11 @@ static void stopped(sweep_stream *st)
 /* Runs the sweep until a slice ends or enough text waits; the last status of the executor. */
 static int sweep_fill(sweep_stream *st)
 {
-    st->slice_end = now_seconds() + SLICE;
-    st->yielded = 0;
+    watch_slice(&st->w, SLICE);
     int s = DP_MORE, ready;
     const char *why;
-    while (s == DP_MORE && !st->yielded && st->out.len < FLUSH_BYTES) {
-        if (sweep_stop(st) > 0) {
+    while (s == DP_MORE && !st->w.yielded && st->out.len < FLUSH_BYTES) {
+        if (watch_stop_sliced(&st->w) > 0) {
             stopped(st);
             return DP_ECANCEL;
         }
@@ -151,11 +135,11 @@ static ssize_t sweep_read(void *cls, uint64_t pos, char *buf, size_t max)
             return 0;
         st->out.len = st->off = 0;
         sweep_fill(st);
-        if (!st->yielded || st->off != st->out.len)
+        if (!st->w.yielded || st->off != st->out.len)
             slot_give(st->r);
         if (st->w.why == STOP_GONE)
             return MHD_CONTENT_READER_END_WITH_ERROR;
-        if (st->yielded && st->off == st->out.len) {
+        if (st->w.yielded && st->off == st->out.len) {
             MHD_suspend_connection(st->conn);
             MHD_resume_connection(st->conn);
             return 0;
@@ -208,7 +192,7 @@ static sweep_stream *sweep_new(struct MHD_Connection *c, request *r, dp_sweep_do
         sweep_free(st);
         return NULL;
     }
-    dp_sweep_exec_set_stop(st->x, sweep_stop, st);
+    dp_sweep_exec_set_stop(st->x, watch_stop_sliced, &st->w);
     return st;
 }
 

@@ -53,6 +53,25 @@ int watch_stop(void *ctx)
     return watch_check(ctx, now_seconds()) != STOP_NONE;
 }
 
+void watch_slice(watch *w, double seconds)
+{
+    w->slice_end = now_seconds() + seconds;
+    w->yielded = 0;
+}
+
+int watch_stop_sliced(void *ctx)
+{
+    watch *w = ctx;
+    double now = now_seconds();
+    if (watch_check(w, now) != STOP_NONE)
+        return 1;
+    if (now > w->slice_end) {
+        w->yielded = 1;
+        return -1;
+    }
+    return 0;
+}
+
 void watch_detail(const watch *w, const char *what, char *out, size_t cap)
 {
     if (w->why == STOP_DEADLINE)
