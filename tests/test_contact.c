@@ -570,6 +570,53 @@ static void test_stack_rests_on_the_stops(void **state)
     free(o.d);
 }
 
+/* Friction and a plastic stop on one mass (review finding, fixed): a unit mass sliding at -2 against Coulomb
+ * friction phi0 = 0.4 into a stop at x = -1 with e = 0. At the impact the friction element and the contact
+ * both rest at zero relative velocity, two stick intervals in parallel, [-0.4, 0.4] and (-inf, 0]; their
+ * force was split in proportion to the widths, inf/inf, and every run "diverged" there. For every dt and
+ * theta, Moreau-Jean and located, with the friction on the contact's element or on its own: the run reaches
+ * t_end, the kinetic energy never grows, the mass comes to rest at the stop (within a step's travel for
+ * Moreau-Jean, exactly when located) at the closed-form instant t* = (2 - sqrt(4 - 0.8)) / 0.4, and every
+ * force is finite. */
+static void test_friction_into_plastic_stop(void **state)
+{
+    (void)state;
+    const double t_star = (2 - sqrt(4 - 0.8)) / 0.4;
+    static const char *const shapes[] = {
+        "[{\"between\":[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.4},\"contact\":{\"distance\":-1}}]",
+        "[{\"between\":[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.4}},{\"between\":[\"ground\",0],"
+        "\"contact\":{\"distance\":-1,\"restitution\":0}}]",
+    };
+    const double dts[] = { 0.1, 0.01, 0.001 }, thetas[] = { 0.5, 1 };
+    const char *events[] = { "none", "locate" };
+    for (size_t a = 0; a < 2; a++)
+        for (size_t b = 0; b < 3; b++)
+            for (size_t c = 0; c < 2; c++)
+                for (size_t d = 0; d < 2; d++) {
+                    char doc[1024];
+                    snprintf(doc, sizeof doc, "{\"model\":{\"masses\":[1],\"elements\":%s},\"initial\":{\"x\":[0],"
+                             "\"v\":[-2]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":2,\"theta\":%g,"
+                             "\"events\":\"%s\"},\"output\":{\"every\":1}}", shapes[a], dts[b], thetas[c], events[d]);
+                    rows o;
+                    run_doc(doc, &o);
+                    double slack = d ? 1e-12 : 2 * dts[b] * (1 + 1e-12);   /* Moreau-Jean: a step's travel */
+                    for (size_t i = 0; i < o.n; i++) {
+                        double t = o.d[i * o.width], v = V(&o, i, 0);
+                        if (i > 0)
+                            assert_true(fabs(v) <= fabs(V(&o, i - 1, 0)) + 1e-12);   /* energy never grows */
+                        for (size_t k = 1; k < o.width; k++)
+                            assert_true(isfinite(o.d[i * o.width + k]));
+                        assert_true(X(&o, i, 0) >= -1 - slack);
+                        if (t >= t_star + dts[b] * (1 + 1e-9))
+                            assert_true(v == 0 && fabs(X(&o, i, 0) + 1) <= slack);
+                        else if (t <= t_star - dts[b])
+                            assert_true(fabs(v - (-2 + 0.4 * t)) <= 1e-9);           /* sliding, decelerated */
+                    }
+                    assert_true(fabs(o.d[(o.n - 1) * o.width] - 2) <= 1e-12);
+                    free(o.d);
+                }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -592,6 +639,7 @@ int main(void)
         cmocka_unit_test(test_compliant_stick_slip_first_order),
         cmocka_unit_test(test_cradle_second_impulse),
         cmocka_unit_test(test_stack_rests_on_the_stops),
+        cmocka_unit_test(test_friction_into_plastic_stop),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -355,6 +355,9 @@ int network_run_setup(dp_run *r)
         return s;
     if (nr->relaxed)
         dp_network_step_relaxation(nr->ws, nr->gamma, nr->theta);
+    dp_network_step_set_poll(nr->ws, network_run_step_poll, r);
+    if (nr->iws)
+        dp_network_step_set_poll(nr->iws, network_run_step_poll, r);
     ep_init(nr, r->spec.net, r->spec.x0v);
     nr->pattern = malloc(dp_network_step_pattern_bytes(nr->ws));
     nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
@@ -426,9 +429,14 @@ static int network_run_advance(dp_run *r)
         return DP_ENOMEM;
     network_run_flush(r);
     while (r->out_n < r->out_cap && !dp_row_queue_waiting(&nr->queue) && nr->slots.used < nr->slots.cap && !r->finished) {
-        /* a solve costs about a unit per node and element: 10^4 blocks poll every step or so, one mass every
-         * 4096 steps, both about the same work apart */
-        if (dp_run_stopped(r, (r->n + r->sum.iterations) * (nr->n + nr->nel)))
+        /* a step costs at least a unit per node and element, its solves their band entries (polled inside it,
+         * network_run_step_poll): 10^4 blocks poll every step or so, one mass every 4096 steps */
+        nr->work += nr->n + nr->nel;
+        if (nr->yield) {
+            nr->yield = 0;
+            return DP_OK;
+        }
+        if (dp_run_stopped(r, nr->work))
             return r->status;
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
@@ -449,6 +457,8 @@ static int network_run_advance(dp_run *r)
                 network_run_stick_time(r, nr->phase, h);
             }
         }
+        if (s != DP_OK && network_run_cancelled(r))
+            return r->status;     /* stopped inside the step: its message says when */
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
         r->n++;

@@ -81,6 +81,10 @@ struct dp_network_run {
     dp_network_step_forces *iforce;
     double *iv;                 /* 2n: its right side and solution */
     unsigned long long impacts_step;
+    /* the stop hook inside a step (network_stepping.c): the work done (units of network_step.h's poll, a step
+     * between them counted as nodes + elements), and a yield asked for inside a step, honoured after it */
+    unsigned long long work;
+    int yield;
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */
@@ -102,6 +106,15 @@ int network_run_state_finite(const struct dp_network_run *nr);
 static inline double network_run_rel(long a, long b, const double *x)
 {
     return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
+}
+
+/* The stop hook polled inside a step: set on the step's workspaces (network_run_setup), it counts their work
+ * and asks the run's hook every DP_RUN_POLL_WORK units; 1 when the run was stopped (r->status DP_ECANCEL).
+ * A yield asked for inside a step sets nr->yield and is honoured between steps. */
+int network_run_step_poll(void *run, unsigned long long units);
+static inline int network_run_cancelled(const dp_run *r)
+{
+    return r->status == DP_ECANCEL;
 }
 
 /* The stepping pieces located events are made of (network_stepping.c): the right side of a step of length h
