@@ -52,6 +52,7 @@ struct dp_network_step {
     double *W, *H;        /* band storage n x (p+1) */
     double *R;            /* reduced band storage, capacity n x (p+1) grown on demand */
     size_t R_cap, nr, pr;
+    size_t R_max;         /* the most doubles R may grow to (0: no bound) */
     int factored;         /* R holds the factor of the structure in fac_st, fac_slope, for h_factored */
     double h_factored;
     unsigned char *fac_st;
@@ -133,16 +134,31 @@ void dp_network_step_set_poll(dp_network_step *w, dp_network_step_poll_fn poll, 
     w->poll_ctx = ctx;
 }
 
-/* Counts a solve of the current assignment (a pass over W's band and the elements) and asks the poll: 1 when
- * the caller must end the step with DP_ECANCEL. */
-static int polled_stop(dp_network_step *w)
+/* Hands the work counted so far to the poll: 1 when the caller must end the step with DP_ECANCEL. */
+static int polled_stop_units(dp_network_step *w)
 {
-    w->work += w->n * (w->p + 1) + w->ne;
     if (w->poll == NULL)
         return 0;
     unsigned long long units = w->work;
     w->work = 0;
     return w->poll(w->poll_ctx, units) != 0;
+}
+
+/* Counts a solve of the current assignment (a pass over W's band and the elements) and asks the poll. */
+static int polled_stop(dp_network_step *w)
+{
+    w->work += w->n * (w->p + 1) + w->ne;
+    return polled_stop_units(w);
+}
+
+void dp_network_step_limit(dp_network_step *w, size_t max_doubles)
+{
+    w->R_max = max_doubles;
+}
+
+size_t dp_network_step_reduced_need(const dp_network_step *w)
+{
+    return w->nr * (w->pr + 1);
 }
 
 void dp_network_step_relaxation(dp_network_step *w, const dp_relaxation *const *gamma, double theta)
@@ -376,6 +392,8 @@ static void assemble_H(dp_network_step *w, double h)
 static int reduced_storage(dp_network_step *w)
 {
     size_t need = w->nr * (w->pr + 1);
+    if (w->R_max && need > w->R_max)
+        return DP_ELIMIT;
     if (need > w->R_cap) {
         double *R = realloc(w->R, need * sizeof *R);
         if (R == NULL)
@@ -417,6 +435,45 @@ static int prepare(dp_network_step *w, double h, const double *rhs)
 }
 
 /* R = T^T H T in band storage, factored (Cholesky). */
+/* A factorization of more multiply-adds than this (a few milliseconds) is done by polled_cholesky, which
+ * asks the poll as it goes: GSL's takes seconds at the widest band the memory limit lets through (1600
+ * nodes coupled all to all: 3 s), and a stop must not wait for it. Below it GSL's, bit for bit as always. */
+#define LONG_FACTOR (1u << 22)
+
+/* R = L L^T in GSL's band storage (row j holds L(j+d, j), d = 0..q-1), column by column as LAPACK's dpbtf2:
+ * the pivot's square root, the column scaled by its inverse, the trailing band updated by the column's outer
+ * product. The poll is asked every LONG_FACTOR multiply-adds; DP_ECANCEL when it says stop, DP_ESOLVE when
+ * R is not positive definite. */
+static int polled_cholesky(dp_network_step *w, size_t q)
+{
+    size_t n = w->nr, p = q - 1, done = 0;
+    double *R = w->R;
+    for (size_t j = 0; j < n; j++) {
+        double *col = R + j * q, ajj = col[0];
+        if (!(ajj > 0))
+            return DP_ESOLVE;
+        ajj = sqrt(ajj);
+        col[0] = ajj;
+        size_t kn = n - 1 - j < p ? n - 1 - j : p;
+        double inv = 1 / ajj;
+        for (size_t d = 1; d <= kn; d++)
+            col[d] *= inv;
+        for (size_t a = 1; a <= kn; a++) {
+            double *row = R + (j + a) * q, la = col[a];
+            for (size_t b = a; b <= kn; b++)
+                row[b - a] -= la * col[b];
+        }
+        done += kn * kn / 2 + 1;
+        if (done > LONG_FACTOR) {
+            w->work += done, done = 0;
+            if (polled_stop_units(w))
+                return DP_ECANCEL;
+        }
+    }
+    w->work += done;
+    return DP_OK;
+}
+
 static int factor_reduced(dp_network_step *w)
 {
     size_t n = w->n, p1 = w->p + 1, pr = 0;
@@ -429,8 +486,9 @@ static int factor_reduced(dp_network_step *w)
     w->pr = pr;
     if (w->nr == 0)
         return DP_OK;
-    if (reduced_storage(w) != DP_OK)
-        return DP_ENOMEM;
+    int s = reduced_storage(w);
+    if (s != DP_OK)
+        return s;
     size_t q = pr + 1;
     for (size_t i = 0; i < n; i++) {
         long ki = w->kidx[i];
@@ -450,6 +508,8 @@ static int factor_reduced(dp_network_step *w)
                 w->R[(size_t)kj * q + (size_t)(ki - kj)] += h;
         }
     }
+    if (w->poll != NULL && w->nr * q * q > LONG_FACTOR)
+        return polled_cholesky(w, q);
     gsl_matrix_view Rv = gsl_matrix_view_array(w->R, w->nr, q);
     w->work += w->nr * q * q;      /* the band Cholesky's multiply-adds, to within a factor of two */
     return gsl_linalg_cholesky_band_decomp(&Rv.matrix) == 0 ? DP_OK : DP_ESOLVE;

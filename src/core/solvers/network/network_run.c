@@ -47,6 +47,54 @@ static size_t bandwidth(const dp_network *net)
 
 /* ---- allocation ------------------------------------------------------------------------------------- */
 
+/* Band matrices of n (p+1) doubles a run holds: M, K, C and the step's W, H and factor R; the impact
+ * problem's W, H, R with contacts; the step bound's check with relaxation; Newmark's K^ and M's factor. */
+static double band_matrices(const dp_run *r)
+{
+    const dp_network *net = r->spec.net;
+    int contacts = 0, relaxed = 0;
+    for (size_t i = 0; i < net->nel; i++) {
+        contacts |= net->el[i].has_contact;
+        relaxed |= net->el[i].has_damper && net->el[i].damper.relaxation.kind != DP_RELAX_NONE;
+    }
+    return 6 + 3 * contacts + relaxed + 2 * (r->spec.solver.kind == DP_SOLVER_NEWMARK);
+}
+
+/* The run's working memory in bytes (include/dashpot/network.h): the band matrices, and per node and per
+ * element what the run and its step keep (about 40 doubles a node, 90 an element with its active-set
+ * state, saved assignment and forces). */
+static double run_bytes(const dp_run *r, size_t p)
+{
+    const dp_network *net = r->spec.net;
+    double n = (double)net->n, band = n * ((double)p + 1);
+    return 8 * (band_matrices(r) * band + 40 * n + 90 * (double)net->nel);
+}
+
+/* Refuses a run whose working memory would pass DP_NETWORK_MAX_RUN_BYTES, before it allocates any; else
+ * bounds the step's contracted factor by what is left of it. */
+static int check_run_bytes(dp_run *r, size_t p)
+{
+    struct dp_network_run *nr = r->state;
+    double need = run_bytes(r, p), mib = 1024.0 * 1024.0;
+    if (need <= DP_NETWORK_MAX_RUN_BYTES)
+        return DP_OK;
+    int coupled = 0;
+    for (size_t i = 0; i < nr->net->nel; i++)
+        coupled |= nr->net->el[i].a >= 0 && nr->net->el[i].b >= 0;
+    snprintf(r->error_pointer, sizeof r->error_pointer, coupled ? "/model/elements" : "/model");
+    return dp_run_fail(r, DP_ELIMIT, "the network's step would need about %.0f MiB of working memory, over the "
+                       "limit of %.0f MiB per run: %zu nodes at half-bandwidth %zu after reordering make %.0f band "
+                       "matrices of n (p+1) numbers; couple fewer distant nodes, or split the network",
+                       need / mib, DP_NETWORK_MAX_RUN_BYTES / mib, nr->n, p, band_matrices(r));
+}
+
+/* The most doubles the step's contracted factor may take: its own band plus what the limit leaves. */
+static size_t reduced_limit(const dp_run *r, size_t p)
+{
+    double n = (double)r->spec.net->n, band = n * ((double)p + 1);
+    return (size_t)(band + (DP_NETWORK_MAX_RUN_BYTES - run_bytes(r, p)) / 8);
+}
+
 static int alloc_all(struct dp_network_run *nr)
 {
     /* arrays over the convex problem's elements hold every element's laws and then every contact */
@@ -346,6 +394,8 @@ int network_run_setup(dp_run *r)
     if (s != DP_OK)
         return s;
     nr->p = bandwidth(nr->net);
+    if ((s = check_run_bytes(r, nr->p)) != DP_OK)
+        return s;
     s = alloc_all(nr);
     s = s ? s : setup_laws(nr);
     s = s ? s : setup_columns(nr, &r->spec.output);
@@ -356,6 +406,7 @@ int network_run_setup(dp_run *r)
     if (nr->relaxed)
         dp_network_step_relaxation(nr->ws, nr->gamma, nr->theta);
     dp_network_step_set_poll(nr->ws, network_run_step_poll, r);
+    dp_network_step_limit(nr->ws, reduced_limit(r, nr->p));
     if (nr->iws)
         dp_network_step_set_poll(nr->iws, network_run_step_poll, r);
     ep_init(nr, r->spec.net, r->spec.x0v);
@@ -459,6 +510,11 @@ static int network_run_advance(dp_run *r)
         }
         if (s != DP_OK && network_run_cancelled(r))
             return r->status;     /* stopped inside the step: its message says when */
+        if (s == DP_ELIMIT)
+            return dp_run_fail(r, s, "the step at t = %.17g fixes elements whose trees interleave: its contracted "
+                               "matrix would need %.0f MiB, past the limit of %.0f MiB per run", t,
+                               8.0 * (double)dp_network_step_reduced_need(nr->ws) / (1024.0 * 1024.0),
+                               DP_NETWORK_MAX_RUN_BYTES / (1024.0 * 1024.0));
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
         r->n++;

@@ -75,6 +75,8 @@ struct dp_network_run {
     unsigned char *ct_on;       /* per contact: armed for the current (sub-)step */
     unsigned char *ct_touch;    /* per contact: scratch of an instant */
     double *ct_last, *ct_pre;   /* per contact: time of its last located impact; its rate when armed (MJ) */
+    double *ct_before;          /* per contact: time of the located impact before its last */
+    unsigned char *ct_kicked;   /* per contact: another contact's impulse changed its rate since its last impact */
     double *Fn;                 /* per element: the contact's force */
     dp_network_step *iws;             /* the impact problem: W = M, the contacts' cones */
     dp_network_step_element *imp;
