@@ -660,6 +660,90 @@ static void test_steady_chatter_ends(void **state)
     free(o.d);
 }
 
+/* Random small networks with contacts (review finding, fixed): up to 4 masses, elements between random ends
+ * carrying rigid contacts of restitution 0, 0.3, 0.5 or 1 (some with Coulomb friction on their element,
+ * some parallel to others), linear springs, Coulomb or viscous dampers on belts, constant loads; located
+ * and Moreau-Jean, theta 1/2 and 1, dt 1e-3 to 0.1. Every one must run to t_end with finite rows: 10 of 380
+ * such networks once "diverged" (a plastic contact beside sticking friction) and parallel stops between the
+ * same ends made steps with no solution. */
+static uint64_t rnd_state = 0x2545f4914f6cdd1dull;
+static double rnd(void)
+{
+    rnd_state ^= rnd_state << 13, rnd_state ^= rnd_state >> 7, rnd_state ^= rnd_state << 17;
+    return (double)(rnd_state >> 11) / 9007199254740992.0;
+}
+
+static void random_contact_network(char *d, size_t cap)
+{
+    int n = 1 + (int)(4 * rnd()), len = 0;
+    double x0[4];
+    for (int i = 0; i < n; i++)
+        x0[i] = 2 * rnd() - 1;
+    len += snprintf(d + len, cap - (size_t)len, "{\"model\":{\"masses\":[");
+    for (int i = 0; i < n; i++)
+        len += snprintf(d + len, cap - (size_t)len, "%s%.6g", i ? "," : "", 0.5 + 1.5 * rnd());
+    len += snprintf(d + len, cap - (size_t)len, "],\"elements\":[");
+    int ne = 0, contacts = 0;
+    for (int k = 0; k < 6 || !contacts; k++) {
+        int a = (int)((n + 1) * rnd()) - 1, b = (int)((n + 1) * rnd()) - 1;
+        if (a == b)
+            continue;
+        char ea[16], eb[16];
+        snprintf(ea, sizeof ea, a < 0 ? "\"ground\"" : "%d", a);
+        snprintf(eb, sizeof eb, b < 0 ? "\"ground\"" : "%d", b);
+        double u = (b >= 0 ? x0[b] : 0) - (a >= 0 ? x0[a] : 0);
+        static const double es[] = { 0, 0, 0.3, 0.5, 1 }, belts[] = { 0, 0, 0.5, -1 };
+        len += snprintf(d + len, cap - (size_t)len, "%s{\"between\":[%s,%s]", ne++ ? "," : "", ea, eb);
+        if (rnd() < 0.4) {
+            contacts++;
+            len += snprintf(d + len, cap - (size_t)len, ",\"contact\":{\"distance\":%.6g,\"restitution\":%g}",
+                            u - 0.5 * rnd(), es[(int)(5 * rnd())]);
+            if (rnd() < 0.4)
+                len += snprintf(d + len, cap - (size_t)len, ",\"damper\":{\"law\":\"coulomb\",\"phi0\":%.6g,"
+                                "\"belt_velocity\":%g}", 0.1 + rnd(), belts[(int)(2 * rnd())]);
+        } else {
+            int spring = rnd() < 0.6;
+            if (spring)
+                len += snprintf(d + len, cap - (size_t)len, ",\"spring\":{\"law\":\"linear\",\"k\":%.6g}", 0.1 + 5 * rnd());
+            if (!spring || rnd() < 0.6) {
+                if (rnd() < 0.5)
+                    len += snprintf(d + len, cap - (size_t)len, ",\"damper\":{\"law\":\"coulomb\",\"phi0\":%.6g,"
+                                    "\"belt_velocity\":%g}", 0.1 + rnd(), belts[(int)(4 * rnd())]);
+                else
+                    len += snprintf(d + len, cap - (size_t)len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g}", rnd());
+            }
+        }
+        len += snprintf(d + len, cap - (size_t)len, "}");
+    }
+    len += snprintf(d + len, cap - (size_t)len, "],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":%.6g}]},"
+                    "\"initial\":{\"x\":[", 10 * rnd() - 5);
+    for (int i = 0; i < n; i++)
+        len += snprintf(d + len, cap - (size_t)len, "%s%.17g", i ? "," : "", x0[i]);
+    len += snprintf(d + len, cap - (size_t)len, "],\"v\":[");
+    for (int i = 0; i < n; i++)
+        len += snprintf(d + len, cap - (size_t)len, "%s%.6g", i ? "," : "", 6 * rnd() - 3);
+    static const double dts[] = { 1e-3, 0.01, 0.1 };
+    snprintf(d + len, cap - (size_t)len, "]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":3,\"theta\":%g,"
+             "\"events\":\"%s\"},\"output\":{\"every\":100}}", dts[(int)(3 * rnd())], rnd() < 0.5 ? 0.5 : 1,
+             rnd() < 0.5 ? "none" : "locate");
+}
+
+static void test_random_contact_networks(void **state)
+{
+    (void)state;
+    static char doc[8192];
+    for (int k = 0; k < 150; k++) {
+        random_contact_network(doc, sizeof doc);
+        rows o;
+        if (rows_collect(doc, 64, &o) != DP_DONE)
+            fprintf(stderr, "case %d: %s\n", k, doc);
+        assert_int_equal(o.status, DP_DONE);
+        for (size_t i = 0; i < o.n * o.width; i++)
+            assert_true(isfinite(o.d[i]));
+        free(o.d);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -684,6 +768,7 @@ int main(void)
         cmocka_unit_test(test_stack_rests_on_the_stops),
         cmocka_unit_test(test_friction_into_plastic_stop),
         cmocka_unit_test(test_steady_chatter_ends),
+        cmocka_unit_test(test_random_contact_networks),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

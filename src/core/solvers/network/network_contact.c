@@ -53,6 +53,50 @@ static int compliance_graph(dp_graph *g, const dp_contact *c)
     return dp_graph_init(g, 1, &c->distance, &(double){ 0 }, left, right);
 }
 
+/* A contact's place in the order of shadows(): rigid ones by their ends, then by falling distance (then
+ * index); compliant ones last. */
+typedef struct contact_key {
+    int rigid;
+    long a, b;
+    double d;
+    size_t c;
+} contact_key;
+
+static int by_ends(const void *pa, const void *pb)
+{
+    const contact_key *x = pa, *y = pb;
+    if (x->rigid != y->rigid)
+        return y->rigid - x->rigid;
+    if (x->a != y->a)
+        return x->a < y->a ? -1 : 1;
+    if (x->b != y->b)
+        return x->b < y->b ? -1 : 1;
+    if (x->d != y->d)
+        return x->d > y->d ? -1 : 1;
+    return x->c < y->c ? -1 : x->c > y->c;
+}
+
+/* Rigid contacts between the same ends in the same order keep u >= d for each d: only the largest distance
+ * can bind, the others close only where it holds already (then at the same velocity). Armed together they
+ * would be parallel cones, a cycle of fixed elements the step cannot contract, and a step with no solution
+ * where their vertices differ. So the ones behind it (ct_shadow) are never armed: they carry no force. */
+static int shadows(struct dp_network_run *nr)
+{
+    contact_key *key = malloc(nr->nc * sizeof *key);
+    if (key == NULL)
+        return DP_ENOMEM;
+    for (size_t c = 0; c < nr->nc; c++) {
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        key[c] = (contact_key){ e->contact.compliance == 0, e->a, e->b, e->contact.distance, c };
+    }
+    qsort(key, nr->nc, sizeof *key, by_ends);
+    for (size_t k = 1; k < nr->nc; k++)
+        nr->ct_shadow[key[k].c] = key[k].rigid && key[k - 1].rigid && key[k].a == key[k - 1].a &&
+                                  key[k].b == key[k - 1].b;
+    free(key);
+    return DP_OK;
+}
+
 int network_run_contacts_setup(struct dp_network_run *nr)
 {
     const dp_network *net = nr->net;
@@ -69,13 +113,14 @@ int network_run_contacts_setup(struct dp_network_run *nr)
     nr->ct_last = calloc(m, sizeof *nr->ct_last);
     nr->ct_before = calloc(m, sizeof *nr->ct_before);
     nr->ct_kicked = calloc(m, 1);
+    nr->ct_shadow = calloc(m, 1);
     nr->ct_pre = calloc(m, sizeof *nr->ct_pre);
     nr->ct_touch = calloc(m, 1);
     nr->Fn = calloc(nr->nel, sizeof *nr->Fn);
     nr->imp = calloc(m, sizeof *nr->imp);
     nr->iforce = calloc(m, sizeof *nr->iforce);
     nr->iv = calloc(2 * nr->n, sizeof *nr->iv);
-    if (!nr->ct_before || !nr->ct_kicked)
+    if (!nr->ct_before || !nr->ct_kicked || !nr->ct_shadow)
         return DP_ENOMEM;
     if (!nr->ct_el || !nr->ct_soft || !nr->ct_on || !nr->ct_last || !nr->ct_pre || !nr->ct_touch || !nr->Fn || !nr->imp ||
         !nr->iforce || !nr->iv || cone_graph(&nr->cone) != DP_OK)
@@ -97,6 +142,8 @@ int network_run_contacts_setup(struct dp_network_run *nr)
         nr->act_el[nr->nact++] = i;
         c++;
     }
+    if (shadows(nr) != DP_OK)
+        return DP_ENOMEM;
     nr->iws = dp_network_step_alloc(nr->n, nr->p, m, nr->imp);
     if (nr->iws == NULL)
         return DP_ENOMEM;
@@ -111,7 +158,7 @@ void network_run_contacts_free(struct dp_network_run *nr)
         dp_graph_clear(&nr->ct_soft[c]);
     dp_graph_clear(&nr->cone);
     dp_network_step_free(nr->iws);
-    void *p[] = { nr->ct_before, nr->ct_kicked, nr->ct_el, nr->ct_soft, nr->ct_on, nr->ct_last, nr->ct_pre, nr->ct_touch, nr->Fn, nr->imp, nr->iforce, nr->iv };
+    void *p[] = { nr->ct_before, nr->ct_kicked, nr->ct_shadow, nr->ct_el, nr->ct_soft, nr->ct_on, nr->ct_last, nr->ct_pre, nr->ct_touch, nr->Fn, nr->imp, nr->iforce, nr->iv };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
 }
@@ -144,6 +191,7 @@ static double touch_tol(const struct dp_network_run *nr, size_t c, double h)
 /* Arms contact c for the coming step with the cone at v_c, or disarms it (a zero law). */
 static int arm(struct dp_network_run *nr, size_t c, int on, double vc)
 {
+    on = on && !nr->ct_shadow[c];
     dp_network_step_element *a = &nr->act[nr->nact_el + c];
     int changed = (a->A != NULL) != on;
     a->A = on ? &nr->cone : NULL;
@@ -269,7 +317,7 @@ int network_run_contacts_instant(dp_run *r, double t, double h)
         return 0;
     unsigned char *touch = nr->ct_touch;
     for (size_t c = 0; c < nr->nc; c++)
-        touch[c] = rigid(nr, c) && gap(nr, c, nr->x) <= touch_tol(nr, c, h);
+        touch[c] = rigid(nr, c) && !nr->ct_shadow[c] && gap(nr, c, nr->x) <= touch_tol(nr, c, h);
     int jumped = impact(r, t, touch);
     if (jumped < 0)
         return jumped;
@@ -293,6 +341,10 @@ void network_run_contacts_margins(struct dp_network_run *nr, double s)
         size_t k = nr->nact_el + c;
         if (!rigid(nr, c) || nr->ct_on[c])
             continue;
+        if (nr->ct_shadow[c]) {
+            nr->margin[k] = INFINITY;    /* behind another: it never closes first */
+            continue;
+        }
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double g0 = nr->u[k] - e->contact.distance;
         double rate = (1 - nr->theta) * network_run_rel(e->a, e->b, nr->v) + nr->theta * network_run_rel(e->a, e->b, nr->v1);
@@ -321,7 +373,7 @@ size_t network_run_contacts_arm_closing(struct dp_network_run *nr, double h)
         return 0;
     size_t m = 0;
     for (size_t c = 0; c < nr->nc; c++) {
-        if (nr->ct_on[c] || !rigid(nr, c) || !(nr->margin[nr->nact_el + c] < 0))
+        if (nr->ct_on[c] || !rigid(nr, c) || nr->ct_shadow[c] || !(nr->margin[nr->nact_el + c] < 0))
             continue;
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double gd = network_run_rel(e->a, e->b, nr->v);

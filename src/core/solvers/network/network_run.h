@@ -77,6 +77,8 @@ struct dp_network_run {
     double *ct_last, *ct_pre;   /* per contact: time of its last located impact; its rate when armed (MJ) */
     double *ct_before;          /* per contact: time of the located impact before its last */
     unsigned char *ct_kicked;   /* per contact: another contact's impulse changed its rate since its last impact */
+    unsigned char *ct_shadow;   /* per contact: a rigid one behind another between the same ends in the same
+                                   order with a larger distance (or an equal one and a lower index) */
     double *Fn;                 /* per element: the contact's force */
     dp_network_step *iws;             /* the impact problem: W = M, the contacts' cones */
     dp_network_step_element *imp;
