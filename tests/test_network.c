@@ -633,6 +633,106 @@ static void test_yield_inside_a_step(void **state)
     free(plain.d), free(doc);
 }
 
+/* ---- the working-memory limit and hostile magnitudes ---------------------------------------------------- */
+
+/* A sparse random graph of 20 000 nodes (14 000 springs between random nodes, friction on every 50th): its
+ * half-bandwidth after reverse Cuthill-McKee is about a thousand, so its band matrices would take about a
+ * gigabyte (it once did). It is refused by dp_run_alloc with DP_ELIMIT at /model/elements, the estimate and
+ * the limit in the message. A Burridge-Knopoff chain of 20 000 blocks (half-bandwidth 1) is accepted. */
+static char *random_graph(size_t n, size_t m, int chain)
+{
+    size_t cap = 160 * (n + m) + 256, len = 0;
+    char *d = malloc(cap);
+    assert_non_null(d);
+    uint64_t x = 88172645463325252ull;
+    len += (size_t)snprintf(d + len, cap - len, "{\"model\":{\"masses\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(d + len, cap - len, "%s1", i ? "," : "");
+    len += (size_t)snprintf(d + len, cap - len, "],\"elements\":[");
+    for (size_t k = 0; k < m; k++) {
+        size_t a, b;
+        if (chain) {
+            a = k, b = k + 1;
+        } else {
+            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+            a = (size_t)(x % n), b = (size_t)((x >> 32) % n);
+            if (a == b)
+                b = (a + 1) % n;
+        }
+        len += (size_t)snprintf(d + len, cap - len, "{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":1}},",
+                                a, b);
+    }
+    for (size_t i = 0; i < n; i += chain ? 1 : 50)
+        len += (size_t)snprintf(d + len, cap - len, "%s{\"between\":[\"ground\",%zu],\"damper\":{\"law\":\"coulomb\","
+                                "\"phi0\":0.1}}", i ? "," : "", i);
+    snprintf(d + len, cap - len, "]},\"solver\":{\"dt\":0.1,\"t_end\":0.2}}");
+    return d;
+}
+
+static void test_working_memory_limit(void **state)
+{
+    (void)state;
+    for (int chain = 0; chain < 2; chain++) {
+        char *doc = random_graph(20000, chain ? 19999 : 14000, chain);
+        dp_spec spec;
+        dp_errors errs;
+        int s;
+        dp_spec_init(&spec);
+        dp_errors_init(&errs);
+        assert_int_equal(dp_spec_parse(doc, strlen(doc), 0, &spec, &errs), DP_OK);
+        dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
+        if (chain) {
+            if (run == NULL)
+                fprintf(stderr, "%s: %s\n", errs.item[0].pointer, errs.item[0].message);
+            assert_non_null(run);
+        } else {
+            assert_null(run);
+            assert_int_equal(s, DP_ELIMIT);
+            assert_int_equal(errs.n, 1);
+            assert_string_equal(errs.item[0].pointer, "/model/elements");
+            assert_non_null(strstr(errs.item[0].message, "over the limit of 128 MiB"));
+            unsigned mib = 0;   /* the estimate: six bands of 20 000 x (p + 1) doubles, p in the hundreds */
+            assert_int_equal(sscanf(strstr(errs.item[0].message, "about ") + 6, "%u", &mib), 1);
+            assert_true(mib > 128 && mib < 4096);
+        }
+        dp_run_free(run);
+        dp_spec_clear(&spec);
+        free(doc);
+    }
+}
+
+/* Hostile magnitudes: a stiffness of 1e308 or an initial state of 1e300 and more is refused at its member
+ * before any step (W's entries and the state are checked where formed), never streamed into NaN or into
+ * "the solution diverged"; a mass of 5e-324 is refused by the parser's range or runs finite. */
+static void test_hostile_magnitudes(void **state)
+{
+    (void)state;
+    static const struct { const char *k, *x, *pointer; } cases[] = {
+        { "1e308", "1", "/model/elements/0/spring" },
+        { "1", "1e300", "/initial/x/0" },
+        { "1", "-1e308", "/initial/x/0" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char doc[512];
+        snprintf(doc, sizeof doc, "{\"model\":{\"masses\":[1,1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":"
+                 "{\"law\":\"linear\",\"k\":%s},\"damper\":{\"law\":\"coulomb\",\"phi0\":0.2}},{\"between\":[0,1],"
+                 "\"spring\":{\"law\":\"linear\",\"k\":1}}],\"forcing\":[]},\"initial\":{\"x\":[%s,0]},\"solver\":"
+                 "{\"dt\":0.01,\"t_end\":1}}", cases[i].k, cases[i].x);
+        dp_spec spec;
+        dp_errors errs;
+        int s;
+        dp_spec_init(&spec);
+        dp_errors_init(&errs);
+        s = dp_spec_parse(doc, strlen(doc), 0, &spec, &errs);
+        dp_run *run = s == DP_OK ? dp_run_alloc(&spec, 0, &errs, &s) : NULL;
+        assert_null(run);
+        assert_int_equal(s, DP_EINVAL);
+        assert_true(errs.n >= 1);
+        assert_string_equal(errs.item[0].pointer, cases[i].pointer);
+        dp_spec_clear(&spec);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -651,6 +751,8 @@ int main(void)
         cmocka_unit_test(test_ring_renumbered),
         cmocka_unit_test(test_stop_inside_a_step),
         cmocka_unit_test(test_yield_inside_a_step),
+        cmocka_unit_test(test_working_memory_limit),
+        cmocka_unit_test(test_hostile_magnitudes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
