@@ -144,6 +144,8 @@ static void parse_elements(ctx *c, const cJSON *v, const at *p, dp_network *net)
 static void parse_node_forcings(ctx *c, const cJSON *v, const at *p, dp_network *net)
 {
     static const char *const common[] = { "node", NULL };
+    if (cJSON_IsArray(v) && cJSON_GetArraySize(v) == 0)
+        return;              /* no loads, as when the member is left out */
     size_t m = jw_array_size(c, v, p, 4 * (size_t)DP_NETWORK_MAX_NODES, "an array of loads {\"node\", \"kind\", ...}");
     if (m == 0)
         return;
