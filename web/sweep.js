@@ -10,7 +10,7 @@
 //   run that failed a red cross there and a line in #sweep-failed: none is dropped silently;
 // - a click on a run (its dot, its column of the diagram, its cell) opens it: the sweep's base document with
 //   the run's values put at the pointers (each number as the line gives it, so the same double) goes to the
-//   simulate tab's trajectory view (opener, given by web/app.js).
+//   simulate tab's trajectory view (opener, given by web/app.js), with 10 001 samples unless it sets output.
 // Drawn as SVG like web/modes.js (presentation attributes, never style: the CSP refuses inline styles).
 //
 // For tests: #panel-sweep carries data-runs (the meta line's selected runs), data-received (run lines read),
@@ -446,7 +446,12 @@ export class SweepView {
     const axes = this.axes(), ptrs = axes.map((a) => a.pointer);
     const label = `Run ${i} of the sweep: ` + r.values.map((v, j) => `${ptrs[j]} = ${v}`).join(', ') +
       (r.status ? ' (it failed in the sweep: the daemon says why)' : '');
-    this.opener(putValues(s.doc.base, ptrs, r.values), label);
+    const doc = putValues(s.doc.base, ptrs, r.values);
+    // A sweep's run is long (a transient, then the motion): the page's usual budget of about a plot's width
+    // of samples would alias the forcing's periods, so ask for the daemon's default number, 10 001. Output
+    // decides which records are written, never how the solver steps: the run is the sweep's.
+    if (!doc.output) doc.output = { max_samples: 10001 };
+    this.opener(doc, label);
   }
 }
 
