@@ -623,6 +623,18 @@ async function checkSweeps(page, origin) {
     `sweep: the belt's bifurcation diagram draws the ${points} section points of ${belt.length} runs (period 1, a few, a cloud: ` +
     `${[...new Set(periods)].sort((a, b) => a - b).join(' ')} distinct x)`, JSON.stringify(v.panel));
   await screenshot(page, 'page-sweep-belt');
+  // The period where it has none (no repeat within 32 section points: a cloud) is an open dot on the bottom
+  // edge, its reason in its tooltip, not a missing run.
+  await page.selectOption('#sweep-feature', 'period');
+  const nulls = belt.filter((r) => r.features.period === null);
+  const shown = await page.evaluate(() => ({ nulls: +document.getElementById('panel-sweep').dataset.nulls,
+    marks: [...document.querySelectorAll('#sweep-curve circle.null')].map((c) => [+c.dataset.index, c.textContent]),
+    dots: document.querySelectorAll('#sweep-curve circle.pt').length }));
+  check(nulls.length > 5 && shown.nulls === nulls.length && shown.dots === belt.length - nulls.length &&
+    JSON.stringify(shown.marks.map((m) => m[0]).sort((a, b) => a - b)) === JSON.stringify(nulls.map((r) => r.index).sort((a, b) => a - b)) &&
+    shown.marks.every(([i, t]) => t.includes(belt.find((r) => r.index === i).null.period)),
+    `sweep: the belt's ${nulls.length} runs without a period are open dots with the line's reason, the other ${shown.dots} drawn`,
+    JSON.stringify(shown).slice(0, 400));
   // Two parameters: the map colours a cell per run; a cell clicked opens its run with both values put.
   d = await pick(page, 'sweep-den-hartog-map', 'panel-sweep');
   const mapDoc = JSON.parse(await page.inputValue('#spec'));
