@@ -1,5 +1,5 @@
 /* tests/rows.h - test helper: run a network (or any run with columns) given as JSON text and keep its rows
- * flattened and its events, for test programs that use cmocka (include it after <cmocka.h>).
+ * flattened, its events and its quake lines, for test programs that use cmocka (include it after <cmocka.h>).
  * Header-only, as trajectory.h is for one-mass samples. */
 #ifndef DASHPOT_TESTS_ROWS_H
 #define DASHPOT_TESTS_ROWS_H
@@ -20,6 +20,8 @@ typedef struct rows {
     size_t n, cap, width, nx, ne;
     size_t events;
     dp_event ev[ROWS_MAX_EVENTS];
+    dp_quake *quakes;     /* every quake line (output.quakes), grown as they come: free(quakes) */
+    size_t nquakes, quakes_cap;
     int status;
 } rows;
 
@@ -33,6 +35,16 @@ static void rows_push(rows *r, const dp_row *w)
     double *o = r->d + r->n++ * r->width;
     o[0] = w->t;
     memcpy(o + 1, w->val, (r->width - 1) * sizeof *o);
+}
+
+static void rows_push_quake(rows *r, const dp_quake *q)
+{
+    if (r->nquakes == r->quakes_cap) {
+        r->quakes_cap = r->quakes_cap ? 2 * r->quakes_cap : 64;
+        r->quakes = realloc(r->quakes, r->quakes_cap * sizeof *r->quakes);
+        assert_non_null(r->quakes);
+    }
+    r->quakes[r->nquakes++] = *q;
 }
 
 /* Runs the document to its end with blocks of `cap` records (the spec must parse and the run start) and
@@ -64,7 +76,9 @@ static int rows_collect(const char *json, size_t cap, rows *r)
         for (size_t i = 0; i < n; i++) {
             if (buf[i].type == DP_RECORD_ROW)
                 rows_push(r, &buf[i].u.row);
-            else if (r->events < ROWS_MAX_EVENTS)
+            else if (buf[i].type == DP_RECORD_QUAKE)
+                rows_push_quake(r, &buf[i].u.quake);
+            else if (buf[i].type == DP_RECORD_EVENT && r->events < ROWS_MAX_EVENTS)
                 r->ev[r->events++] = buf[i].u.event;
         }
     } while (s == DP_MORE);

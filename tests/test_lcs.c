@@ -4,7 +4,9 @@
  * the four-diode bridge (Example 1.10, its own matrices: with ideal diodes the load always conducts, so the
  * tank is a parallel RLC). Tolerances: O(h^2) for θ = 1/2 where u = 0 (the diode conducts freely), O(h)
  * after a switch (it lands on a step boundary) and wherever u != 0 (u is taken at the step's end, docs/systems.md
- * §5, a backward Euler treatment of B u).
+ * §5, a backward Euler treatment of B u). Then what the step refuses and where it says the blame lies (every
+ * product it forms from the data checked finite), and a step whose LCP pivots for long (Murty 1978's matrix
+ * as D) ended by the stop hook or by Lemke's pivot limit, x unchanged.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -12,6 +14,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <cmocka.h>
 #include <gsl/gsl_errno.h>
@@ -167,12 +170,92 @@ static void test_bad_input(void **state)
     dp_lcs_stepper_free(st);
 }
 
+/* Each product the step forms from the data, made to overflow in turn: refused, and blamed on its member. */
+static void test_located_refusals(void **state)
+{
+    (void)state;
+    struct { double A, B, C, D, p, h; const char *where; } cases[] = {
+        { 1e308, 1, 1, 0, 0, 10, "/model/lcs/A" },   /* h θ A */
+        { 0, 1e308, 1, 0, 0, 10, "/model/lcs/B" },   /* h W B */
+        { 0, 1e300, 1e308, 0, 0, 1, "/model/lcs/C" }, /* C h W B */
+        { 0, 1, 1e308, 1e308, 0, 1, "/model/lcs/D" }, /* D + h C W B */
+        { 0, 1, 1, 0, 1e308, 10, "/model/lcs/p" },   /* h W p */
+        { 2, 1, 1, 0, 0, 1, "/solver/dt" },          /* I - h θ A = 0 */
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        double A[1] = { cases[k].A }, B[1] = { cases[k].B }, C[1] = { cases[k].C }, D[1] = { cases[k].D };
+        double p[1] = { cases[k].p }, q[1] = { 0 };
+        dp_lcs_law law = { DP_LCS_COMPLEMENTARITY, 0, 0 };
+        dp_lcs sys = { 1, 1, A, B, C, D, p, q, &law };
+        int s;
+        const char *where, *why;
+        dp_lcs_stepper *st = dp_lcs_stepper_alloc_why(&sys, cases[k].h, 0.5, &s, &where, &why);
+        CHECK(st == NULL && s == DP_EINVAL && strcmp(where, cases[k].where) == 0, "case %zu: %s, got %s (%s)", k,
+              cases[k].where, where, why);
+        if (strcmp(where, "/model/lcs/C") == 0 || strcmp(where, "/model/lcs/D") == 0)
+            continue; /* the others scale with h: */
+        st = dp_lcs_stepper_alloc(&sys, cases[k].h / 1e10, 0.5, &s);
+        CHECK(st != NULL, "case %zu with a step 1e10 times shorter: accepted", k);
+        dp_lcs_stepper_free(st);
+    }
+}
+
+/* D = Murty 1978's matrix (unit diagonal, 3/2 below: Lemke needs 2^m pivots), q = -e, B = C = 0: the step's
+ * LCP is D's alone. */
+static dp_lcs_stepper *murty_system(size_t m, double *store)
+{
+    double *A = store, *B = A + 1, *C = B + m, *D = C + m, *p = D + m * m, *q = p + 1;
+    dp_lcs_law *law = (dp_lcs_law *)(q + m);
+    A[0] = 0, p[0] = 0;
+    for (size_t i = 0; i < m; i++) {
+        B[i] = C[i] = 0, q[i] = -1;
+        law[i] = (dp_lcs_law){ DP_LCS_COMPLEMENTARITY, 0, 0 };
+        for (size_t j = 0; j < m; j++)
+            D[i * m + j] = i == j ? 1 : j < i ? 1.5 : 0;
+    }
+    dp_lcs sys = { 1, m, A, B, C, D, p, q, law };
+    int s;
+    dp_lcs_stepper *st = dp_lcs_stepper_alloc(&sys, 0.1, 0.5, &s);
+    CHECK(st != NULL, "stepper %d", s);
+    return st;
+}
+
+static int stop_second(void *ctx)
+{
+    return ++*(int *)ctx >= 2;
+}
+
+static void test_long_step_stopped(void **state)
+{
+    (void)state;
+    size_t m = 200;
+    double *store = malloc((2 + 3 * m + m * m) * sizeof(double) + m * sizeof(dp_lcs_law));
+    dp_lcs_stepper *st = murty_system(m, store);
+    double x[1] = { 7 }, u[200], w[200];
+    dp_lcp_result res;
+    int asked = 0;
+    dp_stop stop = { stop_second, &asked };
+    CHECK(dp_lcs_step_until(st, x, u, w, &res, &stop) == DP_ECANCEL && asked == 2 && x[0] == 7,
+          "m = 200: DP_ECANCEL at the second question (%d), x unchanged (%g)", asked, x[0]);
+    dp_lcs_stepper_free(st);
+    st = murty_system(13, store);
+    CHECK(dp_lcs_step(st, x, u, w, &res) == DP_ELIMIT && res.pivots == dp_lcp_pivot_limit(13) && x[0] == 7,
+          "m = 13: Lemke's limit, %zu pivots, x unchanged", res.pivots);
+    dp_lcs_stepper_free(st);
+    st = murty_system(10, store);
+    CHECK(dp_lcs_step(st, x, u, w, &res) == DP_OK && res.pivots == 1024 && u[0] == 1 && u[1] == 0,
+          "m = 10: solved in 2^10 pivots, u = e_1");
+    dp_lcs_stepper_free(st);
+    free(store);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rlc_ideal_diode), cmocka_unit_test(test_rlc_breakdown_diode),
         cmocka_unit_test(test_bridge),          cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_located_refusals), cmocka_unit_test(test_long_step_stopped),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,7 +2,10 @@
 # tests/test_lcs.sh - `dashpot lcp` and POST /v1/lcp end to end: Cibulka 2014's Examples 1.6 and 2.4
 # with their own numbers (closed forms in the comments, checked here in Python), a 3-solution problem whose
 # solutions are computed by hand, the CLI and the daemon answering byte for byte alike, and bad input (422
-# with JSON Pointers, CLI exit 2, 400 for malformed JSON), then the LCS circuits of docs/lcs.md.
+# with JSON Pointers, CLI exit 2, 400 for malformed JSON), the problem's units (scaled by 1e±10 .. 1e±200: one
+# solution, not the 2, 4 or 6 an absolute tolerance listed; a solution beyond the doubles a 422 at /q), Lemke's
+# pivot limit on Murty 1978's matrix (answered by the enumeration at m = 12, a 422 at /M above, at /solver in
+# an LCS), then the LCS circuits of docs/lcs.md and their derived matrices leaving the doubles (422 at the member).
 # Env BUILD (default build). Prints "N passed, M failed"; exit 1 on any failure.
 source "$(dirname "$0")/lib/daemon.bash"
 
@@ -64,6 +67,49 @@ check "lcp: a repeated key inside M's rows is no key, but one in a nested object
     '{"M": [[1]], "q": [1], "r": {"a": 1, "a": 2}}' /r/a
 check "lcp: a NUL in a key (cJSON would read \"q\") named at its object" bad nulkey '{"M": [[1]], "q\u0000": [1]}' \
     '(document)'
+
+# ---- the problem's units, Lemke's pivot limit (docs/lcs.md, "Scaling, tolerances and limits") ----
+lcpcount() { # lcpcount DOC COUNT: the CLI lists COUNT solutions, each z >= 0, w >= 0, zᵀw = 0, the verdict agreeing
+    echo "$1" | "$BIN" lcp - >"$T/sc.out" && pyjson "$T/sc.out" "
+d['count'] == $2 == len(d['solutions']) and all(min(s['z']) >= 0 and min(s['w']) >= 0 and
+all(a * b == 0 for a, b in zip(s['z'], s['w'])) for s in d['solutions']) and
+(d['verdict'].startswith('exactly one') == (d['count'] == 1))"
+}
+check "lcp: w = Mz + q at 1e9 has one solution listed, not two (the tolerance was absolute)" \
+    lcpcount '{"M": [[1.42, 0], [2.84, 2]], "q": [8.9e9, -1.9e8]}' 1
+spd_scaled() { # spd_scaled C: [[2, 1], [1, 2]] z = (1, 1) times C answers one solution z = (1/3, 1/3), P-matrix
+    python3 -c "import json; c=float('$1'); print(json.dumps({'M': [[2*c, c], [c, 2*c]], 'q': [-c, -c]}))" >"$T/spd.json"
+    "$BIN" lcp "$T/spd.json" >"$T/spd.out" && pyjson "$T/spd.out" "
+d['count'] == 1 and all(abs(x - 1/3) < 1e-15 for x in d['solutions'][0]['z']) and d['theory']['p_matrix'] is True"
+}
+for c in 1e10 1e-10 1e60 1e-60 1e200 1e-200; do
+    check "lcp: the SPD problem times $c: one solution z = (1/3, 1/3), P-matrix true" spd_scaled $c
+done
+echo '{"M": [[1e200, 0], [0, 1e200]], "q": [-1, -1]}' | "$BIN" lcp - >"$T/big.out"
+check "lcp: 1e200 I solved with z = 1e-200, w = 0 (not w = -1)" pyjson "$T/big.out" "
+d['lemke']['z'] == [1e-200, 1e-200] and d['lemke']['w'] == [0, 0] and d['theory']['p_matrix'] is True"
+check "lcp: a solution beyond the doubles (z = 1e400) is a 422 at /q, never z = null" bad huge \
+    '{"M": [[1e-200, 0], [0, 1e-200]], "q": [-1e200, -1]}' /q
+murty() { # murty M: Murty 1978's matrix (1 on the diagonal, 3/2 below), q = -e, as a document
+    python3 -c "import json; m=$1; print(json.dumps({'M': [[1 if i == j else 1.5 if j < i else 0 for j in range(m)]
+        for i in range(m)], 'q': [-1] * m}))"
+}
+murty 12 >"$T/murty12.json"
+"$BIN" lcp "$T/murty12.json" >"$T/murty12.out"
+check "lcp: Murty's matrix, m = 12: Lemke's pivot limit, the enumeration answers: one solution, e_1" pyjson "$T/murty12.out" "
+d['lemke']['outcome'] == 'pivot-limit' and d['lemke']['z'] is None and d['count'] == 1 and
+d['solutions'][0]['z'] == [1] + [0] * 11 and d['theory']['p_matrix'] is True and d['verdict'].startswith('exactly one')"
+murty 13 >"$T/murty13.json"
+"$BIN" lcp "$T/murty13.json" >/dev/null 2>"$T/err"
+check "lcp: Murty's matrix, m = 13: the pivot limit named at /M with its number" \
+    grep -q -- "/M: Lemke's method took its limit of 3600 pivots" "$T/err"
+python3 -c "import json; m=13; print(json.dumps({'model': {'lcs': {'A': [[0]], 'B': [[0] * m], 'C': [[0]] * m,
+    'D': [[1 if i == j else 1.5 if j < i else 0 for j in range(m)] for i in range(m)], 'q': [-1] * m},
+    'laws': [{'law': 'complementarity'}] * m}, 'initial': {'x': [0]},
+    'solver': {'kind': 'stick-slip', 'dt': 0.1, 't_end': 1, 'theta': 0.5}}))" >"$T/lcsmurty.json"
+"$BIN" simulate "$T/lcsmurty.json" >/dev/null 2>"$T/err"
+check "simulate lcs: Lemke's pivot limit on the algebraic part is the solver's, at /solver, not /initial/x" \
+    bash -c "grep -q -- ': /solver: Lemke.s method took its limit of 3600 pivots' '$T/err' && ! grep -q /initial/x '$T/err'"
 
 # ---- LCS models in `dashpot simulate` (docs/lcs.md) ----
 # Series RLC with an ideal diode (Cibulka 2014 Ex. 1.9), R = 0.5, L = 1, C = 0.25, x = (charge, current), no source.
@@ -315,6 +361,10 @@ check "simulate lcs: a rope without length named" simbad rope "{\"model\": {\"lc
 ZIG=$(python3 -c "print(','.join('[%d, %g]' % (i, (i * i if i % 2 else i * i + 0.5))  for i in range(300)))")
 check "simulate lcs: a graph whose step LCP exceeds 500 rows named at the law list" simbad rows "{\"model\": {\"lcs\": {$LCSM}, \"laws\": [{\"law\": \"graph\", \"points\": [$ZIG]}]}}" /model/laws
 
+check "simulate lcs: h W B beyond the doubles named at B" simbad hwb '{"model": {"lcs": {"A": [[0]], "B": [[1e308]], "C": [[1]]}, "laws": [{"law": "complementarity"}]}, "initial": {"x": [1]}, "solver": {"kind": "stick-slip", "dt": 10, "t_end": 100, "theta": 0.5}}' /model/lcs/B
+check "simulate lcs: h θ A beyond the doubles named at A" simbad hta '{"model": {"lcs": {"A": [[1e308]], "B": [[1]], "C": [[1]]}, "laws": [{"law": "complementarity"}]}, "initial": {"x": [1]}, "solver": {"kind": "stick-slip", "dt": 10, "t_end": 100, "theta": 0.5}}' /model/lcs/A
+check "simulate lcs: D + h C W B beyond the doubles named at C" simbad cwb '{"model": {"lcs": {"A": [[0]], "B": [[1e300]], "C": [[1e308]]}, "laws": [{"law": "complementarity"}]}, "initial": {"x": [1]}, "solver": {"kind": "stick-slip", "dt": 1, "t_end": 10, "theta": 0.5}}' /model/lcs/C
+
 start_daemon lcp || finish
 U=$URL_lcp
 post() { # post PATH FILE -> status and content type in $T/ct, body in $T/body
@@ -339,6 +389,14 @@ printf '{"M": [[1]], "q": [1], "M": [[2]]}' >"$T/dup.json"
 post /v1/lcp "$T/dup.json"
 check "POST /v1/lcp, a repeated key: 422 problem at /M" pyjson "$T/body" "
 d['status'] == 422 and [(e['pointer'], e['detail']) for e in d['errors']] == [('/M', 'duplicate key \"M\"')]"
+post /v1/lcp "$T/murty13.json"
+check "POST /v1/lcp, Murty's matrix m = 13: 422 over-limit at /M" pyjson "$T/body" "
+d['status'] == 422 and d['type'] == '/problems/over-limit' and [e['pointer'] for e in d['errors']] == ['/M']"
+post /v1/lcp "$T/murty12.json"
+check "POST /v1/lcp, Murty's matrix m = 12: the CLI's answer byte for byte" cmp -s "$T/body" "$T/murty12.out"
+post /v1/simulate "$T/lcsmurty.json"
+check "POST /v1/simulate, an LCS whose algebraic part takes Lemke's limit: 422 over-limit at /solver" pyjson "$T/body" "
+d['status'] == 422 and d['type'] == '/problems/over-limit' and [e['pointer'] for e in d['errors']] == ['/solver']"
 check "/metrics counts /v1/lcp" bash -c "curl -s '$U/metrics' | grep -q 'route=\"/v1/lcp\"'"
 hcurl -X POST --data-binary @"$T/pd.json" -o "$T/body" "$U/v1/wellposedness"
 check "POST /v1/wellposedness with an LCS model: the CLI's answer" python3 -c "

@@ -190,6 +190,116 @@ check "response: a repeated omega: exit 2 at /omega" bad dupomega \
     '{"model": {"masses": [1]}, "force_node": 0, "response_node": 0, "omega": {"from": 0, "to": 1, "points": 5}, "omega": {}}' \
     /omega response
 
+# ---- scale: no spin, finite through, honest rigid modes ----
+# The review's hostile requests: their first-order matrices held infinities and GSL's balancing spun for ever.
+# Each is refused at the member to blame, and `timeout` turns a hang into a failure.
+scale_bad() { # scale_bad NAME JSON POINTER: modes and response both exit 2 at POINTER, saying the scale overflows
+    printf '%s' "$2" >"$T/$1.json"
+    local cmd rc
+    for cmd in modes response; do
+        timeout 60 "$BIN" $cmd "$T/$1.json" >/dev/null 2>"$T/$1.$cmd.err"
+        rc=$?
+        [ $rc = 2 ] && grep -qF ": $3: " "$T/$1.$cmd.err" && grep -q "overflows" "$T/$1.$cmd.err" ||
+            { echo "    $cmd: exit $rc, stderr: $(cat "$T/$1.$cmd.err")"; return 1; }
+    done
+}
+RESP='"force_node": 0, "response_node": 2, "omega": {"from": 0.1, "to": 10, "points": 50}'
+check "the docs' chain with a spring of 1e308 and Rayleigh damping: exit 2 at that spring's k, no hang" scale_bad k308 \
+    '{"model": {"masses": [1, 1, 1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 4}},
+     {"between": [0, 1], "spring": {"law": "linear", "k": 1e308}}, {"between": [1, 2], "spring": {"law": "linear", "k": 4}}]},
+     "damping": {"rayleigh": {"alpha": 0.05, "beta": 0.01}}, '"$RESP"'}' /model/elements/1/spring/k
+check "masses 1e-10 and 1 on k = 1e300 with a damper: exit 2 at the spring's k" scale_bad k300 \
+    '{"model": {"masses": [1e-10, 1, 1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1}},
+     {"between": [0, 1], "spring": {"law": "linear", "k": 1e300}, "damper": {"law": "linear", "c": 1}},
+     {"between": [1, 2], "spring": {"law": "linear", "k": 1}}]}, '"$RESP"'}' /model/elements/1/spring/k
+check "a mass of 5e-324 with damping: exit 2 at /model/masses/0" scale_bad m324 \
+    '{"model": {"masses": [5e-324, 1, 1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 4}},
+     {"between": [0, 1], "spring": {"law": "linear", "k": 4}}, {"between": [1, 2], "spring": {"law": "linear", "k": 4},
+     "damper": {"law": "linear", "c": 0.3}}]}, '"$RESP"'}' /model/masses/0
+check "two springs of 1e308 on one node sum past DBL_MAX: exit 2 at the stiffer one" scale_bad ksum \
+    '{"model": {"masses": [1, 1, 1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1e308}},
+     {"between": [0, 1], "spring": {"law": "linear", "k": 1.5e308}}, {"between": [1, 2], "spring": {"law": "linear", "k": 4}}]},
+     '"$RESP"'}' /model/elements/1/spring/k
+check "Rayleigh beta K past DBL_MAX: exit 2 at /damping/rayleigh/beta" scale_bad beta \
+    '{"model": {"masses": [1, 1, 1], "stiffness_matrix": [[1e300, 0, 0], [0, 1, 0], [0, 0, 1]]},
+     "damping": {"rayleigh": {"beta": 1e12}}, '"$RESP"'}' /damping/rayleigh/beta
+
+# Two uncoupled masses on k = 1e12 and k = 1: the soft one keeps omega = 1 (the old rigid test, relative to
+# K's largest entry, gave it omega = 0), and its receptance is 1 / (1 - omega^2 + i 0.01 omega).
+printf '%s' '{"model": {"masses": [1, 1], "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 1e12}},
+  {"between": ["ground", 1], "spring": {"law": "linear", "k": 1}}]}, "damping": {"rayleigh": {"alpha": 0.01}},
+  "force_node": 1, "response_node": 1, "omega": {"from": 0.5, "to": 2, "points": 31}}' >"$T/pair.json"
+"$BIN" modes "$T/pair.json" >"$T/pair.modes"
+check "stiff/soft pair: omega 1 and 1e6 to 1e-9, neither rigid" pyjson "$T/pair.modes" "
+[m['rigid'] for m in d['modes']] == [False, False] and abs(d['modes'][0]['omega'] - 1) < 1e-9 and
+abs(d['modes'][1]['omega'] / 1e6 - 1) < 1e-9"
+"$BIN" response "$T/pair.json" >"$T/pair.resp"
+check "stiff/soft pair: the receptance is the closed form at 31 frequencies, magnitude and phase" pyjson "$T/pair.resp" "
+len(d['rows']) == 31 and all(abs(r['magnitude'] - abs(h)) <= 1e-9 * abs(h) and abs(r['phase'] - math.atan2(h.imag, h.real)) < 1e-9
+    for r in d['rows'] for h in [1 / complex(1 - r['omega'] ** 2, 0.01 * r['omega'])]) and
+[round(x['omega'], 9) for x in d['resonances']] == [1.0]"
+
+# Hostile magnitudes in every numeric member of a document that has them all: each answer is 200 with finite
+# numbers or 422 with a pointer, never a hang, a crash or a NaN.
+cat >"$T/every.json" <<'JSON'
+{"model": {"masses": [1, 2, 1],
+           "stiffness_matrix": [[1, 0, 0], [0, 2, -1], [0, -1, 2]], "damping_matrix": [[0.1, 0, 0], [0, 0, 0], [0, 0, 0.2]],
+           "elements": [{"between": ["ground", 0], "spring": {"law": "linear", "k": 4}},
+                        {"between": [0, 1], "spring": {"law": "linear", "k": 4}, "damper": {"law": "linear", "c": 0.3}},
+                        {"between": [1, 2], "spring": {"law": "linear", "k": 4}, "damper": {"law": "bingham", "c": 0.2, "tau": 1}}]},
+ "damping": {"rayleigh": {"alpha": 0.05, "beta": 0.01}},
+ "force_node": 0, "response_node": 2, "omega": {"from": 0.1, "to": 10, "points": 40, "spacing": "log"}}
+JSON
+hostile_sweep() { # every numeric leaf of every.json (and of its mass_matrix form) at 1e308, 5e-324, -1e308
+    python3 - "$BIN" "$T" <<'PY'
+import json, math, subprocess, sys
+bin_, tmp = sys.argv[1], sys.argv[2]
+base = json.load(open(tmp + "/every.json"))
+dense = json.loads(json.dumps(base))
+dense["model"].pop("masses")
+dense["model"]["mass_matrix"] = [[1, 0.1, 0], [0.1, 2, 0], [0, 0, 1]]
+def leaves(d, path=()):
+    if isinstance(d, dict):
+        for k, v in d.items():
+            yield from leaves(v, path + (k,))
+    elif isinstance(d, list):
+        for i, v in enumerate(d):
+            yield from leaves(v, path + (i,))
+    elif isinstance(d, (int, float)) and not isinstance(d, bool) and path[-1] not in ("between", "force_node", "response_node", "points"):
+        yield path
+def finite(x):
+    if isinstance(x, dict): return all(finite(v) for v in x.values())
+    if isinstance(x, list): return all(finite(v) for v in x)
+    return not isinstance(x, float) or math.isfinite(x)
+bad, runs = [], 0
+for doc in (base, dense):
+    for path in list(leaves(doc)):
+        for value in ("1e308", "5e-324", "-1e308"):
+            d = json.loads(json.dumps(doc))
+            node = d
+            for p in path[:-1]: node = node[p]
+            node[path[-1]] = "@@"
+            text = json.dumps(d).replace('"@@"', value)
+            open(tmp + "/hostile.json", "w").write(text)
+            for cmd in ("modes", "response"):
+                runs += 1
+                try:
+                    p = subprocess.run([bin_, cmd, tmp + "/hostile.json"], capture_output=True, text=True, timeout=60)
+                except subprocess.TimeoutExpired:
+                    bad.append((cmd, path, value, "hang")); continue
+                if p.returncode == 0:
+                    if not finite(json.loads(p.stdout, parse_constant=lambda c: float("nan"))):
+                        bad.append((cmd, path, value, "non-finite output"))
+                elif p.returncode != 2 or ": /" not in p.stderr:
+                    bad.append((cmd, path, value, "exit %d: %s" % (p.returncode, p.stderr[:300])))
+for b in bad[:10]:
+    print("    %s %s = %s: %s" % b)
+print("    %d runs, %d bad" % (runs, len(bad)))
+sys.exit(1 if bad else 0)
+PY
+}
+check "1e308, 5e-324 and -1e308 in every member of modes and response: 200 finite or 422 located, no hang" hostile_sweep
+
 # ---- the daemon ----
 start_daemon modes || finish
 U=$URL_modes
@@ -214,6 +324,12 @@ d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/model/stiffness
 post /v1/response application/json "$T/reversed.json"
 check "POST /v1/response, reversed range: 422 at /omega/to" pyjson "$T/body" "
 d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/omega/to']"
+post /v1/modes application/json "$T/k308.json"
+check "POST /v1/modes, a spring of 1e308: 422 at /model/elements/1/spring/k, promptly" pyjson "$T/body" "
+d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/model/elements/1/spring/k']"
+post /v1/response application/json "$T/m324.json"
+check "POST /v1/response, a mass of 5e-324: 422 at /model/masses/0" pyjson "$T/body" "
+d['status'] == 422 and [e['pointer'] for e in d['errors']] == ['/model/masses/0']"
 printf '{"model": ' >"$T/trunc.json"
 post /v1/modes application/json "$T/trunc.json"
 check "POST /v1/modes, malformed JSON: 400" [ "$(cut -d' ' -f1 "$T/ct")" = 400 ]

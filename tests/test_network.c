@@ -517,6 +517,222 @@ static void test_ring_renumbered(void **state)
     free(a.d), free(b.d), free(a_doc), free(b_doc);
 }
 
+/* ---- the stop hook inside a step ------------------------------------------------------------------- */
+
+/* A chain of n blocks on Coulomb friction (phi0 = 1) joined by soft springs, each sliding at its own speed
+ * in [0.2, 0.9]: with dt = 1 every block sticks inside the first step, n located events in it, each a
+ * root bracketed by held solves over the whole chain. */
+static char *all_stick_chain(size_t n, double dt)
+{
+    size_t cap = 256 * n + 512, len = 0;
+    char *d = malloc(cap);
+    assert_non_null(d);
+    len += (size_t)snprintf(d + len, cap - len, "{\"model\":{\"masses\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(d + len, cap - len, "%s1", i ? "," : "");
+    len += (size_t)snprintf(d + len, cap - len, "],\"elements\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(d + len, cap - len, "%s{\"between\":[\"ground\",%zu],\"damper\":{\"law\":\"coulomb\","
+                                "\"phi0\":1}}", i ? "," : "", i);
+    for (size_t i = 0; i + 1 < n; i++)
+        len += (size_t)snprintf(d + len, cap - len, ",{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\","
+                                "\"k\":0.01}}", i, i + 1);
+    len += (size_t)snprintf(d + len, cap - len, "]},\"initial\":{\"v\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(d + len, cap - len, "%s%.6g", i ? "," : "", 0.2 + 0.7 * (double)((i * 37) % 101) / 101);
+    snprintf(d + len, cap - len, "]},\"solver\":{\"dt\":%g,\"t_end\":2,\"theta\":0.5},\"output\":{\"every\":1}}", dt);
+    return d;
+}
+
+typedef struct hook { unsigned polls, stop_at; int answer; } hook;
+
+/* Says stop at its stop_at-th poll; before that `answer` (0: go on, -1: yield). */
+static int counting_hook(void *ctx)
+{
+    hook *h = ctx;
+    return ++h->polls >= h->stop_at ? 1 : h->answer;
+}
+
+static dp_run *run_of(const char *json)
+{
+    dp_spec spec;
+    dp_errors errs;
+    int s;
+    dp_spec_init(&spec);
+    dp_errors_init(&errs);
+    assert_int_equal(dp_spec_parse(json, strlen(json), 0, &spec, &errs), DP_OK);
+    dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
+    dp_spec_clear(&spec);
+    assert_non_null(run);
+    return run;
+}
+
+/* 4000 blocks that all stick in the first step of dt = 1 (about 10^5 held solves of the whole chain in that
+ * one step): a hook that says stop at its 5th poll ends the run inside the step, in the first dp_run_next,
+ * with DP_ECANCEL and a message, after a handful of solves; it was polled exactly 5 times, and the run is
+ * finished (later calls say DP_ECANCEL again and ask the hook no more). The solves are counted by the
+ * summary's iterations: a solve of 4000 nodes and 7999 elements is past DP_RUN_POLL_WORK units, so each
+ * is followed by a poll. */
+static void test_stop_inside_a_step(void **state)
+{
+    (void)state;
+    char *doc = all_stick_chain(4000, 1);
+    dp_run *run = run_of(doc);
+    hook h = { 0, 5, 0 };
+    dp_run_set_stop(run, counting_hook, &h);
+    dp_record buf[64];
+    size_t n;
+    int s;
+    do
+        s = dp_run_next(run, buf, 64, &n);
+    while (s == DP_MORE && h.polls < 5);
+    assert_int_equal(s, DP_ECANCEL);
+    assert_int_equal(h.polls, 5);
+    const dp_summary *sum = dp_run_summary(run);
+    assert_true(sum->steps == 0);                 /* inside the first step */
+    assert_true(sum->iterations <= 2 * 5 + 64);   /* a few solves (bracketing counts its evaluations too) */
+    assert_non_null(strstr(dp_run_error(run), "stopped"));
+    assert_int_equal(dp_run_next(run, buf, 64, &n), DP_ECANCEL);
+    assert_int_equal(h.polls, 5);
+    dp_run_free(run);
+    free(doc);
+}
+
+/* A yield asked for inside a step is honoured between steps, and changes nothing: a hook that yields at
+ * every poll gives the records of the run without one, bit for bit (40 blocks, located events). */
+static void test_yield_inside_a_step(void **state)
+{
+    (void)state;
+    char *doc = all_stick_chain(40, 0.05);
+    rows plain;
+    rows_run(doc, 64, &plain);
+    dp_run *run = run_of(doc);
+    hook h = { 0, (unsigned)-1, -1 };
+    dp_run_set_stop(run, counting_hook, &h);
+    dp_record buf[64];
+    size_t n, at = 0, events = 0;
+    int s;
+    do {
+        s = dp_run_next(run, buf, 64, &n);
+        for (size_t i = 0; i < n; i++) {
+            if (buf[i].type == DP_RECORD_EVENT) {
+                assert_true(events < plain.events && buf[i].u.event.t == plain.ev[events].t);
+                events++;
+                continue;
+            }
+            assert_true(at < plain.n);
+            assert_memory_equal(buf[i].u.row.val, plain.d + at * plain.width + 1, (plain.width - 1) * sizeof(double));
+            at++;
+        }
+    } while (s == DP_MORE);
+    assert_int_equal(s, DP_DONE);
+    assert_int_equal(at, plain.n);
+    assert_int_equal(events, plain.events);
+    assert_true(plain.events >= 40 && h.polls >= 20);   /* every block stuck; the hook was asked throughout */
+    dp_run_free(run);
+    free(plain.d), free(doc);
+}
+
+/* ---- the working-memory limit and hostile magnitudes ---------------------------------------------------- */
+
+/* A sparse random graph of 20 000 nodes (14 000 springs between random nodes, friction on every 50th): its
+ * half-bandwidth after reverse Cuthill-McKee is about a thousand, so its band matrices would take about a
+ * gigabyte (it once did). It is refused by dp_run_alloc with DP_ELIMIT at /model/elements, the estimate and
+ * the limit in the message. A Burridge-Knopoff chain of 20 000 blocks (half-bandwidth 1) is accepted. */
+static char *random_graph(size_t n, size_t m, int chain)
+{
+    size_t cap = 160 * (n + m) + 256, len = 0;
+    char *d = malloc(cap);
+    assert_non_null(d);
+    uint64_t x = 88172645463325252ull;
+    len += (size_t)snprintf(d + len, cap - len, "{\"model\":{\"masses\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(d + len, cap - len, "%s1", i ? "," : "");
+    len += (size_t)snprintf(d + len, cap - len, "],\"elements\":[");
+    for (size_t k = 0; k < m; k++) {
+        size_t a, b;
+        if (chain) {
+            a = k, b = k + 1;
+        } else {
+            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+            a = (size_t)(x % n), b = (size_t)((x >> 32) % n);
+            if (a == b)
+                b = (a + 1) % n;
+        }
+        len += (size_t)snprintf(d + len, cap - len, "{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":1}},",
+                                a, b);
+    }
+    for (size_t i = 0; i < n; i += chain ? 1 : 50)
+        len += (size_t)snprintf(d + len, cap - len, "%s{\"between\":[\"ground\",%zu],\"damper\":{\"law\":\"coulomb\","
+                                "\"phi0\":0.1}}", i ? "," : "", i);
+    snprintf(d + len, cap - len, "]},\"solver\":{\"dt\":0.1,\"t_end\":0.2}}");
+    return d;
+}
+
+static void test_working_memory_limit(void **state)
+{
+    (void)state;
+    for (int chain = 0; chain < 2; chain++) {
+        char *doc = random_graph(20000, chain ? 19999 : 14000, chain);
+        dp_spec spec;
+        dp_errors errs;
+        int s;
+        dp_spec_init(&spec);
+        dp_errors_init(&errs);
+        assert_int_equal(dp_spec_parse(doc, strlen(doc), 0, &spec, &errs), DP_OK);
+        dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
+        if (chain) {
+            if (run == NULL)
+                fprintf(stderr, "%s: %s\n", errs.item[0].pointer, errs.item[0].message);
+            assert_non_null(run);
+        } else {
+            assert_null(run);
+            assert_int_equal(s, DP_ELIMIT);
+            assert_int_equal(errs.n, 1);
+            assert_string_equal(errs.item[0].pointer, "/model/elements");
+            assert_non_null(strstr(errs.item[0].message, "over the limit of 128 MiB"));
+            unsigned mib = 0;   /* the estimate: six bands of 20 000 x (p + 1) doubles, p in the hundreds */
+            assert_int_equal(sscanf(strstr(errs.item[0].message, "about ") + 6, "%u", &mib), 1);
+            assert_true(mib > 128 && mib < 4096);
+        }
+        dp_run_free(run);
+        dp_spec_clear(&spec);
+        free(doc);
+    }
+}
+
+/* Hostile magnitudes: a stiffness of 1e308 or an initial state of 1e300 and more is refused at its member
+ * before any step (W's entries and the state are checked where formed), never streamed into NaN or into
+ * "the solution diverged"; a mass of 5e-324 is refused by the parser's range or runs finite. */
+static void test_hostile_magnitudes(void **state)
+{
+    (void)state;
+    static const struct { const char *k, *x, *pointer; } cases[] = {
+        { "1e308", "1", "/model/elements/0/spring" },
+        { "1", "1e300", "/initial/x/0" },
+        { "1", "-1e308", "/initial/x/0" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char doc[512];
+        snprintf(doc, sizeof doc, "{\"model\":{\"masses\":[1,1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":"
+                 "{\"law\":\"linear\",\"k\":%s},\"damper\":{\"law\":\"coulomb\",\"phi0\":0.2}},{\"between\":[0,1],"
+                 "\"spring\":{\"law\":\"linear\",\"k\":1}}],\"forcing\":[]},\"initial\":{\"x\":[%s,0]},\"solver\":"
+                 "{\"dt\":0.01,\"t_end\":1}}", cases[i].k, cases[i].x);
+        dp_spec spec;
+        dp_errors errs;
+        int s;
+        dp_spec_init(&spec);
+        dp_errors_init(&errs);
+        s = dp_spec_parse(doc, strlen(doc), 0, &spec, &errs);
+        dp_run *run = s == DP_OK ? dp_run_alloc(&spec, 0, &errs, &s) : NULL;
+        assert_null(run);
+        assert_int_equal(s, DP_EINVAL);
+        assert_true(errs.n >= 1);
+        assert_string_equal(errs.item[0].pointer, cases[i].pointer);
+        dp_spec_clear(&spec);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -533,6 +749,10 @@ int main(void)
         cmocka_unit_test(test_parallel_stick_intervals_share_the_load),
         cmocka_unit_test(test_regularized_converges_at_rate_one_over_n),
         cmocka_unit_test(test_ring_renumbered),
+        cmocka_unit_test(test_stop_inside_a_step),
+        cmocka_unit_test(test_yield_inside_a_step),
+        cmocka_unit_test(test_working_memory_limit),
+        cmocka_unit_test(test_hostile_magnitudes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

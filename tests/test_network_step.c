@@ -206,11 +206,56 @@ static void test_coulomb_step_against_brute_force(void **state)
     assert_true(stuck > 1000);   /* the sample exercises sticking, not only slip */
 }
 
+/* The long factorization asked for polls (network_step.c's polled_cholesky, past 2^22 multiply-adds) gives
+ * GSL's answer to rounding: a band W of 600 nodes and half-bandwidth 100 with one Coulomb element, solved
+ * without a poll (GSL's factor) and with one that never stops (ours, polled during the factorization);
+ * a poll that stops at once ends the solve with DP_ECANCEL. */
+static int polls;
+static int never(void *ctx, unsigned long long units) { (void)ctx, (void)units; polls++; return 0; }
+static int at_once(void *ctx, unsigned long long units) { (void)ctx, (void)units; return 1; }
+
+static void test_polled_factorization(void **state)
+{
+    (void)state;
+    enum { N = 600, P = 100 };
+    dp_damper d = { .law = DP_DAMPER_COULOMB, .phi0 = 0.5 };
+    assert_int_equal(dp_damper_prepare(&d), DP_OK);
+    dp_network_step_element el[1] = { { .a = -1, .b = 7, .A = &d.graph } };
+    double rhs[N], u[1] = { 0 }, guess[N] = { 0 }, v[3][N];
+    for (size_t i = 0; i < N; i++)
+        rhs[i] = sin(0.37 * (double)i);
+    dp_network_step_forces f[1];
+    for (int k = 0; k < 3; k++) {
+        dp_network_step *w = dp_network_step_alloc(N, P, 1, el);
+        assert_non_null(w);
+        double *W = dp_network_step_W(w);
+        for (size_t i = 0; i < N; i++) {
+            W[i * (P + 1)] = 2.0 * P + 1;
+            for (size_t q = 1; q <= P; q++)
+                W[i * (P + 1) + q] = i + q < N ? -1.0 / (double)(q + 1) : 0;
+        }
+        dp_network_step_W_changed(w);
+        if (k)
+            dp_network_step_set_poll(w, k == 1 ? never : at_once, NULL);
+        unsigned long long it = 0;
+        int s = dp_network_step_solve(w, 0.1, rhs, u, guess, v[k], f, &it);
+        assert_int_equal(s, k == 2 ? DP_ECANCEL : DP_OK);
+        dp_network_step_free(w);
+    }
+    assert_true(polls > 1);   /* asked during the factorization, not only after the solve */
+    double worst = 0;
+    for (size_t i = 0; i < N; i++)
+        worst = fmax(worst, fabs(v[1][i] - v[0][i]) / (1e-300 + fabs(v[0][i]) + 1e-3));
+    assert_true(worst <= 1e-12);
+    dp_graph_clear(&d.graph);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coulomb_step_against_brute_force),
+        cmocka_unit_test(test_polled_factorization),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -33,6 +33,7 @@ import { runModes, renderModes } from './modes.js';
 import { RightHandView, designedEnd } from './right_hand.js';
 import { LcsView, lcsReport } from './lcs.js';
 import { ContactPlots } from './contact.js';
+import { QuakeView } from './quakes.js';
 import { SweepView } from './sweep.js';
 
 const $ = (id) => document.getElementById(id);
@@ -54,6 +55,7 @@ const headers = (accept) => ({ 'Content-Type': 'application/json', Accept: accep
   ...(ui.token ? { Authorization: 'Bearer ' + ui.token } : {}) });
 const editor = new Editor($('editor'), () => run());
 const network = new NetworkView(new ContactPlots()); // a network run (meta.model "network"), with contacts or not
+const quakes = new QuakeView(); // a network run's quake lines (output.quakes): the Gutenberg-Richter plot
 const rhView = new RightHandView(); // a run of a right-hand friction model (web/right_hand.js)
 const RH_MODELS = ['piston-hinge', 'painleve-rod'];
 const lcsView = new LcsView(); // a run of a linear complementarity system (web/lcs.js)
@@ -230,7 +232,7 @@ function drawAll() {
   lcsView.show(!!sim.lcs);
   if (sim.rh) { $('plots-one').hidden = true; rhView.draw(sim.rh); return; }
   if (sim.lcs) { $('plots-one').hidden = true; lcsView.draw(sim.lcs); return; }
-  if (sim.net) { network.draw(sim.net); return; }
+  if (sim.net) { network.draw(sim.net); quakes.draw(); return; }
   for (const p of plots) { p.setTable(sim.table); p.draw(); }
   // the marker legend names the kinds this run's events have (stick/slip, or an elastoplastic yield/unload)
   const kinds = new Set(sim.events.map((e) => e.kind));
@@ -291,7 +293,9 @@ function onRecord(o) {
       if (o.kind === 'stick' && sim.stickStart === null) sim.stickStart = o.t;
       if (o.kind === 'slip' && sim.stickStart !== null) { sim.stick.push([sim.stickStart, o.t]); sim.stickStart = null; }
       break;
+    case 'quake': quakes.push(o); break;
     case 'meta':
+      quakes.reset();
       sim.meta = o;
       sim.tEnd = o.t_end;
       if (o.model === 'network') sim.net = network.start(o, sim.spec);

@@ -50,6 +50,9 @@ typedef struct dp_encoder {
     dp_event *events;        /* JSON: events are held until the samples array closes */
     size_t nevents, events_cap;
     unsigned long long events_dropped;
+    dp_quake *quakes;        /* JSON: quakes are held likewise (docs/quakes.md) */
+    size_t nquakes, quakes_cap;
+    unsigned long long quakes_dropped;
     dp_number_text recent[6]; /* the six numbers of the last sample: a repeated value is laid out from its
                                  digits, not converted again (a force constant while slipping, F_s = x when
                                  k = 1) */

@@ -42,13 +42,15 @@ void dp_graph_clear(dp_graph *g);
 int dp_graph_copy(dp_graph *dst, const dp_graph *src);
 
 /* The force interval [*lo, *hi] at kinematic value y (lo == hi where the graph is single-valued).
- * Outside the graph's domain (a vertical end ray) lo = hi = +/-INFINITY on the side it lies. */
-void dp_graph_force(const dp_graph *g, double y, double *lo, double *hi);
+ * Outside the graph's domain (a vertical end ray) lo = hi = +/-INFINITY on the side it lies. Returns DP_OK,
+ * or DP_ENONFINITE with lo = hi = NaN when y is not finite (no lookup is made with it). */
+int dp_graph_force(const dp_graph *g, double y, double *lo, double *hi);
 
-/* The kinematic interval [*lo, *hi] at force F (the inverse graph). */
-void dp_graph_kinematic(const dp_graph *g, double F, double *lo, double *hi);
+/* The kinematic interval [*lo, *hi] at force F (the inverse graph); DP_ENONFINITE as dp_graph_force. */
+int dp_graph_kinematic(const dp_graph *g, double F, double *lo, double *hi);
 
-/* Resolvent J_l(s): the unique y with y + l*F = s for some F in A(y), l > 0 (1-Lipschitz in s). */
+/* Resolvent J_l(s): the unique y with y + l*F = s for some F in A(y), l > 0 (1-Lipschitz in s); NaN when
+ * s or l is not finite. */
 double dp_graph_resolvent(const dp_graph *g, double l, double s);
 
 /* Yosida approximation A_l(y) = (y - J_l(y)) / l: single-valued, monotone, (1/l)-Lipschitz. */

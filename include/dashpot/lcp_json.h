@@ -2,11 +2,13 @@
  * one entry point, so the daemon and the CLI accept and answer exactly alike (docs/lcs.md).
  *
  * Request:  {"M": [[...], ...], "q": [...]}             w = M z + q, 0 <= z ⊥ w >= 0, M at most DP_LCP_MAX rows
- * Answer:   {"m", "lemke": {"outcome": "solved"|"ray", "z", "w", "pivots", "residual"},
+ * Answer:   {"m", "lemke": {"outcome": "solved"|"ray"|"inaccurate"|"pivot-limit", "z", "w", "pivots", "residual"},
  *            "solutions": [{"z", "w"}...] | null, "singular_bases", "count",
  *            "theory": {"p_matrix": true|false|null, "minor_witness", "mu", "positive_definite_symmetric_part",
  *                       "positive_semidefinite", "lipschitz"}, "verdict"}
- * "solutions" lists every isolated solution (all 2^m complementary bases) when m <= DP_LCP_ENUM_MAX.
+ * "solutions" lists every isolated solution (all 2^m complementary bases) when m <= DP_LCP_ENUM_MAX; it
+ * also answers when Lemke takes its pivot limit. Every decision is invariant under the problem's units
+ * (lcp.h; docs/lcs.md, "Scaling, tolerances and limits").
  */
 #ifndef DASHPOT_LCP_JSON_H
 #define DASHPOT_LCP_JSON_H
@@ -16,7 +18,8 @@
 #include "dashpot/status.h"
 
 /* Parses body[0..len), solves and appends the JSON answer to `out`. DP_OK, DP_ESYNTAX, DP_EINVAL (errors by
- * JSON Pointer), DP_ELIMIT (Lemke's pivot guard), DP_ENOMEM; on failure `out` is as it was. */
+ * JSON Pointer; a solution beyond the doubles at /q), DP_ELIMIT (Lemke's pivot limit with m > DP_LCP_ENUM_MAX,
+ * at /M), DP_ENOMEM; on failure `out` is as it was. */
 int dp_lcp_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs);
 
 /* The same, polling `stop` (may be NULL) through the pivots and the enumeration; DP_ECANCEL once it said

@@ -103,6 +103,13 @@ typedef struct dp_lcs_stepper dp_lcs_stepper;
  * graph, an LCP of more than DP_LCP_MAX rows, I - hθA singular) or DP_ENOMEM. The system's arrays are
  * copied (a graph law's pieces too). */
 dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *sys, double h, double theta, int *status);
+/* The same, and when it refuses the system, the member of an LCS simulate document that made it (a JSON
+ * Pointer: "/solver/dt" for a singular I - hθA, "/model/lcs/A", "/model/lcs/B", "/model/lcs/C",
+ * "/model/lcs/D", "/model/lcs/p" or "/model/laws" for a product that leaves the doubles: every quantity the
+ * step derives from the data is checked finite where it is formed; "" for invalid sizes or no memory) and a
+ * sentence, both static strings. */
+dp_lcs_stepper *dp_lcs_stepper_alloc_why(const dp_lcs *sys, double h, double theta, int *status, const char **where,
+                                         const char **why);
 void dp_lcs_stepper_free(dp_lcs_stepper *st);
 
 /* The step's LCP matrix D + h C W B (m x m) for the uniqueness theory (dp_lcp_theory_of). */
@@ -112,7 +119,11 @@ const gsl_matrix *dp_lcs_step_matrix(const dp_lcs_stepper *st);
 void dp_lcs_stepper_set_p(dp_lcs_stepper *st, const double *p);
 
 /* One step: x (n) in, x+ out; u, w (m) out at the step's end. DP_OK, DP_ESOLVE when the step's LCP has no
- * solution Lemke can find (a ray; x unchanged), DP_ELIMIT (pivot guard; x unchanged). res: Lemke's report. */
+ * solution Lemke can find (res->outcome: a ray, or an answer that fails its check; x unchanged), DP_ELIMIT
+ * (Lemke's pivot limit; x unchanged), DP_ENONFINITE (the step's LCP offsets leave the doubles). res: Lemke's
+ * report. */
 int dp_lcs_step(dp_lcs_stepper *st, double *x, double *u, double *w, dp_lcp_result *res);
+/* The same, asking `stop` (may be NULL) through Lemke's pivots: DP_ECANCEL once it said stop (x unchanged). */
+int dp_lcs_step_until(dp_lcs_stepper *st, double *x, double *u, double *w, dp_lcp_result *res, const dp_stop *stop);
 
 #endif

@@ -48,6 +48,24 @@ typedef struct dp_modes {
 int dp_modes_solve(size_t n, const double *M, const double *K, const double *C, const char *pointer_M,
                    const char *pointer_K, const char *pointer_C, dp_modes *out, dp_errors *errs);
 
+/* Where M, K and C came from, and how to solve them (dp_modes_solve_until). */
+typedef struct dp_modes_opts {
+    const char *pointer_M, *pointer_K, *pointer_C;   /* the fields the matrices came from */
+    /* Optional: writes into `pointer` (cap bytes) the JSON Pointer of the member that makes row `row` of
+     * matrix `which` ('M', 'K' or 'C') as large or as small as it is, for errors about scale (an overflow);
+     * NULL: such errors name pointer_M, pointer_K or pointer_C. */
+    void (*member)(void *ctx, char which, size_t row, char *pointer, size_t cap);
+    void *ctx;
+    int skip_damped;          /* leave the damped eigenvalues out (a receptance needs only the modes) */
+    const dp_stop *stop;      /* polled between phases, between modes and inside the chain solver; may be NULL */
+} dp_modes_opts;
+
+/* dp_modes_solve with options: also DP_ECANCEL once `stop` said stop, and DP_EINVAL with an error at the
+ * member to blame when a derived quantity (M^-1/2 K M^-1/2, L^-1 K L^-T, the first-order matrix, an
+ * eigenvalue, a modal damping) would leave the finite numbers even after scaling (docs/modes.md, "Limits"). */
+int dp_modes_solve_until(size_t n, const double *M, const double *K, const double *C, const dp_modes_opts *opts,
+                         dp_modes *out, dp_errors *errs);
+
 void dp_modes_free(dp_modes *m);
 
 /* ---- frequency response (response.c) ---- */
@@ -75,6 +93,12 @@ typedef struct dp_response {
 int dp_response_solve(size_t n, const double *M, const double *K, const double *C, const dp_modes *modes,
                       size_t i, size_t j, double from, double to, size_t points, int log_spacing,
                       dp_response *out);
+
+/* dp_response_solve polling `stop` (may be NULL) before every point: DP_ECANCEL once it said stop. Also
+ * DP_ENONFINITE when a receptance of a finite system is not a finite number (past DBL_MAX). */
+int dp_response_solve_until(size_t n, const double *M, const double *K, const double *C, const dp_modes *modes,
+                            size_t i, size_t j, double from, double to, size_t points, int log_spacing,
+                            const dp_stop *stop, dp_response *out);
 
 void dp_response_free(dp_response *r);
 

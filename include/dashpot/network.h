@@ -18,6 +18,14 @@
 /* Documented limits of one network document (a Burridge-Knopoff chain of 10^4 blocks fits). */
 #define DP_NETWORK_MAX_NODES 20000
 #define DP_NETWORK_MAX_ELEMENTS 100000
+/* The working memory of one network run, estimated before anything is allocated (dp_network_run_bytes): its
+ * band matrices, n (p+1) doubles each with p the half-bandwidth after the run's reordering (M, K, C; the
+ * step's W, H and factor; the impact problem's three with contacts; one more with relaxation; Newmark's two),
+ * plus its per-node and per-element arrays. Past this a run is refused (DP_ELIMIT: 422 over-limit at
+ * /model/elements), and a step whose contracted factor would grow past it ends the run so. 128 MiB: the
+ * Kubernetes manifests give a pod 512 MiB and two worker threads, so two such runs fit with room. */
+#define DP_NETWORK_MAX_RUN_BYTES (128.0 * 1024 * 1024)
+
 /* Full matrices are n x n numbers on the wire: past this many nodes a matrix document is refused. */
 #define DP_NETWORK_MAX_MATRIX_NODES 200
 

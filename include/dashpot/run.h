@@ -69,11 +69,24 @@ typedef struct dp_row {
     const double *val;
 } dp_row;
 
-typedef enum dp_record_type { DP_RECORD_SAMPLE = 1, DP_RECORD_EVENT = 2, DP_RECORD_ROW = 3 } dp_record_type;
+/* A quake of a network run with output.quakes (docs/quakes.md): a connected slip episode of friction elements,
+ * handed out when it ends (or at t_end, open). t: when it started; size: the distinct elements that slipped
+ * in it; hypocentre: the element that started it; moment: the sum over them of the integral of |u' - v_b|
+ * (the potency); peak_rate: the largest |u' - v_b| seen at a step's end; first, last: the lowest and
+ * highest element index in it. */
+typedef struct dp_quake {
+    double t, duration, moment, peak_rate;
+    size_t size, hypocentre, first, last;
+    int open;        /* still slipping at t_end */
+} dp_quake;
+
+typedef enum dp_record_type {
+    DP_RECORD_SAMPLE = 1, DP_RECORD_EVENT = 2, DP_RECORD_ROW = 3, DP_RECORD_QUAKE = 4
+} dp_record_type;
 
 typedef struct dp_record {
     dp_record_type type;
-    union { dp_sample sample; dp_event event; dp_row row; } u;
+    union { dp_sample sample; dp_event event; dp_row row; dp_quake quake; } u;
 } dp_record;
 
 typedef struct dp_summary {

@@ -68,6 +68,7 @@ typedef struct dp_output_spec {
     int events;           /* emit events */
     size_t *nodes, nnodes;        /* networks: the nodes written (NULL: all) */
     size_t *elements, nelements;  /* networks: the elements written (NULL: all) */
+    int quakes;           /* networks with friction: the slip-event catalogue (docs/quakes.md) */
 } dp_output_spec;
 
 typedef struct dp_spec {

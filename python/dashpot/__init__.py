@@ -20,7 +20,8 @@ from .answers import Modes, Response, Stability, StabilityMap  # noqa: E402
 from .daemon import LocalDaemon, find_daemon  # noqa: E402
 from .client import Client, encode_spec  # noqa: E402
 from .sweep import sweep  # noqa: E402
+from .quakes import carlson_langer, gutenberg_richter  # noqa: E402
 
 __all__ = ["Client", "Result", "ProblemError", "StreamError", "DaemonError", "DashpotError", "FieldError",
            "Stability", "StabilityMap", "Modes", "Response", "LocalDaemon", "find_daemon", "encode_spec", "sweep",
-           "__version__"]
+           "carlson_langer", "gutenberg_richter", "__version__"]

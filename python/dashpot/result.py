@@ -87,6 +87,7 @@ class ResultBuilder:
         self.meta = None
         self.summary = None
         self.events = []
+        self.quakes = []
         self.samples = 0
         self._columns = None  # list of _Column, in the first sample's member order
 
@@ -109,6 +110,8 @@ class ResultBuilder:
             self.samples += 1
         elif kind == "event":
             self.events.append({k: v for k, v in record.items() if k != "type"})
+        elif kind == "quake":
+            self.quakes.append({k: v for k, v in record.items() if k != "type"})
         elif kind == "meta":
             self.meta = {k: v for k, v in record.items() if k != "type"}
         elif kind == "summary":
@@ -120,7 +123,7 @@ class ResultBuilder:
             columns[c.name] = c.finish(self.samples)
         if "t" not in columns:
             columns["t"] = np.empty(0)
-        return Result(self.meta or {}, columns, self.events, self.summary or {}, self.spec)
+        return Result(self.meta or {}, columns, self.events, self.summary or {}, self.spec, self.quakes)
 
 
 class Result:
@@ -135,12 +138,14 @@ class Result:
     (``final`` state, ``steps``, ``stick_time``, ...), ``r.spec`` the request sent (when it was a dict).
     """
 
-    def __init__(self, meta, columns, events, summary, spec=None):
+    def __init__(self, meta, columns, events, summary, spec=None, quakes=()):
         self.meta = meta
         self.summary = summary
         self.events = events
         self.spec = spec
         self._columns = columns
+        self._quakes = list(quakes)
+        self._quake_arrays = None
 
     # ---- the columns ----
     @property
@@ -285,6 +290,21 @@ class Result:
                 for j, label in enumerate(self.labels(name)):
                     data["%s%s" % (name, label)] = values[:, j]
         return pd.DataFrame(data)
+
+    @property
+    def quakes(self):
+        """The quake lines of a run with ``output.quakes`` (docs/quakes.md) as a dict of numpy arrays, one per
+        member (``t``, ``duration``, ``size``, ``hypocentre``, ``first``, ``last``, ``moment``, ``magnitude``,
+        ``peak_rate``, ``open``), in the order the daemon wrote them; empty arrays without quakes."""
+        if self._quake_arrays is None:
+            from .quakes import quake_arrays
+            self._quake_arrays = quake_arrays(self._quakes)
+        return self._quake_arrays
+
+    def plot_quakes(self, bins=30, fit=None, ax=None):
+        """The Gutenberg–Richter plot of the quakes (dashpot.quakes.plot_quakes); needs matplotlib."""
+        from .quakes import plot_quakes
+        return plot_quakes(self, bins=bins, fit=fit, ax=ax)
 
     def plot(self, field="v", columns=None, events=True, fig=None):
         """A matplotlib Figure of the run (see dashpot.plotting.plot_result); needs matplotlib."""

@@ -31,7 +31,8 @@ typedef struct option {
 static const option options[] = {
     OPT("port", "DASHPOT_PORT", K_UINT, port, 0, 65535, "TCP port (0: any free port, printed at start)"),
     OPT("bind", "DASHPOT_BIND", K_STRING, bind, 0, 0, "address to listen on (IPv4 or IPv6 literal)"),
-    OPT("threads", "DASHPOT_THREADS", K_UINT, threads, 1, 1024, "worker threads (default: one per CPU)"),
+    OPT("threads", "DASHPOT_THREADS", K_UINT, threads, 1, 1024,
+        "computations at once: compute threads and solver slots (default: one per CPU)"),
     OPT("max-connections", "DASHPOT_MAX_CONNECTIONS", K_UINT, max_connections, 1, 100000,
         "connections served at once; more get 503"),
     OPT("max-steps", "DASHPOT_MAX_STEPS", K_DOUBLE, max_steps, 1, 1e9, "time steps one request may ask for"),

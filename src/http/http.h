@@ -1,6 +1,7 @@
 /* src/http/http.h - what the files of dashpotd share: its configuration, the server and request state, and
  * the functions each file offers the others (main.c, config.c, server.c, routes.c, simulate.c,
- * stability.c, wellposedness.c, modes.c, bench_static.c, negotiate.c, problem.c, metrics.c, log.c).
+ * stability.c, wellposedness.c, modes.c, lcp.c, convergence.c, jobs.c, watch.c, bench_static.c,
+ * negotiate.c, problem.c, metrics.c, log.c).
  *
  * Ownership: the server outlives every request (MHD_stop_daemon returns only after the last one is freed).
  * A request is allocated on MHD's first call for it and freed in the NOTIFY_COMPLETED callback, except that a
@@ -108,6 +109,12 @@ typedef struct server {
     pthread_mutex_t slots_lock;  /* guards the solver slots and their queue (slots.c) */
     int slots_open;              /* shutdown: every request goes through */
     struct request *wait_head, *wait_tail; /* requests parked for a slot, first come first served */
+    pthread_mutex_t jobs_lock;   /* guards the job queue; a job's connection is suspended and resumed under it */
+    pthread_cond_t jobs_cond;    /* a job was queued, or the compute threads are to end */
+    struct job *jobs_head, *jobs_tail; /* queued for the compute threads (jobs.c) */
+    int jobs_quit;               /* jobs_stop: the threads end once the queue is empty; no job is queued after */
+    pthread_t *job_threads;      /* the compute threads, job_nthreads of them (0: jobs run inline) */
+    unsigned job_nthreads;
 } server;
 
 typedef struct stream stream;
@@ -129,6 +136,7 @@ typedef struct request {
     char method[16];
     char path[256];              /* the URL as received, truncated */
     stream *stream;              /* the streamed response's state, if any */
+    struct job *job;             /* its computation on the compute threads, if any (jobs.c) */
 } request;
 
 /* A zeroed server with its lock initialized (NULL when out of memory); server_free releases it. */
@@ -218,6 +226,77 @@ void slot_give(request *r);
 unsigned slots_free(server *s);
 /* Shutdown: lets every request through from now on and resumes the parked ones. */
 void slots_open(server *s);
+
+/* ---- why a computation stops (watch.c) ---- */
+
+enum { STOP_NONE, STOP_SHUTDOWN, STOP_DEADLINE, STOP_GONE };
+
+/* What a computation for one request watches: the request's --max-wall, the end of the shutdown grace period,
+ * the client's hang-up. Used by one thread at a time (the one computing). */
+typedef struct watch {
+    server *s;
+    double deadline;             /* monotonic seconds: the request's start + cfg.max_wall */
+    int fd;                      /* the connection's socket, watched for a hang-up (-1: not watched) */
+    double peer_check;           /* monotonic seconds of the next look at the socket */
+    int why;                     /* STOP_*: the first reason seen, which stays */
+    double slice_end;            /* streams: monotonic seconds when the work in hand yields (watch_slice) */
+    int yielded;                 /* ...and it did */
+} watch;
+
+/* Whether the client has closed or reset its connection: a recv that peeks (consumes nothing) without
+ * waiting; 0 is its FIN, an error other than "nothing yet" its RST. Pipelined bytes read as "still here". */
+int peer_gone(int fd);
+/* A watch for r, whose socket is c's (c NULL: no hang-up watched). */
+void watch_init(watch *w, request *r, struct MHD_Connection *c);
+/* The reason to stop now (STOP_*, STOP_NONE to go on), `now` being now_seconds(). */
+int watch_check(watch *w, double now);
+/* The dp_stop hook over a watch (ctx): 1 to stop, 0 to go on. */
+int watch_stop(void *ctx);
+/* Streams (simulate.c, sweep.c) compute in slices so that their thread serves its other connections too:
+ * watch_slice starts one of `seconds`, and watch_stop_sliced, the hook, then says 1 to stop (as watch_stop)
+ * or -1 to yield once the slice is over (w->yielded is set), 0 to go on. */
+void watch_slice(watch *w, double seconds);
+int watch_stop_sliced(void *ctx);
+/* Why it stopped, in words: "<what> exceeded the wall-time limit of N s", "the server is shutting down",
+ * "the client has gone". */
+void watch_detail(const watch *w, const char *what, char *out, size_t cap);
+/* The answer of a request whose computation (`what`: "the study") the watch stopped: 503 /problems/timeout,
+ * 503 /problems/shutting-down, or MHD_NO (the connection closes) for a client that has gone. */
+enum MHD_Result respond_stopped(struct MHD_Connection *c, request *r, const watch *w, const char *what);
+
+/* ---- jobs: computations on the compute threads (jobs.c) ---- */
+
+/* One route's computation: the answer to r's body into out (and its type's choice, `arg`, made by the
+ * handler from Accept), polling `stop`; a dp_status. Runs on a compute thread; reads r's body and the
+ * server's configuration only. */
+typedef int (*job_work)(request *r, int arg, const dp_stop *stop, dp_buf *out, dp_errors *errs);
+/* The answer for a failure other than a stop (NULL: respond_answer's). */
+typedef enum MHD_Result (*job_failed)(struct MHD_Connection *c, request *r, int status, const dp_errors *errs);
+
+typedef struct job_route {
+    job_work work;
+    const char *what;            /* its name in the wall-time detail: "the study", "the computation" */
+    job_failed failed;
+} job_route;
+
+/* Starts the cfg.threads compute threads (none when cfg.embedded: jobs then run inline). 0, or -1. */
+int jobs_start(server *s);
+/* Ends the compute threads once every queued job is done (call with the abort flag set, so that they end at
+ * once); their connections are resumed. From then on a job is answered 503 /problems/shutting-down at once.
+ * Idempotent. */
+void jobs_stop(server *s);
+/* Hands r's computation to a compute thread: r's connection is suspended until it is done, then the access
+ * handler is called again and route_dispatch answers it (job_answer). Returns MHD_YES (or an answer, when
+ * jobs run inline or no longer run). r keeps its solver slot meanwhile. */
+enum MHD_Result job_submit(struct MHD_Connection *c, request *r, const job_route *route, int arg, const char *type);
+/* A route answering one JSON document: 406 unless JSON is acceptable, then job_submit. */
+enum MHD_Result job_submit_json(struct MHD_Connection *c, request *r, const job_route *route);
+/* A job of r computes now (its slot is still needed). */
+int job_pending(const request *r);
+/* The answer of r's finished job: 200 with its type, the stop's problem, or the failure's; frees the job. */
+enum MHD_Result job_answer(struct MHD_Connection *c, request *r);
+/* Frees a job of r that was never answered (its connection closed on resuming); on_completed. */
+void job_free(request *r);
 
 /* ---- request deadlines (deadline.c) ---- */
 

@@ -3,8 +3,8 @@
  * SIGTERM, SIGINT and SIGHUP are blocked in every thread (MHD's threads inherit the mask) and taken
  * synchronously by sigtimedwait in the main thread: no handler, no flag shared with an interrupt. Between
  * signals the main thread enforces the request deadline (deadline.c) four times a second. On any of them the
- * daemon stops accepting, gives runs in flight --shutdown-grace seconds, ends the rest with an error line,
- * exits 0. SIGHUP is there because its default action kills at once: a daemon left in a terminal that closes
+ * daemon stops accepting, gives runs and computations in flight --shutdown-grace seconds, ends the rest (an
+ * error line, a 503), joins the compute threads (jobs.c), exits 0. SIGHUP is there because its default action kills at once: a daemon left in a terminal that closes
  * would cut its streams without an error line. There is no configuration to reload.
  */
 #include <arpa/inet.h>

@@ -1,5 +1,8 @@
 /* src/http/routes.c - the route table and the small handlers (health, readiness, metrics, OpenAPI).
  *
+ * A route with a body computes under a solver slot (slots.c); the ones answered whole hand their work to
+ * the compute threads (jobs.c) and are answered here when it is done.
+ *
  * Paths match exactly (MHD hands over the path without its query string). GET routes answer HEAD too.
  * A path that exists with another method is a 405 with an Allow header (counted under its route in the
  * metrics); anything else is a 404.
@@ -79,8 +82,10 @@ enum MHD_Result route_dispatch(struct MHD_Connection *c, request *r)
             return routes[i].h(c, r);
         if (!slot_take(r, c))
             return MHD_YES; /* parked until a slot is handed over: called again then */
-        enum MHD_Result res = routes[i].h(c, r);
-        slot_give(r);
+        /* Called again once its job is done (jobs.c): the answer is ready. A job in flight keeps the slot. */
+        enum MHD_Result res = r->job ? job_answer(c, r) : routes[i].h(c, r);
+        if (!job_pending(r))
+            slot_give(r);
         return res;
     }
     return respond_problem(c, r, 404, NULL, "no such route", NULL, NULL);

@@ -160,6 +160,7 @@ static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls, en
     *con_cls = NULL;
     atomic_fetch_sub(&s->requests_open, 1);
     slot_give(r); /* a slot it holds or was handed (a stream gives its own back in stream_free) */
+    job_free(r);  /* a finished job whose connection closed on resuming (a job in flight keeps it suspended) */
     deadline_mark(c, 0);
     double dt = now_seconds() - r->t_start;
     metrics_request(&s->m, r->route, r->status, dt);
@@ -291,6 +292,10 @@ int server_start(server *s)
     }
     load_openapi(s);
     page_load(s);
+    if (jobs_start(s) != 0) {
+        log_line("error: cannot start %u compute threads", s->cfg.threads);
+        return -1;
+    }
     unsigned flags = embedded ? MHD_USE_NO_LISTEN_SOCKET | MHD_USE_ERROR_LOG | MHD_ALLOW_SUSPEND_RESUME
                               : MHD_USE_EPOLL_INTERNAL_THREAD | MHD_USE_ITC | MHD_USE_TURBO | MHD_USE_ERROR_LOG |
                                     MHD_ALLOW_SUSPEND_RESUME | (ipv6 ? MHD_USE_IPv6 : 0);
@@ -304,7 +309,7 @@ int server_start(server *s)
         { MHD_OPTION_NOTIFY_CONNECTION, (intptr_t)on_connection, s },
         { MHD_OPTION_UNESCAPE_CALLBACK, (intptr_t)unescape_keep_nul, NULL },
         { embedded ? MHD_OPTION_END : MHD_OPTION_SOCK_ADDR, 0, &sa },
-        /* one thread more than solver slots (slots.c): the small routes never wait behind solver work */
+        /* one thread more than solver slots (slots.c): the small routes never wait behind a stream's block */
         { MHD_OPTION_THREAD_POOL_SIZE, (intptr_t)(s->cfg.threads + 1), NULL },
         { MHD_OPTION_END, 0, NULL },
     };
@@ -358,7 +363,11 @@ void server_shutdown(server *s)
         slots_open(s);
         left = wait_runs(s, ABORT_WAIT);
     }
-    slots_open(s); /* MHD must not be stopped with connections suspended */
+    /* From here on whatever still begins (a request on a kept-alive connection) stops at once. MHD must not be
+     * stopped with connections suspended: parked ones are let through, and every job ends and resumes its. */
+    atomic_store(&s->abort_streams, 1);
+    slots_open(s);
+    jobs_stop(s);
     if (left > 0)
         log_line("shutdown: closing %lld stalled stream(s)", left);
     MHD_stop_daemon(s->daemon);
@@ -368,28 +377,41 @@ void server_shutdown(server *s)
 server *server_new(void)
 {
     server *s = calloc(1, sizeof *s);
-    if (s && pthread_mutex_init(&s->conns_lock, NULL) != 0) {
-        free(s);
+    if (s == NULL)
         return NULL;
-    }
-    if (s && pthread_mutex_init(&s->slots_lock, NULL) != 0) {
+    int locks = pthread_mutex_init(&s->conns_lock, NULL) == 0;
+    locks += locks == 1 && pthread_mutex_init(&s->slots_lock, NULL) == 0;
+    locks += locks == 2 && pthread_mutex_init(&s->jobs_lock, NULL) == 0;
+    locks += locks == 3 && pthread_cond_init(&s->jobs_cond, NULL) == 0;
+    if (locks == 4)
+        return s;
+    if (locks > 2)
+        pthread_mutex_destroy(&s->jobs_lock);
+    if (locks > 1)
+        pthread_mutex_destroy(&s->slots_lock);
+    if (locks > 0)
         pthread_mutex_destroy(&s->conns_lock);
-        free(s);
-        return NULL;
-    }
-    return s;
+    free(s);
+    return NULL;
 }
 
 void server_free(server *s)
 {
     if (s == NULL)
         return;
-    if (s->daemon)
+    if (s->daemon) { /* not shut down (an embedded server): nothing of it computes or is suspended */
+        atomic_store(&s->abort_streams, 1);
+        slots_open(s);
+        jobs_stop(s);
         MHD_stop_daemon(s->daemon);
+    }
+    jobs_stop(s); /* threads of a start that failed after them */
     free(s->openapi);
     page_free(s);
     stability_pool_free(s);
     pthread_mutex_destroy(&s->conns_lock);
     pthread_mutex_destroy(&s->slots_lock);
+    pthread_mutex_destroy(&s->jobs_lock);
+    pthread_cond_destroy(&s->jobs_cond);
     free(s);
 }

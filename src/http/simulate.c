@@ -14,12 +14,10 @@
  * sendmsg instead of three sends (head, chunk, last chunk), and allocates no 64 KiB reader block.
  * Measured on the 2-sample request of bench/http.sh: that was most of what it cost beyond /healthz.
  */
-#include <errno.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/socket.h>
 
 #include "dashpot/json.h"
 #include "dashpot/run.h"
@@ -44,13 +42,8 @@ struct stream {
     int closed;           /* the summary or the error line is in `out` */
     int failed;           /* ...and it was an error */
     int delivered;        /* MHD was told END_OF_STREAM: the client got everything */
-    double deadline;      /* monotonic seconds */
     struct MHD_Connection *conn; /* parked there when no solver slot is free (slots.c) */
-    int fd;               /* the connection's socket, watched for the client's hang-up (-1: not watched) */
-    double peer_check;    /* monotonic seconds of the next look at the socket */
-    int stopped;          /* why the stop hook ended the run: STOP_* */
-    double slice_end;     /* monotonic seconds: the block being computed yields to the thread's other work */
-    int yielded;          /* ...and it did */
+    watch w;              /* --max-wall, shutdown, the client's hang-up (watch.c); w.why: why the run stopped */
     dp_record recs[BLOCK];
 };
 
@@ -58,48 +51,10 @@ static const char *const offers[] = { "application/json", "application/x-ndjson"
                                       "text/csv" };
 static const dp_format offer_format[] = { DP_FORMAT_JSON, DP_FORMAT_NDJSON, DP_FORMAT_SSE, DP_FORMAT_CSV };
 
-enum { STOP_NONE, STOP_SHUTDOWN, STOP_DEADLINE, STOP_GONE };
-
-/* Seconds between two looks at the socket for a hang-up while the solver runs (a recv each). */
-#define PEER_CHECK_INTERVAL 0.01
 /* Seconds of solver work one call computes before it yields: libmicrohttpd pins each connection to one
  * pool thread, so a block computed for seconds would hold up every other connection of that thread
  * (a health probe among them), however many threads are free. */
 #define SLICE 0.01
-
-/* Whether the client has closed or reset its connection: recv peeks (consumes nothing) without waiting;
- * 0 is its FIN, an error other than "nothing yet" its RST. A pipelined request's bytes read as "still here". */
-static int peer_gone(int fd)
-{
-    char c;
-    ssize_t n = recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
-    return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR);
-}
-
-/* The run's stop hook (dp_run_set_stop), asked by the solver every DP_RUN_POLL_WORK units of work, inside a
- * block: the end of the shutdown grace period, --max-wall, and (every PEER_CHECK_INTERVAL) the client's
- * hang-up end the run within that bound whatever its output decimation. */
-static int stream_stop(void *ctx)
-{
-    stream *st = ctx;
-    if (atomic_load_explicit(&st->s->abort_streams, memory_order_relaxed))
-        st->stopped = STOP_SHUTDOWN;
-    double now = now_seconds();
-    if (!st->stopped && now > st->deadline)
-        st->stopped = STOP_DEADLINE;
-    if (!st->stopped && st->fd >= 0 && now >= st->peer_check) {
-        st->peer_check = now + PEER_CHECK_INTERVAL;
-        if (peer_gone(st->fd))
-            st->stopped = STOP_GONE;
-    }
-    if (st->stopped != STOP_NONE)
-        return 1;
-    if (now > st->slice_end) {
-        st->yielded = 1;
-        return -1;
-    }
-    return 0;
-}
 
 /* Writes the closing error (its encoding failing too leaves the stream to end as it is). */
 static void stream_fail(stream *st, int status, const char *detail)
@@ -112,16 +67,11 @@ static void stream_fail(stream *st, int status, const char *detail)
 static int stream_fill(stream *st)
 {
     size_t n = 0, samples = 0;
-    st->slice_end = now_seconds() + SLICE;
-    st->yielded = 0;
-    int s = stream_stop(st) > 0 ? DP_ECANCEL : dp_run_next(st->run, st->recs, BLOCK, &n);
-    if (s == DP_ECANCEL && st->stopped != STOP_NONE) {
-        char detail[96];
-        if (st->stopped == STOP_DEADLINE)
-            snprintf(detail, sizeof detail, "the run exceeded the wall-time limit of %g s", st->s->cfg.max_wall);
-        else
-            snprintf(detail, sizeof detail, "%s", st->stopped == STOP_SHUTDOWN ? "the server is shutting down"
-                                                                                 : "the client has gone");
+    watch_slice(&st->w, SLICE);
+    int s = watch_stop_sliced(&st->w) > 0 ? DP_ECANCEL : dp_run_next(st->run, st->recs, BLOCK, &n);
+    if (s == DP_ECANCEL && st->w.why != STOP_NONE) {
+        char detail[128];
+        watch_detail(&st->w, "the run", detail, sizeof detail);
         stream_fail(st, DP_ECANCEL, detail);
         return DP_ECANCEL;
     }
@@ -148,7 +98,7 @@ static ssize_t stream_read(void *cls, uint64_t pos, char *buf, size_t max)
 {
     (void)pos;
     stream *st = cls;
-    if (st->stopped == STOP_GONE)
+    if (st->w.why == STOP_GONE)
         return MHD_CONTENT_READER_END_WITH_ERROR; /* nobody to write the error line to */
     while (st->off == st->out.len) {
         if (st->closed) {
@@ -159,11 +109,11 @@ static ssize_t stream_read(void *cls, uint64_t pos, char *buf, size_t max)
             return 0; /* parked (suspended): called again once a slot is handed over */
         st->out.len = st->off = 0;
         int s = stream_fill(st);
-        if (!st->yielded || st->off != st->out.len) /* a slice with nothing to send keeps its slot */
+        if (!st->w.yielded || st->off != st->out.len) /* a slice with nothing to send keeps its slot */
             slot_give(st->r);
-        if (s == DP_ECANCEL && st->stopped == STOP_GONE)
+        if (s == DP_ECANCEL && st->w.why == STOP_GONE)
             return MHD_CONTENT_READER_END_WITH_ERROR;
-        if (st->yielded && st->off == st->out.len) { /* a slice, nothing to send yet: let the thread */
+        if (st->w.yielded && st->off == st->out.len) { /* a slice, nothing to send yet: let the thread */
             MHD_suspend_connection(st->conn);         /* serve its other connections, then come back */
             MHD_resume_connection(st->conn);
             return 0;
@@ -231,7 +181,7 @@ static dp_run *prepare(struct MHD_Connection *c, request *r, dp_buf *meta, enum 
 }
 
 /* A stream over run (owned from here on, also on failure) with the opening already encoded. */
-static stream *stream_new(struct MHD_Connection *c, request *r, dp_run *run, dp_format f, const char *meta, int fd)
+static stream *stream_new(struct MHD_Connection *c, request *r, dp_run *run, dp_format f, const char *meta)
 {
     stream *st = malloc(sizeof *st);
     if (st == NULL) {
@@ -242,11 +192,9 @@ static stream *stream_new(struct MHD_Connection *c, request *r, dp_run *run, dp_
     st->r = r;
     st->s = r->srv;
     st->run = run;
-    st->deadline = r->t_start + r->srv->cfg.max_wall;
-    st->fd = fd;
     st->conn = c;
-    st->peer_check = now_seconds() + PEER_CHECK_INTERVAL;
-    dp_run_set_stop(run, stream_stop, st);
+    watch_init(&st->w, r, c);
+    dp_run_set_stop(run, watch_stop_sliced, &st->w);
     atomic_fetch_add(&r->refs, 1);
     atomic_fetch_add(&st->s->m.runs_started, 1);
     atomic_fetch_add(&st->s->m.runs_in_flight, 1);
@@ -295,8 +243,7 @@ enum MHD_Result handle_simulate(struct MHD_Connection *c, request *r)
     if (dp_buf_reserve(&meta, META_BYTES) != DP_OK)
         return respond_status(c, r, DP_ENOMEM, NULL, NULL);
     dp_run *run = prepare(c, r, &meta, &answer);
-    const union MHD_ConnectionInfo *ci = MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
-    stream *st = run ? stream_new(c, r, run, offer_format[f], meta.data, ci ? ci->connect_fd : -1) : NULL;
+    stream *st = run ? stream_new(c, r, run, offer_format[f], meta.data) : NULL;
     dp_buf_free(&meta);
     if (run == NULL)
         return answer;

@@ -1,10 +1,11 @@
 /* src/http/slots.c - solver work goes through --threads slots; libmicrohttpd runs one thread more.
  *
- * A worker thread that computes a block of a run, a stability map or a study serves none of its other
- * connections meanwhile. If every thread could compute at once, /healthz and /readyz would wait behind
- * solver work (up to --max-wall). So work is admitted through cfg.threads slots while the pool has
- * cfg.threads + 1 threads: at least one thread is always in its event loop, accepting and answering the
- * small routes within milliseconds. A request (or a stream's next block) that finds every slot taken is
+ * A connection thread that computes a block of a stream serves none of its other connections meanwhile. If
+ * every thread could compute at once, /healthz and /readyz would wait behind solver work. (The answers
+ * computed whole run on the compute threads instead, jobs.c, each holding a slot from its start until it
+ * is answered, so that the slots count every computation.) So work is admitted through cfg.threads slots
+ * while the pool has cfg.threads + 1 threads: at least one thread is always in its event loop, accepting
+ * and answering the small routes within milliseconds. A request (or a stream's next block) that finds every slot taken is
  * parked: its connection is suspended (MHD_suspend_connection, from the access handler or the content
  * reader, the two places MHD allows it) and queued; whoever gives a slot back hands it straight to the
  * first in the queue and resumes that connection, so waiting is first come, first served and costs no

@@ -12,12 +12,10 @@
  * objects as events "meta", "run", "summary", "error"), application/json (one document
  * {"meta", "runs": [...], "summary"} or, on a stop, "error" in place of "summary").
  */
-#include <errno.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/socket.h>
 
 #include "dashpot/json.h"
 #include "dashpot/sweep_json.h"
@@ -26,11 +24,9 @@
 #define READ_BLOCK (64u << 10)
 /* Text gathered before a call hands it over: a few run lines, or one with a long section. */
 #define FLUSH_BYTES (32u << 10)
-#define PEER_CHECK_INTERVAL 0.01 /* as simulate.c: seconds between two looks for a hang-up */
 #define SLICE 0.01               /* as simulate.c: seconds of work before the thread serves others */
 
 enum { F_NDJSON, F_SSE, F_JSON };
-enum { STOP_NONE, STOP_SHUTDOWN, STOP_DEADLINE, STOP_GONE };
 
 typedef struct sweep_stream {
     request *r;
@@ -42,39 +38,9 @@ typedef struct sweep_stream {
     dp_buf out, line;
     size_t off, lines;
     int closed, delivered, failed;
-    double deadline, peer_check, slice_end;
-    int fd, stopped, yielded;
+    watch w;            /* --max-wall for the whole sweep, shutdown, the client's hang-up (watch.c) */
     _Atomic unsigned long long budget;
 } sweep_stream;
-
-static int peer_gone(int fd)
-{
-    char c;
-    ssize_t n = recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
-    return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR);
-}
-
-static int sweep_stop(void *ctx)
-{
-    sweep_stream *st = ctx;
-    if (atomic_load_explicit(&st->s->abort_streams, memory_order_relaxed))
-        st->stopped = STOP_SHUTDOWN;
-    double now = now_seconds();
-    if (!st->stopped && now > st->deadline)
-        st->stopped = STOP_DEADLINE;
-    if (!st->stopped && st->fd >= 0 && now >= st->peer_check) {
-        st->peer_check = now + PEER_CHECK_INTERVAL;
-        if (peer_gone(st->fd))
-            st->stopped = STOP_GONE;
-    }
-    if (st->stopped != STOP_NONE)
-        return 1;
-    if (now > st->slice_end) {
-        st->yielded = 1;
-        return -1;
-    }
-    return 0;
-}
 
 static int put(dp_buf *b, const char *s)
 {
@@ -120,23 +86,18 @@ static void sweep_fail(sweep_stream *st, int status, const char *detail)
 static void stopped(sweep_stream *st)
 {
     char detail[128];
-    if (st->stopped == STOP_DEADLINE)
-        snprintf(detail, sizeof detail, "the sweep exceeded the wall-time limit of %g s", st->s->cfg.max_wall);
-    else
-        snprintf(detail, sizeof detail, "%s", st->stopped == STOP_SHUTDOWN ? "the server is shutting down"
-                                                                            : "the client has gone");
+    watch_detail(&st->w, "the sweep", detail, sizeof detail);
     sweep_fail(st, DP_ECANCEL, detail);
 }
 
 /* Runs the sweep until a slice ends or enough text waits; the last status of the executor. */
 static int sweep_fill(sweep_stream *st)
 {
-    st->slice_end = now_seconds() + SLICE;
-    st->yielded = 0;
+    watch_slice(&st->w, SLICE);
     int s = DP_MORE, ready;
     const char *why;
-    while (s == DP_MORE && !st->yielded && st->out.len < FLUSH_BYTES) {
-        if (sweep_stop(st) > 0) {
+    while (s == DP_MORE && !st->w.yielded && st->out.len < FLUSH_BYTES) {
+        if (watch_stop_sliced(&st->w) > 0) {
             stopped(st);
             return DP_ECANCEL;
         }
@@ -151,7 +112,7 @@ static int sweep_fill(sweep_stream *st)
             frame(st, "summary", &st->line) != DP_OK)
             sweep_fail(st, DP_ENOMEM, dp_strerror(DP_ENOMEM));
         st->closed = 1;
-    } else if (s == DP_ECANCEL && st->stopped != STOP_NONE) {
+    } else if (s == DP_ECANCEL && st->w.why != STOP_NONE) {
         stopped(st);
     } else if (s < 0) {
         sweep_fail(st, s, why ? why : dp_strerror(s));
@@ -163,7 +124,7 @@ static ssize_t sweep_read(void *cls, uint64_t pos, char *buf, size_t max)
 {
     (void)pos;
     sweep_stream *st = cls;
-    if (st->stopped == STOP_GONE)
+    if (st->w.why == STOP_GONE)
         return MHD_CONTENT_READER_END_WITH_ERROR;
     while (st->off == st->out.len) {
         if (st->closed) {
@@ -174,11 +135,11 @@ static ssize_t sweep_read(void *cls, uint64_t pos, char *buf, size_t max)
             return 0;
         st->out.len = st->off = 0;
         sweep_fill(st);
-        if (!st->yielded || st->off != st->out.len)
+        if (!st->w.yielded || st->off != st->out.len)
             slot_give(st->r);
-        if (st->stopped == STOP_GONE)
+        if (st->w.why == STOP_GONE)
             return MHD_CONTENT_READER_END_WITH_ERROR;
-        if (st->yielded && st->off == st->out.len) {
+        if (st->w.yielded && st->off == st->out.len) {
             MHD_suspend_connection(st->conn);
             MHD_resume_connection(st->conn);
             return 0;
@@ -219,10 +180,8 @@ static sweep_stream *sweep_new(struct MHD_Connection *c, request *r, dp_sweep_do
         dp_sweep_doc_free(doc);
         return NULL;
     }
-    const union MHD_ConnectionInfo *ci = MHD_get_connection_info(c, MHD_CONNECTION_INFO_CONNECTION_FD);
-    *st = (sweep_stream){ .r = r, .s = r->srv, .conn = c, .doc = doc, .format = format,
-                          .deadline = r->t_start + cfg->max_wall, .fd = ci ? ci->connect_fd : -1,
-                          .peer_check = now_seconds() + PEER_CHECK_INTERVAL };
+    *st = (sweep_stream){ .r = r, .s = r->srv, .conn = c, .doc = doc, .format = format };
+    watch_init(&st->w, r, c);
     st->x = dp_sweep_exec_new(doc, 0, 1, cfg->max_steps, &st->budget, cfg->max_steps * DP_SWEEP_STEP_FACTOR);
     atomic_fetch_add(&r->refs, 1);
     atomic_fetch_add(&st->s->m.runs_started, 1);
@@ -233,7 +192,7 @@ static sweep_stream *sweep_new(struct MHD_Connection *c, request *r, dp_sweep_do
         sweep_free(st);
         return NULL;
     }
-    dp_sweep_exec_set_stop(st->x, sweep_stop, st);
+    dp_sweep_exec_set_stop(st->x, watch_stop_sliced, &st->w);
     return st;
 }
 

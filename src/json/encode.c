@@ -243,6 +243,83 @@ static int encode_event(dp_encoder *e, dp_buf *b, const dp_event *ev)
     return DP_OK;
 }
 
+/* ---- quakes: the slip-event catalogue of a network run (docs/quakes.md) ------------------------------- */
+
+static char *put_size(char *p, const char *key, size_t klen, size_t n)
+{
+    char num[24];
+    int len = snprintf(num, sizeof num, "%zu", n);
+    return put_lit(put_lit(p, key, klen), num, (size_t)len);
+}
+
+/* "t":..,"duration":..,"size":..,"hypocentre":..,"first":..,"last":..,"moment":..,"magnitude":..,
+ * "peak_rate":..,"open":..; the magnitude ln(moment) is null for a quake that did not move (moment 0). */
+static char *put_quake_members(char *p, const dp_quake *q)
+{
+    p = put_num(PUT(p, "\"t\":"), q->t);
+    p = put_num(PUT(p, ",\"duration\":"), q->duration);
+    p = put_size(p, ",\"size\":", 8, q->size);
+    p = put_size(p, ",\"hypocentre\":", 14, q->hypocentre);
+    p = put_size(p, ",\"first\":", 9, q->first);
+    p = put_size(p, ",\"last\":", 8, q->last);
+    p = put_num(PUT(p, ",\"moment\":"), q->moment);
+    p = q->moment > 0 ? put_num(PUT(p, ",\"magnitude\":"), log(q->moment)) : PUT(p, ",\"magnitude\":null");
+    p = put_num(PUT(p, ",\"peak_rate\":"), q->peak_rate);
+    return q->open ? PUT(p, ",\"open\":true") : PUT(p, ",\"open\":false");
+}
+
+/* JSON holds quakes, as events, until the samples array closes; past DP_ENCODER_MAX_EVENTS only counted. */
+static int hold_quake(dp_encoder *e, const dp_quake *q)
+{
+    if (e->nquakes == e->quakes_cap) {
+        if (e->quakes_cap >= DP_ENCODER_MAX_EVENTS) {
+            e->quakes_dropped++;
+            return DP_OK;
+        }
+        size_t cap = e->quakes_cap ? 2 * e->quakes_cap : 64;
+        if (cap > DP_ENCODER_MAX_EVENTS)
+            cap = DP_ENCODER_MAX_EVENTS;
+        dp_quake *nq = realloc(e->quakes, cap * sizeof *nq);
+        if (nq == NULL)
+            return DP_ENOMEM;
+        e->quakes = nq;
+        e->quakes_cap = cap;
+    }
+    e->quakes[e->nquakes++] = *q;
+    return DP_OK;
+}
+
+static int encode_quake(dp_encoder *e, dp_buf *b, const dp_quake *q)
+{
+    if (e->format == DP_FORMAT_CSV)
+        return DP_OK;
+    if (e->format == DP_FORMAT_JSON)
+        return hold_quake(e, q);
+    if (dp_buf_reserve(b, SAMPLE_MAX) != DP_OK)
+        return DP_ENOMEM;
+    char *p = put_close(e, put_quake_members(put_object(e, b->data + b->len, "quake", 5), q));
+    b->len = (size_t)(p - b->data);
+    b->data[b->len] = '\0';
+    return DP_OK;
+}
+
+/* JSON: the held quakes as a "quakes" member after the events, written only when a run made some. */
+static int close_quakes(dp_encoder *e, dp_buf *b)
+{
+    if (e->nquakes == 0 && e->quakes_dropped == 0)
+        return DP_OK;
+    int s = dp_buf_append(b, "\"quakes\":[", 10);
+    for (size_t i = 0; i < e->nquakes && s == DP_OK; i++) {
+        if ((s = dp_buf_reserve(b, SAMPLE_MAX)) != DP_OK)
+            break;
+        char *p = b->data + b->len;
+        p = i ? PUT(p, ",\n{") : PUT(p, "\n{");
+        p = PUT(put_quake_members(p, &e->quakes[i]), "}");
+        b->len = (size_t)(p - b->data);
+        b->data[b->len] = '\0';
+    }
+    return s ? s : e->nquakes ? dp_buf_append(b, "\n],\n", 4) : dp_buf_append(b, "],\n", 3);
+}
 
 /* ---- rows: named groups of numbers over the run's columns (dp_columns, docs/systems.md §1) ---------- */
 
@@ -340,6 +417,8 @@ int dp_encoder_record(dp_encoder *e, dp_buf *b, const dp_record *r)
         return encode_sample(e, b, &r->u.sample);
     if (r->type == DP_RECORD_EVENT)
         return encode_event(e, b, &r->u.event);
+    if (r->type == DP_RECORD_QUAKE)
+        return encode_quake(e, b, &r->u.quake);
     return DP_OK;
 }
 
@@ -408,6 +487,9 @@ void dp_encoder_clear(dp_encoder *e)
     free(e->events);
     e->events = NULL;
     e->nevents = e->events_cap = 0;
+    free(e->quakes);
+    e->quakes = NULL;
+    e->nquakes = e->quakes_cap = 0;
 }
 
 int dp_encoder_begin(dp_encoder *e, dp_buf *b, const char *meta_json)
@@ -435,7 +517,7 @@ int dp_encoder_begin(dp_encoder *e, dp_buf *b, const char *meta_json)
     }
 }
 
-/* JSON: closes the samples array and writes the held events. */
+/* JSON: closes the samples array and writes the held events (and quakes). */
 static int close_samples(dp_encoder *e, dp_buf *b)
 {
     int s = put_str(b, e->nsamples_written ? "\n],\n\"events\":[" : "],\n\"events\":[");
@@ -448,7 +530,8 @@ static int close_samples(dp_encoder *e, dp_buf *b)
         b->len = (size_t)(p - b->data);
         b->data[b->len] = '\0';
     }
-    return s ? s : put_str(b, e->nevents ? "\n],\n" : "],\n");
+    s = s ? s : put_str(b, e->nevents ? "\n],\n" : "],\n");
+    return s ? s : close_quakes(e, b);
 }
 
 static int summary_members(const dp_encoder *e, dp_buf *b, const dp_summary *sm)
@@ -502,6 +585,10 @@ int dp_encoder_end(dp_encoder *e, dp_buf *b, const dp_summary *sm, const char *e
     if (e->format == DP_FORMAT_JSON) {
         s = s ? s : put_str(b, ",\"events_dropped\":");
         s = s ? s : put_ull(b, e->events_dropped);
+        if (e->quakes_dropped) {
+            s = s ? s : put_str(b, ",\"quakes_dropped\":");
+            s = s ? s : put_ull(b, e->quakes_dropped);
+        }
     }
     if (extra_json && *extra_json) {
         s = s ? s : put_str(b, ",");

@@ -122,18 +122,12 @@ static int put_vec(dp_buf *b, const double *x, size_t m)
     return s ? s : put(b, "]");
 }
 
-/* {"z":[...],"w":[...]} with w = Mz + q recomputed for a listed solution. */
-static int put_pair(dp_buf *b, const gsl_matrix *M, const gsl_vector *q, const double *z)
+/* {"z":[...],"w":[...]}: a listed solution, settled and checked by the enumeration. */
+static int put_pair(dp_buf *b, const dp_lcp_solutions *sol, size_t k)
 {
-    size_t m = q->size;
-    double w[DP_LCP_ENUM_MAX];
-    for (size_t i = 0; i < m; i++) {
-        double s = q->data[i];
-        for (size_t j = 0; j < m; j++)
-            s += M->data[i * m + j] * z[j];
-        w[i] = z[i] > 0 ? 0.0 : fmax(s, 0.0); /* complementarity holds exactly: the basis made w_i zero */
-    }
-    return put(b, "{\"z\":") || put_vec(b, z, m) || put(b, ",\"w\":") || put_vec(b, w, m) || put(b, "}");
+    size_t m = sol->m;
+    return put(b, "{\"z\":") || put_vec(b, sol->z + k * m, m) || put(b, ",\"w\":") ||
+           put_vec(b, sol->w + k * m, m) || put(b, "}");
 }
 
 static int put_theory(dp_buf *b, const dp_lcp_theory *t, size_t m)
@@ -159,18 +153,49 @@ static int put_theory(dp_buf *b, const dp_lcp_theory *t, size_t m)
     return s || put(b, "}");
 }
 
-/* One sentence: how many solutions, and whether the theory had promised it. */
+/* Lemke's run as the answer reports it: its outcome, or that it took its pivot limit (the enumeration then
+ * answers). */
+typedef struct lemke_run {
+    dp_lcp_result r;
+    int limit;           /* it took dp_lcp_pivot_limit(m) pivots */
+} lemke_run;
+
+static const char *outcome_name(const lemke_run *l)
+{
+    if (l->limit)
+        return "pivot-limit";
+    return l->r.outcome == DP_LCP_SOLVED ? "solved" : l->r.outcome == DP_LCP_RAY ? "ray" : "inaccurate";
+}
+
+static const char *lemke_words(const lemke_run *l)
+{
+    if (l->limit)
+        return "took its pivot limit";
+    return l->r.outcome == DP_LCP_SOLVED ? "found a solution" : l->r.outcome == DP_LCP_RAY
+           ? "ended on a ray (no solution found)" : "ended on a basis whose answer fails its check (rounding)";
+}
+
+/* One sentence: how many solutions, and whether the theory had promised it; never more or fewer than the
+ * answer lists. */
 static void verdict(char *v, size_t cap, const dp_lcp_theory *t, const dp_lcp_solutions *s, int enumerated,
-                    const dp_lcp_result *r)
+                    const lemke_run *l)
 {
     const char *why = t->pd_symmetric ? "positive definite symmetric part (Cibulka 2014, Lemma 2.5, Theorem 2.3)"
                       : t->p_matrix == 1 ? "M is a P-matrix" : NULL;
-    if (why)
-        snprintf(v, cap, "exactly one solution: %s", why);
+    int solved = !l->limit && l->r.outcome == DP_LCP_SOLVED;
+    if (!enumerated && why)
+        snprintf(v, cap, "exactly one solution: %s%s%s", why, solved ? "" : "; Lemke ", solved ? "" : lemke_words(l));
     else if (!enumerated)
-        snprintf(v, cap, "uniqueness not guaranteed (M not known to be a P-matrix); Lemke %s",
-                 r->outcome == DP_LCP_SOLVED ? "found a solution" : "ended on a ray (no solution found)");
-    else if (s->n == 0 && r->outcome == DP_LCP_RAY && t->psd)
+        snprintf(v, cap, "uniqueness not guaranteed (M not known to be a P-matrix); Lemke %s", lemke_words(l));
+    else if (why && s->n == 1)
+        snprintf(v, cap, "exactly one solution: %s", why);
+    else if (why)
+        snprintf(v, cap, "%zu solutions found at regular bases although %s promises exactly one: M is too "
+                 "ill-conditioned for the rounding of this answer", s->n, why);
+    else if (s->n == 0 && solved)
+        snprintf(v, cap, "Lemke's solution lies at a basis singular to rounding, which the enumeration does not "
+                 "search; none at a regular basis");
+    else if (s->n == 0 && !l->limit && l->r.outcome == DP_LCP_RAY && t->psd)
         snprintf(v, cap, "no solution: Lemke's ray proves it for a positive semidefinite M");
     else if (s->n == 0)
         snprintf(v, cap, "no solution%s", s->singular ? " at a regular complementary basis (singular ones not searched)" : "");
@@ -179,50 +204,74 @@ static void verdict(char *v, size_t cap, const dp_lcp_theory *t, const dp_lcp_so
                  s->n == 1 ? "" : "s", s->singular ? " at regular bases, a continuum may pass through singular ones" : "");
 }
 
-static int answer(dp_buf *b, const gsl_matrix *M, const gsl_vector *q, const gsl_vector *z, const gsl_vector *w,
-                  const dp_lcp_result *r, const dp_lcp_solutions *sol, int enumerated, const dp_lcp_theory *t)
+static int answer(dp_buf *b, const gsl_vector *z, const gsl_vector *w, const lemke_run *l,
+                  const dp_lcp_solutions *sol, int enumerated, const dp_lcp_theory *t)
 {
-    size_t m = q->size;
-    char head[96], v[400];
-    snprintf(head, sizeof head, "{\"m\":%zu,\"lemke\":{\"outcome\":\"%s\",\"z\":", m,
-             r->outcome == DP_LCP_SOLVED ? "solved" : "ray");
+    size_t m = z->size;
+    char head[112], v[400];
+    int solved = !l->limit && l->r.outcome == DP_LCP_SOLVED;
+    snprintf(head, sizeof head, "{\"m\":%zu,\"lemke\":{\"outcome\":\"%s\",\"z\":", m, outcome_name(l));
     int s = put(b, head);
-    if (r->outcome == DP_LCP_SOLVED)
+    if (solved)
         s = s || put_vec(b, z->data, m) || put(b, ",\"w\":") || put_vec(b, w->data, m);
     else
         s = s || put(b, "null,\"w\":null");
-    snprintf(head, sizeof head, ",\"pivots\":%zu,\"residual\":", r->pivots);
-    s = s || put(b, head) || put_num(b, r->outcome == DP_LCP_SOLVED ? r->residual : NAN) || put(b, "}");
+    snprintf(head, sizeof head, ",\"pivots\":%zu,\"residual\":", l->r.pivots);
+    int has_residual = solved || (!l->limit && l->r.outcome == DP_LCP_INACCURATE);
+    s = s || put(b, head) || put_num(b, has_residual ? l->r.residual : NAN) || put(b, "}");
     s = s || put(b, ",\"solutions\":");
     if (!enumerated)
         s = s || put(b, "null,\"count\":null,\"singular_bases\":null");
     else {
         s = s || put(b, "[");
         for (size_t k = 0; k < sol->n && !s; k++)
-            s = (k ? put(b, ",") : DP_OK) || put_pair(b, M, q, sol->z + k * m);
+            s = (k ? put(b, ",") : DP_OK) || put_pair(b, sol, k);
         snprintf(head, sizeof head, "],\"count\":%zu,\"singular_bases\":%zu", sol->n, sol->singular);
         s = s || put(b, head);
     }
     s = s || put_theory(b, t, m);
-    verdict(v, sizeof v, t, sol, enumerated, r);
+    verdict(v, sizeof v, t, sol, enumerated, l);
     s = s || put(b, ",\"verdict\":") || dp_json_quote(b, v);
     return s ? DP_ENOMEM : put(b, "}\n");
 }
 
-static int solve(const gsl_matrix *M, const gsl_vector *q, dp_buf *out)
+/* A failure of the solvers as a located error: which member made it, and which limit. */
+static int located(int s, size_t m, const lemke_run *l, dp_errors *e)
+{
+    if (s == DP_ENONFINITE) {
+        dp_errors_add(e, "/q", "a solution z, or its w = Mz + q, is beyond the double range (above 1.8e308): q is "
+                      "too large for M; scale the problem down");
+        return DP_EINVAL;
+    }
+    if (s == DP_ELIMIT) {
+        dp_errors_add(e, "/M", "Lemke's method took its limit of %zu pivots (1000 + 200 m, m = %zu) without "
+                      "ending, and M is too large to enumerate its complementary bases instead (m > %d)",
+                      l->r.pivots, m, DP_LCP_ENUM_MAX);
+        return DP_ELIMIT;
+    }
+    return s;
+}
+
+static int solve(const gsl_matrix *M, const gsl_vector *q, const dp_stop *stop, dp_buf *out, dp_errors *e)
 {
     size_t m = q->size;
     dp_lcp *ws = dp_lcp_alloc(m);
     gsl_vector *z = gsl_vector_alloc(m), *w = gsl_vector_alloc(m);
     dp_lcp_solutions sol = { 0 };
     dp_lcp_theory t;
-    dp_lcp_result r;
-    int s = ws && z && w ? DP_OK : DP_ENOMEM;
-    s = s ? s : dp_lcp_lemke(ws, M, q, z, w, &r);
+    lemke_run l = { { DP_LCP_SOLVED, 0, 0.0 }, 0 };
     int enumerated = m <= DP_LCP_ENUM_MAX;
-    s = s ? s : enumerated ? dp_lcp_enumerate(M, q, &sol) : DP_OK;
-    s = s ? s : dp_lcp_theory_of(M, &t);
-    s = s ? s : answer(out, M, q, z, w, &r, &sol, enumerated, &t);
+    int s = ws && z && w ? DP_OK : DP_ENOMEM;
+    s = s ? s : dp_lcp_lemke_until(ws, M, q, z, w, &l.r, stop);
+    if (s == DP_ELIMIT && enumerated) /* the enumeration answers instead (Murty 1978's matrices) */
+        s = DP_OK, l.limit = 1;
+    s = s ? s : enumerated ? dp_lcp_enumerate_until(M, q, &sol, stop) : DP_OK;
+    s = located(s, m, &l, e);
+    if (s == DP_OK && (s = dp_lcp_theory_of(M, &t)) == DP_ENONFINITE) {
+        dp_errors_add(e, "/M", "mu = lambda_min((M + M^T)/2) is beyond the double range (above 1.8e308)");
+        s = DP_EINVAL;
+    }
+    s = s ? s : answer(out, z, w, &l, &sol, enumerated, &t);
     dp_lcp_solutions_clear(&sol);
     gsl_vector_free(z);
     gsl_vector_free(w);
@@ -237,12 +286,11 @@ int dp_lcp_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
 
 int dp_lcp_respond_until(const char *body, size_t len, const dp_stop *stop, dp_buf *out, dp_errors *errs)
 {
-    (void)stop; /* not yet polled */
     gsl_matrix *M = NULL;
     gsl_vector *q = NULL;
     size_t mark = out->len;
     int s = read_request(body, len, &M, &q, errs);
-    s = s ? s : solve(M, q, out);
+    s = s ? s : solve(M, q, stop, out, errs);
     if (s != DP_OK)
         out->len = mark;
     gsl_matrix_free(M);

@@ -7,8 +7,16 @@
  * in the same words; dp_network_linear_parts and dp_network_nonlinear_elements then decide what is linear.
  * What else a linear analysis needs (Rayleigh damping, the nodes and the frequency range of a response) is
  * read here with the same walker.
+ *
+ * Finite through: M, K and C are checked finite as they are assembled (two finite springs on a node can sum
+ * past DBL_MAX, and so can beta K), and every error about scale, here or in the core, names the member
+ * that made the row what it is: the mass, the stiffest spring or the most viscous damper on the node, a
+ * matrix entry, or Rayleigh's alpha or beta (member_of). The stop hook is handed to the core and polled
+ * while the answer is written.
  */
+#include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +24,7 @@
 #include <cjson/cJSON.h>
 
 #include "dashpot/json.h"
+#include "dashpot/model.h"
 #include "dashpot/modes.h"
 #include "dashpot/modes_json.h"
 #include "dashpot/network.h"
@@ -39,6 +48,70 @@ static void request_clear(request *r)
     free(r->M);
     free(r->K);
     free(r->C);
+}
+
+/* ---- where a row's scale comes from ---------------------------------------------------------------------- */
+
+/* The element member that adds the largest |w| to row `row` of K ('K': a linear spring's k) or of C ('C': a
+ * damper's viscous c), into ptr; its |w| (0 when none). */
+static double element_member(const dp_network *net, char which, size_t row, char *ptr, size_t cap)
+{
+    double best = 0;
+    for (size_t e = 0; e < net->nel; e++) {
+        const dp_element *el = &net->el[e];
+        if (el->a != (long)row && el->b != (long)row)
+            continue;
+        double w = 0;
+        const char *key = NULL;
+        if (which == 'K' && el->has_spring && dp_spring_linear(&el->spring)) {
+            w = dp_spring_stiffness(&el->spring);
+            key = "spring/k";
+        } else if (which == 'C' && el->has_damper && dp_damper_has_viscous(&el->damper)) {
+            const dp_damper_law_info *info = dp_damper_law_info_of(el->damper.law);
+            const char *c = info ? dp_law_member_key(&info->row, info->viscous) : NULL;
+            w = dp_damper_viscous(&el->damper);
+            key = c;
+        }
+        if (key != NULL && fabs(w) > best) {
+            best = fabs(w);
+            snprintf(ptr, cap, which == 'K' ? "/model/elements/%zu/%s" : "/model/elements/%zu/damper/%s", e, key);
+        }
+    }
+    return best;
+}
+
+/* The member to blame for the scale of row `row` of M, K or C (dp_modes_opts.member): the largest term of
+ * the sum that made the diagonal entry. */
+static void member_of(void *data, char which, size_t row, char *ptr, size_t cap)
+{
+    const request *r = data;
+    const dp_network *net = r->net;
+    size_t n = net->n, ii = row * n + row;
+    if (which == 'M') {
+        snprintf(ptr, cap, net->mass ? "/model/masses/%zu" : "/model/mass_matrix/%zu/%zu", row, row);
+        return;
+    }
+    const double *own = which == 'K' ? net->K : net->C;
+    double best = own ? fabs(own[ii]) : 0;
+    if (own)
+        snprintf(ptr, cap, which == 'K' ? "/model/stiffness_matrix/%zu/%zu" : "/model/damping_matrix/%zu/%zu", row,
+                 row);
+    char el[DP_POINTER_MAX];
+    double w = element_member(net, which, row, el, sizeof el);
+    if (w > best) {
+        best = w;
+        snprintf(ptr, cap, "%s", el);
+    }
+    if (which == 'C') { /* Rayleigh's terms, compared by exponent: alpha M or beta K may be what overflows */
+        double m = r->M ? fabs(r->M[ii]) : 0, k = r->K ? fabs(r->K[ii]) : 0;
+        double la = r->alpha > 0 && m > 0 ? log2(r->alpha) + log2(m) : -INFINITY;
+        double lb = r->beta > 0 && k > 0 ? log2(r->beta) + log2(k) : -INFINITY;
+        double lbest = best > 0 ? log2(best) : -INFINITY;
+        if (la > lbest && la >= lb)
+            snprintf(ptr, cap, "/damping/rayleigh/alpha");
+        else if (lb > lbest)
+            snprintf(ptr, cap, "/damping/rayleigh/beta");
+    }
 }
 
 /* ---- reading ---------------------------------------------------------------------------------------- */
@@ -134,6 +207,40 @@ static void parse_range(ctx *c, const cJSON *doc, request *r)
         jw_fail(c, &pfrom, "must be > 0 with \"spacing\": \"log\"");
 }
 
+/* M, K, C finite as assembled (sums of finite members can overflow), and the total mass with them. */
+static int check_assembled(request *r, dp_errors *e)
+{
+    size_t n = r->net->n;
+    const double *const mats[3] = { r->M, r->K, r->C };
+    static const char names[3] = { 'M', 'K', 'C' };
+    static const char *const words[3] = { "mass", "stiffness", "damping" };
+    double total = 0;
+    for (size_t k = 0; k < n * n; k++)
+        total += r->M[k];
+    for (int m = 0; m < 3; m++)
+        for (size_t k = 0; k < n * n; k++) {
+            if (isfinite(mats[m][k]))
+                continue;
+            size_t row = k / n, col = k % n;
+            size_t at_row = !isfinite(mats[m][col * n + col]) && isfinite(mats[m][row * n + row]) ? col : row;
+            char ptr[DP_POINTER_MAX];
+            member_of(r, names[m], at_row, ptr, sizeof ptr);
+            dp_errors_add(e, ptr, "the %s matrix's entry (%zu, %zu) leaves the double-precision numbers: the %s "
+                          "scale overflows (its terms sum past %g)", words[m], row, col, words[m], DBL_MAX);
+            return DP_EINVAL;
+        }
+    if (!isfinite(total)) {
+        size_t big = 0;
+        for (size_t i = 0; i < n; i++)
+            big = r->M[i * n + i] > r->M[big * n + big] ? i : big;
+        char ptr[DP_POINTER_MAX];
+        member_of(r, 'M', big, ptr, sizeof ptr);
+        dp_errors_add(e, ptr, "the total mass leaves the double-precision numbers: the mass scale overflows");
+        return DP_EINVAL;
+    }
+    return DP_OK;
+}
+
 /* The whole request, read and walked as every route's body (body.h, walk.h); M, K, C assembled when there
  * are no field errors. */
 static int parse_request(const char *body, size_t len, int response, request *r, dp_errors *e)
@@ -168,7 +275,7 @@ static int parse_request(const char *body, size_t len, int response, request *r,
     dp_network_linear_parts(r->net, r->M, r->K, r->C);
     for (size_t k = 0; k < n * n; k++)
         r->C[k] += r->alpha * r->M[k] + r->beta * r->K[k];
-    return DP_OK;
+    return check_assembled(r, e);
 }
 
 /* ---- writing ---------------------------------------------------------------------------------------- */
@@ -251,7 +358,7 @@ static int put_damped(dp_buf *b, const dp_modes *md)
     return s ? s : put(b, "]");
 }
 
-static int modes_json(const request *r, const dp_modes *md, dp_buf *b)
+static int modes_json(const request *r, const dp_modes *md, const dp_stop *stop, dp_buf *b)
 {
     double total = 0;
     for (size_t k = 0; k < md->n * md->n; k++)
@@ -263,19 +370,28 @@ static int modes_json(const request *r, const dp_modes *md, dp_buf *b)
     s = s ? s : put(b, ",");
     s = s ? s : put_left_out(b, r);
     s = s ? s : put(b, ",\"modes\":[\n");
-    for (size_t k = 0; k < md->n && s == DP_OK; k++)
-        s = put_mode(b, md, k);
+    for (size_t k = 0; k < md->n && s == DP_OK; k++) {
+        s = put_mode(b, md, k); /* n numbers a mode: 2000 modes of 2000 nodes are 4e6 numbers to write */
+        s = s || k % 64 != 63 || !dp_stop_now(stop) ? s : DP_ECANCEL;
+    }
     s = s ? s : put(b, "]");
     s = s || !md->damped ? s : put_damped(b, md);
     return s ? s : put(b, "}\n");
 }
 
-static int solve_modes(request *r, dp_modes *md, dp_errors *e)
+static int solve_modes(request *r, int response, const dp_stop *stop, dp_modes *md, dp_errors *e)
 {
     int damped = 0;
     for (size_t k = 0; k < r->net->n * r->net->n; k++)
         damped |= r->C[k] != 0;
-    return dp_modes_solve(r->net->n, r->M, r->K, damped ? r->C : NULL, r->pM, r->pK, r->pC, md, e);
+    const dp_modes_opts o = { r->pM, r->pK, r->pC, member_of, r, response, stop };
+    return dp_modes_solve_until(r->net->n, r->M, r->K, damped ? r->C : NULL, &o, md, e);
+}
+
+static void say_stopped(int s, dp_errors *e)
+{
+    if (s == DP_ECANCEL)
+        dp_errors_add(e, "", "the analysis was stopped before it ended (time limit, client gone or shutdown)");
 }
 
 int dp_modes_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
@@ -285,13 +401,14 @@ int dp_modes_respond(const char *body, size_t len, dp_buf *out, dp_errors *errs)
 
 int dp_modes_respond_until(const char *body, size_t len, const dp_stop *stop, dp_buf *out, dp_errors *errs)
 {
-    (void)stop; /* not yet polled */
     request r;
     dp_modes md = { 0 };
     size_t mark = out->len;
     int s = parse_request(body, len, 0, &r, errs);
-    s = s ? s : solve_modes(&r, &md, errs);
-    s = s ? s : modes_json(&r, &md, out);
+    s = s || !dp_stop_now(stop) ? s : DP_ECANCEL;
+    s = s ? s : solve_modes(&r, 0, stop, &md, errs);
+    s = s ? s : modes_json(&r, &md, stop, out);
+    say_stopped(s, errs);
     if (s != DP_OK)
         out->len = mark;
     dp_modes_free(&md);
@@ -361,7 +478,8 @@ static int put_point(dp_buf *b, const dp_response_point *p, int format, int firs
     return s ? s : put(b, format == DP_FORMAT_NDJSON ? "}\n" : "}");
 }
 
-static int response_write(const request *r, const dp_modes *md, const dp_response *rs, int format, dp_buf *b)
+static int response_write(const request *r, const dp_modes *md, const dp_response *rs, int format,
+                          const dp_stop *stop, dp_buf *b)
 {
     int s = DP_OK;
     if (format == DP_FORMAT_CSV)
@@ -371,8 +489,10 @@ static int response_write(const request *r, const dp_modes *md, const dp_respons
         s = s ? s : response_head(r, md, rs, b);
         s = s ? s : put(b, format == DP_FORMAT_NDJSON ? "}\n" : ",\"rows\":[\n");
     }
-    for (size_t k = 0; k < rs->npoints && s == DP_OK; k++)
+    for (size_t k = 0; k < rs->npoints && s == DP_OK; k++) {
         s = put_point(b, &rs->point[k], format, k == 0);
+        s = s || k % 4096 != 4095 || !dp_stop_now(stop) ? s : DP_ECANCEL;
+    }
     if (s == DP_OK && format == DP_FORMAT_JSON)
         s = put(b, "]}\n");
     return s;
@@ -383,26 +503,41 @@ int dp_response_respond(const char *body, size_t len, int format, dp_buf *out, d
     return dp_response_respond_until(body, len, format, NULL, out, errs);
 }
 
+/* The core's failures of a response curve, located. */
+static void say_response(int s, request *r, dp_errors *errs)
+{
+    char ptr[DP_POINTER_MAX];
+    if (s == DP_ELIMIT)
+        dp_errors_add(errs, "/omega/points", "with non-proportional damping each point is a complex solve of "
+                      "%zu nodes; ask for fewer points (at most about 2e10 / n^3)", r->net->n);
+    else if (s == DP_EINVAL)
+        dp_errors_add(errs, "/omega", "not a valid range");
+    else if (s == DP_ENONFINITE) {
+        member_of(r, 'M', (size_t)r->force_node, ptr, sizeof ptr);
+        dp_errors_add(errs, ptr, "the receptance leaves the double-precision numbers: the mass scale overflows "
+                      "(a unit force moves node %ld by more than %g)", r->response_node, DBL_MAX);
+    }
+}
+
 int dp_response_respond_until(const char *body, size_t len, int format, const dp_stop *stop, dp_buf *out,
                               dp_errors *errs)
 {
-    (void)stop; /* not yet polled */
     request r;
     dp_modes md = { 0 };
     dp_response rs = { 0 };
     size_t mark = out->len;
     int s = parse_request(body, len, 1, &r, errs);
-    s = s ? s : solve_modes(&r, &md, errs);
+    s = s || !dp_stop_now(stop) ? s : DP_ECANCEL;
+    s = s ? s : solve_modes(&r, 1, stop, &md, errs);
     if (s == DP_OK) {
-        s = dp_response_solve(r.net->n, r.M, r.K, r.C, &md, (size_t)r.force_node, (size_t)r.response_node, r.from,
-                              r.to, (size_t)r.points, r.log_spacing, &rs);
-        if (s == DP_ELIMIT)
-            dp_errors_add(errs, "/omega/points", "with non-proportional damping each point is a complex solve of "
-                          "%zu nodes; ask for fewer points (at most about 2e10 / n^3)", r.net->n);
-        else if (s == DP_EINVAL)
-            dp_errors_add(errs, "/omega", "not a valid range");
+        s = dp_response_solve_until(r.net->n, r.M, r.K, r.C, &md, (size_t)r.force_node, (size_t)r.response_node,
+                                    r.from, r.to, (size_t)r.points, r.log_spacing, stop, &rs);
+        say_response(s, &r, errs);
+        if (s == DP_ENONFINITE)
+            s = DP_EINVAL;
     }
-    s = s ? s : response_write(&r, &md, &rs, format, out);
+    s = s ? s : response_write(&r, &md, &rs, format, stop, out);
+    say_stopped(s, errs);
     if (s != DP_OK)
         out->len = mark;
     dp_response_free(&rs);

@@ -144,6 +144,8 @@ static void parse_elements(ctx *c, const cJSON *v, const at *p, dp_network *net)
 static void parse_node_forcings(ctx *c, const cJSON *v, const at *p, dp_network *net)
 {
     static const char *const common[] = { "node", NULL };
+    if (cJSON_IsArray(v) && cJSON_GetArraySize(v) == 0)
+        return;              /* no loads, as when the member is left out */
     size_t m = jw_array_size(c, v, p, 4 * (size_t)DP_NETWORK_MAX_NODES, "an array of loads {\"node\", \"kind\", ...}");
     if (m == 0)
         return;
@@ -281,4 +283,19 @@ void js_parse_columns(ctx *c, const cJSON *o, const at *ptr, const char *key, co
         const at q = { &p, NULL, i };
         parse_index(c, el, &q, n, noun, &(*out)[i]);
     }
+}
+
+/* output.quakes: the slip-event catalogue (docs/quakes.md) of a network; a one-mass document has one block
+ * and no neighbours, so it is refused rather than ignored. */
+void js_parse_quakes(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, "quakes");
+    if (v == NULL)
+        return;
+    if (s->net == NULL && cJSON_IsTrue(v)) {
+        const at p = { ptr, "quakes", 0 };
+        jw_fail(c, &p, "quakes are catalogued only for a network (\"masses\" or \"mass_matrix\") with friction");
+        return;
+    }
+    jw_get_bool(c, o, ptr, "quakes", &s->output.quakes);
 }

@@ -172,7 +172,8 @@ static void sample_budget(ctx *c, const cJSON *o, const at *ptr, const dp_spec *
 
 static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
-    static const char *const keys[] = { "every", "max_samples", "samples", "events", "nodes", "elements", NULL };
+    static const char *const keys[] = { "every", "max_samples", "samples", "events", "nodes", "elements", "quakes",
+                                        NULL };
     dp_output_spec *out = &s->output;
     if (!jw_want_object(c, o, ptr))
         return;
@@ -186,6 +187,7 @@ static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     js_parse_columns(c, o, ptr, "nodes", "a node", s, s->net ? s->net->n : 0, &out->nodes, &out->nnodes);
     js_parse_columns(c, o, ptr, "elements", "an element", s, s->net ? s->net->nel : 0, &out->elements,
                   &out->nelements);
+    js_parse_quakes(c, o, ptr, s);
 }
 
 /* A one-mass document with a contact is the network it is: one node of its mass, one element [ground, 0]
@@ -272,6 +274,43 @@ static unsigned left_out(const cJSON *root)
     return which;
 }
 
+/* The member of the document a pointer names, or NULL when a part of it is absent (a default). */
+static const cJSON *resolve(const cJSON *root, const char *ptr, size_t len)
+{
+    const cJSON *v = root;
+    char tok[DP_POINTER_MAX];
+    for (size_t i = 0; i < len && v != NULL;) {
+        size_t n = 0;
+        for (i++; i < len && ptr[i] != '/'; i++)   /* one reference token, ~1 as / and ~0 as ~ */
+            tok[n++] = ptr[i] == '~' && i + 1 < len && (ptr[i + 1] == '0' || ptr[i + 1] == '1')
+                       ? (ptr[++i] == '1' ? '/' : '~') : ptr[i];
+        tok[n] = 0;
+        char *end;
+        unsigned long k = strtoul(tok, &end, 10);
+        v = cJSON_IsArray(v) ? (n > 0 && *end == 0 ? cJSON_GetArrayItem(v, (int)k) : NULL)
+                             : cJSON_GetObjectItemCaseSensitive(v, tok);
+    }
+    return v;
+}
+
+/* The rules speak of the spec, whose defaults the document need not hold (a rod's initial.x): an error at a
+ * member the document lacks is moved to its nearest ancestor the document has, and names the default. */
+static void point_at_present(const cJSON *root, dp_errors *e, size_t from)
+{
+    for (size_t i = from; i < e->n; i++) {
+        dp_error *it = &e->item[i];
+        size_t len = strlen(it->pointer), cut = len;
+        while (cut > 0 && resolve(root, it->pointer, cut) == NULL)
+            while (cut > 0 && it->pointer[--cut] != '/')
+                ;
+        if (cut == len)
+            continue;
+        size_t m = strlen(it->message);
+        snprintf(it->message + m, sizeof it->message - m, " (%s is absent: its default)", it->pointer);
+        it->pointer[cut] = 0;
+    }
+}
+
 static int spec_from_tree(ctx *c, const cJSON *root, double max_steps, dp_spec *spec, int keys_checked)
 {
     dp_errors *errs = c->errs;
@@ -292,7 +331,10 @@ static int spec_from_tree(ctx *c, const cJSON *root, double max_steps, dp_spec *
     /* DP_SPEC_MAX_STEPS is a hard ceiling; front ends may only lower it. */
     if (!(max_steps > 0) || max_steps > DP_SPEC_MAX_STEPS)
         max_steps = DP_SPEC_MAX_STEPS;
-    return dp_spec_check(spec, max_steps, errs);
+    size_t before = errs->n;
+    int st = dp_spec_check(spec, max_steps, errs);
+    point_at_present(root, errs, before);
+    return st;
 }
 
 int dp_spec_parse(const char *text, size_t len, double max_steps, dp_spec *spec, dp_errors *errs)

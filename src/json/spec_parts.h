@@ -84,6 +84,9 @@ void js_parse_network_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 void js_parse_columns(ctx *c, const cJSON *o, const at *ptr, const char *key, const char *noun,
                       const dp_spec *s, size_t n, size_t **out, size_t *count);
 
+/* output.quakes: a boolean, for networks only (the rules check the network has friction). */
+void js_parse_quakes(ctx *c, const cJSON *o, const at *ptr, dp_spec *s);
+
 /* ---- lcs_json.c ---- */
 
 int js_is_lcs(const cJSON *o);

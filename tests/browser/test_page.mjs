@@ -262,6 +262,33 @@ async function runNetworkPreset(page, name, id, origin) {
   return { d, view, events, stuck, samples, meta };
 }
 
+// The Carlson-Langer preset asks for its quakes: the Gutenberg-Richter figure shows, has received every quake
+// line of the daemon's own stream, draws its non-empty magnitude bins with a falling fitted line, and carries
+// colour; the network plots are drawn as for any network run.
+async function checkQuakes(page, origin) {
+  const from = problems.length;
+  const d = await pick(page, 'carlson-langer');
+  const spec = await page.inputValue('#spec');
+  const res = await fetch(origin + 'v1/simulate', { method: 'POST', body: spec, headers: { Accept: 'application/x-ndjson' } });
+  const lines = (await res.text()).trim().split('\n').map((l) => JSON.parse(l));
+  const quakes = lines.filter((o) => o.type === 'quake');
+  const g = await page.evaluate(() => {
+    const c = document.getElementById('plot-quakes'), f = document.getElementById('quakes-figure');
+    const px = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let ink = 0;
+    for (let i = 0; i < px.length; i += 4)
+      if (px[i + 3] > 160 && Math.max(px[i], px[i + 1], px[i + 2]) - Math.min(px[i], px[i + 1], px[i + 2]) > 60) ink++;
+    return { shown: !f.hidden && c.offsetParent !== null, quakes: +c.dataset.quakes, bins: +c.dataset.bins,
+      slope: c.dataset.slope === '' ? NaN : +c.dataset.slope, ink, legend: document.getElementById('quakes-legend').textContent };
+  });
+  check(d.state === 'done' && JSON.parse(spec).output.quakes === true && quakes.length >= 100 && g.shown &&
+    g.quakes === quakes.length && g.bins >= 5 && g.slope < 0 && g.ink > 300 && g.legend.includes(`${quakes.length} quakes`),
+    `carlson-langer: the Gutenberg-Richter plot of its ${quakes.length} quakes (${g.bins} bins, slope ${g.slope})`, JSON.stringify(g));
+  const bad = unexpected(from);
+  check(bad.length === 0, 'carlson-langer: no console error, page error or failed request', bad.join('\n    '));
+  await screenshot(page, 'page-carlson-langer');
+}
+
 // Runs a right-hand friction preset (web/right_hand.js) and checks the page against the daemon's own stream:
 // the samples held and drawn on its two plots (the one-mass plots hidden), the events, and for a run that
 // stops (a Painlevé paradox, the rod at the floor) the stop time the view shades from, read from the record.
@@ -720,6 +747,8 @@ try {
     `burridge-knopoff: velocity weakening on ${relaxed} blocks sustains the stick-slip (sticks per third of the run: ` +
     `${third(0, 1)}, ${third(1, 2)}, ${third(2, 3.01)})`);
   await screenshot(page, 'page-burridge-knopoff');
+  // ---- the quake catalogue of a Carlson-Langer chain (web/quakes.js, docs/quakes.md) ----
+  await checkQuakes(page, out);
   // ---- contacts and impacts (web/contact.js) ----
   await checkContacts(page, out);
   // ---- friction with motion-dependent normal force (web/right_hand.js) ----

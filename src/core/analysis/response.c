@@ -12,7 +12,15 @@
  * undamped H_ji(lambda = omega^2), a sum of simple poles: between two poles it is continuous, so its sign
  * changes are bracketed on a grid crowded towards the poles and each is refined by Brent's method; they
  * are located, not read off the samples.
+ *
+ * Finite through: a term of the modal sum whose textbook form a (dr - i di) / (dr^2 + di^2) would over- or
+ * underflow is divided by Smith's rule instead, and a dynamic stiffness K - omega^2 M + i omega C beyond
+ * 2^+-256 is scaled by a power of two before its LU; a receptance that is still not finite (and not an
+ * undamped system exactly at a resonance) is DP_ENONFINITE, never a NaN on the wire. The stop hook is asked
+ * before every point and between the located zeros.
  */
+#include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -132,7 +140,8 @@ static int cmp_double(const void *x, const void *y)
 }
 
 /* Resonances and antiresonances of the undamped system inside [from, to]. */
-static int locate(const dp_modes *md, size_t i, size_t j, double from, double to, dp_response *out)
+static int locate(const dp_modes *md, size_t i, size_t j, double from, double to, const dp_stop *stop,
+                  dp_response *out)
 {
     poles p = { 0 };
     int s = gather_poles(md, i, j, &p);
@@ -152,6 +161,10 @@ static int locate(const dp_modes *md, size_t i, size_t j, double from, double to
     size_t nz = 0;
     double lo = from * from, hi = to * to;
     for (size_t g = 0; s == DP_OK && p.m > 0 && g <= p.m; g++) {
+        if (dp_stop_now(stop)) {
+            s = DP_ECANCEL;
+            break;
+        }
         double a = g == 0 ? lo : fmax(lo, p.lambda[g - 1]), b = g == p.m ? hi : fmin(hi, p.lambda[g]);
         if (b > a)
             zeros_between(&p, a, b, z, &nz, cap);
@@ -201,6 +214,25 @@ static void set_point(dp_response_point *pt, double omega, double re, double im)
         pt->phase = M_PI;
 }
 
+/* re + i im += a / (dr + i di): the textbook form when it stays in range (the common case, bit for bit as
+ * always), Smith's rule when dr^2 + di^2 or a dr would over- or underflow. */
+static void add_term(double a, double dr, double di, double *re, double *im)
+{
+    double d2 = dr * dr + di * di, tr = a * dr / d2, ti = a * di / d2;
+    if (isfinite(d2) && d2 >= DBL_MIN && isfinite(tr) && isfinite(ti)) {
+        *re += tr;
+        *im -= ti;
+    } else if (fabs(dr) >= fabs(di)) {
+        double r = di / dr, den = dr + di * r;
+        *re += a / den;
+        *im -= a * r / den;
+    } else {
+        double r = dr / di, den = di + dr * r;
+        *re += a * r / den;
+        *im -= a / den;
+    }
+}
+
 static void modal_point(const dp_modes *md, const double *c, size_t i, size_t j, double w, dp_response_point *pt)
 {
     size_t n = md->n;
@@ -209,23 +241,50 @@ static void modal_point(const dp_modes *md, const double *c, size_t i, size_t j,
         double a = md->shape[k * n + j] * md->shape[k * n + i];
         if (a == 0)
             continue;
-        double dr = md->lambda[k] - w * w, di = w * c[k], d2 = dr * dr + di * di;
-        if (d2 == 0) { /* undamped, exactly at a resonance (or omega = 0 with a rigid mode) */
+        double dr = md->lambda[k] - w * w, di = w * c[k];
+        if (dr == 0 && di == 0) { /* undamped, exactly at a resonance (or omega = 0 with a rigid mode) */
             re = INFINITY;
             break;
         }
-        re += a * dr / d2;
-        im -= a * di / d2;
+        add_term(a, dr, di, &re, &im);
     }
     set_point(pt, w, re, im);
 }
 
-static int direct_point(size_t n, const double *M, const double *K, const double *C, size_t i, size_t j, double w,
-                        gsl_matrix_complex *A, gsl_vector_complex *x, gsl_permutation *perm, dp_response_point *pt)
+/* The largest entries of M, K, C: the scale of the dynamic stiffness at each frequency. */
+typedef struct scales {
+    double m, k, c;
+} scales;
+
+/* The power of two the dynamic stiffness at w is divided by: 0 when it is within 2^+-256 (bit for bit as
+ * always), otherwise the exponent of its largest entry, found without forming it. */
+static int dynamic_scale(const scales *sc, double w)
 {
+    double big = sc->k + w * (w * sc->m) + w * sc->c;
+    if (isfinite(big) && big <= 0x1p256 && big >= 0x1p-256)
+        return 0;
+    int e = INT_MIN / 4, ew = w > 0 && isfinite(w) ? ilogb(w) : 0;
+    if (sc->k > 0)
+        e = ilogb(sc->k);
+    if (sc->m > 0 && w > 0 && ilogb(sc->m) + 2 * ew > e)
+        e = ilogb(sc->m) + 2 * ew;
+    if (sc->c > 0 && w > 0 && ilogb(sc->c) + ew > e)
+        e = ilogb(sc->c) + ew;
+    return e == INT_MIN / 4 ? 0 : e;
+}
+
+static int direct_point(size_t n, const double *M, const double *K, const double *C, const scales *sc, size_t i,
+                        size_t j, double w, gsl_matrix_complex *A, gsl_vector_complex *x, gsl_permutation *perm,
+                        dp_response_point *pt)
+{
+    int p = dynamic_scale(sc, w);
     for (size_t r = 0; r < n; r++)
-        for (size_t q = 0; q < n; q++)
-            gsl_matrix_complex_set(A, r, q, gsl_complex_rect(K[r * n + q] - w * w * M[r * n + q], w * C[r * n + q]));
+        for (size_t q = 0; q < n; q++) {
+            size_t rq = r * n + q;
+            double re = p == 0 ? K[rq] - w * w * M[rq] : ldexp(K[rq], -p) - w * (w * ldexp(M[rq], -p));
+            double im = p == 0 ? w * C[rq] : w * ldexp(C[rq], -p);
+            gsl_matrix_complex_set(A, r, q, gsl_complex_rect(re, im));
+        }
     int sign;
     gsl_vector_complex_set_basis(x, i);
     if (gsl_linalg_complex_LU_decomp(A, perm, &sign) != GSL_SUCCESS ||
@@ -234,30 +293,56 @@ static int direct_point(size_t n, const double *M, const double *K, const double
         return DP_OK;
     }
     gsl_complex h = gsl_vector_complex_get(x, j);
-    set_point(pt, w, GSL_REAL(h), GSL_IMAG(h));
-    return DP_OK;
+    set_point(pt, w, ldexp(GSL_REAL(h), -p), ldexp(GSL_IMAG(h), -p));
+    return isfinite(pt->re) && isfinite(pt->im) ? DP_OK : DP_ENONFINITE;
+}
+
+static double largest(size_t n, const double *A)
+{
+    double a = 0;
+    for (size_t k = 0; A && k < n * n; k++)
+        a = fmax(a, fabs(A[k]));
+    return a;
+}
+
+/* A modal point is infinite only at an exact undamped resonance; anything else not finite is an overflow. */
+static int modal_finite(const dp_response_point *pt)
+{
+    return (isfinite(pt->re) && isfinite(pt->im)) || (pt->re == INFINITY && pt->im == 0);
 }
 
 static int sample(size_t n, const double *M, const double *K, const double *C, const dp_modes *md, size_t i,
-                  size_t j, double from, double to, size_t points, int log_spacing, dp_response *out)
+                  size_t j, double from, double to, size_t points, int log_spacing, const dp_stop *stop,
+                  dp_response *out)
 {
     int direct = md->damped && !md->proportional;
     if (direct && (double)points * n * n * n > DIRECT_WORK_MAX)
         return DP_ELIMIT;
+    const scales sc = { largest(n, M), largest(n, K), direct ? largest(n, C) : 0 };
     double *c = malloc(n * sizeof *c);
     gsl_matrix_complex *A = direct ? gsl_matrix_complex_alloc(n, n) : NULL;
     gsl_vector_complex *x = direct ? gsl_vector_complex_alloc(n) : NULL;
     gsl_permutation *perm = direct ? gsl_permutation_alloc(n) : NULL;
     int s = c && (!direct || (A && x && perm)) ? modal_c(n, C, md, c) : DP_ENOMEM;
+    for (size_t k = 0; s == DP_OK && k < n; k++)
+        s = isfinite(c[k]) ? DP_OK : DP_ENONFINITE;
     for (size_t k = 0; s == DP_OK && k < points; k++) {
+        if (dp_stop_now(stop)) {
+            s = DP_ECANCEL;
+            break;
+        }
         double t = points == 1 ? 0 : (double)k / (double)(points - 1);
-        double w = log_spacing ? from * pow(to / from, t) : from + (to - from) * t;
+        double ratio = to / from, w = !log_spacing ? from + (to - from) * t
+                                    : isfinite(ratio) ? from * pow(ratio, t) /* as always */
+                                                      : exp(log(from) + t * (log(to) - log(from)));
         if (k + 1 == points)
             w = to;
         if (direct)
-            s = direct_point(n, M, K, C, i, j, w, A, x, perm, &out->point[k]);
-        else
+            s = direct_point(n, M, K, C, &sc, i, j, w, A, x, perm, &out->point[k]);
+        else {
             modal_point(md, c, i, j, w, &out->point[k]);
+            s = modal_finite(&out->point[k]) ? DP_OK : DP_ENONFINITE;
+        }
     }
     gsl_permutation_free(perm);
     gsl_vector_complex_free(x);
@@ -270,6 +355,13 @@ int dp_response_solve(size_t n, const double *M, const double *K, const double *
                       size_t i, size_t j, double from, double to, size_t points, int log_spacing,
                       dp_response *out)
 {
+    return dp_response_solve_until(n, M, K, C, modes, i, j, from, to, points, log_spacing, NULL, out);
+}
+
+int dp_response_solve_until(size_t n, const double *M, const double *K, const double *C, const dp_modes *modes,
+                            size_t i, size_t j, double from, double to, size_t points, int log_spacing,
+                            const dp_stop *stop, dp_response *out)
+{
     memset(out, 0, sizeof *out);
     if (i >= n || j >= n || !(from >= 0) || !(to >= from) || points == 0 || (log_spacing && !(from > 0)))
         return DP_EINVAL;
@@ -277,6 +369,6 @@ int dp_response_solve(size_t n, const double *M, const double *K, const double *
     if (out->point == NULL)
         return DP_ENOMEM;
     out->npoints = points;
-    int s = sample(n, M, K, C, modes, i, j, from, to, points, log_spacing, out);
-    return s ? s : locate(modes, i, j, from, to, out);
+    int s = sample(n, M, K, C, modes, i, j, from, to, points, log_spacing, stop, out);
+    return s ? s : locate(modes, i, j, from, to, stop, out);
 }

@@ -16,6 +16,22 @@
 #include "dashpot/right_hand.h"
 #include "dashpot/wellposedness.h"
 
+/* A margin as text: %.6g when finite; an extreme model (a 5e-324 radius, a 1e308 coefficient) makes some
+ * overflow, and a report says so rather than printing inf or nan. Each call writes its own buffer. */
+typedef struct num_text {
+    char s[40];
+} num_text;
+
+static num_text num(double x)
+{
+    num_text t;
+    if (isfinite(x))
+        snprintf(t.s, sizeof t.s, "%.6g", x);
+    else
+        snprintf(t.s, sizeof t.s, "(overflows double precision)");
+    return t;
+}
+
 static dp_wp_check *add(dp_wp_report *rep, const char *name, int holds)
 {
     dp_wp_check *c = &rep->check[rep->nchecks++];
@@ -39,8 +55,8 @@ static int uniform(const dp_right_hand_model *m, dp_wp_report *rep)
     double h3 = J / 2 - sqrt(2) * mr * m->f2;
     int ok = h1 > 0 && h2 > 0 && h3 > 0;
     dp_wp_check *c = add(rep, "(2.3) for every state (Theorem 4.1): (6.4) at its worst beta", ok);
-    snprintf(c->detail, sizeof c->detail, "margins m/2 - m2 r sqrt(1 + f1^2) = %.6g, J/2 - m2 (r + f2) = %.6g, "
-             "J/2 - sqrt(2) m2 r f2 = %.6g (units e_sv = 1)", h1, h2, h3);
+    snprintf(c->detail, sizeof c->detail, "margins m/2 - m2 r sqrt(1 + f1^2) = %s, J/2 - m2 (r + f2) = %s, "
+             "J/2 - sqrt(2) m2 r f2 = %s (units e_sv = 1)", num(h1).s, num(h2).s, num(h3).s);
     return ok;
 }
 
@@ -59,9 +75,9 @@ void dp_right_hand_wellposedness(const dp_right_hand_model *m, const double q[2]
     int unique = res.n == 1 && !res.continuum;
     dp_wp_check *c = add(rep, "one acceleration at the initial state (every stick/slip mode enumerated)", unique);
     if (unique)
-        snprintf(c->detail, sizeof c->detail, "qdd = [%.6g, %.6g], modes (%s, %s), N = [%.6g, %.6g]",
-                 res.sol[0].qdd[0], res.sol[0].qdd[1], mode_word(res.sol[0].mode[0]),
-                 mode_word(res.sol[0].mode[1]), res.sol[0].N[0], res.sol[0].N[1]);
+        snprintf(c->detail, sizeof c->detail, "qdd = [%s, %s], modes (%s, %s), N = [%s, %s]",
+                 num(res.sol[0].qdd[0]).s, num(res.sol[0].qdd[1]).s, mode_word(res.sol[0].mode[0]),
+                 mode_word(res.sol[0].mode[1]), num(res.sol[0].N[0]).s, num(res.sol[0].N[1]).s);
     else
         snprintf(c->detail, sizeof c->detail, "Painleve %s: %d solutions%s", res.n ? "indeterminacy" :
                  "inconsistency", res.n, res.continuum ? " and a continuum" : "");
@@ -89,19 +105,19 @@ void dp_right_hand_wellposedness(const dp_right_hand_model *m, const double q[2]
         snprintf(add(rep, "|N_s| != 0 for the coordinates not strictly stuck (Theorem 3.1, the set A)", 0)->detail,
                  DP_WP_TEXT, "%s", none);
     } else {
-        snprintf(add(rep, "(1.2) at the initial state", c12)->detail, DP_WP_TEXT, "margin %.6g", k.c12);
+        snprintf(add(rep, "(1.2) at the initial state", c12)->detail, DP_WP_TEXT, "margin %s", num(k.c12).s);
         snprintf(add(rep, "(2.3) at the initial state (Theorem 3.1)", c23)->detail, DP_WP_TEXT,
-                 "margin %.6g (min over s, v of a_ss/k* - |a_ss dF_s/dq''_v|)", k.c23);
+                 "margin %s (min over s, v of a_ss/k* - |a_ss dF_s/dq''_v|)", num(k.c23).s);
         snprintf(add(rep, "|N_s| != 0 for the coordinates not strictly stuck (Theorem 3.1, the set A)",
-                     nonzero)->detail, DP_WP_TEXT, "N = [%.6g, %.6g]", res.sol[0].N[0], res.sol[0].N[1]);
+                     nonzero)->detail, DP_WP_TEXT, "N = [%s, %s]", num(res.sol[0].N[0]).s, num(res.sol[0].N[1]).s);
     }
     snprintf(add(rep, "no resting coordinate on its friction cone, N1 empty (Theorem 5.1)", n1empty)->detail,
              DP_WP_TEXT, "%s", res.n < 1 ? none : n1empty ? "every resting coordinate strictly inside or sliding"
                                                            : "a resting coordinate holds exactly f|N|");
     if (m->kind == DP_RIGHT_HAND_PISTON_HINGE && res.n >= 1) {
-        snprintf(add(rep, "(6.2) at the initial state", k.c62 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c62);
-        snprintf(add(rep, "(6.3)", k.c63 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c63);
-        snprintf(add(rep, "(6.4) at the initial state", k.c64 > 0)->detail, DP_WP_TEXT, "margin %.6g", k.c64);
+        snprintf(add(rep, "(6.2) at the initial state", k.c62 > 0)->detail, DP_WP_TEXT, "margin %s", num(k.c62).s);
+        snprintf(add(rep, "(6.3)", k.c63 > 0)->detail, DP_WP_TEXT, "margin %s", num(k.c63).s);
+        snprintf(add(rep, "(6.4) at the initial state", k.c64 > 0)->detail, DP_WP_TEXT, "margin %s", num(k.c64).s);
     }
     int uni = uniform(m, rep);
     int exist = unique && c23 && nonzero;

@@ -253,11 +253,13 @@ static void sort_ranks(size_t *idx, size_t *tmp, size_t n, const double *w)
 }
 
 /* Eigenvectors of one block [b0, b0 + m) by inverse iteration, into the rows of Z its eigenvalues rank. */
-static void block_vectors(size_t n, size_t b0, size_t m, const double *d, const double *e, const double *w,
-                          const size_t *rank, double norm, double *work, double *Z)
+static int block_vectors(size_t n, size_t b0, size_t m, const double *d, const double *e, const double *w,
+                         const size_t *rank, double norm, double *work, double *Z, const dp_stop *stop)
 {
     double tiny = DBL_EPSILON * fmax(norm, DBL_MIN);
     for (size_t k = 0; k < m; k++) {
+        if (dp_stop_now(stop))
+            return -2;
         double *z = Z + rank[b0 + k] * n + b0, lambda = w[b0 + k];
         unsigned long long seed = 0x9E3779B97F4A7C15ull * (k + 1);
         for (size_t i = 0; i < m; i++) { /* a fixed pseudo-random start: no global state, same answer always */
@@ -281,9 +283,15 @@ static void block_vectors(size_t n, size_t b0, size_t m, const double *d, const 
                 break;
         }
     }
+    return 0;
 }
 
 int dp_tridiag_eigen(size_t n, const double *d, const double *e, double *w, double *Z)
+{
+    return dp_tridiag_eigen_until(n, d, e, w, Z, NULL);
+}
+
+int dp_tridiag_eigen_until(size_t n, const double *d, const double *e, double *w, double *Z, const dp_stop *stop)
 {
     size_t *block_end = malloc(n * sizeof *block_end), *idx = malloc(n * sizeof *idx),
            *tmp = malloc(n * sizeof *tmp), *rank = malloc(n * sizeof *rank);
@@ -298,7 +306,12 @@ int dp_tridiag_eigen(size_t n, const double *d, const double *e, double *w, doub
         emax2 = fmax(emax2, e[i] * e[i]);
     double pivmin = DBL_MIN * fmax(1, emax2);
     /* blocks, their eigenvalues in lw (ascending within each block) */
+    int s = 0;
     for (size_t b0 = 0; b0 < n;) {
+        if (dp_stop_now(stop)) {
+            s = -2;
+            break;
+        }
         size_t b1 = b0 + 1;
         while (b1 < n && fabs(e[b1 - 1]) > DBL_EPSILON * sqrt(fabs(d[b1 - 1])) * sqrt(fabs(d[b1])) && e[b1 - 1] != 0)
             b1++;
@@ -307,6 +320,10 @@ int dp_tridiag_eigen(size_t n, const double *d, const double *e, double *w, doub
             block_end[k] = b1;
         b0 = b1;
     }
+    if (s != 0) {
+        free(block_end), free(idx), free(tmp), free(rank), free(lw), free(work);
+        return s;
+    }
     for (size_t i = 0; i < n; i++)
         idx[i] = i;
     sort_ranks(idx, tmp, n, lw);
@@ -314,13 +331,13 @@ int dp_tridiag_eigen(size_t n, const double *d, const double *e, double *w, doub
         rank[idx[r]] = r;
         w[r] = lw[idx[r]];
     }
-    for (size_t b0 = 0; b0 < n; b0 = block_end[b0]) {
+    for (size_t b0 = 0; b0 < n && s == 0; b0 = block_end[b0]) {
         size_t m = block_end[b0] - b0;
         double norm = 0;
         for (size_t i = b0; i < b0 + m; i++)
             norm = fmax(norm, fabs(d[i]) + (i > b0 ? fabs(e[i - 1]) : 0) + (i + 1 < b0 + m ? fabs(e[i]) : 0));
-        block_vectors(n, b0, m, d, e, lw, rank, norm, work, Z);
+        s = block_vectors(n, b0, m, d, e, lw, rank, norm, work, Z, stop);
     }
     free(block_end), free(idx), free(tmp), free(rank), free(lw), free(work);
-    return 0;
+    return s;
 }

@@ -41,6 +41,9 @@ int dp_graph_init(dp_graph *g, size_t n, const double *y, const double *f,
     for (size_t i = 0; i < n; i++) {
         if (!isfinite(y[i]) || !isfinite(f[i]))
             return DP_EINVAL;
+        /* a piece whose extent overflows would interpolate with inf * 0 */
+        if (i > 0 && (!isfinite(y[i] - y[i - 1]) || !isfinite(f[i] - f[i - 1])))
+            return DP_EINVAL;
         if (i > 0 && (y[i] < y[i - 1] || f[i] < f[i - 1]))
             return DP_EINVAL;
     }
@@ -119,49 +122,66 @@ static size_t upper_bound(const double *a, size_t n, double x)
     return lo;
 }
 
-/* The interval of `b` over the points of the curve whose `a` coordinate equals x. The curve is given by
- * sorted a[], b[] and rays whose components are (da, db) at index ia, ib of the direction arrays. */
-static void section(size_t n, const double *a, const double *b, const double left[2],
-                    const double right[2], int ia, int ib, double x, double *lo, double *hi)
+/* How far a ray of direction (da, db) climbs in b over a distance d >= 0 in a: d (db/da), or where the
+ * slope alone overflows (a ray nearly vertical, da subnormal) d/da db, which is finite when the climb is. */
+static double ray(double d, double db, double da)
 {
+    double c = d * (db / da);
+    return isfinite(c) || !isfinite(d) ? c : d / da * db;
+}
+
+/* The interval of `b` over the points of the curve whose `a` coordinate equals x. The curve is given by
+ * sorted a[], b[] and rays whose components are (da, db) at index ia, ib of the direction arrays.
+ * A non-finite x is refused before the search: a NaN compares false both ways, so the searches below would
+ * find no index (upper_bound 0, then b[-1]), and an infinite x meets a horizontal ray as inf * 0. */
+static int section(size_t n, const double *a, const double *b, const double left[2],
+                   const double right[2], int ia, int ib, double x, double *lo, double *hi)
+{
+    if (!isfinite(x)) {
+        *lo = *hi = NAN;
+        return DP_ENONFINITE;
+    }
     if (x < a[0]) {
         if (left[ia] > 0)
-            *lo = *hi = b[0] - (a[0] - x) * (left[ib] / left[ia]);
+            *lo = *hi = b[0] - ray(a[0] - x, left[ib], left[ia]);
         else
             *lo = *hi = -INFINITY; /* vertical left ray: x lies outside the graph's domain */
-        return;
+        return DP_OK;
     }
     if (x > a[n - 1]) {
         if (right[ia] > 0)
-            *lo = *hi = b[n - 1] + (x - a[n - 1]) * (right[ib] / right[ia]);
+            *lo = *hi = b[n - 1] + ray(x - a[n - 1], right[ib], right[ia]);
         else
             *lo = *hi = INFINITY;
-        return;
+        return DP_OK;
     }
     size_t i = lower_bound(a, n, x);
     if (a[i] > x) { /* strictly inside segment (i-1, i), which is not vertical */
         double s = (x - a[i - 1]) / (a[i] - a[i - 1]);
         *lo = *hi = b[i - 1] + s * (b[i] - b[i - 1]);
-        return;
+        return DP_OK;
     }
     size_t j = upper_bound(a, n, x) - 1;
     *lo = (i == 0 && left[ia] == 0) ? -INFINITY : b[i];
     *hi = (j == n - 1 && right[ia] == 0) ? INFINITY : b[j];
+    return DP_OK;
 }
 
-void dp_graph_force(const dp_graph *g, double y, double *lo, double *hi)
+int dp_graph_force(const dp_graph *g, double y, double *lo, double *hi)
 {
-    section(g->n, g->y, g->f, g->left, g->right, 0, 1, y, lo, hi);
+    return section(g->n, g->y, g->f, g->left, g->right, 0, 1, y, lo, hi);
 }
 
-void dp_graph_kinematic(const dp_graph *g, double F, double *lo, double *hi)
+int dp_graph_kinematic(const dp_graph *g, double F, double *lo, double *hi)
 {
-    section(g->n, g->f, g->y, g->left, g->right, 1, 0, F, lo, hi);
+    return section(g->n, g->f, g->y, g->left, g->right, 1, 0, F, lo, hi);
 }
 
 double dp_graph_resolvent(const dp_graph *g, double l, double s)
 {
     size_t n = g->n;
+    if (!isfinite(s) || !isfinite(l))
+        return NAN; /* no search with a NaN: its comparisons are all false */
     double u0 = g->y[0] + l * g->f[0];
     double un = g->y[n - 1] + l * g->f[n - 1];
     if (s <= u0) /* on the left ray: u falls at rate dy + l dF > 0 */

@@ -43,12 +43,18 @@ int dp_inclusion_holds_with(const dp_inclusion *p, double w, double flo, double 
     return lo <= 0 && 0 <= hi;
 }
 
-/* -1: the solution lies right of w; +1: left of it; 0: w solves. */
+/* The side() of a Phi that is not a number: the step's quantities overflowed (an end of a product of the
+ * document's numbers past the doubles), which no search can get past. */
+#define NOT_A_SIDE 2
+
+/* -1: the solution lies right of w; +1: left of it; 0: w solves; NOT_A_SIDE: Phi(w) is NaN. */
 static int side(const dp_inclusion *p, double w, unsigned long long *evals)
 {
     double lo, hi;
     phi(p, w, &lo, &hi);
     (*evals)++;
+    if (isnan(lo) || isnan(hi))
+        return NOT_A_SIDE;
     return hi < 0 ? -1 : lo > 0 ? 1 : 0;
 }
 
@@ -61,6 +67,8 @@ static int gallop(const dp_inclusion *p, const double *y, size_t n, double off, 
 {
     double k = (y[h] - off) / scale;
     int s = side(p, k, evals), dir = s; /* dir < 0: the kink sought is right of h; > 0: h or left of it */
+    if (s == NOT_A_SIDE)
+        return -1;
     if (s == 0) {
         *w = k;
         return 1;
@@ -73,6 +81,8 @@ static int gallop(const dp_inclusion *p, const double *y, size_t n, double off, 
         size_t i = dir < 0 ? h + d : h - d;
         k = (y[i] - off) / scale;
         s = side(p, k, evals);
+        if (s == NOT_A_SIDE)
+            return -1;
         if (s == 0) {
             *w = k;
             return 1;
@@ -87,17 +97,21 @@ static int gallop(const dp_inclusion *p, const double *y, size_t n, double off, 
     return 0;
 }
 
-/* Narrows (*lo, *hi) with the kinks off + scale * y[i] of one graph; returns 1 if a kink solves. */
+/* Narrows (*lo, *hi) with the kinks off + scale * y[i] of one graph; returns 1 if a kink solves, -1 if Phi
+ * is NaN at one. */
 static int search_kinks(const dp_inclusion *p, const double *y, size_t n, double off, double scale,
                         double *lo, double *hi, double *w, size_t *hint, unsigned long long *evals)
 {
     size_t a = 0, b = n; /* first kink whose side is >= 0 */
-    if (hint && *hint < n && gallop(p, y, n, off, scale, *hint, &a, &b, w, evals))
-        return 1;
+    int g = hint && *hint < n ? gallop(p, y, n, off, scale, *hint, &a, &b, w, evals) : 0;
+    if (g != 0)
+        return g;
     while (a < b) {
         size_t mid = a + (b - a) / 2;
         double k = (y[mid] - off) / scale;
         int s = side(p, k, evals);
+        if (s == NOT_A_SIDE)
+            return -1;
         if (s == 0) {
             *w = k;
             return 1;
@@ -163,6 +177,8 @@ int dp_inclusion_solve(const dp_inclusion *p, double *w, double *a, double *s, u
     int hit = search_kinks(p, p->A->y, p->A->n, -p->a_shift, 1.0, &lo, &hi, &root, p->hint, &ev);
     if (!hit && p->S)
         hit = search_kinks(p, p->S->y, p->S->n, p->s_x, p->s_h, &lo, &hi, &root, p->hint ? p->hint + 1 : NULL, &ev);
+    if (hit < 0)
+        return DP_ENONFINITE;
     if (!hit) {
         double glo, ghi, t;
         if (isfinite(lo)) {
@@ -184,7 +200,7 @@ int dp_inclusion_solve(const dp_inclusion *p, double *w, double *a, double *s, u
     split_forces(p, root, a, s);
     if (evals)
         *evals += ev;
-    return DP_OK;
+    return isfinite(*a) && isfinite(*s) ? DP_OK : DP_ENONFINITE;
 }
 
 typedef struct side_ctx { const dp_inclusion *p; double dir; } side_ctx;

@@ -23,7 +23,8 @@ typedef struct dp_inclusion {
 /* Solves for *w and splits the set-valued part into the damper force *a in A(w - a_shift) and the spring
  * force *s in S(...) (0 without S). Exact at vertices (sticking, a taut rope) and on affine pieces without
  * relaxation; with relaxation the root is bracketed and refined to rounding. *evals counts evaluations.
- * Returns DP_OK or DP_ESOLVE (no finite bracket). */
+ * Returns DP_OK, DP_ESOLVE (no finite bracket) or DP_ENONFINITE (Phi or the forces are not numbers: the
+ * step's quantities overflow). */
 int dp_inclusion_solve(const dp_inclusion *p, double *w, double *a, double *s, unsigned long long *evals);
 
 /* A solution strictly on one side of rest, sgn(w - a_shift) = dir, if there is one (DP_ESOLVE if not):

@@ -194,34 +194,73 @@ static int valid(const dp_lcs *s, double h, double theta)
     return rows <= DP_LCP_MAX;
 }
 
-/* W = (I - hθA)^-1, E = W (I + h(1-θ)A), WB = h W B, Whp = h W p. 0 when I - hθA is singular. */
-static int discretize(dp_lcs_stepper *st, const dp_lcs *s, double h, double theta)
+/* Why a stepper was refused: the member of an LCS document that made it, and a sentence. */
+typedef struct refusal {
+    const char *where, *why;
+} refusal;
+
+static int refuse(refusal *no, const char *where, const char *why)
 {
-    size_t n = s->n, m = s->m;
-    gsl_matrix *L = gsl_matrix_alloc(n, n), *R = gsl_matrix_alloc(n, n);
-    gsl_permutation *p = gsl_permutation_alloc(n);
-    int ok = L && R && p, sign;
-    for (size_t i = 0; ok && i < n; i++)
+    no->where = where, no->why = why;
+    return 0;
+}
+
+static int finite_matrix(const gsl_matrix *A)
+{
+    for (size_t i = 0; i < A->size1; i++)
+        if (!finite_all(A->data + i * A->tda, A->size2))
+            return 0;
+    return 1;
+}
+
+/* L = I - hθA, R = I + h(1-θ)A, each entry checked finite where formed. */
+static int step_operators(const dp_lcs *s, double h, double theta, gsl_matrix *L, gsl_matrix *R, refusal *no)
+{
+    size_t n = s->n;
+    for (size_t i = 0; i < n; i++)
         for (size_t j = 0; j < n; j++) {
             double a = s->A[i * n + j], d = i == j;
             gsl_matrix_set(L, i, j, d - h * theta * a);
             gsl_matrix_set(R, i, j, d + h * (1 - theta) * a);
         }
-    ok = ok && gsl_linalg_LU_decomp(L, p, &sign) == GSL_SUCCESS && gsl_linalg_LU_det(L, sign) != 0;
-    ok = ok && gsl_linalg_LU_invert(L, p, st->W) == GSL_SUCCESS;
+    if (!finite_matrix(L) || !finite_matrix(R))
+        return refuse(no, "/model/lcs/A", "h θ A or h (1 - θ) A is beyond the double range at this dt");
+    return 1;
+}
+
+/* W = (I - hθA)^-1, E = W (I + h(1-θ)A), WB = h W B, Whp = h W p, each checked finite where formed; 0 with
+ * the member to blame when I - hθA is singular or a product leaves the doubles. */
+static int discretize(dp_lcs_stepper *st, const dp_lcs *s, double h, double theta, refusal *no)
+{
+    size_t n = s->n, m = s->m;
+    gsl_matrix *L = gsl_matrix_alloc(n, n), *R = gsl_matrix_alloc(n, n);
+    gsl_permutation *p = gsl_permutation_alloc(n);
+    int ok = L && R && p, sign;
+    if (!ok)
+        refuse(no, "", "out of memory");
+    ok = ok && step_operators(s, h, theta, L, R, no);
+    if (ok && !(gsl_linalg_LU_decomp(L, p, &sign) == GSL_SUCCESS && gsl_linalg_LU_det(L, sign) != 0 &&
+                gsl_linalg_LU_invert(L, p, st->W) == GSL_SUCCESS && finite_matrix(st->W)))
+        ok = refuse(no, "/solver/dt", "I - h θ A is singular at this step: choose another dt");
     for (size_t j = 0; ok && j < n; j++) {
         gsl_vector_view col = gsl_matrix_column(R, j), out = gsl_matrix_column(st->E, j);
         ok = gsl_linalg_LU_solve(L, p, &col.vector, &out.vector) == GSL_SUCCESS;
     }
+    if (ok && !finite_matrix(st->E))
+        ok = refuse(no, "/model/lcs/A", "the step's map E = (I - h θ A)^-1 (I + h (1 - θ) A) is beyond the double range");
     for (size_t j = 0; ok && j < m; j++) {
         gsl_vector_view out = gsl_matrix_column(st->WB, j);
         for (size_t i = 0; i < n; i++)
             gsl_vector_set(st->xh, i, h * s->B[i * m + j]);
         ok = gsl_linalg_LU_solve(L, p, st->xh, &out.vector) == GSL_SUCCESS;
     }
+    if (ok && !finite_matrix(st->WB))
+        ok = refuse(no, "/model/lcs/B", "h (I - h θ A)^-1 B is beyond the double range");
     for (size_t i = 0; ok && i < n; i++)
         gsl_vector_set(st->xh, i, h * s->p[i]);
     ok = ok && gsl_linalg_LU_solve(L, p, st->xh, st->Whp) == GSL_SUCCESS;
+    if (ok && !finite_all(st->Whp->data, n))
+        ok = refuse(no, "/model/lcs/p", "h (I - h θ A)^-1 p is beyond the double range");
     gsl_matrix_free(L);
     gsl_matrix_free(R);
     gsl_permutation_free(p);
@@ -248,13 +287,31 @@ static size_t layout(dp_lcs_stepper *st, const dp_lcs *s)
     return ma;
 }
 
-/* M = D + C WB, and the augmented matrix Sᵀ M S + diag(κ) with each bounded piece's skew pair of rows. */
-static void assemble(dp_lcs_stepper *st)
+/* Whether every entry of the product A B is finite: which factor of the step's matrix to blame. */
+static int product_finite(const gsl_matrix *A, const gsl_matrix *B)
+{
+    for (size_t i = 0; i < A->size1; i++)
+        for (size_t j = 0; j < B->size2; j++) {
+            double acc = 0;
+            for (size_t k = 0; k < A->size2; k++)
+                acc += gsl_matrix_get(A, i, k) * gsl_matrix_get(B, k, j);
+            if (!isfinite(acc))
+                return 0;
+        }
+    return 1;
+}
+
+/* M = D + C WB, and the augmented matrix Sᵀ M S + diag(κ) with each bounded piece's skew pair of rows; each
+ * checked finite where formed (0 with the member to blame). */
+static int assemble(dp_lcs_stepper *st, refusal *no)
 {
     gsl_matrix_memcpy(st->M, st->D);
     gsl_blas_dgemm(CblasNoTrans, CblasNoTrans, 1.0, st->C, st->WB, 1.0, st->M);
+    if (!finite_matrix(st->M))
+        return refuse(no, product_finite(st->C, st->WB) ? "/model/lcs/D" : "/model/lcs/C",
+                      "the step's matrix D + h C (I - h θ A)^-1 B is beyond the double range");
     if (st->ma == 0)
-        return;
+        return 1;
     gsl_matrix_set_zero(st->Ma);
     for (size_t a = 0; a < st->np; a++) {
         const piece *pa = &st->pc[a];
@@ -268,10 +325,22 @@ static void assemble(dp_lcs_stepper *st)
             gsl_matrix_set(st->Ma, pa->upper, a, -1.0);
         }
     }
+    if (!finite_matrix(st->Ma))
+        return refuse(no, "/model/laws", "a law's slope added to the step's matrix is beyond the double range");
+    return 1;
 }
 
 dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *s, double h, double theta, int *status)
 {
+    const char *where, *why;
+    return dp_lcs_stepper_alloc_why(s, h, theta, status, &where, &why);
+}
+
+dp_lcs_stepper *dp_lcs_stepper_alloc_why(const dp_lcs *s, double h, double theta, int *status, const char **where,
+                                         const char **why)
+{
+    refusal no = { "", "invalid system" };
+    *where = no.where, *why = no.why;
     *status = DP_EINVAL;
     if (!valid(s, h, theta))
         return NULL;
@@ -300,18 +369,19 @@ dp_lcs_stepper *dp_lcs_stepper_alloc(const dp_lcs *s, double h, double theta, in
         !st->lo || !st->hi || !st->xh || !st->r || !st->qa || !st->za || !st->wa || !st->u || !st->pc ||
         (ma && !st->lcp)) {
         dp_lcs_stepper_free(st);
+        *why = "out of memory";
         return NULL;
     }
     memcpy(st->C->data, s->C, m * n * sizeof(double));
     memcpy(st->D->data, s->D, m * m * sizeof(double));
     memcpy(st->q->data, s->q, m * sizeof(double));
-    if (!discretize(st, s, h, theta)) {
-        *status = DP_EINVAL;
+    layout(st, s);
+    if (!discretize(st, s, h, theta, &no) || !assemble(st, &no)) {
+        *status = no.where[0] ? DP_EINVAL : DP_ENOMEM;
+        *where = no.where, *why = no.why;
         dp_lcs_stepper_free(st);
         return NULL;
     }
-    layout(st, s);
-    assemble(st);
     *status = DP_OK;
     return st;
 }
@@ -346,13 +416,16 @@ static void offsets(dp_lcs_stepper *st)
 }
 
 /* u+ from one LCP (none when every u is fixed by its law): u0 + Σ σ_p τ_p, kept in the law's domain against
- * rounding. DP_ESOLVE when Lemke ends on a ray. */
-static int solve_pieces(dp_lcs_stepper *st, dp_lcp_result *res)
+ * rounding. DP_ESOLVE when Lemke ends on a ray or on an answer that fails its check (res->outcome says
+ * which), DP_ENONFINITE when the LCP's offsets leave the doubles, Lemke's DP_ELIMIT and DP_ECANCEL. */
+static int solve_pieces(dp_lcs_stepper *st, dp_lcp_result *res, const dp_stop *stop)
 {
     *res = (dp_lcp_result){ DP_LCP_SOLVED, 0, 0.0 };
     if (st->ma > 0) {
         offsets(st);
-        int s = dp_lcp_lemke(st->lcp, st->Ma, st->qa, st->za, st->wa, res);
+        if (!finite_all(st->qa->data, st->ma))
+            return DP_ENONFINITE;
+        int s = dp_lcp_lemke_until(st->lcp, st->Ma, st->qa, st->za, st->wa, res, stop);
         if (s != DP_OK)
             return s;
         if (res->outcome != DP_LCP_SOLVED)
@@ -371,6 +444,11 @@ static int solve_pieces(dp_lcs_stepper *st, dp_lcp_result *res)
 
 int dp_lcs_step(dp_lcs_stepper *st, double *x, double *u, double *w, dp_lcp_result *res)
 {
+    return dp_lcs_step_until(st, x, u, w, res, NULL);
+}
+
+int dp_lcs_step_until(dp_lcs_stepper *st, double *x, double *u, double *w, dp_lcp_result *res, const dp_stop *stop)
+{
     size_t n = st->n, m = st->m;
     int s;
     gsl_vector_view xv = gsl_vector_view_array(x, n);
@@ -379,7 +457,7 @@ int dp_lcs_step(dp_lcs_stepper *st, double *x, double *u, double *w, dp_lcp_resu
     gsl_vector_add(st->xh, st->Whp);
     gsl_vector_memcpy(st->r, st->q);
     gsl_blas_dgemv(CblasNoTrans, 1.0, st->C, st->xh, 1.0, st->r);
-    if ((s = solve_pieces(st, res)) != DP_OK)
+    if ((s = solve_pieces(st, res, stop)) != DP_OK)
         return s;
     /* x+ = x^ + h W B u+, w+ = C x+ + D u+ + q */
     gsl_vector_memcpy(&xv.vector, st->xh);

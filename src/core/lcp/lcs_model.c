@@ -78,32 +78,59 @@ dp_lcs dp_lcs_model_system(const dp_lcs_model *lm)
     return (dp_lcs){ lm->n, lm->m, lm->A, lm->B, lm->C, lm->D, lm->p, lm->q, lm->law };
 }
 
-/* Is there a u for x0? The algebraic part alone (h = 0) at x0, by Lemke. */
-static void check_initial(const dp_lcs_model *lm, dp_errors *e)
+/* The outcome of the algebraic part at x0 as a located error: the state is to blame only when the laws admit
+ * no u there (Lemke's ray) or C x0 + q leaves the doubles; Lemke's own limits name the solver. The status. */
+static int initial_error(int s, const dp_lcp_result *res, dp_errors *e)
+{
+    if (s == DP_ESOLVE && res->outcome == DP_LCP_RAY) {
+        dp_errors_add(e, "/initial/x", "the laws admit no u at this state: w = C x + D u + q cannot meet "
+                      "them (an ideal diode with D = 0 needs C x + q >= 0: no current flowing backwards)");
+        return DP_EINVAL;
+    }
+    if (s == DP_ESOLVE) {
+        dp_errors_add(e, "/solver", "Lemke's method ended the algebraic part at t = 0 on a basis whose answer "
+                      "fails its check (relative residual %.3g): D is too ill-conditioned for the rounding",
+                      res->residual);
+        return DP_EINVAL;
+    }
+    if (s == DP_ELIMIT) {
+        dp_errors_add(e, "/solver", "Lemke's method took its limit of %zu pivots on the algebraic part at t = 0 "
+                      "without ending", res->pivots);
+        return DP_ELIMIT;
+    }
+    if (s == DP_ENONFINITE) {
+        dp_errors_add(e, "/initial/x", "C x + q, or the u it asks for, is beyond the double range at this state");
+        return DP_EINVAL;
+    }
+    dp_errors_add(e, "/solver", "the algebraic part at t = 0 could not be solved (%s)", dp_strerror(s));
+    return s;
+}
+
+/* Is there a u for x0? The algebraic part alone (h = 0) at x0, by Lemke. The status. */
+static int check_initial(const dp_lcs_model *lm, dp_errors *e)
 {
     dp_lcs sys = dp_lcs_model_system(lm);
     int s;
-    dp_lcs_stepper *st = dp_lcs_stepper_alloc(&sys, 0.0, 1.0, &s);
+    const char *where, *why;
+    dp_lcs_stepper *st = dp_lcs_stepper_alloc_why(&sys, 0.0, 1.0, &s, &where, &why);
     if (st == NULL) {
-        dp_errors_add(e, "/model/lcs", "%s", s == DP_ENOMEM ? "out of memory" : "invalid system");
-        return;
+        dp_errors_add(e, where[0] ? where : "/model/lcs", "%s", why);
+        return s;
     }
     double *x = malloc(lm->n * sizeof *x), *u = malloc(lm->m * sizeof *u), *w = malloc(lm->m * sizeof *w);
     dp_lcp_result res;
     if (x && u && w) {
         memcpy(x, lm->x0, lm->n * sizeof *x);
         s = dp_lcs_step(st, x, u, w, &res);
-        if (s == DP_ESOLVE)
-            dp_errors_add(e, "/initial/x", "the laws admit no u at this state: w = C x + D u + q cannot meet "
-                          "them (an ideal diode with D = 0 needs C x + q >= 0: no current flowing backwards)");
-        else if (s != DP_OK)
-            dp_errors_add(e, "/initial/x", "the algebraic part at this state could not be solved (%s)", dp_strerror(s));
-    } else
-        dp_errors_add(e, "/initial/x", "out of memory");
+        s = s == DP_OK ? DP_OK : initial_error(s, &res, e);
+    } else {
+        s = DP_ENOMEM;
+    }
     free(x);
     free(u);
     free(w);
     dp_lcs_stepper_free(st);
+    return s;
 }
 
 int dp_lcs_check(const dp_spec *s, double max_steps, dp_errors *e)
@@ -116,15 +143,20 @@ int dp_lcs_check(const dp_spec *s, double max_steps, dp_errors *e)
         dp_errors_add(e, "/solver/variant", "an LCS model runs on the \"exact\" variant");
     if (e->n + e->dropped > before)
         return DP_EINVAL;
-    check_initial(lm, e);
+    int st = check_initial(lm, e);
+    if (st == DP_ENOMEM || st == DP_ELIMIT)
+        return st;
     dp_lcs sys = dp_lcs_model_system(lm);
-    int st;
-    dp_lcs_stepper *step = dp_lcs_stepper_alloc(&sys, s->solver.dt, s->solver.theta, &st);
-    if (step == NULL && st == DP_EINVAL)
-        dp_errors_add(e, "/solver/dt", "I - h θ A is singular at this step: choose another dt");
+    const char *where, *why;
+    int sa;
+    dp_lcs_stepper *step = dp_lcs_stepper_alloc_why(&sys, s->solver.dt, s->solver.theta, &sa, &where, &why);
+    if (step == NULL && sa == DP_ENOMEM)
+        return DP_ENOMEM;
+    if (step == NULL)
+        dp_errors_add(e, where[0] ? where : "/model/lcs", "%s", why);
     dp_lcs_stepper_free(step);
     if (e->n + e->dropped > before)
-        return st == DP_ENOMEM ? DP_ENOMEM : DP_EINVAL;
+        return DP_EINVAL;
     if (max_steps <= 0 || max_steps > DP_SPEC_MAX_STEPS)
         max_steps = DP_SPEC_MAX_STEPS;
     double n = s->solver.t_end / s->solver.dt;

@@ -8,23 +8,26 @@
  * basis inverse, which the lexicographic rule compares row by row ([rhs, B^-1] divided by the pivot column),
  * is the original w columns: a basic w_j's column is a unit vector, a non-basic one's is its slot. Each row
  * stays lexicographically positive, no basis repeats, and a degenerate problem cannot cycle. The problem is
- * scaled by the power of two at or above max|M_ij| first (exact: z is unchanged, w scales), so the pivot
- * tolerances below are relative.
+ * equilibrated first, rows and columns by powers of two (lcp_scale.h: exact, and z, w scale back exactly), so
+ * that the pivot tolerances below, which compare entries of one column, mean the same whatever the units of
+ * each row and of q: a problem scaled by 1e-200 pivots as the same problem scaled by 1.
  *
  * The answer is read from the final tableau after one step of iterative refinement that uses the basis
  * inverse the tableau already holds (O(m^2), no factorization: it takes the pivots' accumulated rounding out)
- * and checked: w = Mz + q recomputed, complementarity and signs (res->residual). The problem is copied once
- * into plain arrays: the loops read contiguous memory, not GSL accessors. The workspace is allocated once
- * per size and reused: a solve does not allocate.
+ * and checked on the scaled problem: w = Mz + q recomputed, signs and complementarity relative to the size
+ * of each row's terms (lcp_settle, res->residual); an answer that fails the check is reported as such, never
+ * as a solution. A secondary ray is checked too: its direction must solve the homogeneous equations. The
+ * problem is copied once into plain arrays: the loops read contiguous memory, not GSL accessors. The
+ * workspace is allocated once per size and reused: a solve does not allocate. The stop hook is asked every
+ * POLL_WORK multiply-adds of pivoting (a few milliseconds).
  */
-#include <float.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "dashpot/lcp.h"
 #include "dashpot/status.h"
+#include "lcp/lcp_scale.h"
 
 /* A pivot entry must exceed this fraction of its column's largest entry (plus an absolute floor on the
  * scaled problem, where entries are O(1)): smaller ones are rounding noise of entries that are exactly zero. */
@@ -32,6 +35,8 @@
 #define PIVOT_ABS 1e-13
 /* Two ratios are a tie when they agree to this relative tolerance; the next column then decides. */
 #define TIE_REL 1e-12
+/* Multiply-adds of pivoting between two polls of the stop hook: about a millisecond of work. */
+#define POLL_WORK (1u << 21)
 
 /* Two doubles of a tableau row: the pivot's loops work on these (one SSE2 operation on baseline x86-64;
  * the compiler does not vectorize the plain loop at -O2). Rows start on 32-byte boundaries (aligned_alloc,
@@ -51,9 +56,11 @@ struct dp_lcp {
     double *saved;       /* the right-hand side before refinement */
     double *z1, *w1;     /* the answer read from the refined tableau */
     double *z2, *w2;     /* the unrefined one, when the first fails its check */
-    double mmax;         /* max |M_ij| of the problem being solved */
-    double *M, *q;       /* the problem, row-major */
-    char *zbasic;        /* per z: basic at the end */
+    long double *lscratch; /* the acceptance test's (LCP_SETTLE_SCRATCH) */
+    double *M, *q;       /* the equilibrated problem, row-major (lcp_scale.h) */
+    int *r, *c;          /* its row and column exponents */
+    lcp_scaling sc;
+    double qscale;       /* max |q_i| of the equilibrated problem */
 };
 
 dp_lcp *dp_lcp_alloc(size_t m)
@@ -75,9 +82,12 @@ dp_lcp *dp_lcp_alloc(size_t m)
     int ok = 1;
     for (size_t k = 0; k < sizeof vec / sizeof *vec; k++)
         ok &= (*vec[k] = malloc(m * sizeof(double))) != NULL;
+    w->lscratch = malloc(LCP_SETTLE_SCRATCH(m) * sizeof *w->lscratch);
     w->M = malloc(m * m * sizeof *w->M);
-    w->zbasic = malloc(m);
-    if (!ok || !w->T || !w->basis || !w->slot || !w->where || !w->isbasic || !w->M || !w->zbasic) {
+    w->r = malloc(m * sizeof *w->r), w->c = malloc(m * sizeof *w->c);
+    w->sc = (lcp_scaling){ w->r, w->c, 0 };
+    if (!ok || !w->T || !w->basis || !w->slot || !w->where || !w->isbasic || !w->M || !w->lscratch || !w->r ||
+        !w->c) {
         dp_lcp_free(w);
         return NULL;
     }
@@ -89,7 +99,7 @@ void dp_lcp_free(dp_lcp *w)
     if (w == NULL)
         return;
     void *all[] = { w->T, w->basis, w->slot, w->where, w->isbasic, w->ratio, w->rho, w->saved,
-                    w->z1, w->w1, w->z2, w->w2, w->q, w->M, w->zbasic };
+                    w->z1, w->w1, w->z2, w->w2, w->q, w->M, w->lscratch, w->r, w->c };
     for (size_t k = 0; k < sizeof all / sizeof *all; k++)
         free(all[k]);
     free(w);
@@ -99,43 +109,6 @@ void dp_lcp_free(dp_lcp *w)
 static inline double maxd(double a, double b)
 {
     return b > a ? b : a; /* a when equal: maxd(0.0, -0.0) is +0 */
-}
-
-/* The problem as plain row-major arrays (M may be a view with a row stride): one copy, O(m^2), then every
- * loop below reads contiguous memory. Also max|M_ij| in *mmax. 0 when an entry is not finite. */
-static int load(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, double *mmax)
-{
-    size_t m = w->m;
-    double big = 0, nan_if_any = 0; /* x - x is NaN exactly when x is not finite: no branch per entry */
-    for (size_t i = 0; i < m; i++) {
-        const double *row = M->data + i * M->tda;
-        double *dst = w->M + i * m;
-        for (size_t j = 0; j < m; j++) {
-            double x = row[j];
-            dst[j] = x;
-            nan_if_any += x - x;
-            big = maxd(big, fabs(x));
-        }
-        w->q[i] = q->data[i * q->stride];
-        nan_if_any += w->q[i] - w->q[i];
-    }
-    *mmax = big;
-    return nan_if_any == 0.0;
-}
-
-/* The power of two at or above x > 0 (scaling by it is exact). */
-static double power_of_two_above(double x)
-{
-    if (!(x >= DBL_MIN)) {
-        int e;
-        return ldexp(1.0, (frexp(x, &e), e));
-    }
-    uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    bits &= 0x7ff0000000000000u; /* the exponent alone: 2^floor(log2 x) */
-    double p;
-    memcpy(&p, &bits, sizeof p);
-    return p == x ? p : 2 * p;
 }
 
 /* Tucker's exchange on (row r, slot s): the basic variable of row r and the non-basic one of slot s trade
@@ -206,9 +179,17 @@ static void pivot(dp_lcp *w, size_t r, size_t s)
     w->isbasic[leave] = 0, w->where[leave] = s;
 }
 
-static int tie(double x, double y)
+/* Two numbers of size `scale` (or larger) tie when they agree to TIE_REL of it. */
+static int tie_at(double scale, double x, double y)
 {
-    return fabs(x - y) <= TIE_REL * (1.0 + maxd(fabs(x), fabs(y)));
+    return fabs(x - y) <= TIE_REL * (scale + maxd(fabs(x), fabs(y)));
+}
+
+/* Ratios are values of the entering variable, of the size of q's entries on the equilibrated problem (qscale,
+ * its largest): a tie is relative to that and to the ratios themselves, whatever the problem's units. */
+static int tie(const dp_lcp *w, double x, double y)
+{
+    return tie_at(w->qscale, x, y);
 }
 
 /* Row i's entry of B^-1's column j: w_j's column of the full tableau, a unit vector while w_j is basic. */
@@ -224,12 +205,12 @@ static int lex_less(const dp_lcp *w, size_t i, double da, size_t k, double db)
 {
     size_t rhs = w->rhs;
     double x = w->T[i * w->cols + rhs] / da, y = w->T[k * w->cols + rhs] / db;
-    if (!tie(x, y))
+    if (!tie(w, x, y))
         return x < y;
     for (size_t j = 0; j < w->m; j++) {
-        x = binv(w, i, j) / da;
+        x = binv(w, i, j) / da; /* B^-1 of the equilibrated problem: entries of size 1 */
         y = binv(w, k, j) / db;
-        if (!tie(x, y))
+        if (!tie_at(1.0, x, y))
             return x < y;
     }
     return i < k; /* identical rows cannot happen (B^-1 is regular); a stable choice anyway */
@@ -258,24 +239,23 @@ static size_t ratio_test(dp_lcp *w, size_t s)
         return m;
     size_t first = best;
     for (size_t i = 0; i < m; i++)
-        if (i != first && col[i * c] > tol && tie(ratio[i], theta) &&
+        if (i != first && col[i * c] > tol && tie(w, ratio[i], theta) &&
             lex_less(w, i, col[i * c], best, col[best * c]))
             best = i;
     return best;
 }
 
-/* The starting tableau: w basic (row i holds w_i), z_j in slot j, z0 in slot m; scaled by 1/scale. */
-static void fill_tableau(dp_lcp *w, double scale)
+/* The starting tableau of the equilibrated problem: w basic (row i holds w_i), z_j in slot j, z0 in slot m. */
+static void fill_tableau(dp_lcp *w)
 {
     size_t m = w->m, c = w->cols;
-    double inv = 1.0 / scale; /* a power of two: exact */
     for (size_t i = 0; i < m; i++) {
         double *p = w->T + i * c;
         const double *Mi = w->M + i * m;
         for (size_t j = 0; j < m; j++)
-            p[j] = -Mi[j] * inv;
+            p[j] = -Mi[j];
         p[m] = -1.0;
-        p[m + 1] = w->q[i] * inv;
+        p[m + 1] = w->q[i];
         for (size_t j = m + 2; j < c; j++)
             p[j] = 0.0;
         w->basis[i] = i, w->where[i] = i, w->isbasic[i] = 1;
@@ -284,19 +264,14 @@ static void fill_tableau(dp_lcp *w, double scale)
         w->slot[j] = m + j, w->where[m + j] = j, w->isbasic[m + j] = 0;
 }
 
-/* The tableau's own values of z and w, basic ones below zero (rounding) set to 0. */
-static void tableau_values(const dp_lcp *w, double scale, double *z, double *wv)
+/* The tableau's own values of z (basic ones below zero, rounding, set to 0). */
+static void tableau_z(const dp_lcp *w, double *z)
 {
     size_t m = w->m, c = w->cols;
     memset(z, 0, m * sizeof *z);
-    memset(wv, 0, m * sizeof *wv);
-    for (size_t r = 0; r < m; r++) {
-        double v = maxd(w->T[r * c + w->rhs], 0.0);
-        if (w->basis[r] < m)
-            wv[w->basis[r]] = v * scale;
-        else if (w->basis[r] < 2 * m)
-            z[w->basis[r] - m] = v;
-    }
+    for (size_t r = 0; r < m; r++)
+        if (w->basis[r] >= m && w->basis[r] < 2 * m)
+            z[w->basis[r] - m] = maxd(w->T[r * c + w->rhs], 0.0);
 }
 
 static void store(const double *src, gsl_vector *dst)
@@ -306,15 +281,15 @@ static void store(const double *src, gsl_vector *dst)
 }
 
 /* One step of iterative refinement of the basic variables' values (the rhs column, overwritten), with the
- * basis inverse the tableau already holds: rho = q/scale - B x_B against the original columns (w_j: e_j,
- * z_j: -M e_j / scale), then x_B += B^-1 rho, B^-1's column j being w_j's (a unit vector while w_j is
- * basic). O(m^2) and no factorization: it takes the pivots' accumulated rounding out of the answer. */
-static void refine_values(dp_lcp *w, double scale)
+ * basis inverse the tableau already holds: rho = q - B x_B against the original columns (w_j: e_j,
+ * z_j: -M e_j), then x_B += B^-1 rho, B^-1's column j being w_j's (a unit vector while w_j is basic).
+ * O(m^2) and no factorization: it takes the pivots' accumulated rounding out of the answer. */
+static void refine_values(dp_lcp *w)
 {
     size_t m = w->m, c = w->cols;
-    double inv = 1.0 / scale, *rho = w->rho, *T = w->T, *rhs = w->T + w->rhs;
+    double *rho = w->rho, *T = w->T, *rhs = w->T + w->rhs;
     for (size_t i = 0; i < m; i++)
-        rho[i] = w->q[i] * inv;
+        rho[i] = w->q[i];
     for (size_t r = 0; r < m; r++) {
         size_t v = w->basis[r];
         double x = rhs[r * c];
@@ -323,7 +298,7 @@ static void refine_values(dp_lcp *w, double scale)
         } else if (v < 2 * m) {
             const double *Mj = w->M + (v - m);
             for (size_t i = 0; i < m; i++)
-                rho[i] += Mj[i * m] * inv * x;
+                rho[i] += Mj[i * m] * x;
         }
     }
     for (size_t j = 0; j < m; j++) {
@@ -337,106 +312,164 @@ static void refine_values(dp_lcp *w, double scale)
     }
 }
 
-/* The tableau's z (refined first when asked) with w recomputed as Mz + q, 0 where z is basic, into z, wv;
- * its residual (z >= 0 and z ⊥ w hold by construction). *tol: the rounding level, 64 eps (|q| + |M| |z|);
- * w's rounding-size negatives are cleared against it. */
-static double tableau_answer(dp_lcp *w, double scale, int refine, double *z, double *wv, double *tol)
+/* The tableau's z in the problem's units into z, and w = Mz + q into wv, settled and checked (lcp_settle):
+ * its relative residual; *finite = 0 when z or w is beyond the doubles. */
+static double tableau_answer(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, double *z, double *wv,
+                             int *finite)
 {
-    size_t m = w->m;
-    if (refine)
-        refine_values(w, scale);
-    tableau_values(w, scale, z, wv);
-    double qmax = 0, zmax = 0;
-    for (size_t i = 0; i < m; i++)
-        qmax = maxd(qmax, fabs(w->q[i])), zmax = maxd(zmax, z[i]);
-    *tol = 64 * DBL_EPSILON * (qmax + w->mmax * zmax);
-    double r = 0;
-    for (size_t i = 0; i < m; i++) {
-        const double *Mi = w->M + i * m;
-        double s = w->q[i];
-        for (size_t j = 0; j < m; j++)
-            s += Mi[j] * z[j];
-        wv[i] = w->zbasic[i] ? 0.0 : (s < 0 && s >= -*tol ? 0.0 : s);
-        r = maxd(r, fabs(s - wv[i]));
-        r = maxd(r, -wv[i]);
-    }
-    return r;
+    tableau_z(w, w->rho);
+    *finite = lcp_unscale(w->m, &w->sc, w->rho, NULL, z, NULL);
+    if (!*finite)
+        return INFINITY;
+    return lcp_settle(M, q, &w->sc, z, wv, w->lscratch, finite);
 }
 
 /* The answer from the final basis: the tableau's values after one step of refinement, checked. Should the
  * check fail (an ill-conditioned basis, where the refinement's own basis inverse is poor), the unrefined
- * values are tried as well and the better of the two is kept; res->residual says what was reached. */
-static void finish(dp_lcp *w, double scale, gsl_vector *z, gsl_vector *wv, dp_lcp_result *res)
+ * values are tried as well and the better of the two is kept, in w->z1, w->w1. Returns its residual. */
+static double finish(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, int *finite)
 {
     size_t m = w->m, c = w->cols;
-    memset(w->zbasic, 0, m);
-    for (size_t r = 0; r < m; r++) {
-        if (w->basis[r] >= m && w->basis[r] < 2 * m)
-            w->zbasic[w->basis[r] - m] = 1;
+    for (size_t r = 0; r < m; r++)
         w->saved[r] = w->T[r * c + w->rhs];
+    refine_values(w);
+    double r1 = tableau_answer(w, M, q, w->z1, w->w1, finite);
+    if (r1 <= LCP_ACCEPT || !*finite)
+        return r1;
+    for (size_t r = 0; r < m; r++)
+        w->T[r * c + w->rhs] = w->saved[r];
+    int finite2;
+    double r2 = tableau_answer(w, M, q, w->z2, w->w2, &finite2);
+    if (!finite2 || !(r2 < r1))
+        return r1;
+    memcpy(w->z1, w->z2, m * sizeof *w->z1);
+    memcpy(w->w1, w->w2, m * sizeof *w->w1);
+    return r2;
+}
+
+/* The secondary ray's direction, the entering variable (slot s) rising by 1 and each basic one falling by its
+ * column entry, must solve the homogeneous equations dw - M dz - e dz0 = 0: its largest relative residual
+ * (each row against the size of its terms). A failed check means the rounding of the pivots made the ray. */
+static double ray_residual(dp_lcp *w, size_t s)
+{
+    size_t m = w->m, c = w->cols, enter = w->slot[s];
+    double *dz = w->z1, *dw = w->w1, dz0 = enter == 2 * m ? 1.0 : 0.0, worst = 0;
+    memset(dz, 0, m * sizeof *dz);
+    memset(dw, 0, m * sizeof *dw);
+    if (enter < m)
+        dw[enter] = 1.0;
+    else if (enter < 2 * m)
+        dz[enter - m] = 1.0;
+    for (size_t r = 0; r < m; r++) {
+        size_t v = w->basis[r];
+        double d = -w->T[r * c + s];
+        if (v < m)
+            dw[v] = d;
+        else if (v < 2 * m)
+            dz[v - m] = d;
+        else
+            dz0 = d;
     }
-    double tol, *z1 = w->z1, *w1 = w->w1;
-    res->residual = tableau_answer(w, scale, 1, z1, w1, &tol);
-    if (res->residual > tol) {
-        for (size_t r = 0; r < m; r++)
-            w->T[r * c + w->rhs] = w->saved[r];
-        double r2 = tableau_answer(w, scale, 0, w->z2, w->w2, &tol);
-        if (r2 < res->residual)
-            z1 = w->z2, w1 = w->w2, res->residual = r2;
+    for (size_t i = 0; i < m; i++) {
+        const double *Mi = w->M + i * m;
+        double acc = dw[i] - dz0, size = fabs(dw[i]) + fabs(dz0);
+        for (size_t j = 0; j < m; j++)
+            acc -= Mi[j] * dz[j], size += fabs(Mi[j] * dz[j]);
+        if (size > 0)
+            worst = maxd(worst, fabs(acc) / size);
     }
-    store(z1, z);
-    store(w1, wv);
+    return worst;
+}
+
+/* The problem equilibrated into the workspace; 0 when an entry is not finite. */
+static int load(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q)
+{
+    if (!lcp_equilibrate(M, q, w->M, w->q, &w->sc))
+        return 0;
+    w->qscale = 0;
+    for (size_t i = 0; i < w->m; i++)
+        w->qscale = maxd(w->qscale, fabs(w->q[i]));
+    return 1;
+}
+
+/* The pivots from the first one on, until z0 leaves (DP_OK), a ray (DP_OK, outcome RAY or INACCURATE), the
+ * pivot limit (DP_ELIMIT) or the stop hook (DP_ECANCEL). */
+static int pivot_loop(dp_lcp *w, size_t r, const dp_stop *stop, dp_lcp_result *res)
+{
+    size_t m = w->m, z0 = 2 * m, leaving = w->basis[r];
+    pivot(w, r, m); /* z0's slot */
+    res->pivots = 1;
+    size_t limit = dp_lcp_pivot_limit(m);
+    unsigned long long work = 0, per = (unsigned long long)m * w->cols;
+    while (leaving != z0) {
+        size_t entering = leaving < m ? leaving + m : leaving - m, s = w->where[entering];
+        r = ratio_test(w, s);
+        if (r == m) {
+            res->residual = ray_residual(w, s);
+            res->outcome = res->residual <= LCP_ACCEPT ? DP_LCP_RAY : DP_LCP_INACCURATE;
+            return DP_OK;
+        }
+        if (res->pivots >= limit)
+            return DP_ELIMIT;
+        leaving = w->basis[r];
+        pivot(w, r, s);
+        res->pivots++;
+        if ((work += per) >= POLL_WORK) {
+            work = 0;
+            if (dp_stop_now(stop))
+                return DP_ECANCEL;
+        }
+    }
+    return DP_OK;
+}
+
+size_t dp_lcp_pivot_limit(size_t m)
+{
+    return 1000 + 200 * m;
 }
 
 int dp_lcp_lemke(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector *z, gsl_vector *wv,
                  dp_lcp_result *res)
 {
+    return dp_lcp_lemke_until(w, M, q, z, wv, res, NULL);
+}
+
+int dp_lcp_lemke_until(dp_lcp *w, const gsl_matrix *M, const gsl_vector *q, gsl_vector *z, gsl_vector *wv,
+                       dp_lcp_result *res, const dp_stop *stop)
+{
     size_t m = w->m;
+    *res = (dp_lcp_result){ DP_LCP_SOLVED, 0, 0.0 };
     if (M->size1 != m || M->size2 != m || q->size != m || z->size != m || wv->size != m)
         return DP_EINVAL;
-    double mmax;
-    if (!load(w, M, q, &mmax))
+    if (!load(w, M, q))
         return DP_EINVAL;
-    *res = (dp_lcp_result){ DP_LCP_SOLVED, 0, 0.0 };
     size_t r = 0;
     for (size_t i = 1; i < m; i++)
         if (w->q[i] < w->q[r])
             r = i;
-    if (w->q[r] >= 0) {
+    if (w->q[r] >= 0) { /* z = 0, w = q exactly */
         memset(w->z1, 0, m * sizeof *w->z1);
-        store(w->z1, z);
-        store(w->q, wv);
-        return DP_OK;
+        for (size_t i = 0; i < m; i++)
+            w->w1[i] = q->data[i * q->stride];
+    } else {
+        fill_tableau(w);
+        /* First pivot: z0 enters at the lexicographically smallest row of [q, I] (all its column entries are
+         * -1, so after it every row is lexicographically positive). */
+        const double *rhs = w->T + w->rhs;
+        for (size_t i = 0; i < m; i++)
+            if (i != r && tie(w, rhs[i * w->cols], rhs[r * w->cols]) && lex_less(w, i, 1.0, r, 1.0))
+                r = i;
+        int s = pivot_loop(w, r, stop, res);
+        if (s != DP_OK || res->outcome != DP_LCP_SOLVED)
+            return s;
+        int finite;
+        res->residual = finish(w, M, q, &finite);
+        if (!finite)
+            return DP_ENONFINITE;
+        if (res->residual > LCP_ACCEPT)
+            res->outcome = DP_LCP_INACCURATE;
     }
-    w->mmax = mmax;
-    double scale = mmax > 0 ? power_of_two_above(mmax) : 1.0; /* exact scaling */
-    fill_tableau(w, scale);
-    /* First pivot: z0 enters at the lexicographically smallest row of [q, I] (all its column entries are -1,
-     * so after it every row is lexicographically positive). */
-    const double *rhs = w->T + w->rhs;
-    for (size_t i = 0; i < m; i++)
-        if (i != r && tie(rhs[i * w->cols], rhs[r * w->cols]) && lex_less(w, i, 1.0, r, 1.0))
-            r = i;
-    size_t z0 = 2 * m, leaving = w->basis[r];
-    pivot(w, r, m); /* z0's slot */
-    res->pivots = 1;
-    /* A lexicographic run visits each basis at most once; this guard only bounds a pathological input. */
-    size_t limit = 1000 + 200 * m;
-    while (leaving != z0) {
-        size_t entering = leaving < m ? leaving + m : leaving - m, s = w->where[entering];
-        r = ratio_test(w, s);
-        if (r == m) {
-            res->outcome = DP_LCP_RAY;
-            tableau_values(w, scale, w->z1, w->w1);
-            store(w->z1, z);
-            store(w->w1, wv);
-            return DP_OK;
-        }
-        leaving = w->basis[r];
-        pivot(w, r, s);
-        if (++res->pivots > limit)
-            return DP_ELIMIT;
-    }
-    finish(w, scale, z, wv, res);
+    store(w->z1, z);
+    store(w->w1, wv);
     return DP_OK;
 }

@@ -52,6 +52,7 @@ struct dp_network_step {
     double *W, *H;        /* band storage n x (p+1) */
     double *R;            /* reduced band storage, capacity n x (p+1) grown on demand */
     size_t R_cap, nr, pr;
+    size_t R_max;         /* the most doubles R may grow to (0: no bound) */
     int factored;         /* R holds the factor of the structure in fac_st, fac_slope, for h_factored */
     double h_factored;
     unsigned char *fac_st;
@@ -69,6 +70,10 @@ struct dp_network_step {
     const dp_relaxation *const *gamma;
     double theta;
     double *zk, *g0, *g1, *gshift;
+    /* the stop hook's poll (network_step.h), asked after every solve with the work done since the last one */
+    dp_network_step_poll_fn poll;
+    void *poll_ctx;
+    unsigned long long work;
 };
 
 dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_network_step_element *el)
@@ -121,6 +126,39 @@ void dp_network_step_free(dp_network_step *w)
     free(w->next_edge), free(w->deg), free(w->queue);
     free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->fac_st), free(w->fac_slope);
     free(w);
+}
+
+void dp_network_step_set_poll(dp_network_step *w, dp_network_step_poll_fn poll, void *ctx)
+{
+    w->poll = poll;
+    w->poll_ctx = ctx;
+}
+
+/* Hands the work counted so far to the poll: 1 when the caller must end the step with DP_ECANCEL. */
+static int polled_stop_units(dp_network_step *w)
+{
+    if (w->poll == NULL)
+        return 0;
+    unsigned long long units = w->work;
+    w->work = 0;
+    return w->poll(w->poll_ctx, units) != 0;
+}
+
+/* Counts a solve of the current assignment (a pass over W's band and the elements) and asks the poll. */
+static int polled_stop(dp_network_step *w)
+{
+    w->work += w->n * (w->p + 1) + w->ne;
+    return polled_stop_units(w);
+}
+
+void dp_network_step_limit(dp_network_step *w, size_t max_doubles)
+{
+    w->R_max = max_doubles;
+}
+
+size_t dp_network_step_reduced_need(const dp_network_step *w)
+{
+    return w->nr * (w->pr + 1);
 }
 
 void dp_network_step_relaxation(dp_network_step *w, const dp_relaxation *const *gamma, double theta)
@@ -354,6 +392,8 @@ static void assemble_H(dp_network_step *w, double h)
 static int reduced_storage(dp_network_step *w)
 {
     size_t need = w->nr * (w->pr + 1);
+    if (w->R_max && need > w->R_max)
+        return DP_ELIMIT;
     if (need > w->R_cap) {
         double *R = realloc(w->R, need * sizeof *R);
         if (R == NULL)
@@ -395,6 +435,45 @@ static int prepare(dp_network_step *w, double h, const double *rhs)
 }
 
 /* R = T^T H T in band storage, factored (Cholesky). */
+/* A factorization of more multiply-adds than this (a few milliseconds) is done by polled_cholesky, which
+ * asks the poll as it goes: GSL's takes seconds at the widest band the memory limit lets through (1600
+ * nodes coupled all to all: 3 s), and a stop must not wait for it. Below it GSL's, bit for bit as always. */
+#define LONG_FACTOR (1u << 22)
+
+/* R = L L^T in GSL's band storage (row j holds L(j+d, j), d = 0..q-1), column by column as LAPACK's dpbtf2:
+ * the pivot's square root, the column scaled by its inverse, the trailing band updated by the column's outer
+ * product. The poll is asked every LONG_FACTOR multiply-adds; DP_ECANCEL when it says stop, DP_ESOLVE when
+ * R is not positive definite. */
+static int polled_cholesky(dp_network_step *w, size_t q)
+{
+    size_t n = w->nr, p = q - 1, done = 0;
+    double *R = w->R;
+    for (size_t j = 0; j < n; j++) {
+        double *col = R + j * q, ajj = col[0];
+        if (!(ajj > 0))
+            return DP_ESOLVE;
+        ajj = sqrt(ajj);
+        col[0] = ajj;
+        size_t kn = n - 1 - j < p ? n - 1 - j : p;
+        double inv = 1 / ajj;
+        for (size_t d = 1; d <= kn; d++)
+            col[d] *= inv;
+        for (size_t a = 1; a <= kn; a++) {
+            double *row = R + (j + a) * q, la = col[a];
+            for (size_t b = a; b <= kn; b++)
+                row[b - a] -= la * col[b];
+        }
+        done += kn * kn / 2 + 1;
+        if (done > LONG_FACTOR) {
+            w->work += done, done = 0;
+            if (polled_stop_units(w))
+                return DP_ECANCEL;
+        }
+    }
+    w->work += done;
+    return DP_OK;
+}
+
 static int factor_reduced(dp_network_step *w)
 {
     size_t n = w->n, p1 = w->p + 1, pr = 0;
@@ -407,8 +486,9 @@ static int factor_reduced(dp_network_step *w)
     w->pr = pr;
     if (w->nr == 0)
         return DP_OK;
-    if (reduced_storage(w) != DP_OK)
-        return DP_ENOMEM;
+    int s = reduced_storage(w);
+    if (s != DP_OK)
+        return s;
     size_t q = pr + 1;
     for (size_t i = 0; i < n; i++) {
         long ki = w->kidx[i];
@@ -428,7 +508,10 @@ static int factor_reduced(dp_network_step *w)
                 w->R[(size_t)kj * q + (size_t)(ki - kj)] += h;
         }
     }
+    if (w->poll != NULL && w->nr * q * q > LONG_FACTOR)
+        return polled_cholesky(w, q);
     gsl_matrix_view Rv = gsl_matrix_view_array(w->R, w->nr, q);
+    w->work += w->nr * q * q;      /* the band Cholesky's multiply-adds, to within a factor of two */
     return gsl_linalg_cholesky_band_decomp(&Rv.matrix) == 0 ? DP_OK : DP_ESOLVE;
 }
 
@@ -648,36 +731,99 @@ static long parallel_partner(const dp_network_step *w, size_t i, double *sign)
     return -1;
 }
 
+/* Member k of the parallel group of fixed element j: j itself (sign +1) or a free element at rest marked in
+ * it; its interval in j's orientation into [*lo, *hi]. */
+static int group_member(const dp_network_step *w, const dp_network_step_forces *f, size_t k, long j, double *lo,
+                        double *hi)
+{
+    double sg = 1, l, r;
+    if (k != (size_t)j && !(f[k].at_rest == 2 && parallel_partner(w, k, &sg) == j))
+        return 0;
+    dp_graph_force(w->el[k].A, 0, &l, &r);
+    *lo = sg > 0 ? l : -r, *hi = sg > 0 ? r : -l;
+    return (int)sg;
+}
+
+/* Where some member's interval is unbounded (a resting contact, the cone (-inf, 0], beside a sticking friction
+ * element: Moreau-Jean's plastic impact on a block on a belt), a share in proportion to the width would be
+ * inf/inf. Then the bounded members take what they can, the total clamped to the sum of their intervals and
+ * to what the unbounded ones leave possible; each unbounded member takes its finite end, and the first
+ * unbounded one in the direction of what is left takes the rest. Every share then lies in its interval. */
+static void share_unbounded(const dp_network_step *w, dp_network_step_forces *f, long j, double total,
+                            double lb, double hb, double lu, double hu)
+{
+    double tb = fmin(fmax(fmin(fmax(total, lb), hb), total - hu), total - lu);
+    double rest = total - tb, anchors = 0, lo, hi;
+    int sg;
+    for (size_t k = 0; k < w->ne; k++)
+        if ((sg = group_member(w, f, k, j, &lo, &hi)) != 0 && !(isfinite(lo) && isfinite(hi)))
+            anchors += isfinite(lo) ? lo : isfinite(hi) ? hi : 0;
+    double spare = rest - anchors;
+    int given = 0;
+    for (size_t k = 0; k < w->ne; k++) {
+        if ((sg = group_member(w, f, k, j, &lo, &hi)) == 0)
+            continue;
+        double share;
+        if (isfinite(lo) && isfinite(hi)) {
+            share = hb > lb ? lo + (tb - lb) * (hi - lo) / (hb - lb) : lo;
+        } else {
+            share = isfinite(lo) ? lo : isfinite(hi) ? hi : 0;
+            if (!given && (spare > 0 ? hi == INFINITY : lo == -INFINITY))
+                share += spare, given = 1;
+        }
+        f[k].lambda = f[k].a = sg * share;
+        f[k].at_rest = 1;
+    }
+}
+
+/* The sums of a parallel group's intervals: the bounded members' [lo, hi], the unbounded ones' [lu, hu]. */
+typedef struct group_sum {
+    double lo, hi, lu, hu;
+    int unbounded;
+} group_sum;
+
+static void group_add(group_sum *g, double lo, double hi)
+{
+    if (isfinite(lo) && isfinite(hi))
+        g->lo += lo, g->hi += hi;
+    else
+        g->lu += lo, g->hu += hi, g->unbounded = 1;
+}
+
 /* Parallel stick intervals hold their common force together, but how they split it is not determined by
  * the motion: the split reported gives each its lower bound plus a share of the rest in proportion to its
  * interval's width (so each stays inside its own interval), and all of them stick. */
 static void share_parallel(dp_network_step *w, dp_network_step_forces *f)
 {
     for (size_t i = 0; i < w->ne; i++) {
-        double sign_i;
+        double sign_i, lo, hi;
         long j;
         if (!parallel_at_rest(w, i, &f[i]) || (j = parallel_partner(w, i, &sign_i)) < 0)
             continue;
         /* the group: j and every free element at rest parallel to it (in j's orientation) */
-        double total = f[j].lambda, lo_sum, hi_sum, lo, hi;
-        dp_graph_force(w->el[j].A, 0, &lo_sum, &hi_sum);
+        double total = f[j].lambda;
+        group_sum g = { 0 };
+        group_member(w, f, (size_t)j, j, &lo, &hi);
+        group_add(&g, lo, hi);
         for (size_t k = i; k < w->ne; k++) {
             double sg;
             if (parallel_at_rest(w, k, &f[k]) && parallel_partner(w, k, &sg) == j) {
-                dp_graph_force(w->el[k].A, 0, &lo, &hi);
                 total += sg * f[k].lambda;
-                lo_sum += sg > 0 ? lo : -hi, hi_sum += sg > 0 ? hi : -lo;
                 f[k].at_rest = 2;   /* mark: in this group */
+                group_member(w, f, k, j, &lo, &hi);
+                group_add(&g, lo, hi);
             }
         }
-        double spare = total - lo_sum, width = hi_sum - lo_sum;
+        if (g.unbounded) {
+            share_unbounded(w, f, j, total, g.lo, g.hi, g.lu, g.hu);
+            continue;
+        }
+        double spare = total - g.lo, width = g.hi - g.lo;
         for (size_t k = 0; k < w->ne; k++) {
-            double sg = 1;
-            if (k != (size_t)j && !(f[k].at_rest == 2 && parallel_partner(w, k, &sg) == j))
+            int sg = group_member(w, f, k, j, &lo, &hi);
+            if (sg == 0)
                 continue;
-            dp_graph_force(w->el[k].A, 0, &lo, &hi);
-            double klo = sg > 0 ? lo : -hi, khi = sg > 0 ? hi : -lo;
-            double share = klo + spare * (khi - klo) / width;
+            double share = lo + spare * (hi - lo) / width;
             f[k].lambda = f[k].a = sg * share;
             f[k].at_rest = 1;
         }
@@ -773,8 +919,8 @@ static int fixed_forest(dp_network_step *w)
 }
 
 /* The primal-dual active-set method from the warm start: usually the answer in one to three solves, with no
- * guarantee of termination outside M-matrix structure; DP_OK with v the minimizer, or DP_EAGAIN-like 1 when
- * it did not settle (the caller then runs the primal method, which always ends). */
+ * guarantee of termination outside M-matrix structure; DP_OK with v the minimizer, DP_ECANCEL when the poll
+ * said stop, or 1 when it did not settle (the caller then runs the primal method, which always ends). */
 static int pdas(dp_network_step *w, double h, const double *rhs, const double *u, double *v, unsigned long long *iters)
 {
     for (int it = 0; it < 12; it++) {
@@ -784,6 +930,8 @@ static int pdas(dp_network_step *w, double h, const double *rhs, const double *u
         build_forest(w);
         if (prepare(w, h, rhs) != DP_OK || solve_assignment(w) != DP_OK)
             return 1;
+        if (polled_stop(w))
+            return DP_ECANCEL;
         multipliers(w, h);
         if (bulk_update(w, h, u) == 0) {
             memcpy(v, w->vs, w->n * sizeof *v);
@@ -802,8 +950,9 @@ static int solve_pl(dp_network_step *w, double h, const double *rhs, const doubl
         if (!assign_start(w, h, u, v))
             return DP_ESOLVE;
     }
-    if (pdas(w, h, rhs, u, v, iters) == DP_OK)
-        return DP_OK;
+    int fast = pdas(w, h, rhs, u, v, iters);
+    if (fast == DP_OK || fast == DP_ECANCEL)
+        return fast;
     /* the primal active-set method: from a point of the domain, the objective falls strictly between
      * minimizers of assignments, so it ends; this is the guarantee behind the fast path above */
     if (!assign_start(w, h, u, v)) {
@@ -819,6 +968,8 @@ static int solve_pl(dp_network_step *w, double h, const double *rhs, const doubl
         s = s ? s : solve_assignment(w);
         if (s != DP_OK)
             return s;
+        if (polled_stop(w))
+            return DP_ECANCEL;
         for (size_t i = 0; i < n; i++)
             w->d[i] = w->vs[i] - v[i];
         long which;
@@ -915,6 +1066,8 @@ int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs
     s = s ? s : solve_assignment(w);
     if (s != DP_OK)
         return s;
+    if (polled_stop(w))
+        return DP_ECANCEL;
     memcpy(v, w->vs, w->n * sizeof *v);
     multipliers(w, h);
     for (size_t i = 0; i < w->ne; i++) {

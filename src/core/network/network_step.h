@@ -43,6 +43,19 @@ typedef struct dp_network_step dp_network_step;
 dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_network_step_element *el);
 void dp_network_step_free(dp_network_step *w);
 
+/* A stop hook's poll (the run's, record/sink.h), asked after every solve of an assignment with the work done
+ * since it was last asked: units of one band entry or element touched (a solve costs n (p+1) + ne, a
+ * factorization nr (pr+1)^2 more). Nonzero: the solve ends at once with DP_ECANCEL. NULL: never asked. */
+typedef int (*dp_network_step_poll_fn)(void *ctx, unsigned long long units);
+void dp_network_step_set_poll(dp_network_step *w, dp_network_step_poll_fn poll, void *ctx);
+
+/* The contracted matrix R (a tree of fixed elements is one unknown) keeps W's band where the trees are runs
+ * of consecutive nodes, but trees that interleave widen it (a tree of the even nodes couples to every odd
+ * one): R grows on demand, up to max_doubles (0: no bound); past it a solve returns DP_ELIMIT.
+ * dp_network_step_reduced_need: the doubles the last contraction asked for. */
+void dp_network_step_limit(dp_network_step *w, size_t max_doubles);
+size_t dp_network_step_reduced_need(const dp_network_step *w);
+
 /* Relaxation: Sigma_e gains -gamma_e(theta z + (1-theta) z_start - v_b), gamma[i] NULL where there is none
  * (the array is kept by reference). The step is then solved by Newton-Josephy iterations on the smooth
  * part, each an exact piecewise-linear problem; W - h theta sum L_e b b^T must stay positive definite. */
@@ -54,7 +67,8 @@ void dp_network_step_W_changed(dp_network_step *w);
 
 /* Solves the step: v (n) receives the minimizer, f (ne) each element's forces; u (ne) are the elongations
  * the spring graphs see (u_e + h z), v_guess a warm start (the previous velocity). *iters counts the
- * active-set iterations. DP_OK, DP_ESOLVE (no feasible start, cycling) or DP_ENOMEM. */
+ * active-set iterations. DP_OK, DP_ESOLVE (no feasible start, cycling), DP_ECANCEL (the poll), DP_ELIMIT (R's
+ * bound) or DP_ENOMEM. */
 int dp_network_step_solve(dp_network_step *w, double h, const double *rhs, const double *u, const double *v_guess,
                  double *v, dp_network_step_forces *f, unsigned long long *iters);
 
@@ -67,7 +81,7 @@ void dp_network_step_pattern_restore(dp_network_step *w, const void *buf);
 
 /* Solves a step of length h with the current assignment held (no vertex met, no release): v and f as
  * dp_network_step_solve, and margin[i] >= 0 while element i's assignment is consistent (a free element inside its
- * piece, a fixed one's multiplier inside its interval), < 0 once it is not. DP_OK or DP_ESOLVE. */
+ * piece, a fixed one's multiplier inside its interval), < 0 once it is not. DP_OK, DP_ESOLVE or DP_ECANCEL. */
 int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs, const double *u, double *v, dp_network_step_forces *f,
                         double *margin);
 

@@ -13,6 +13,9 @@ int dp_rules_regularized(const dp_spec *s, double max_steps, dp_errors *e);
 int dp_rules_network(const dp_spec *s, double max_steps, dp_errors *e);
 int dp_rules_right_hand(const dp_spec *s, double max_steps, dp_errors *e);
 
+/* output.quakes: a network with friction on the stick-slip solver (quakes_rules.c); adds errors to e. */
+void dp_quakes_check(const dp_spec *s, dp_errors *e);
+
 /* Whether a network document is one mass on one element [ground, 0] with a solver the one-mass run steps. */
 int dp_network_is_one_mass(const dp_spec *s);
 

@@ -6,6 +6,7 @@
  * linear springs; the analytic solver exists only where the closed form (4.14) does.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -288,7 +289,8 @@ static void check_thesis(const dp_spec *s, dp_errors *e)
 static void check_exact(const dp_spec *s, dp_errors *e)
 {
     const dp_model *m = &s->model;
-    double h = s->solver.dt, th = s->solver.theta;
+    /* a dt past t_end is one step of t_end (dp_spec_steps) */
+    double h = fmin(s->solver.dt, s->solver.t_end), th = s->solver.theta;
     if (th != 1 && !dp_spring_linear(&m->spring) && !dp_spring_plastic(&m->spring))
         dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring (the %s spring is stepped by "
                       "backward Euler): use theta = 1", dp_spring_law_name(m->spring.law));
@@ -299,6 +301,209 @@ static void check_exact(const dp_spec *s, dp_errors *e)
     if (isfinite(L) && !(W > h * th * L))
         dp_errors_add(e, "/solver/dt", "the implicit step is not uniquely solvable: m + h theta c + h^2 theta^2 k "
                       "= %g must exceed h theta L_gamma = %g; choose a smaller dt", W, h * th * L);
+}
+
+/* ---- the document's scale: what a step forms from it is finite ------------------------------------- */
+
+/* A member of the document and its value, one factor of a quantity a step forms. */
+typedef struct factor { const char *ptr; double v; } factor;
+
+static double decades(double v)
+{
+    return v == 0 || !isfinite(v) ? 0 : fabs(log10(fabs(v)));
+}
+
+/* Unless q is finite (and, with `divides`, 1/q too), an error at the factor farthest from 1 in decades, the
+ * member to change, naming every factor with its value (all finite: the parser took only finite numbers). */
+static int formed(dp_errors *e, double q, int divides, const char *what, const factor *f, size_t n)
+{
+    if (isfinite(q) && (!divides || (q != 0 && isfinite(1 / q))))
+        return 1;
+    char list[DP_MESSAGE_MAX] = "";
+    size_t used = 0, worst = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (decades(f[i].v) > decades(f[worst].v))
+            worst = i;
+        if (used < sizeof list)
+            used += (size_t)snprintf(list + used, sizeof list - used, "%s%s = %g", i ? ", " : "", f[i].ptr, f[i].v);
+    }
+    dp_errors_add(e, f[worst].ptr, "%s %s double precision (%s): the document's scale is too large or too small "
+                  "for the step", what, divides ? "leaves" : "overflows", list);
+    return 0;
+}
+
+#define FORMED(e, q, divides, what, ...)                                                                        \
+    formed(e, q, divides, what, (const factor[]){ __VA_ARGS__ },                                                  \
+           sizeof((const factor[]){ __VA_ARGS__ }) / sizeof(factor))
+
+/* The largest |F| the forcing takes, and each harmonic term's phase omega t_end + phase and rate
+ * amplitude omega, each table's pieces: finite, or an error at the term's member. */
+static double forcing_bound(const dp_forcing *f, const char *ptr, double t_end, dp_errors *e, int *ok)
+{
+    char p[DP_POINTER_MAX], q[DP_POINTER_MAX];
+    double b = 0;
+    switch (f->kind) {
+    case DP_FORCING_CONSTANT:
+        return fabs(f->value);
+    case DP_FORCING_HARMONIC:
+        snprintf(p, sizeof p, "%s/omega", ptr);
+        snprintf(q, sizeof q, "%s/amplitude", ptr);
+        *ok &= FORMED(e, f->omega * t_end + f->phase, 0, "the phase omega t_end + phase", { p, f->omega },
+                      { "/solver/t_end", t_end });
+        *ok &= FORMED(e, f->amplitude * f->omega, 0, "the load's rate amplitude omega", { q, f->amplitude },
+                      { p, f->omega });
+        return fabs(f->amplitude);
+    case DP_FORCING_TABLE:
+        for (size_t i = 0; i < f->n; i++) {
+            snprintf(p, sizeof p, "%s/points/%zu", ptr, i);
+            b = fmax(b, fabs(f->F[i]));
+            if (i > 0)
+                *ok &= FORMED(e, f->F[i] - f->F[i - 1], 0, "the table's step F[i] - F[i-1]", { p, f->F[i] });
+        }
+        return b;
+    case DP_FORCING_SUM:
+        for (size_t i = 0; i < f->nterms; i++) {
+            snprintf(p, sizeof p, "%s/terms/%zu", ptr, i);
+            b += forcing_bound(&f->terms[i], p, t_end, e, ok);
+        }
+        if (!isfinite(b)) {
+            dp_errors_add(e, ptr, "the terms' magnitudes add up past double precision");
+            *ok = 0;
+            return 0;
+        }
+        return b;
+    default:
+        return 0;
+    }
+}
+
+/* The step of length h (a pointer to the member that sets it) of the theta-method, formed as the solvers
+ * form it (stick_slip_step.c: W, the closed form's coefficients, the step's right side b at the start). */
+static int step_finite(const dp_spec *s, double h, const char *hp, double th, double Fmax, dp_errors *e)
+{
+    const dp_model *m = &s->model;
+    double k = dp_spring_stiffness(&m->spring), c = dp_damper_viscous(&m->damper), vb = m->damper.belt_velocity;
+    double tau = fmax(dp_damper_kinetic(&m->damper), dp_damper_static(&m->damper));
+    const factor M = { "/model/mass", m->mass }, H = { hp, h }, K = { "/model/spring/k", k },
+                 C = { "/model/damper/c", c }, VB = { "/model/damper/belt_velocity", vb },
+                 X = { "/initial/x", s->x0 }, V = { "/initial/v", s->v0 }, F = { "/model/forcing", Fmax };
+    int ok = FORMED(e, h * th, 1, "the step's h theta", H);
+    double W = m->mass + h * th * c + h * h * th * th * k;
+    ok = ok && FORMED(e, W, 1, "the step's m + h theta c + h^2 theta^2 k", M, H, C, K);
+    ok = ok && FORMED(e, h * k / W + (m->mass - h * (1 - th) * c - h * h * k * th * (1 - th)) / W, 0,
+                      "the step's coefficients", M, H, C, K);
+    ok = ok && FORMED(e, h * (c * vb + tau + Fmax) / W, 0, "the step's load h (c v_b + tau + F) / W", M, H, C,
+                      VB, F, { "/model/damper", tau });
+    ok = ok && FORMED(e, s->x0 + h * s->v0, 0, "the position update x + h v", X, V, H);
+    ok = ok && FORMED(e, m->mass * s->v0 - h * (1 - th) * c * s->v0 - h * k * (s->x0 + h * th * (1 - th) * s->v0)
+                      + h * (c * vb + Fmax), 0, "the step's right side m v - h k x + h F", M, V, X, H, C, K, VB, F);
+    ok = ok && FORMED(e, s->v0 - vb, 0, "the relative velocity v - v_b", V, VB);
+    return ok;
+}
+
+/* Newmark's step of length h (Höschl 1983, §15; network/newmark_step.c): the effective stiffness
+ * K + gamma/(beta h) C + M/(beta h^2) and its inverse, and the starting acceleration (F - C v - K x)/M. */
+static int newmark_finite(const dp_spec *s, double h, const char *hp, double Fmax, dp_errors *e)
+{
+    const dp_model *m = &s->model;
+    double M = m->mass, C = dp_damper_viscous(&m->damper), K = m->spring.k, b = s->solver.beta, g = s->solver.gamma;
+    const factor FM = { "/model/mass", M }, FH = { hp, h }, FK = { "/model/spring/k", K },
+                 FC = { "/model/damper/c", C }, FB = { "/solver/beta", b }, FX = { "/initial/x", s->x0 },
+                 FV = { "/initial/v", s->v0 }, FF = { "/model/forcing", Fmax },
+                 FVB = { "/model/damper/belt_velocity", m->damper.belt_velocity };
+    double khat = K + g / (b * h) * C + M / (b * h * h);
+    int ok = FORMED(e, b * h * h, 1, "Newmark's beta h^2", FB, FH);
+    ok = ok && FORMED(e, khat, 1, "Newmark's effective stiffness K + gamma C/(beta h) + M/(beta h^2)", FM, FC, FK,
+                      FB, FH);
+    double a0 = (Fmax + fabs(C * (s->v0 - m->damper.belt_velocity)) + fabs(K * s->x0)) / M;
+    ok = ok && FORMED(e, a0, 0, "the starting acceleration (F - c v - k x)/m", FM, FC, FK, FX, FV, FVB, FF);
+    ok = ok && FORMED(e, (fabs(s->v0) / (b * h) + a0 / (2 * b)) * (M + C * h) + khat * fabs(s->x0), 0,
+                      "Newmark's step load", FM, FC, FK, FB, FH, FX, FV);
+    return ok;
+}
+
+/* The regularized schemes (regularized.c): each approximation's Yosida parameter 1/n and its forces at the
+ * initial state n |v - v_b|, n |x|, and the integrator's first step 1e-3 m/(n + 1) and floor 1e-12 m/L, L
+ * the ODE's fastest rate n + k + c + L_gamma: normal numbers, or GSL gets a step of 0. */
+static int regularized_finite(const dp_spec *s, dp_errors *e)
+{
+    const dp_model *m = &s->model;
+    const dp_solver_spec *sv = &s->solver;
+    int ok = 1;
+    for (size_t i = 0; i < sv->n_count && i < DP_SPEC_MAX_NLIST && ok; i++) {
+        char p[32];
+        snprintf(p, sizeof p, "/solver/%s/%zu", sv->scheme == DP_SCHEME_PI ? "k" : "n", i);
+        if (sv->n_count == 1)   /* a number, or an array of one whose own pointer the member's also names */
+            snprintf(p, sizeof p, "/solver/%s", sv->scheme == DP_SCHEME_PI ? "k" : "n");
+        double lg = dp_relaxation_lipschitz(&m->damper.relaxation);   /* power's is infinite: refused apart */
+        double n = sv->n_list[i], L = n + m->spring.k + dp_damper_viscous(&m->damper) + (isfinite(lg) ? lg : 0);
+        const factor N = { p, n }, M = { "/model/mass", m->mass }, X = { "/initial/x", s->x0 },
+                     V = { "/initial/v", s->v0 }, VB = { "/model/damper/belt_velocity", m->damper.belt_velocity };
+        ok = FORMED(e, n, 1, "the approximation's 1/n", N)
+             && FORMED(e, n * (fabs(s->v0 - m->damper.belt_velocity) + fabs(s->x0)), 0,
+                       "the approximation's forces n |v - v_b|, n |x|", N, X, V, VB)
+             && FORMED(e, 1e-3 * m->mass / (n + 1), 1, "the integrator's first step 1e-3 m/(n + 1)", M, N)
+             && FORMED(e, 1e-12 * m->mass / L, 1, "the integrator's smallest step 1e-12 m/(n + k + c + L_gamma)", M,
+                       N, { "/model/spring/k", m->spring.k }, { "/model/damper/c", dp_damper_viscous(&m->damper) });
+    }
+    return ok;
+}
+
+/* The laws' own quantities at the initial state: a rope's force at its length, an elastoplastic spring's
+ * vertices p -/+ F_y/k and trial force, the relaxation's slope and value. */
+static int laws_finite(const dp_spec *s, double h, double th, dp_errors *e)
+{
+    const dp_spring *sp = &s->model.spring;
+    const dp_relaxation *r = &s->model.damper.relaxation;
+    const factor K = { "/model/spring/k", sp->k }, X = { "/initial/x", s->x0 };
+    int ok = 1;
+    if (sp->law == DP_SPRING_LINEAR)
+        ok &= FORMED(e, sp->k * s->x0, 0, "the spring force k x", K, X);
+    if (sp->law == DP_SPRING_ROPE)
+        ok &= FORMED(e, sp->k * sp->length, 0, "the rope's force k L", K, { "/model/spring/length", sp->length });
+    if (dp_spring_plastic(sp)) {
+        const factor Y = { "/model/spring/yield", sp->yield }, P = { "/model/spring/offset", sp->offset };
+        double d = sp->yield / sp->k;
+        ok &= FORMED(e, 2 * d, 0, "the elastic range 2 F_y / k", Y, K);
+        ok = ok && FORMED(e, fabs(sp->offset) + d, 0, "the yield points p -/+ F_y / k", Y, K, P);
+        ok = ok && FORMED(e, sp->k * (s->x0 - sp->offset), 0, "the trial force k (x - p)", K, X, P);
+    }
+    if (r->kind == DP_RELAX_RATIONAL || r->kind == DP_RELAX_LINEAR) {
+        const factor A = { "/model/damper/relaxation/a", r->a }, B = { "/model/damper/relaxation/b", r->b },
+                     L = { "/model/damper/relaxation/L", r->L }, H = { "/solver/dt", h };
+        double lip = dp_relaxation_lipschitz(r);
+        ok &= r->kind == DP_RELAX_LINEAR ? FORMED(e, h * th * lip, 0, "the relaxation's h theta L", L, H)
+                                         : FORMED(e, h * th * lip, 0, "the relaxation's h theta a / b", A, B, H);
+    }
+    return ok;
+}
+
+/* Every quantity the one-mass run types form from the document at its start is finite, or the member that
+ * makes one overflow is named (a 422 at validation rather than a run that fails with "overflow" at t = 0).
+ * Runs on when they are: the run's own checks stop it later, with the overflow named as such. */
+static int check_one_mass_finite(const dp_spec *s, dp_errors *e)
+{
+    const dp_solver_spec *sv = &s->solver;
+    double n = sv->t_end / sv->dt;
+    if (!isfinite(n))
+        return 1;                /* finish() refuses the step count */
+    int ok = 1;
+    double th = sv->kind == DP_SOLVER_STICK_SLIP ? sv->theta : 1;
+    double Fmax = forcing_bound(&s->model.forcing, "/model/forcing", sv->t_end, e, &ok);
+    double steps = dp_spec_steps(s), last = sv->t_end - (steps - 1) * sv->dt;
+    if (!ok || sv->kind == DP_SOLVER_ANALYTIC)
+        return ok;
+    ok &= laws_finite(s, sv->dt, th, e);
+    if (sv->kind == DP_SOLVER_REGULARIZED)
+        return ok && regularized_finite(s, e);
+    if (sv->kind == DP_SOLVER_NEWMARK)
+        return ok && (steps <= 1 || newmark_finite(s, sv->dt, "/solver/dt", Fmax, e))
+               && newmark_finite(s, last, "/solver/t_end", Fmax, e);
+    if (ok && steps > 1)
+        ok &= step_finite(s, sv->dt, "/solver/dt", th, Fmax, e);
+    if (ok)
+        ok &= step_finite(s, last, "/solver/t_end", th, Fmax, e);
+    return ok;
 }
 
 /* A graph whose end ray is vertical bounds its kinematic variable (a rope bounds x, a velocity limit v);
@@ -339,6 +544,11 @@ static int finish(const dp_spec *s, double max_steps, dp_errors *e, size_t befor
     if (max_steps <= 0 || max_steps > DP_SPEC_MAX_STEPS)
         max_steps = DP_SPEC_MAX_STEPS;
     double n = s->solver.t_end / s->solver.dt;
+    if (!isfinite(n)) {
+        dp_errors_add(e, "/solver/dt", "t_end/dt = %g/%g overflows double precision: at most %.6g steps per run",
+                      s->solver.t_end, s->solver.dt, max_steps);
+        return DP_ELIMIT;
+    }
     if (s->net && !(n * (double)(s->net->n + s->net->nel) <= max_steps)) {
         dp_errors_add(e, "/solver/dt", "t_end/dt = %.6g steps of %zu nodes and %zu elements exceed the limit of "
                       "%.6g node-steps per run", n, s->net->n, s->net->nel, max_steps);
@@ -358,7 +568,8 @@ int dp_rules_stick_slip(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     check_one_mass_domain(s, e);
-    check_exact(s, e);
+    if (check_one_mass_finite(s, e))
+        check_exact(s, e);
     return finish(s, max_steps, e, before);
 }
 
@@ -366,7 +577,8 @@ int dp_rules_thesis(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     check_one_mass_domain(s, e);
-    check_thesis(s, e);
+    if (check_one_mass_finite(s, e))
+        check_thesis(s, e);
     return finish(s, max_steps, e, before);
 }
 
@@ -374,7 +586,8 @@ int dp_rules_analytic(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     check_one_mass_domain(s, e);
-    check_analytic(s, e);
+    if (check_one_mass_finite(s, e))
+        check_analytic(s, e);
     int st = finish(s, max_steps, e, before);
     if (st != DP_OK)
         return st;
@@ -394,7 +607,8 @@ int dp_rules_newmark(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     check_one_mass_domain(s, e);
-    dp_newmark_check(s, e);
+    if (check_one_mass_finite(s, e))
+        dp_newmark_check(s, e);
     return finish(s, max_steps, e, before);
 }
 
@@ -402,7 +616,9 @@ int dp_rules_regularized(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     check_one_mass_domain(s, e);
-    if (dp_spring_plastic(&s->model.spring))
+    if (!check_one_mass_finite(s, e))
+        ;
+    else if (dp_spring_plastic(&s->model.spring))
         dp_errors_add(e, "/model/spring/law", "the %s spring has memory (its plastic offset), which the "
                       "regularized schemes' memoryless laws do not: use the stick-slip or the newmark solver",
                       dp_spring_law_name(s->model.spring.law));
@@ -415,6 +631,7 @@ int dp_rules_network(const dp_spec *s, double max_steps, dp_errors *e)
 {
     size_t before = e->n + e->dropped;
     dp_network_check(s, e);
+    dp_quakes_check(s, e);
     return finish(s, max_steps, e, before);
 }
 

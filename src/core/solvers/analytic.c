@@ -2,12 +2,14 @@
  * (Babováková 2012, (4.14)-(4.15); analysis/coulomb_closed_form.c) on the output grid, turning points passed
  * one by one and stick events where the motion comes to rest. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "dashpot/analytic.h"
 #include "record/sink.h"
 #include "rules/rules.h"
 #include "solvers/run_types.h"
+#include "solvers/stick_slip_step.h"
 
 /* The run's state: the constant load and the arc the motion is on. */
 typedef struct analytic_run {
@@ -39,6 +41,11 @@ static void sample_on(const dp_coulomb_problem *p, const dp_coulomb_arc *a, doub
     s->phase = p->phi0 == 0 ? DP_PHASE_NONE : a->dir == 0 ? DP_PHASE_STICK : DP_PHASE_SLIP;
 }
 
+static int sample_finite(const dp_sample *s)
+{
+    return isfinite(s->x) && isfinite(s->v) && isfinite(s->Fs) && isfinite(s->Fd) && isfinite(s->Fc);
+}
+
 static int analytic_init(dp_run *r)
 {
     analytic_run *an = r->state = calloc(1, sizeof *an);
@@ -50,6 +57,11 @@ static int analytic_init(dp_run *r)
     dp_coulomb_arc a = dp_coulomb_arc_from(&p, 0, p.x0, p.v0);
     sample_on(&p, &a, 0, &r->cur);
     an->arc = a;
+    if (!sample_finite(&r->cur)) {
+        snprintf(r->error_pointer, sizeof r->error_pointer, "/model");
+        return dp_run_fail(r, DP_ESOLVE, "the closed form's arc at the initial state overflows double precision: "
+                           "the model's numbers are too large or too small for it");
+    }
     dp_run_emit_state(r); /* the initial state: queued, no block yet */
     return DP_OK;
 }
@@ -72,7 +84,13 @@ static int analytic_advance(dp_run *r)
         }
         if (an->arc.dir == 0)
             r->sum.stick_time += t - fmax(r->cur.t, an->arc.t0);
+        double x = r->cur.x, v = r->cur.v;
         sample_on(&p, &an->arc, t, &r->cur);
+        if (!sample_finite(&r->cur)) {
+            char msg[DP_MESSAGE_MAX];
+            snprintf(msg, sizeof msg, "the solution diverged at t = %.17g", t);
+            return dp_one_mass_nonfinite(r, msg, t, x, v);
+        }
         r->sum.steps = r->n;
         if (r->n >= r->nsteps)
             r->finished = 1;

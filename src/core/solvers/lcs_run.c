@@ -4,9 +4,13 @@
  * Rows only, no queue: a block takes as many rows as the caller's buffer has slots (within ROW_BUDGET
  * numbers) and the stepping pauses when it is full, so a stream of any length runs in constant memory.
  * The first row is the initial state with u, w from the algebraic part alone (D u + C x0 + q in the laws).
- * A step whose LCP has no solution Lemke's method can find ends the run with DP_ESOLVE, saying when.
+ * A step whose LCP has no solution Lemke's method can find ends the run with DP_ESOLVE, saying when; a
+ * failure of the solver itself (its pivot limit, an answer that fails its check) names the solver, never the
+ * user's data. Each step's Lemke asks the run's stop hook through its pivots (a step of a large LCP can pivot
+ * for seconds), besides the poll between steps.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -55,16 +59,44 @@ static void declare_columns(struct dp_lcs_run *lr)
 }
 
 /* The initial u, w: the algebraic part at x0 (dp_lcs_check made sure there is one). */
-static int initial_algebraic(struct dp_lcs_run *lr, const dp_lcs *sys)
+static int initial_algebraic(struct dp_lcs_run *lr, const dp_lcs *sys, dp_lcp_result *res)
 {
     int s;
+    *res = (dp_lcp_result){ DP_LCP_SOLVED, 0, 0.0 };
     dp_lcs_stepper *alg = dp_lcs_stepper_alloc(sys, 0.0, 1.0, &s);
     if (alg == NULL)
         return s;
-    dp_lcp_result res;
-    s = dp_lcs_step(alg, lr->x, lr->u, lr->w, &res);
+    s = dp_lcs_step(alg, lr->x, lr->u, lr->w, res);
     dp_lcs_stepper_free(alg);
     return s;
+}
+
+/* A stepper refused at set-up: the member that made it (lcs.h) as the error's place. */
+static int setup_failed(dp_run *r, int s, const char *where, const char *fmt, const char *why)
+{
+    snprintf(r->error_pointer, sizeof r->error_pointer, "%s", where);
+    return dp_run_fail(r, s, fmt, why);
+}
+
+/* A step's failure, `when` saying which: the solver's own (its pivot limit, an answer that fails its check)
+ * named at /solver, the stop hook's, the data's (no u: a ray), or the offsets leaving the doubles. */
+static int step_failed(dp_run *r, int s, const dp_lcp_result *res, const char *when)
+{
+    if (s == DP_ECANCEL)
+        return dp_run_fail(r, s, "the run was stopped at t = %.17g, inside Lemke's pivots", r->cur.t);
+    if (s == DP_ELIMIT || (s == DP_ESOLVE && res->outcome == DP_LCP_INACCURATE))
+        snprintf(r->error_pointer, sizeof r->error_pointer, "/solver");
+    if (s == DP_ELIMIT)
+        return dp_run_fail(r, s, "Lemke's method took its limit of %zu pivots on %s without ending", res->pivots, when);
+    if (s == DP_ESOLVE && res->outcome == DP_LCP_INACCURATE)
+        return dp_run_fail(r, s, "Lemke's method ended %s on a basis whose answer fails its check (relative "
+                           "residual %.3g): the step's matrix is too ill-conditioned for the rounding", when, res->residual);
+    if (s == DP_ESOLVE)
+        return dp_run_fail(r, s, "%s has no solution Lemke's method can find (a ray: the step's matrix is neither "
+                           "a P-matrix nor copositive-plus here)", when);
+    if (s == DP_ENONFINITE)
+        return dp_run_fail(r, s, "the LCP of %s left the finite numbers", when);
+    return dp_run_fail(r, s, "%s failed (%s)", when, dp_strerror(s));
 }
 
 static int lcs_run_init(dp_run *r)
@@ -86,17 +118,21 @@ static int lcs_run_init(dp_run *r)
     memcpy(lr->x, lm->x0, n * sizeof *lr->x);
     dp_lcs sys = dp_lcs_model_system(lm);
     int s;
-    lr->step = dp_lcs_stepper_alloc(&sys, r->h, r->spec.solver.theta, &s);
+    const char *where, *why;
+    lr->step = dp_lcs_stepper_alloc_why(&sys, r->h, r->spec.solver.theta, &s, &where, &why);
     if (lr->step == NULL)
-        return dp_run_fail(r, s, "the θ-step could not be set up (%s)", dp_strerror(s));
+        return setup_failed(r, s, where, "the θ-step could not be set up: %s", why);
     double hl = r->spec.solver.t_end - (double)(r->nsteps - 1) * r->h;
     if (fabs(hl - r->h) > 1e-12 * r->h && hl > 0) {
-        lr->last = dp_lcs_stepper_alloc(&sys, hl, r->spec.solver.theta, &s);
+        lr->last = dp_lcs_stepper_alloc_why(&sys, hl, r->spec.solver.theta, &s, &where, &why);
         if (lr->last == NULL)
-            return dp_run_fail(r, s, "the last, shorter step could not be set up (%s)", dp_strerror(s));
+            return setup_failed(r, s, where, "the last, shorter step could not be set up: %s", why);
     }
-    if ((s = initial_algebraic(lr, &sys)) != DP_OK)
+    dp_lcp_result res;
+    if ((s = initial_algebraic(lr, &sys, &res)) == DP_ESOLVE && res.outcome == DP_LCP_RAY)
         return dp_run_fail(r, s, "the laws admit no u at the initial state");
+    if (s != DP_OK)
+        return step_failed(r, s, &res, "the algebraic part at t = 0");
     declare_columns(lr);
     r->cols = &lr->cols;
     r->cur.t = 0;
@@ -175,16 +211,22 @@ static int lcs_run_advance(dp_run *r)
     double per_step = (double)(lr->n * lr->n + 4 * lr->m * lr->m * lr->m) + 1;
     size_t budget = per_step > 16777216.0 ? 1 : (size_t)(16777216.0 / per_step);
     while (r->n < r->nsteps && !block_full(r, lr) && budget-- > 0) {
+        if (dp_run_stopped(r, dp_run_work(r))) {
+            if (r->status != DP_OK)
+                return r->status;
+            break; /* a yield: the block so far, the run goes on at the next call */
+        }
         dp_lcs_stepper *st = r->n + 1 == r->nsteps && lr->last ? lr->last : lr->step;
         if (r->spec.lcs->pf)
             set_offsets(r, lr, st);
         dp_lcp_result res;
-        int s = dp_lcs_step(st, lr->x, lr->u, lr->w, &res);
-        if (s == DP_ESOLVE)
-            return dp_run_fail(r, s, "the step from t = %.17g has no solution Lemke's method can find (a ray: "
-                               "the step's matrix is neither a P-matrix nor copositive-plus here)", r->cur.t);
-        if (s != DP_OK)
-            return dp_run_fail(r, s, "the step from t = %.17g failed (%s)", r->cur.t, dp_strerror(s));
+        const dp_stop stop = { r->stop, r->stop_ctx }; /* a yield (< 0) inside a step waits for its end */
+        int s = dp_lcs_step_until(st, lr->x, lr->u, lr->w, &res, &stop);
+        if (s != DP_OK) {
+            char when[64];
+            snprintf(when, sizeof when, "the step from t = %.17g", r->cur.t);
+            return step_failed(r, s, &res, when);
+        }
         r->n++;
         r->cur.t = r->n == r->nsteps ? r->spec.solver.t_end : (double)r->n * r->h;
         if (!state_finite(lr))

@@ -1,6 +1,7 @@
 /* src/core/solvers/newmark.c - the one-mass Newmark run (Höschl 1983, §15, Ex. 40): the mass as a 1 x 1 band
  * system stepped by network/newmark_step.c, an elastoplastic spring's return map after each step. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "dashpot/newmark.h"
@@ -8,6 +9,7 @@
 #include "record/sink.h"
 #include "rules/rules.h"
 #include "solvers/run_types.h"
+#include "solvers/stick_slip_step.h"
 
 /* The load: F(t) and a viscous damper's belt term c v_b. */
 static double one_mass_load(const dp_run *r, double t)
@@ -75,12 +77,20 @@ static int newmark_init(dp_run *r)
     return DP_OK;
 }
 
+/* The step to t from (x0, v0) left the finite numbers (or came within 1e300 of leaving them). */
+static int diverged(dp_run *r, double t, double x0, double v0)
+{
+    char msg[DP_MESSAGE_MAX];
+    snprintf(msg, sizeof msg, "the solution diverged at t = %.17g", t);
+    return dp_one_mass_nonfinite(r, msg, r->cur.t, x0, v0);
+}
+
 static int newmark_advance(dp_run *r)
 {
     dp_nm *w = ((newmark_run *)r->state)->w;
     const dp_spring *sp = &r->spec.model.spring;
     while (dp_run_room(r)) {
-        double h = dp_run_step_length(r), x = r->cur.x, v = r->cur.v;
+        double h = dp_run_step_length(r), x = r->cur.x, v = r->cur.v, x0 = x, v0 = v;
         r->n++;
         double t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end, P = one_mass_load(r, t);
         signed char flow = (signed char)r->ep_flow;
@@ -95,12 +105,15 @@ static int newmark_advance(dp_run *r)
         }
         dp_nm_accel(w, &r->cur.x, &r->cur.v, &P, &r->ep_F);
         if (!(fabs(x) < 1e300 && fabs(v) < 1e300 && isfinite(w->a[0])))
-            return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", t);
+            return diverged(r, t, x0, v0);
         r->sum.steps = r->n;
         if (r->n >= r->nsteps)
             r->finished = 1;
-        if (dp_run_sample_due(r))
+        if (dp_run_sample_due(r)) {
             one_mass_forces(r);
+            if (!isfinite(r->cur.Fs) || !isfinite(r->cur.Fc) || !isfinite(r->cur.p))
+                return diverged(r, t, x0, v0);
+        }
         dp_run_emit_state(r);
     }
     return DP_OK;

@@ -26,6 +26,7 @@
  * a right-hand side that leaves the finite numbers is DP_ENONFINITE, any other failure DP_ESOLVE.
  */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -38,6 +39,7 @@
 #include "rules/rules.h"
 #include "solvers/regularized.h"
 #include "solvers/run_types.h"
+#include "solvers/stick_slip_step.h"
 
 /* Integrator steps taken per dp_run_next call at most, so that a front end can cancel a hard run between
  * blocks (~10 ms of msbdf work); the run resumes where it stopped. */
@@ -288,16 +290,22 @@ static int regularized_init(dp_run *r)
     g->hlast = REG_HISTORY - 1;
     remember(g);
     set_sample(r, g->b.t, g->b.y);
-    if (!isfinite(r->cur.Fs) || !isfinite(r->cur.Fc))
-        return dp_run_fail(r, DP_ENONFINITE, "the regularized forces are not finite at the initial state");
+    if (!isfinite(r->cur.Fs) || !isfinite(r->cur.Fc)) {
+        snprintf(r->error_pointer, sizeof r->error_pointer, "/initial");
+        return dp_one_mass_nonfinite(r, "the regularized forces are not finite at the initial state", 0,
+                                     r->spec.x0, r->spec.v0);
+    }
     dp_run_emit_state(r); /* the initial state: queued, no block yet */
     return DP_OK;
 }
 
 static int gsl_failure(dp_run *r, int s, double t)
 {
-    if (s == GSL_EBADFUNC)
-        return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g (non-finite right-hand side)", t);
+    if (s == GSL_EBADFUNC) {
+        char msg[DP_MESSAGE_MAX];
+        snprintf(msg, sizeof msg, "the solution diverged at t = %.17g (non-finite right-hand side)", t);
+        return dp_one_mass_nonfinite(r, msg, t, r->cur.x, r->cur.v);
+    }
     return dp_run_fail(r, DP_ESOLVE, "the %s integrator failed at t = %.17g: %s",
                        dp_stepper_name(r->spec.solver.stepper), t, gsl_strerror(s));
 }

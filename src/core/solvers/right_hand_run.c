@@ -186,11 +186,34 @@ static void fill_row(const struct dp_right_hand_run *rr, double *row)
         row[i++] = c.c62, row[i++] = c.c64;
 }
 
+static int all_finite(const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return 0;
+    return 1;
+}
+
+/* The stop record of a state or a candidate outside the finite numbers: an overflow of the model's own
+ * scale (its numbers' products leave double precision), said so, never as physics and never with a NaN. */
+static void overflow(struct dp_right_hand_run *rr, const char *what)
+{
+    int n = snprintf(rr->why, sizeof rr->why, "the %s overflows double precision at t=%.10g", what, rr->t);
+    if (all_finite(rr->y, 4) && n > 0 && (size_t)n < sizeof rr->why)
+        snprintf(rr->why + n, sizeof rr->why - (size_t)n, ", q=[%.9g,%.9g], qd=[%.9g,%.9g]", rr->y[0], rr->y[1],
+                 rr->y[2], rr->y[3]);
+    rr->fail = 1;
+}
+
 static int emit_row(dp_run *r)
 {
     struct dp_right_hand_run *rr = r->state;
     double row[MAX_WIDTH];
     fill_row(rr, row);
+    if (!all_finite(row, rr->cols.width)) {
+        overflow(rr, "state or its forces");
+        return DP_OK;
+    }
     memcpy(rr->final_row, row, sizeof row);
     r->sum.final_row = (dp_row){ .t = rr->t, .val = rr->final_row };
     /* output.every decimates the grid k dt (the first and the last sample always written) */
@@ -213,6 +236,11 @@ static void paradox(struct dp_right_hand_run *rr, const dp_right_hand_result *re
 {
     char *p = rr->why, *end = rr->why + sizeof rr->why;
     char what[48];
+    for (int i = 0; i < res->n && i < DP_RIGHT_HAND_MAX_SOL; i++)
+        if (!all_finite(res->sol[i].qdd, 2) || !all_finite(res->sol[i].N, 2)) {
+            overflow(rr, "acceleration problem (a candidate's q'' or N)");
+            return;
+        }
     if (res->n == 0 && !res->continuum)
         snprintf(what, sizeof what, "inconsistency (no acceleration)");
     else
@@ -234,6 +262,10 @@ static void paradox(struct dp_right_hand_run *rr, const dp_right_hand_result *re
 static int classify(dp_run *r, int initial)
 {
     struct dp_right_hand_run *rr = r->state;
+    if (!all_finite(rr->y, 4)) {
+        overflow(rr, "state");
+        return 0;
+    }
     if (rr->m.kind == DP_RIGHT_HAND_ROD && !(rr->y[1] > 0 && rr->y[1] < M_PI)) {
         snprintf(rr->why, sizeof rr->why, "the rod reaches the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
                  "an impact this model (end A on the floor, 0 < theta < pi) does not follow", rr->t, rr->y[0],
@@ -248,6 +280,10 @@ static int classify(dp_run *r, int initial)
         return 0;
     }
     const dp_right_hand_sol *s = &res.sol[0];
+    if (!all_finite(s->qdd, 2) || !all_finite(s->N, 2) || !all_finite(s->Q, 2)) {
+        overflow(rr, "acceleration problem (q'', N or Q)");
+        return 0;
+    }
     if (s->liftoff) {
         snprintf(rr->why, sizeof rr->why, "the rod lifts off the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
                  "its only motion is free flight, which this model (end A on the floor) does not follow",

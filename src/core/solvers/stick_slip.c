@@ -16,20 +16,36 @@
  * with p, so its steps are not split at events (reported at the end of the step that made them).
  */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "rules/rules.h"
 #include "solvers/run_types.h"
 #include "solvers/stick_slip_step.h"
 
-/* No finite bracket for the step: either the state has already run away (report divergence) or the
- * inclusion really has no solution at this state. */
+/* No finite bracket for the step: either the state has already run away (report divergence), or the
+ * document's own scale overflows the step (report that), or the inclusion really has no solution at this
+ * state. */
 static int step_failed(dp_run *r, const step_state *s)
 {
-    if (!(fabs(s->x) < 1e100 && fabs(s->v) < 1e100))
-        return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g (|x| = %.3g, |v| = %.3g)",
-                           s->t, fabs(s->x), fabs(s->v));
-    return dp_run_fail(r, DP_ESOLVE, "the implicit step at t = %.17g has no solution", s->t);
+    char msg[DP_MESSAGE_MAX];
+    int huge = !(fabs(s->x) < 1e100 && fabs(s->v) < 1e100);
+    if (!huge && !(fabs(log10(fabs(dp_one_mass_extreme(&r->spec)))) >= DP_ONE_MASS_EXTREME_DECADES))
+        return dp_run_fail(r, DP_ESOLVE, "the implicit step at t = %.17g has no solution", s->t);
+    if (isfinite(s->x) && isfinite(s->v))
+        snprintf(msg, sizeof msg, "the solution diverged at t = %.17g (|x| = %.3g, |v| = %.3g)", s->t, fabs(s->x),
+                 fabs(s->v));
+    else
+        snprintf(msg, sizeof msg, "the solution diverged at t = %.17g", s->t);
+    return dp_one_mass_nonfinite(r, msg, s->t, s->x, s->v);
+}
+
+/* A step from (t, x, v) that ended outside the finite numbers. */
+static int step_nonfinite(dp_run *r, double t_end_of_step, double t, double x, double v)
+{
+    char msg[DP_MESSAGE_MAX];
+    snprintf(msg, sizeof msg, "the solution diverged at t = %.17g", t_end_of_step);
+    return dp_one_mass_nonfinite(r, msg, t, x, v);
 }
 
 /* ---- the run ---------------------------------------------------------------------------------------- */
@@ -133,6 +149,7 @@ static void hold(dp_run *r)
 static int fast_steps(dp_run *r)
 {
     const dp_ss_law *L = &r->law;
+    double t = r->cur.t, x = r->cur.x, v = r->cur.v;
     if (r->cur.phase == DP_PHASE_SLIP && r->cur.v != L->vb)
         glide(r);
     else if (r->cur.phase == DP_PHASE_STICK && r->cur.v == L->vb)
@@ -140,7 +157,7 @@ static int fast_steps(dp_run *r)
     else
         return DP_OK;
     if (!isfinite(r->cur.x) || !isfinite(r->cur.v))
-        return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
+        return step_nonfinite(r, r->cur.t, t, x, v);
     return DP_OK;
 }
 
@@ -173,12 +190,15 @@ int dp_stick_slip_advance(dp_run *r)
         r->n++;
         s.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
         if (!isfinite(s.x) || !isfinite(s.v) || !isfinite(fc) || !isfinite(fs))
-            return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", s.t);
+            return step_nonfinite(r, s.t, r->cur.t, r->cur.x, r->cur.v);
         r->cur.t = s.t, r->cur.x = s.x, r->cur.v = s.v, r->cur.phase = s.phase;
         if (r->ep)
             plastic_step(r);
-        if (dp_run_sample_due(r)) /* forces are only read in samples and the summary (the last step) */
+        if (dp_run_sample_due(r)) { /* forces are only read in samples and the summary (the last step) */
             set_forces(r, fc, fs);
+            if (!isfinite(r->cur.Fs) || !isfinite(r->cur.Fd) || !isfinite(r->cur.Fc) || !isfinite(r->cur.p))
+                return step_nonfinite(r, s.t, s.t, s.x, s.v);
+        }
         if (!L->locate)
             phase_event(r, before);
         r->sum.steps = r->n;
@@ -267,6 +287,11 @@ int dp_stick_slip_init(dp_run *r)
     L->locate = r->spec.solver.events == DP_EVENTS_LOCATE && (L->closed ? L->tau > 0 : L->can_stick && !L->motion)
                 && SL->locate && DL->locate;
     initial_state(r);
+    if (!isfinite(r->cur.Fs) || !isfinite(r->cur.Fd) || !isfinite(r->cur.Fc)) {
+        snprintf(r->error_pointer, sizeof r->error_pointer, "/initial");
+        return dp_run_fail(r, DP_ESOLVE, "the forces at the initial state overflow double precision (a graph's "
+                           "piece or a law too steep for it there)");
+    }
     dp_run_emit_state(r); /* the initial state: queued, no block yet */
     return DP_OK;
 }

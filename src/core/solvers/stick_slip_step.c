@@ -3,6 +3,7 @@
  * (stick_slip.c) and event location (event_location.c), which splits a step at its phase changes: both call
  * down into this file, so neither calls the other back. */
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "solvers/stick_slip_step.h"
@@ -108,4 +109,59 @@ int dp_ss_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double 
     *fc = a;
     *fs = sp;
     return DP_OK;
+}
+
+/* ---- a step that leaves the finite numbers ---------------------------------------------------------- */
+
+/* The number of v and *most farther from 1 in decades (0 counts as 1): the document's scale. */
+static void extreme(double v, double *most)
+{
+    double d = v == 0 || !isfinite(v) ? 0 : fabs(log10(fabs(v)));
+    double m = *most == 0 ? 0 : fabs(log10(fabs(*most)));
+    if (d > m)
+        *most = v;
+}
+
+static void forcing_extreme(const dp_forcing *f, double *most)
+{
+    extreme(f->value, most), extreme(f->amplitude, most), extreme(f->omega, most), extreme(f->phase, most);
+    for (size_t i = 0; i < f->n; i++)
+        extreme(f->t[i], most), extreme(f->F[i], most);
+    for (size_t i = 0; i < f->nterms; i++)
+        forcing_extreme(&f->terms[i], most);
+}
+
+static void graph_extreme(const dp_graph *g, double *most)
+{
+    for (size_t i = 0; i < g->n; i++)
+        extreme(g->y[i], most), extreme(g->f[i], most);
+}
+
+double dp_one_mass_extreme(const dp_spec *s)
+{
+    const dp_model *m = &s->model;
+    const dp_spring *sp = &m->spring;
+    const dp_damper *d = &m->damper;
+    const dp_relaxation *r = &d->relaxation;
+    const double v[] = { s->x0, s->v0, m->mass, sp->k, sp->length, sp->yield, sp->offset, d->c, d->phi0, d->phi1,
+                         d->tau, d->belt_velocity, r->a, r->b, r->L, r->N, s->solver.dt, s->solver.t_end };
+    double most = 1;
+    forcing_extreme(&m->forcing, &most);
+    graph_extreme(&sp->graph, &most);
+    graph_extreme(&d->graph, &most);
+    for (size_t i = 0; i < sizeof v / sizeof *v; i++)
+        extreme(v[i], &most);
+    return most;
+}
+
+int dp_one_mass_nonfinite(dp_run *r, const char *diverged, double t, double x, double v)
+{
+    char at[96] = "";
+    double most = dp_one_mass_extreme(&r->spec);
+    if (!(fabs(log10(fabs(most))) >= DP_ONE_MASS_EXTREME_DECADES))
+        return dp_run_fail(r, DP_ENONFINITE, "%s", diverged);
+    if (isfinite(x) && isfinite(v))
+        snprintf(at, sizeof at, " (|x| = %.3g, |v| = %.3g before it)", fabs(x), fabs(v));
+    return dp_run_fail(r, DP_ESOLVE, "the step's quantities overflow at t = %.17g%s: the document holds %.3g, "
+                       "whose products with its other numbers leave double precision", t, at, most);
 }

@@ -55,4 +55,17 @@ int dp_stick_slip_advance(dp_run *r);
 /* The damper forces possible at rest: the static interval of a generalized Coulomb law, else A(0). */
 void dp_ss_stick_interval(const dp_ss_law *L, double *lo, double *hi);
 
+/* A document whose numbers reach 10^+-100 leaves double precision (10^+-308) in products of three of
+ * them, which is what a step forms: an overflow there is the document's scale, not the dynamics. */
+#define DP_ONE_MASS_EXTREME_DECADES 100
+
+/* The number of a one-mass document (its model, initial state, dt and t_end) farthest from 1 in decades. */
+double dp_one_mass_extreme(const dp_spec *s);
+
+/* Fails the run whose step at time t from the finite state (x, v) left the finite numbers: "the step's
+ * quantities overflow at t = ..." (DP_ESOLVE) when the document reaches 10^+-DP_ONE_MASS_EXTREME_DECADES,
+ * else `diverged` (DP_ENONFINITE: the solution grew from the document's scale). Messages hold finite
+ * numbers only. */
+int dp_one_mass_nonfinite(dp_run *r, const char *diverged, double t, double x, double v);
+
 #endif

@@ -10,6 +10,7 @@
  * so that its output is the thesis' own; spec.c has already checked (4.8) and (4.10).
  */
 #include <math.h>
+#include <stdio.h>
 
 #include "record/sink.h"
 #include "rules/rules.h"
@@ -47,13 +48,16 @@ static int thesis_advance(dp_run *r)
             }
             v1 = vn;
         }
-        double Fs = dt * L->k * v1 + r->cur.Fs;
+        double Fs = dt * L->k * v1 + r->cur.Fs, Fd = Fc - dp_relaxation_eval(L->gamma, v1);
         r->n++;
-        if (!isfinite(Fs) || !isfinite(v1) || !isfinite(Fc))
-            return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", t1);
+        if (!isfinite(Fs) || !isfinite(v1) || !isfinite(Fc) || !isfinite(Fs / L->k) || !isfinite(Fd)) {
+            char msg[DP_MESSAGE_MAX];
+            snprintf(msg, sizeof msg, "the solution diverged at t = %.17g", t1);
+            return dp_one_mass_nonfinite(r, msg, r->cur.t, r->cur.x, r->cur.v);
+        }
         dp_sample *c = &r->cur;
         c->t = t1, c->v = v1, c->Fs = Fs, c->x = Fs / L->k, c->Fc = Fc;
-        c->Fd = Fc - dp_relaxation_eval(L->gamma, v1);
+        c->Fd = Fd;
         c->phase = v1 == 0 ? DP_PHASE_STICK : DP_PHASE_SLIP;
         if (c->phase == DP_PHASE_STICK)
             r->sum.stick_time += dt;

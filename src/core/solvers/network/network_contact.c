@@ -53,6 +53,50 @@ static int compliance_graph(dp_graph *g, const dp_contact *c)
     return dp_graph_init(g, 1, &c->distance, &(double){ 0 }, left, right);
 }
 
+/* A contact's place in the order of shadows(): rigid ones by their ends, then by falling distance (then
+ * index); compliant ones last. */
+typedef struct contact_key {
+    int rigid;
+    long a, b;
+    double d;
+    size_t c;
+} contact_key;
+
+static int by_ends(const void *pa, const void *pb)
+{
+    const contact_key *x = pa, *y = pb;
+    if (x->rigid != y->rigid)
+        return y->rigid - x->rigid;
+    if (x->a != y->a)
+        return x->a < y->a ? -1 : 1;
+    if (x->b != y->b)
+        return x->b < y->b ? -1 : 1;
+    if (x->d != y->d)
+        return x->d > y->d ? -1 : 1;
+    return x->c < y->c ? -1 : x->c > y->c;
+}
+
+/* Rigid contacts between the same ends in the same order keep u >= d for each d: only the largest distance
+ * can bind, the others close only where it holds already (then at the same velocity). Armed together they
+ * would be parallel cones, a cycle of fixed elements the step cannot contract, and a step with no solution
+ * where their vertices differ. So the ones behind it (ct_shadow) are never armed: they carry no force. */
+static int shadows(struct dp_network_run *nr)
+{
+    contact_key *key = malloc(nr->nc * sizeof *key);
+    if (key == NULL)
+        return DP_ENOMEM;
+    for (size_t c = 0; c < nr->nc; c++) {
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        key[c] = (contact_key){ e->contact.compliance == 0, e->a, e->b, e->contact.distance, c };
+    }
+    qsort(key, nr->nc, sizeof *key, by_ends);
+    for (size_t k = 1; k < nr->nc; k++)
+        nr->ct_shadow[key[k].c] = key[k].rigid && key[k - 1].rigid && key[k].a == key[k - 1].a &&
+                                  key[k].b == key[k - 1].b;
+    free(key);
+    return DP_OK;
+}
+
 int network_run_contacts_setup(struct dp_network_run *nr)
 {
     const dp_network *net = nr->net;
@@ -67,12 +111,17 @@ int network_run_contacts_setup(struct dp_network_run *nr)
     nr->ct_soft = calloc(m, sizeof *nr->ct_soft);
     nr->ct_on = calloc(m, 1);
     nr->ct_last = calloc(m, sizeof *nr->ct_last);
+    nr->ct_before = calloc(m, sizeof *nr->ct_before);
+    nr->ct_kicked = calloc(m, 1);
+    nr->ct_shadow = calloc(m, 1);
     nr->ct_pre = calloc(m, sizeof *nr->ct_pre);
     nr->ct_touch = calloc(m, 1);
     nr->Fn = calloc(nr->nel, sizeof *nr->Fn);
     nr->imp = calloc(m, sizeof *nr->imp);
     nr->iforce = calloc(m, sizeof *nr->iforce);
     nr->iv = calloc(2 * nr->n, sizeof *nr->iv);
+    if (!nr->ct_before || !nr->ct_kicked || !nr->ct_shadow)
+        return DP_ENOMEM;
     if (!nr->ct_el || !nr->ct_soft || !nr->ct_on || !nr->ct_last || !nr->ct_pre || !nr->ct_touch || !nr->Fn || !nr->imp ||
         !nr->iforce || !nr->iv || cone_graph(&nr->cone) != DP_OK)
         return DP_ENOMEM;
@@ -81,7 +130,7 @@ int network_run_contacts_setup(struct dp_network_run *nr)
         const dp_element *e = &net->el[i];
         if (!e->has_contact)
             continue;
-        nr->ct_el[c] = i, nr->ct_last[c] = -INFINITY;
+        nr->ct_el[c] = i, nr->ct_last[c] = nr->ct_before[c] = -INFINITY;
         dp_network_step_element *a = &nr->act[nr->nact];
         *a = (dp_network_step_element){ .a = e->a, .b = e->b };
         if (e->contact.compliance > 0) {
@@ -93,6 +142,8 @@ int network_run_contacts_setup(struct dp_network_run *nr)
         nr->act_el[nr->nact++] = i;
         c++;
     }
+    if (shadows(nr) != DP_OK)
+        return DP_ENOMEM;
     nr->iws = dp_network_step_alloc(nr->n, nr->p, m, nr->imp);
     if (nr->iws == NULL)
         return DP_ENOMEM;
@@ -107,7 +158,7 @@ void network_run_contacts_free(struct dp_network_run *nr)
         dp_graph_clear(&nr->ct_soft[c]);
     dp_graph_clear(&nr->cone);
     dp_network_step_free(nr->iws);
-    void *p[] = { nr->ct_el, nr->ct_soft, nr->ct_on, nr->ct_last, nr->ct_pre, nr->ct_touch, nr->Fn, nr->imp, nr->iforce, nr->iv };
+    void *p[] = { nr->ct_before, nr->ct_kicked, nr->ct_shadow, nr->ct_el, nr->ct_soft, nr->ct_on, nr->ct_last, nr->ct_pre, nr->ct_touch, nr->Fn, nr->imp, nr->iforce, nr->iv };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
 }
@@ -140,6 +191,7 @@ static double touch_tol(const struct dp_network_run *nr, size_t c, double h)
 /* Arms contact c for the coming step with the cone at v_c, or disarms it (a zero law). */
 static int arm(struct dp_network_run *nr, size_t c, int on, double vc)
 {
+    on = on && !nr->ct_shadow[c];
     dp_network_step_element *a = &nr->act[nr->nact_el + c];
     int changed = (a->A != NULL) != on;
     a->A = on ? &nr->cone : NULL;
@@ -175,13 +227,33 @@ void network_run_contacts_mj_events(dp_run *r, double t, double h)
     struct dp_network_run *nr = r->state;
     for (size_t c = 0; c < nr->nc; c++) {
         size_t k = nr->nact_el + c;
-        if (nr->ct_on[c] && nr->ct_pre[c] < 0 && nr->force[k].lambda < 0)
-            network_run_impact_event(r, t + h, nr->ct_el[c], nr->ct_pre[c], nr->force[k].z, -h * nr->force[k].lambda);
+        if (!(nr->ct_on[c] && nr->ct_pre[c] < 0 && nr->force[k].lambda < 0))
+            continue;
+        network_run_impact_event(r, t + h, nr->ct_el[c], nr->ct_pre[c], nr->force[k].z, -h * nr->force[k].lambda);
+        /* an impact inside the step, not located: its own history starts again, and it may have turned
+         * every other contact round (steady_chatter must not take that for the forces' doing) */
+        nr->ct_last[c] = nr->ct_before[c] = -INFINITY;
+        for (size_t o = 0; o < nr->nc; o++)
+            nr->ct_kicked[o] |= o != c;
     }
 }
 
+/* Steady chatter: contact c impacts again less than a step h after its last impact, its rate turned round
+ * by the forces alone (no other contact's impulse changed it since: not a rattle between two stops), and
+ * not sooner than the last interval (a bounce that does not shrink: no accumulation for the rule above to
+ * end). Such a bounce lasts less than a step, so its speed is below what the forces change in one step: at
+ * the step's resolution the contact is closed (Moreau's sweeping process), and its impact is made plastic.
+ * Without this an e = 1 contact in a stack pressed by gravity rebounds every 0.8 ms for ever, each rebound
+ * an impact event of every contact of the stack (thousands of events a second, none of them resolved by the
+ * rows). */
+static int steady_chatter(const struct dp_network_run *nr, size_t c, double t, double h)
+{
+    double tau = t - nr->ct_last[c], before = nr->ct_last[c] - nr->ct_before[c];
+    return tau < h && !nr->ct_kicked[c] && tau >= (1 - 1e-6) * before;
+}
+
 /* The velocity jump at time t for the touching contacts (located events), plastic where the impacts have
- * accumulated. Emits the events; returns 1 when some contact was approaching (v changed), 0 if none, or
+ * accumulated or chatter steadily. Emits the events; returns 1 when some contact was approaching (v changed), 0 if none, or
  * -status. The impact problem's elements have no spring graph, so the elongations it is given are unused. */
 static int impact(dp_run *r, double t, const unsigned char *touch)
 {
@@ -191,9 +263,13 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
     for (size_t c = 0; c < nr->nc; c++) {
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double gd = network_run_rel(e->a, e->b, nr->v), en = e->contact.restitution;
-        int approaching = touch[c] && gd < 0;
+        /* approaching faster than rounding: a touching contact whose rate is within what the touching test
+         * leaves to rounding (contacts_instant arms it at rest) takes no impact of its own */
+        int approaching = touch[c] && gd < -touch_tol(nr, c, r->h) / r->h;
         if (approaching && en > 0 && en * (t - nr->ct_last[c]) / (1 - en) <= 1e-9 * r->h)
             en = 0;                                   /* accumulated (Zeno): the rest of it is plastic */
+        if (approaching && en > 0 && steady_chatter(nr, c, t, r->h))
+            en = 0;
         nr->imp[c].A = touch[c] ? &nr->cone : NULL;
         nr->imp[c].vb = approaching ? -en * gd : 0;
         any |= approaching;
@@ -214,10 +290,16 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
     for (size_t c = 0; c < nr->nc; c++) {
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double before = network_run_rel(e->a, e->b, nr->v), impulse = -nr->iforce[c].lambda;
-        if (!touch[c] || !(impulse > 1e-12 * most))
+        if (!touch[c] || !(impulse > 1e-12 * most)) {
+            double after = network_run_rel(e->a, e->b, vplus);
+            if (fabs(after - before) > 1e-6 * (fabs(before) + fabs(after)))
+                nr->ct_kicked[c] = 1;     /* its rate changed by the others' impulses */
             continue;
+        }
         nr->impacts_step++;
+        nr->ct_before[c] = nr->ct_last[c];
         nr->ct_last[c] = t;
+        nr->ct_kicked[c] = 0;
         network_run_impact_event(r, t, nr->ct_el[c], before, nr->iforce[c].z, impulse);
     }
     memcpy(nr->v, vplus, n * sizeof *nr->v);
@@ -235,7 +317,7 @@ int network_run_contacts_instant(dp_run *r, double t, double h)
         return 0;
     unsigned char *touch = nr->ct_touch;
     for (size_t c = 0; c < nr->nc; c++)
-        touch[c] = rigid(nr, c) && gap(nr, c, nr->x) <= touch_tol(nr, c, h);
+        touch[c] = rigid(nr, c) && !nr->ct_shadow[c] && gap(nr, c, nr->x) <= touch_tol(nr, c, h);
     int jumped = impact(r, t, touch);
     if (jumped < 0)
         return jumped;
@@ -244,6 +326,7 @@ int network_run_contacts_instant(dp_run *r, double t, double h)
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double gd = network_run_rel(e->a, e->b, nr->v);
         changed |= arm(nr, c, touch[c] && gd <= touch_tol(nr, c, h) / h, 0);
+        nr->ct_pre[c] = 0;    /* armed at rest, or open: closing it later in a step is its impact */
     }
     if (changed)
         dp_network_step_W_changed(nr->ws);
@@ -258,6 +341,10 @@ void network_run_contacts_margins(struct dp_network_run *nr, double s)
         size_t k = nr->nact_el + c;
         if (!rigid(nr, c) || nr->ct_on[c])
             continue;
+        if (nr->ct_shadow[c]) {
+            nr->margin[k] = INFINITY;    /* behind another: it never closes first */
+            continue;
+        }
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double g0 = nr->u[k] - e->contact.distance;
         double rate = (1 - nr->theta) * network_run_rel(e->a, e->b, nr->v) + nr->theta * network_run_rel(e->a, e->b, nr->v1);
@@ -286,7 +373,7 @@ size_t network_run_contacts_arm_closing(struct dp_network_run *nr, double h)
         return 0;
     size_t m = 0;
     for (size_t c = 0; c < nr->nc; c++) {
-        if (nr->ct_on[c] || !rigid(nr, c) || !(nr->margin[nr->nact_el + c] < 0))
+        if (nr->ct_on[c] || !rigid(nr, c) || nr->ct_shadow[c] || !(nr->margin[nr->nact_el + c] < 0))
             continue;
         const dp_element *e = &nr->net->el[nr->ct_el[c]];
         double gd = network_run_rel(e->a, e->b, nr->v);

@@ -235,6 +235,8 @@ int network_run_located_step(dp_run *r, double t, double h)
             memcpy(nr->v1_keep, nr->v1, nr->n * sizeof *nr->v1);
             memcpy(nr->force_keep, nr->force, nr->nact * sizeof *nr->force);
             same = !breaks_away(r, t, left);
+            if (network_run_cancelled(r))
+                return DP_ECANCEL;
             memcpy(nr->v1, nr->v1_keep, nr->n * sizeof *nr->v1);
             memcpy(nr->force, nr->force_keep, nr->nact * sizeof *nr->force);
         }
@@ -249,6 +251,8 @@ int network_run_located_step(dp_run *r, double t, double h)
         if (sub > 2 * nr->nact + 4 + 2 * nr->impacts_step)
             return finish_step(r, t, left);
         double at = earliest_event(r, t, left, nr->fails);
+        if (network_run_cancelled(r))
+            return DP_ECANCEL;   /* the stop hook, polled inside the held solves */
         if (at >= left)
             return finish_step(r, t, left);  /* no change the held assignment sees */
         if (!(at > 1e-9 * left)) {
@@ -273,6 +277,8 @@ int network_run_located_step(dp_run *r, double t, double h)
                 switch_element(r, t + at, left - at, j);    /* a resting contact let go */
             /* a closing contact takes its impact at the next sub-step's start */
         }
+        if (network_run_cancelled(r))
+            return DP_ECANCEL;
         network_run_stick_time(r, nr->phase_prev, at);
         network_run_step_events(r, nr->phase_prev, t + at);
         t += at, left -= at;

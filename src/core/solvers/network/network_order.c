@@ -92,17 +92,42 @@ static size_t half_bandwidth(const coupling *g, const size_t *pos)
     return p;
 }
 
-/* Cuthill-McKee order into `order` (internal -> user): each component from its lowest-degree node, breadth
- * first, the neighbours of a node taken by rising degree (insertion sort: degrees are small). */
-static void cuthill_mckee(const coupling *g, size_t *order, unsigned char *seen)
+/* The nodes by rising degree, ties by index (a counting sort), into `by_degree`: the next component's root
+ * is the first of them not yet seen, found in one pass over all components together. */
+static int degree_order(const coupling *g, size_t *by_degree)
 {
-    size_t n = g->n, filled = 0;
+    size_t n = g->n, top = 0;
+    for (size_t i = 0; i < n; i++)
+        top = degree(g, i) > top ? degree(g, i) : top;
+    size_t *first = calloc(top + 2, sizeof *first);
+    if (first == NULL)
+        return DP_ENOMEM;
+    for (size_t i = 0; i < n; i++)
+        first[degree(g, i) + 1]++;
+    for (size_t d = 0; d <= top; d++)
+        first[d + 1] += first[d];
+    for (size_t i = 0; i < n; i++)
+        by_degree[first[degree(g, i)]++] = i;
+    free(first);
+    return DP_OK;
+}
+
+/* Cuthill-McKee order into `order` (internal -> user): each component from its lowest-degree node (the
+ * lowest index among equals), breadth first, the neighbours of a node taken by rising degree (insertion
+ * sort: degrees are small). */
+static int cuthill_mckee(const coupling *g, size_t *order, unsigned char *seen)
+{
+    size_t n = g->n, filled = 0, next_root = 0;
+    size_t *by_degree = malloc((n ? n : 1) * sizeof *by_degree);
+    if (by_degree == NULL || degree_order(g, by_degree) != DP_OK) {
+        free(by_degree);
+        return DP_ENOMEM;
+    }
     memset(seen, 0, n);
     while (filled < n) {
-        size_t root = n;
-        for (size_t i = 0; i < n; i++)
-            if (!seen[i] && (root == n || degree(g, i) < degree(g, root)))
-                root = i;
+        while (seen[by_degree[next_root]])
+            next_root++;
+        size_t root = by_degree[next_root];
         order[filled++] = root, seen[root] = 1;
         for (size_t head = filled - 1; head < filled; head++) {
             size_t i = order[head], first = filled;
@@ -118,6 +143,8 @@ static void cuthill_mckee(const coupling *g, size_t *order, unsigned char *seen)
             }
         }
     }
+    free(by_degree);
+    return DP_OK;
 }
 
 /* Relabels the network's nodes in place: user node u becomes pos[u]. */
@@ -164,8 +191,9 @@ int network_run_reorder(struct dp_network_run *nr, dp_network *net, double *x0, 
     size_t *order = malloc(n * sizeof *order), *pos = malloc(n * sizeof *pos);
     unsigned char *seen = malloc(n);
     int s = order && pos && seen ? coupling_build(net, &g) : DP_ENOMEM;
+    if (s == DP_OK)
+        s = cuthill_mckee(&g, order, seen);
     if (s == DP_OK) {
-        cuthill_mckee(&g, order, seen);
         for (size_t i = 0; i < n / 2; i++) {    /* reversed: the fill-in of the factor is smaller */
             size_t t = order[i];
             order[i] = order[n - 1 - i], order[n - 1 - i] = t;

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "solvers/network/network_quakes.h"
 #include "solvers/network/network_run.h"
 
 /* Row storage per block: the block holds at most this many numbers of rows. */
@@ -66,6 +67,10 @@ void network_run_finalize_summary(dp_run *r)
 {
     struct dp_network_run *nr = r->state;
     r->sum.final_row = network_run_fill_row(nr, r->cur.t, nr->final_row);
+    const dp_quake *q;
+    size_t nq = r->finished ? network_quakes_finish(nr, r->cur.t, &q) : 0;
+    for (size_t i = 0; i < nq; i++)    /* the quakes still going at t_end, open */
+        network_run_put(r, &(dp_record){ .type = DP_RECORD_QUAKE, .u.quake = q[i] });
 }
 
 
@@ -109,6 +114,10 @@ void network_run_step_events(dp_run *r, const unsigned char *before, double t)
                                                                     : network_run_rel(e->a, e->b, nr->v);
         element_event(r, nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP, t, i, du);
     }
+    const dp_quake *q;
+    size_t nq = network_quakes_step(nr, before, t, &q);
+    for (size_t i = 0; i < nq; i++)    /* the quakes this (sub-)step ended */
+        network_run_put(r, &(dp_record){ .type = DP_RECORD_QUAKE, .u.quake = q[i] });
 }
 
 /* An elastoplastic spring's slider starting to slide (yield: from elastic, or reversed from the other

@@ -26,6 +26,7 @@
 #include "solvers/network/network_run.h"
 #include "network/newmark_step.h"
 #include "base/root.h"
+#include "solvers/network/network_quakes.h"
 
 
 
@@ -46,6 +47,54 @@ static size_t bandwidth(const dp_network *net)
 }
 
 /* ---- allocation ------------------------------------------------------------------------------------- */
+
+/* Band matrices of n (p+1) doubles a run holds: M, K, C and the step's W, H and factor R; the impact
+ * problem's W, H, R with contacts; the step bound's check with relaxation; Newmark's K^ and M's factor. */
+static double band_matrices(const dp_run *r)
+{
+    const dp_network *net = r->spec.net;
+    int contacts = 0, relaxed = 0;
+    for (size_t i = 0; i < net->nel; i++) {
+        contacts |= net->el[i].has_contact;
+        relaxed |= net->el[i].has_damper && net->el[i].damper.relaxation.kind != DP_RELAX_NONE;
+    }
+    return 6 + 3 * contacts + relaxed + 2 * (r->spec.solver.kind == DP_SOLVER_NEWMARK);
+}
+
+/* The run's working memory in bytes (include/dashpot/network.h): the band matrices, and per node and per
+ * element what the run and its step keep (about 40 doubles a node, 90 an element with its active-set
+ * state, saved assignment and forces). */
+static double run_bytes(const dp_run *r, size_t p)
+{
+    const dp_network *net = r->spec.net;
+    double n = (double)net->n, band = n * ((double)p + 1);
+    return 8 * (band_matrices(r) * band + 40 * n + 90 * (double)net->nel);
+}
+
+/* Refuses a run whose working memory would pass DP_NETWORK_MAX_RUN_BYTES, before it allocates any; else
+ * bounds the step's contracted factor by what is left of it. */
+static int check_run_bytes(dp_run *r, size_t p)
+{
+    struct dp_network_run *nr = r->state;
+    double need = run_bytes(r, p), mib = 1024.0 * 1024.0;
+    if (need <= DP_NETWORK_MAX_RUN_BYTES)
+        return DP_OK;
+    int coupled = 0;
+    for (size_t i = 0; i < nr->net->nel; i++)
+        coupled |= nr->net->el[i].a >= 0 && nr->net->el[i].b >= 0;
+    snprintf(r->error_pointer, sizeof r->error_pointer, coupled ? "/model/elements" : "/model");
+    return dp_run_fail(r, DP_ELIMIT, "the network's step would need about %.0f MiB of working memory, over the "
+                       "limit of %.0f MiB per run: %zu nodes at half-bandwidth %zu after reordering make %.0f band "
+                       "matrices of n (p+1) numbers; couple fewer distant nodes, or split the network",
+                       need / mib, DP_NETWORK_MAX_RUN_BYTES / mib, nr->n, p, band_matrices(r));
+}
+
+/* The most doubles the step's contracted factor may take: its own band plus what the limit leaves. */
+static size_t reduced_limit(const dp_run *r, size_t p)
+{
+    double n = (double)r->spec.net->n, band = n * ((double)p + 1);
+    return (size_t)(band + (DP_NETWORK_MAX_RUN_BYTES - run_bytes(r, p)) / 8);
+}
 
 static int alloc_all(struct dp_network_run *nr)
 {
@@ -201,7 +250,9 @@ static int setup_columns(struct dp_network_run *nr, const dp_output_spec *o)
     nr->final_row = calloc(rl, sizeof(double));
     nr->pending_row = calloc(rl, sizeof(double));
     nr->slots.width = nr->row_len;
-    if (dp_row_queue_init(&nr->queue, nr->row_len, ne + 2) != DP_OK)
+    /* the queue grows when a step makes more records than fit (it never drops one); sized for the elements
+     * it held ne + 2 rows of row_len numbers, 51 GB for a chain of 20 000 blocks written whole */
+    if (dp_row_queue_init(&nr->queue, nr->row_len, 16) != DP_OK)
         return DP_ENOMEM;
     return nr->final_row && nr->pending_row ? DP_OK : DP_ENOMEM;
 }
@@ -218,6 +269,7 @@ void network_run_free(void *state)
     dp_nm_free(nr->nm);
     network_run_contacts_free(nr);
     dp_row_queue_clear(&nr->queue);
+    network_quakes_free(nr->quakes);
     void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->slots.data, nr->final_row, nr->pending_row };
@@ -332,6 +384,57 @@ static int check_step_bound(dp_run *r)
                        "smaller dt", r->h);
 }
 
+/* The member whose stiffness (K: k = 1) or viscosity (C: k = 0) is largest: the stiffness or damping matrix
+ * where it has the largest entry, else the element with the largest k or c. */
+static void largest_member(dp_run *r, int K, char *p, size_t cap)
+{
+    const struct dp_network_run *nr = r->state;
+    const dp_network *net = nr->net;
+    const double *A = K ? net->K : net->C, *per = K ? nr->k : nr->c;
+    double top = 0, mat = 0;
+    size_t at = 0;
+    for (size_t i = 0; A && i < net->n * net->n; i++)
+        mat = fmax(mat, fabs(A[i]));
+    for (size_t i = 0; i < nr->nel; i++)
+        if (fabs(per[i]) > top)
+            top = fabs(per[i]), at = i;
+    if (A && mat >= top)
+        snprintf(p, cap, K ? "/model/stiffness_matrix" : "/model/damping_matrix");
+    else if (net->one_mass_doc)
+        snprintf(p, cap, K ? "/model/spring" : "/model/damper");
+    else
+        snprintf(p, cap, "/model/elements/%zu/%s", at, K ? "spring" : "damper");
+}
+
+/* Every quantity the step forms from the input, checked where it is formed, before the first step: W's band
+ * entries (M + h theta C + h^2 theta^2 K) and the right side's weights h K and h (1 - theta) C below the
+ * magnitude the state check takes for a divergence, and the first step's right side finite. A stiffness of
+ * 1e308 at dt = 0.01 is refused at its member, not streamed into "the solution diverged". */
+static int check_step_magnitudes(dp_run *r)
+{
+    struct dp_network_run *nr = r->state;
+    const double big = 1e300, h = r->h, th = nr->theta, *W = dp_network_step_W(nr->ws);
+    size_t len = nr->n * (nr->p + 1);
+    for (size_t i = 0; i < len; i++) {
+        int K = !(fabs(h * nr->K[i]) < big) || !(fabs(h * h * th * th * nr->K[i]) < big);
+        int C = !(fabs(h * nr->C[i]) < big);
+        if (!K && !C && fabs(W[i]) < big)
+            continue;
+        largest_member(r, K || !C, r->error_pointer, sizeof r->error_pointer);
+        return dp_run_fail(r, DP_EINVAL, "at dt = %g the step's matrix W = M + h theta C + h^2 theta^2 K or its "
+                           "right side takes entries of %g or more: beyond what the step can form in doubles; "
+                           "take smaller coefficients (change the units) or a smaller dt", h, big);
+    }
+    network_run_step_rhs(nr, 0, h);
+    for (size_t i = 0; i < nr->n; i++)
+        if (!(fabs(nr->rhs[i]) < big)) {
+            snprintf(r->error_pointer, sizeof r->error_pointer, nr->net->one_mass_doc ? "/initial" : "/initial/x");
+            return dp_run_fail(r, DP_EINVAL, "the first step's right side M v - h K x - ... + h f overflows (node "
+                               "%zu): the initial state and the loads are too large for the coefficients", i);
+        }
+    return DP_OK;
+}
+
 /* The state, the laws, the columns and the workspace: what the network run and the one-mass network share. */
 int network_run_setup(dp_run *r)
 {
@@ -346,6 +449,8 @@ int network_run_setup(dp_run *r)
     if (s != DP_OK)
         return s;
     nr->p = bandwidth(nr->net);
+    if ((s = check_run_bytes(r, nr->p)) != DP_OK)
+        return s;
     s = alloc_all(nr);
     s = s ? s : setup_laws(nr);
     s = s ? s : setup_columns(nr, &r->spec.output);
@@ -355,6 +460,10 @@ int network_run_setup(dp_run *r)
         return s;
     if (nr->relaxed)
         dp_network_step_relaxation(nr->ws, nr->gamma, nr->theta);
+    dp_network_step_set_poll(nr->ws, network_run_step_poll, r);
+    dp_network_step_limit(nr->ws, reduced_limit(r, nr->p));
+    if (nr->iws)
+        dp_network_step_set_poll(nr->iws, network_run_step_poll, r);
     ep_init(nr, r->spec.net, r->spec.x0v);
     nr->pattern = malloc(dp_network_step_pattern_bytes(nr->ws));
     nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
@@ -400,6 +509,8 @@ static int network_run_init(dp_run *r)
         return DP_OK;
     }
     network_run_build_W(nr, r->h);
+    if ((s = check_step_magnitudes(r)) != DP_OK)
+        return s;
     /* The initial forces and phases: an exact step of a billionth of dt from the initial state says which
      * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
      * leaves its assignment for the first located step. */
@@ -411,6 +522,8 @@ static int network_run_init(dp_run *r)
     else
         network_run_element_forces(nr, 0);
     network_run_contacts_after_probe(nr);
+    if (r->spec.output.quakes && (s = network_quakes_begin(nr, r->cur.t)) != DP_OK)
+        return s;
     r->countdown = 1;
     network_run_finalize_summary(r);
     network_run_emit_row(r);     /* the initial state: queued, no block yet */
@@ -426,9 +539,14 @@ static int network_run_advance(dp_run *r)
         return DP_ENOMEM;
     network_run_flush(r);
     while (r->out_n < r->out_cap && !dp_row_queue_waiting(&nr->queue) && nr->slots.used < nr->slots.cap && !r->finished) {
-        /* a solve costs about a unit per node and element: 10^4 blocks poll every step or so, one mass every
-         * 4096 steps, both about the same work apart */
-        if (dp_run_stopped(r, (r->n + r->sum.iterations) * (nr->n + nr->nel)))
+        /* a step costs at least a unit per node and element, its solves their band entries (polled inside it,
+         * network_run_step_poll): 10^4 blocks poll every step or so, one mass every 4096 steps */
+        nr->work += nr->n + nr->nel;
+        if (nr->yield) {
+            nr->yield = 0;
+            return DP_OK;
+        }
+        if (dp_run_stopped(r, nr->work))
             return r->status;
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
@@ -449,6 +567,13 @@ static int network_run_advance(dp_run *r)
                 network_run_stick_time(r, nr->phase, h);
             }
         }
+        if (s != DP_OK && network_run_cancelled(r))
+            return r->status;     /* stopped inside the step: its message says when */
+        if (s == DP_ELIMIT)
+            return dp_run_fail(r, s, "the step at t = %.17g fixes elements whose trees interleave: its contracted "
+                               "matrix would need %.0f MiB, past the limit of %.0f MiB per run", t,
+                               8.0 * (double)dp_network_step_reduced_need(nr->ws) / (1024.0 * 1024.0),
+                               DP_NETWORK_MAX_RUN_BYTES / (1024.0 * 1024.0));
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
         r->n++;

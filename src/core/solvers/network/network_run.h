@@ -75,12 +75,21 @@ struct dp_network_run {
     unsigned char *ct_on;       /* per contact: armed for the current (sub-)step */
     unsigned char *ct_touch;    /* per contact: scratch of an instant */
     double *ct_last, *ct_pre;   /* per contact: time of its last located impact; its rate when armed (MJ) */
+    double *ct_before;          /* per contact: time of the located impact before its last */
+    unsigned char *ct_kicked;   /* per contact: another contact's impulse changed its rate since its last impact */
+    unsigned char *ct_shadow;   /* per contact: a rigid one behind another between the same ends in the same
+                                   order with a larger distance (or an equal one and a lower index) */
     double *Fn;                 /* per element: the contact's force */
     dp_network_step *iws;             /* the impact problem: W = M, the contacts' cones */
     dp_network_step_element *imp;
     dp_network_step_forces *iforce;
     double *iv;                 /* 2n: its right side and solution */
     unsigned long long impacts_step;
+    struct dp_quakes *quakes;   /* output.quakes: the slip-event catalogue (network_quakes.c), else NULL */
+    /* the stop hook inside a step (network_stepping.c): the work done (units of network_step.h's poll, a step
+     * between them counted as nodes + elements), and a yield asked for inside a step, honoured after it */
+    unsigned long long work;
+    int yield;
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */
@@ -102,6 +111,15 @@ int network_run_state_finite(const struct dp_network_run *nr);
 static inline double network_run_rel(long a, long b, const double *x)
 {
     return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
+}
+
+/* The stop hook polled inside a step: set on the step's workspaces (network_run_setup), it counts their work
+ * and asks the run's hook every DP_RUN_POLL_WORK units; 1 when the run was stopped (r->status DP_ECANCEL).
+ * A yield asked for inside a step sets nr->yield and is honoured between steps. */
+int network_run_step_poll(void *run, unsigned long long units);
+static inline int network_run_cancelled(const dp_run *r)
+{
+    return r->status == DP_ECANCEL;
 }
 
 /* The stepping pieces located events are made of (network_stepping.c): the right side of a step of length h

@@ -28,6 +28,21 @@ void network_run_ep_update(struct dp_network_run *nr)
     }
 }
 
+int network_run_step_poll(void *run, unsigned long long units)
+{
+    dp_run *r = run;
+    struct dp_network_run *nr = r->state;
+    nr->work += units;
+    if (network_run_cancelled(r))
+        return 1;
+    if (!dp_run_stopped(r, nr->work))
+        return 0;
+    if (network_run_cancelled(r))
+        return 1;
+    nr->yield = 1;   /* the hook asked for a yield: only between steps */
+    return 0;
+}
+
 void network_run_build_W(struct dp_network_run *nr, double h)
 {
     size_t len = nr->n * (nr->p + 1);
