@@ -11,7 +11,12 @@
  * - stick_fraction over the whole run equals the solver's own stick_time / t_end.
  * - bad documents answered by pointer; a value that breaks the base fails its run only, by the base's pointer.
  * - shards' run lines, sorted by index, are the whole sweep's, byte for byte.
+ * - a network (a 2-mass chain, record.node): each node's period 2 pi / omega and amplitude |X_i| of the
+ *   steady forced response (K - omega^2 M + i omega C) X = F, solved here in complex arithmetic; and a chain
+ *   with a Coulomb element, its features and event section (record.node, record.element) the lone run's,
+ *   bit for bit.
  */
+#include <complex.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -450,6 +455,97 @@ static void test_hermite(void **state)
     NEAR(v, 0, 1e-12);
 }
 
+/* A 2-mass chain: ground -k1,c1- node 0 -k2,c2- node 1, node 1 forced by P cos(omega t). C = 0.2 K: every mode
+ * damped (zeta_j = 0.1 omega_j, natural frequencies 0.618 and 1.618), so by t = 400 the transient is
+ * exp(-0.1 * 0.618^2 * 400) = 2e-7 of its start. */
+#define CHAIN_BASE                                                                                           \
+    "{\"model\":{\"masses\":[1,1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":\"linear\","  \
+    "\"k\":1},\"damper\":{\"law\":\"linear\",\"c\":0.2}},{\"between\":[0,1],\"spring\":{\"law\":\"linear\","  \
+    "\"k\":1},\"damper\":{\"law\":\"linear\",\"c\":0.2}}],\"forcing\":[{\"node\":1,\"kind\":\"harmonic\","     \
+    "\"amplitude\":1,\"omega\":1,\"phase\":0}]},\"initial\":{\"x\":[0,0],\"v\":[0,0]},"                       \
+    "\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.005,\"t_end\":500,\"theta\":0.5}}"
+
+/* |X_node| of the chain's steady response to a unit force at node 1: (K - w^2 M + i w C) X = (0, 1). */
+static double chain_amplitude(double w, size_t node)
+{
+    double complex z00 = 2 - w * w + I * w * 0.4, z01 = -1 - I * w * 0.2, z11 = 1 - w * w + I * w * 0.2;
+    double complex det = z00 * z11 - z01 * z01;
+    return cabs(node == 0 ? -z01 / det : z00 / det);
+}
+
+static void test_network_chain(void **state)
+{
+    (void)state;
+    static const double omega[] = { 0.4, 1, 2 };
+    for (size_t node = 0; node < 2; node++) {
+        char doc[2048];
+        snprintf(doc, sizeof doc,
+                 "{\"base\":" CHAIN_BASE ",\"vary\":[{\"pointer\":\"/model/forcing/0/omega\",\"values\":[0.4,1,2]}],"
+                 "\"record\":{\"after\":400,\"node\":%zu,\"features\":[\"period\",\"amplitude\",\"x_max\"]}}",
+                 node);
+        int s;
+        char *lines = sweep_lines(doc, 0, 0, &s);
+        assert_int_equal(s, DP_DONE);
+        for (size_t i = 0; i < 3; i++) {
+            cJSON *l = run_line(lines, i);
+            double w = omega[i], X = chain_amplitude(w, node);
+            NEAR(feature(l, "period"), 2 * M_PI / w, 1e-7 * 2 * M_PI / w);
+            /* theta = 1/2 at dt = 0.005: the trapezoidal rule's second-order error, 4e-5 seen at most (node 0 at
+             * omega = 2, above both natural frequencies, where its response is the smaller one) */
+            CHECK(fabs(feature(l, "amplitude") / X - 1) < 1e-4, "node %zu omega %g: amplitude %.9g, closed form %.9g",
+                  node, w, feature(l, "amplitude"), X);
+            NEAR(feature(l, "x_max") / X, 1, 1e-4);
+            cJSON_Delete(l);
+        }
+        free(lines);
+    }
+    /* the nodes' amplitudes differ (at 0.4: 1.81 and 3.34): the features follow record.node, not node 0 */
+    CHECK(fabs(chain_amplitude(0.4, 0) - chain_amplitude(0.4, 1)) > 0.5, "the nodes' amplitudes are alike");
+}
+
+/* A chain whose first element has Coulomb friction (stick-slip on the ground), the features of node 1 and the
+ * stick events of element 0: the sweep's numbers are the lone run's, bit for bit. */
+static void test_network_bit_for_bit(void **state)
+{
+    (void)state;
+    static const char *const doc =
+        "{\"base\":{\"model\":{\"masses\":[1,2],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
+        "\"linear\",\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":0.3}},{\"between\":[0,1],\"spring\":{\"law\":"
+        "\"linear\",\"k\":2},\"damper\":{\"law\":\"linear\",\"c\":0.1}}],\"forcing\":[{\"node\":1,\"kind\":"
+        "\"harmonic\",\"amplitude\":0.5,\"omega\":1,\"phase\":0}]},\"initial\":{\"x\":[0.5,0],\"v\":[0,0]},"
+        "\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.002,\"t_end\":60,\"theta\":0.5}},\"vary\":[{\"pointer\":"
+        "\"/model/forcing/0/omega\",\"values\":[0.3,1.2]}],\"record\":{\"after\":20,\"node\":1,\"element\":0,"
+        "\"section\":{\"event\":\"stick\",\"count\":20}}}";
+    int s;
+    char *lines = sweep_lines(doc, 0, 0, &s);
+    assert_int_equal(s, DP_DONE);
+    for (size_t i = 0; i < 2; i++) {
+        dp_features f;
+        lone_features(doc, i, &f);
+        cJSON *l = run_line(lines, i);
+        for (int k = 0; k < DP_FEATURE_COUNT; k++) {
+            const cJSON *v = cJSON_GetObjectItem(cJSON_GetObjectItem(l, "features"), dp_feature_name(k));
+            CHECK(f.out.known[k] ? cJSON_IsNumber(v) && v->valuedouble == f.out.value[k] : cJSON_IsNull(v),
+                  "run %zu %s: sweep %.17g, lone %.17g", i, dp_feature_name(k), v ? v->valuedouble : NAN,
+                  f.out.value[k]);
+        }
+        const cJSON *sec = cJSON_GetObjectItem(l, "section");
+        assert_int_equal((size_t)cJSON_GetArraySize(sec), f.nsection);
+        CHECK(f.nsection > 0, "run %zu: element 0 never sticks after t = 20", i);
+        CHECK(f.out.value[DP_FEATURE_STICK_FRACTION] > 0 && f.out.value[DP_FEATURE_STICK_FRACTION] < 1,
+              "run %zu: stick fraction %g", i, f.out.value[DP_FEATURE_STICK_FRACTION]);
+        for (size_t j = 0; j < f.nsection; j++) {
+            const cJSON *p = cJSON_GetArrayItem(sec, (int)j);
+            CHECK(cJSON_GetArrayItem(p, 0)->valuedouble == f.section[j].t &&
+                      cJSON_GetArrayItem(p, 1)->valuedouble == f.section[j].x,
+                  "run %zu section point %zu differs", i, j);
+        }
+        cJSON_Delete(l);
+        dp_features_clear(&f);
+    }
+    free(lines);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -464,6 +560,8 @@ int main(void)
         cmocka_unit_test(test_bad_run),
         cmocka_unit_test(test_shards),
         cmocka_unit_test(test_stop_and_budget),
+        cmocka_unit_test(test_network_chain),
+        cmocka_unit_test(test_network_bit_for_bit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -14,6 +14,8 @@
 // as a note, not a failure: web/right_hand.js); each canvas carries data-points (the points its last drawing
 // went through).
 // #panel-stability has data-state and data-run.
+// #panel-sweep has data-state and data-run too (and web/sweep.js's own: the sweep tab streams POST v1/sweep and
+// draws it as it arrives; a run clicked there opens here, in the simulate tab, as its own request).
 //
 // The sample budget: a request without an "output" member is sent with output.max_samples of about the
 // plots' width in device pixels, so a 10^8-step run streams what the canvas can show, not 10^8 samples; the
@@ -32,6 +34,7 @@ import { RightHandView, designedEnd } from './right_hand.js';
 import { LcsView, lcsReport } from './lcs.js';
 import { ContactPlots } from './contact.js';
 import { QuakeView } from './quakes.js';
+import { SweepView } from './sweep.js';
 
 const $ = (id) => document.getElementById(id);
 const esc = (s) => String(s).replace(/[&<>"]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;', '"': '&quot;' })[c]);
@@ -41,8 +44,8 @@ const presetText = (p) => pretty(p.spec) + '\n';
 
 const ui = {
   tab: 'simulate',
-  text: { simulate: '', stability: '', modes: '' },
-  preset: { simulate: '', stability: '', modes: '' },
+  text: { simulate: '', stability: '', modes: '', sweep: '' },
+  preset: { simulate: '', stability: '', modes: '', sweep: '' },
   controller: null,
   mapUrl: null,
   runs: 0, // runs started, either tab (data-run)
@@ -106,7 +109,7 @@ function showTab(tab, fromPreset = false) {
   if (!fromPreset) ui.text[ui.tab] = editor.text;
   if (ui.tab !== tab) stop();
   ui.tab = tab;
-  for (const t of ['simulate', 'stability', 'modes']) {
+  for (const t of ['simulate', 'stability', 'modes', 'sweep']) {
     $('tab-' + t).setAttribute('aria-selected', String(t === tab));
     $('panel-' + t).hidden = t !== tab;
   }
@@ -119,7 +122,7 @@ function showTab(tab, fromPreset = false) {
   $('preset').value = p.id;
   $('preset-note').textContent = p.note;
   $('spec-label').textContent = { simulate: 'Request to v1/simulate (JSON)', stability: 'Request to v1/stability (JSON)',
-    modes: 'Request to v1/modes and v1/response (JSON)' }[tab];
+    modes: 'Request to v1/modes and v1/response (JSON)', sweep: 'Sweep document to v1/sweep (JSON)' }[tab];
   editor.text = ui.text[tab];
   syncPresetMenu();
   showProblem(null);
@@ -547,13 +550,78 @@ async function runModesTab() {
   }
 }
 
+// ---- sweeps (web/sweep.js): POST v1/sweep streamed, drawn as its lines arrive ----
+
+// A run of the sweep opened in the trajectory view: its simulate document in the simulate tab's editor, run.
+function openTrajectory(doc, label) {
+  stop();
+  if (!ui.preset.simulate) ui.preset.simulate = PRESETS.find((q) => q.kind === 'simulate').id; // else showTab loads it
+  ui.text.simulate = pretty(doc) + '\n';
+  showTab('simulate');
+  start();
+  $('preset-note').textContent = label; // until the next run or preset: where this request came from
+}
+const sweepView = new SweepView(openTrajectory);
+
+async function runSweepTab() {
+  const ctl = new AbortController();
+  ui.controller = ctl;
+  const panel = $('panel-sweep');
+  const text = editor.text;
+  const mine = ++ui.runs;
+  panel.dataset.run = mine;
+  showProblem(null);
+  panel.dataset.state = 'running';
+  setRunning(true);
+  $('status').textContent = 'sweeping\u2026';
+  let state = 'error';
+  try {
+    const t0 = performance.now();
+    const res = await fetch('v1/sweep', { method: 'POST', body: text, signal: ctl.signal, headers: headers('application/x-ndjson') });
+    if (!res.ok) { showProblem(await problemOf(res)); return; }
+    const p = PRESETS.find((q) => q.id === ui.preset.sweep && presetText(q).trim() === text.trim());
+    sweepView.start(text, p ? p.view : null, p ? p.reference : null);
+    const reader = res.body.getReader(), dec = new TextDecoder();
+    let buf = '', error = null, summary = null;
+    const line = (l) => { const o = JSON.parse(l); if (o.type === 'error') error = o; if (o.type === 'summary') summary = o; sweepView.line(o); };
+    for (;;) {
+      const { value, done } = await reader.read();
+      if (done) break;
+      buf += dec.decode(value, { stream: true });
+      let at = 0, nl;
+      while ((nl = buf.indexOf('\n', at)) >= 0) { if (nl > at) line(buf.slice(at, nl)); at = nl + 1; }
+      buf = buf.slice(at);
+      $('status').textContent = `sweeping\u2026 ${sweepView.s.runs.size} of ${sweepView.s.meta ? sweepView.s.meta.selected : '?'} runs`;
+    }
+    buf += dec.decode();
+    if (buf.trim()) line(buf);
+    sweepView.draw();
+    if (error) showProblem(error, 'The sweep stopped: ');
+    else if (!summary) showProblem({ title: 'The stream ended without its summary line' });
+    else {
+      $('status').textContent = `${summary.completed} runs` + (summary.failed ? `, ${summary.failed} failed` : '') +
+        ` \u00b7 ${((performance.now() - t0) / 1000).toFixed(2)} s`;
+      state = 'done';
+    }
+  } catch (e) {
+    if (e.name === 'AbortError') state = 'stopped';
+    else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
+  } finally {
+    if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
+    if (mine === ui.runs) {
+      panel.dataset.state = state;
+      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    }
+  }
+}
+
 // ---- run / stop ----
 
 function setRunning(on) {
   const b = $('run');
   b.textContent = on ? 'Stop' : 'Run';
   b.classList.toggle('stop', on);
-  $('progress').hidden = !on || ui.tab !== 'simulate';
+  $('progress').hidden = !on || (ui.tab !== 'simulate' && ui.tab !== 'sweep');
   if (!on) $('progress').value = 0;
 }
 
@@ -574,7 +642,8 @@ function start() {
   ui.controller = null;
   ui.text[ui.tab] = editor.text;
   syncPresetMenu();
-  if (ui.tab === 'simulate') runSimulation(); else if (ui.tab === 'modes') runModesTab(); else runStability();
+  if (ui.tab === 'simulate') runSimulation(); else if (ui.tab === 'modes') runModesTab();
+  else if (ui.tab === 'sweep') runSweepTab(); else runStability();
 }
 
 $('run').addEventListener('click', run);
@@ -589,7 +658,7 @@ $('format').addEventListener('click', () => {
     showProblem({ title: 'Not valid JSON', detail: 'fix it, or Run to see where the daemon stops reading' });
   }
 });
-for (const t of ['simulate', 'stability', 'modes']) $('tab-' + t).addEventListener('click', () => { if (ui.tab !== t) showTab(t); });
+for (const t of ['simulate', 'stability', 'modes', 'sweep']) $('tab-' + t).addEventListener('click', () => { if (ui.tab !== t) showTab(t); });
 fillPresets();
 loadPreset(location.hash.slice(1) || 'thesis-5-gamma');
 start();

@@ -1,6 +1,6 @@
 // web/presets.js - the runs the page offers: the thesis' figures, the paper's two counterexamples (each
 // branch), a forced oscillator, a belt-driven stick-slip, networks, circuits, contacts and impacts, and
-// stability maps. kind: which tab runs it.
+// stability maps, and sweeps (response curves, bifurcation diagrams). kind: which tab runs it.
 
 const linear = { law: 'linear', k: 1 };
 const thesis = (x0, relaxed) => ({
@@ -339,5 +339,79 @@ PRESETS.push({
     forcing: [{ node: 0, kind: 'harmonic', amplitude: 0.5, omega: 0.8, phase: 0 }] },
     initial: { x: [0], v: [0] },
     solver: { kind: 'stick-slip', dt: 0.001, t_end: 60, theta: 0.5 },
+  },
+});
+
+// ---- sweeps (docs/sweep.md): drawn by web/sweep.js as the run lines arrive ----
+// view: the feature the response curve starts with, and its scale; reference(p, feature): a closed form of the
+// first parameter drawn dashed next to the runs (null where it does not apply).
+const SWEEP = 'Sweeps (response curves, bifurcation diagrams)';
+// Den Hartog 1931: the steady non-stop amplitude of x'' + x + F sgn x' = P cos wt (m = k = 1, so beta = w),
+// derived in docs/sweep.md: X / (P/k) = sqrt(1/(1 - b^2)^2 - (F U / P)^2), U = sin(pi/b) / (b (1 + cos(pi/b))).
+const denHartog = (FP) => {
+  const X = (b) => {
+    const U = Math.sin(Math.PI / b) / (b * (1 + Math.cos(Math.PI / b))), r = 1 / (1 - b * b) ** 2 - (FP * U) ** 2;
+    return r > 0 ? Math.sqrt(r) : NaN;
+  };
+  const f = (b, feature) => (feature === 'amplitude' || feature === 'x_max' ? X(b) : feature === 'x_min' ? -X(b)
+    : feature === 'period' ? 2 * Math.PI / b : NaN);
+  f.label = `Den Hartog 1931, non-stop motion (F/P = ${FP})`;
+  return f;
+};
+const coulombForced = (phi0, dt, tEnd) => ({
+  model: { mass: 1, spring: linear, damper: { law: 'coulomb', phi0 },
+    forcing: { kind: 'harmonic', amplitude: 1, omega: 1 } },
+  solver: { kind: 'stick-slip', dt, t_end: tEnd, theta: 0.5 },
+});
+PRESETS.push({
+  id: 'sweep-den-hartog', group: SWEEP, label: 'Den Hartog: forced Coulomb oscillator, F/P = 0.1, \u03c9 0.5\u20133', kind: 'sweep',
+  note: 'x\u2033 + x + 0.1 sgn x\u2032 = cos \u03c9t over 51 frequencies: the amplitude after the transient (t \u2265 800) against ' +
+    'Den Hartog 1931\u2019s closed form for non-stop motion (dashed; 10\u207b\u2074 apart away from resonance). At \u03c9 = 1 it ' +
+    'grows without bound (F/P < \u03c0/4): about 430 by t = 1000; near it the transient has not died out yet. No ' +
+    'section is recorded (a stroboscopic one needs one forcing period). Click a run for its trajectory.',
+  view: { feature: 'amplitude', log: true },
+  reference: denHartog(0.1),
+  spec: {
+    base: coulombForced(0.1, 0.01, 1000),
+    vary: [{ pointer: '/model/forcing/omega', from: 0.5, to: 3, count: 51 }],
+    record: { after: 800 },
+  },
+});
+PRESETS.push({
+  id: 'sweep-den-hartog-map', group: SWEEP, label: 'Den Hartog map: time stuck over \u03c9 \u00d7 F/P', kind: 'sweep',
+  note: 'The same oscillator over the frequency and the friction force F/P = \u03c6\u2080 (P = 1): the fraction of the time ' +
+    'after the transient that it is stuck. Weak friction or fast forcing: non-stop motion (Den Hartog 1931\u2019s ' +
+    'regime, 0); strong friction: it sticks for part of every period, at low frequencies whatever the friction.',
+  view: { feature: 'stick_fraction', log: false },
+  reference: null,
+  spec: {
+    base: coulombForced(0.1, 0.02, 150),
+    vary: [{ pointer: '/model/forcing/omega', from: 0.3, to: 2.5, count: 23 },
+      { pointer: '/model/damper/phi0', from: 0.05, to: 0.95, count: 10 }],
+    record: { after: 100, features: ['stick_fraction', 'amplitude', 'period'] },
+  },
+});
+// A belt-driven oscillator with velocity weakening, forced: generalized Coulomb (static 1 above dynamic 0.8)
+// relaxed by gamma = 0.3 z/(0.5 + |z|), so the sliding friction falls further with the slip speed z, and
+// shaken by 0.3 cos 1.3t (as in Popp & Stelter 1990's forced belt-driven oscillators); the stroboscopic
+// section at the forcing period 2 pi/1.3 over the belt speed.
+PRESETS.push({
+  id: 'sweep-belt', group: SWEEP, label: 'Belt-driven, velocity weakening, forced: over the belt speed', kind: 'sweep',
+  note: 'm = k = 1 on a belt: generalized Coulomb friction (static 1, dynamic 0.8) weakened further with the slip speed ' +
+    '(relaxation \u03b3 = 0.3 z/(0.5 + |z|)) and a force 0.3 cos 1.3t, as in Popp & Stelter 1990\u2019s forced belt-driven ' +
+    'oscillators. The stroboscopic section at the forcing period over the belt speed: one point per period (period 1), ' +
+    'a few (subharmonic stick\u2013slip), or a cloud (no repeat within 32 periods).',
+  view: { feature: 'stick_fraction', log: false },
+  reference: null,
+  spec: {
+    base: {
+      model: { mass: 1, spring: linear,
+        damper: { law: 'generalized-coulomb', phi0: 0.8, phi1: 1, belt_velocity: 0.4, relaxation: { kind: 'rational', a: 0.3, b: 0.5 } },
+        forcing: { kind: 'harmonic', amplitude: 0.3, omega: 1.3 } },
+      initial: { x: 0, v: 0.4 },
+      solver: { kind: 'stick-slip', dt: 0.005, t_end: 300, theta: 0.5 },
+    },
+    vary: [{ pointer: '/model/damper/belt_velocity', from: 0.05, to: 1.5, count: 59 }],
+    record: { after: 150, section: { period: 2 * Math.PI / 1.3, count: 32 } },
   },
 });

@@ -15,7 +15,9 @@
 // fixed: picking a preset runs it; the modes charts have ticks, tick labels (no "10^2.0") and legends;
 // Painlevé's rod reaching the floor is an ended-at-contact note, not a failure; elastoplastic yield/unload
 // events are marked; impulses are stems on the contact-force plot; the bridge's coinciding curves all
-// show; the meta line's warnings are shown (a stubbed answer); sources are named, never "seed 00N".
+// show; the meta line's warnings are shown (a stubbed answer); sources are named, never "seed 00N"; the sweep tab draws a dot per run as the lines
+// arrive, each the line's own numbers, marks failed runs, draws the section points and the map, and opens a
+// clicked run as its simulate request.
 // Prints "ok"/"not ok" lines and writes "PASSED FAILED" to COUNTS_FILE.
 import fs from 'node:fs';
 import http from 'node:http';
@@ -96,7 +98,8 @@ function watch(page, name) {
     // half of the time, even when every byte arrived: a bare reader loop over the same stream in this
     // browser, 40 times, showed 17 such reports (pipeTo 30, res.text() none). A stream's completeness is
     // checked by what the page received (the summary line, the sample count), so these are not problems.
-    if (r.failure()?.errorText === 'net::ERR_ABORTED' && r.url().endsWith('/v1/simulate')) return;
+    // The same holds for the sweep's stream (v1/sweep: checked by its summary line and run count).
+    if (r.failure()?.errorText === 'net::ERR_ABORTED' && /\/v1\/(simulate|sweep)$/.test(r.url())) return;
     problems.push(`${name}: request failed: ${r.url()} ${r.failure()?.errorText}`);
   });
   const urls = [];
@@ -130,7 +133,7 @@ async function press(page, panel) {
 
 // Picks a preset from the menu, which runs it (no Run pressed: web/app.js), and waits for that run's end.
 async function pick(page, id, panel = 'panel-simulate') {
-  const before = await page.evaluate(() => Math.max(...['panel-simulate', 'panel-stability', 'panel-modes']
+  const before = await page.evaluate(() => Math.max(...['panel-simulate', 'panel-stability', 'panel-modes', 'panel-sweep']
     .map((p) => +(document.getElementById(p).dataset.run || 0))));
   await page.selectOption('#preset', id);
   return waitRun(page, panel, before);
@@ -540,6 +543,144 @@ async function checkContacts(page, out) {
   await screenshot(page, 'page-impact-oscillator');
 }
 
+// ---- sweeps (web/sweep.js) ----
+// The NDJSON lines of POST v1/sweep of a document, fetched here (not through the page).
+const sweepLines = async (origin, body) => (await (await fetch(origin + 'v1/sweep', { method: 'POST', body,
+  headers: { Accept: 'application/x-ndjson' } })).text()).trim().split('\n').map((l) => JSON.parse(l));
+const sweepView = (page) => page.evaluate(() => {
+  const pts = (id) => [...document.querySelectorAll(`#${id} circle.pt`)].map((c) => ({ i: +c.dataset.index, x: c.dataset.x, y: c.dataset.y, cx: +c.getAttribute('cx') }));
+  const ds = (id) => document.getElementById(id).dataset;
+  return { panel: { ...ds('panel-sweep') }, dots: pts('sweep-curve'), curve: ds('sweep-curve').points, bif: ds('sweep-bif').points,
+    map: ds('sweep-map').points, cells: document.querySelectorAll('#sweep-map rect.cell').length,
+    failed: [...document.querySelectorAll('#sweep-curve path.failed')].map((e) => +e.dataset.index),
+    failedList: document.getElementById('sweep-failed').hidden ? '' : document.getElementById('sweep-failed').textContent,
+    reference: (document.querySelector('#sweep-curve path.reference')?.getAttribute('d').match(/[ML]/g) || []).length,
+    bifShown: document.getElementById('sweep-bif').closest('figure').offsetParent !== null, // an <svg> has no offsetParent
+    mapShown: document.getElementById('sweep-map').closest('figure').offsetParent !== null };
+});
+// Den Hartog 1931's steady non-stop amplitude of x'' + x + F sgn x' = cos(beta t) (docs/sweep.md).
+const denHartogX = (b, FP) => { const U = Math.sin(Math.PI / b) / (b * (1 + Math.cos(Math.PI / b))); return Math.sqrt(1 / (1 - b * b) ** 2 - (FP * U) ** 2); };
+
+// Opens a run by clicking `selector` and returns the simulate request the page sent (its "output" apart: the
+// page asks for 10 001 samples, the daemon's default, not its plot-width budget that would alias a long
+// forced run), the simulate panel's state, the note and the editor's document (output apart too).
+async function openRun(page, selector) {
+  const posts = [], onPost = (r) => { if (r.method() === 'POST' && r.url().endsWith('/v1/simulate')) posts.push(r.postData()); };
+  page.on('request', onPost);
+  const before = await page.evaluate(() => Math.max(...['panel-simulate', 'panel-stability', 'panel-modes', 'panel-sweep']
+    .map((p) => +(document.getElementById(p).dataset.run || 0))));
+  await page.click(selector);
+  const d = await waitRun(page, 'panel-simulate', before);
+  page.off('request', onPost);
+  const outputs = [], sent = posts.map((b) => { const o = JSON.parse(b); outputs.push(o.output); delete o.output; return o; });
+  const editor = JSON.parse(await page.inputValue('#spec'));
+  delete editor.output;
+  return { d, sent, outputs, visible: await page.isVisible('#panel-simulate'), note: await page.textContent('#preset-note'), editor };
+}
+
+async function checkSweeps(page, origin) {
+  let from = problems.length;
+  // Den Hartog's response curve: as many dots as runs, each the line's own numbers, drawn as the lines arrive.
+  await page.evaluate(() => {
+    window.sweepSeen = [];
+    new MutationObserver(() => window.sweepSeen.push(+document.getElementById('sweep-curve').dataset.points))
+      .observe(document.getElementById('sweep-curve'), { attributes: true, attributeFilter: ['data-points'] });
+  });
+  let d = await pick(page, 'sweep-den-hartog', 'panel-sweep');
+  const text = await page.inputValue('#spec'), doc = JSON.parse(text);
+  const lines = await sweepLines(origin, text), runs = lines.filter((o) => o.type === 'run'), summary = lines[lines.length - 1];
+  let v = await sweepView(page);
+  check(d.state === 'done' && runs.length === 51 && summary.completed === 51 && +v.panel.runs === 51 && +v.panel.received === 51 &&
+    v.dots.length === 51 && +v.curve === 51 && +v.panel.failed === 0,
+    `sweep: Den Hartog's preset draws a dot per run (${v.dots.length} dots, ${runs.length} run lines)`, JSON.stringify({ d, panel: v.panel, curve: v.curve }));
+  const byIndex = new Map(runs.map((r) => [r.index, r]));
+  const agree = v.dots.every((p) => byIndex.has(p.i) && +p.x === byIndex.get(p.i).values[0] && +p.y === byIndex.get(p.i).features.amplitude);
+  const order = [...v.dots].sort((a, b) => +a.x - +b.x), monotone = order.every((p, k) => !k || p.cx > order[k - 1].cx);
+  check(agree && monotone && new Set(v.dots.map((p) => p.i)).size === 51,
+    'sweep: each dot is its run line\'s omega and amplitude, exactly, placed in the order of omega', JSON.stringify(v.dots.slice(0, 3)));
+  const seen = await page.evaluate(() => window.sweepSeen);
+  check(seen.some((n) => n > 0 && n < 51), `sweep: the curve is drawn as the lines arrive (dots drawn along the way: ${[...new Set(seen)].slice(0, 12).join(' ')})`);
+  // The daemon's amplitudes against Den Hartog's closed form, away from resonance (where the transient is
+  // over by t = 800): the page draws the same closed form dashed.
+  const far = runs.filter((r) => Math.abs(r.values[0] - 1) > 0.25 && r.values[0] > 0.52);
+  const worst = Math.max(...far.map((r) => Math.abs(r.features.amplitude / denHartogX(r.values[0], 0.1) - 1)));
+  check(far.length > 35 && worst < 1e-3 && v.reference > 300 && !v.bifShown,
+    `sweep: ${far.length} amplitudes within ${worst.toExponential(1)} of Den Hartog's closed form, drawn dashed (${v.reference} points); no section, no diagram`);
+  await page.hover('#sweep-curve circle.pt[data-index="20"]');
+  const hover = await page.textContent('#sweep-hover');
+  check(/^run 20 \(ω = 1\.5\): amplitude = 0\.79\d* — click/.test(hover), 'sweep: pointing at a dot reads its run', hover);
+  await screenshot(page, 'page-sweep-den-hartog');
+  // A click opens the run: the base document with the run's omega, sent to v1/simulate, drawn in the simulate tab.
+  let o = await openRun(page, '#sweep-curve circle.pt[data-index="20"]');
+  const want = structuredClone(doc.base);
+  want.model.forcing.omega = byIndex.get(20).values[0];
+  check(o.visible && o.d.state === 'done' && o.sent.length === 1 && JSON.stringify(o.sent[0]) === JSON.stringify(want) &&
+    JSON.stringify(o.editor) === JSON.stringify(want) && JSON.stringify(o.outputs) === '[{"max_samples":10001}]' &&
+    o.d.canvases.length === 5 && o.d.canvases.every((n) => n === +o.d.summarySamples && n === 10001) &&
+    o.note.startsWith('Run 20 of the sweep: /model/forcing/omega = 1.5'),
+    'sweep: a click on a dot opens its run: the base with omega = 1.5 sent to v1/simulate, its 10 001 samples drawn', JSON.stringify({ ...o, editor: 0 }));
+  await screenshot(page, 'page-sweep-trajectory');
+  // Back to the sweep tab (the sweep document is still in its editor): a run that fails is shown, not dropped.
+  await page.click('#tab-sweep');
+  check(JSON.parse(await page.inputValue('#spec')).vary[0].pointer === '/model/forcing/omega', 'sweep: the sweep tab keeps its document');
+  const bad = { base: { ...doc.base, solver: { kind: 'stick-slip', dt: 0.01, t_end: 20, theta: 0.5 } },
+    vary: [{ pointer: '/model/mass', values: [1, -1, 2] }], record: { after: 10 } };
+  await page.fill('#spec', JSON.stringify(bad, null, 2));
+  d = await press(page, 'panel-sweep');
+  v = await sweepView(page);
+  check(d.state === 'done' && +v.panel.received === 3 && +v.panel.failed === 1 && v.dots.length === 2 && v.failed.join() === '1' &&
+    /1 run failed/.test(v.failedList) && v.failedList.includes('/model/mass') && v.failedList.includes('422'),
+    'sweep: a run that fails (mass -1) is a red cross and a line naming /model/mass; the others are drawn', JSON.stringify(v));
+  // A bad sweep document: the 422 names the member by its pointer into the sweep document.
+  await page.fill('#spec', JSON.stringify({ ...bad, vary: [{ pointer: '/nope/x', values: [1] }] }, null, 2));
+  d = await press(page, 'panel-sweep');
+  const problem = await page.textContent('#problem');
+  check(d.state === 'error' && problem.includes('/vary/0/pointer') && problem.trim().startsWith('422'),
+    'sweep: a bad sweep document is its 422, by pointer into the sweep document', problem);
+  let extra = unexpected(from, /status of 422/);
+  check(extra.length === 0, 'the sweep tab: no console error', extra.join('\n    '));
+  // The belt: the bifurcation diagram draws every section point of every run.
+  from = problems.length;
+  d = await pick(page, 'sweep-belt', 'panel-sweep');
+  const belt = (await sweepLines(origin, await page.inputValue('#spec'))).filter((l) => l.type === 'run');
+  v = await sweepView(page);
+  const points = belt.reduce((n, r) => n + r.section.length, 0), periods = belt.map((r) => new Set(r.section.map((p) => p[1].toFixed(4))).size);
+  check(d.state === 'done' && +v.bif === points && points > 20 * belt.length && v.bifShown && v.dots.length === belt.length &&
+    periods.includes(1) && periods.some((n) => n >= 2 && n <= 8) && periods.some((n) => n > 16),
+    `sweep: the belt's bifurcation diagram draws the ${points} section points of ${belt.length} runs (period 1, a few, a cloud: ` +
+    `${[...new Set(periods)].sort((a, b) => a - b).join(' ')} distinct x)`, JSON.stringify(v.panel));
+  await screenshot(page, 'page-sweep-belt');
+  // The period where it has none (no repeat within 32 section points: a cloud) is an open dot on the bottom
+  // edge, its reason in its tooltip, not a missing run.
+  await page.selectOption('#sweep-feature', 'period');
+  const nulls = belt.filter((r) => r.features.period === null);
+  const shown = await page.evaluate(() => ({ nulls: +document.getElementById('panel-sweep').dataset.nulls,
+    marks: [...document.querySelectorAll('#sweep-curve circle.null')].map((c) => [+c.dataset.index, c.textContent]),
+    dots: document.querySelectorAll('#sweep-curve circle.pt').length }));
+  check(nulls.length > 5 && shown.nulls === nulls.length && shown.dots === belt.length - nulls.length &&
+    JSON.stringify(shown.marks.map((m) => m[0]).sort((a, b) => a - b)) === JSON.stringify(nulls.map((r) => r.index).sort((a, b) => a - b)) &&
+    shown.marks.every(([i, t]) => t.includes(belt.find((r) => r.index === i).null.period)),
+    `sweep: the belt's ${nulls.length} runs without a period are open dots with the line's reason, the other ${shown.dots} drawn`,
+    JSON.stringify(shown).slice(0, 400));
+  // Two parameters: the map colours a cell per run; a cell clicked opens its run with both values put.
+  d = await pick(page, 'sweep-den-hartog-map', 'panel-sweep');
+  const mapDoc = JSON.parse(await page.inputValue('#spec'));
+  const grid = (await sweepLines(origin, JSON.stringify(mapDoc))).filter((l) => l.type === 'run');
+  v = await sweepView(page);
+  check(d.state === 'done' && grid.length === 230 && +v.map === 230 && v.cells === 230 && v.dots.length === 230 && v.mapShown &&
+    v.panel.feature === 'stick_fraction', 'sweep: the 23 x 10 map colours 230 cells, the curves draw 230 dots of stick_fraction', JSON.stringify(v.panel));
+  await screenshot(page, 'page-sweep-map');
+  const r = grid.find((l) => l.index === 47); // omega index 4, phi0 index 7
+  o = await openRun(page, '#sweep-map rect.cell[data-index="47"]');
+  const want2 = structuredClone(mapDoc.base);
+  want2.model.forcing.omega = r.values[0];
+  want2.model.damper.phi0 = r.values[1];
+  check(o.d.state === 'done' && o.sent.length === 1 && JSON.stringify(o.sent[0]) === JSON.stringify(want2),
+    `sweep: a map cell opens its run with both values put (omega ${r.values[0]}, phi0 ${r.values[1]})`, JSON.stringify(o.sent));
+  extra = unexpected(from);
+  check(extra.length === 0, 'the sweep presets: no console error', extra.join('\n    '));
+}
+
 const out = base.endsWith('/') ? base : base + '/';
 try {
   // ---- the page at / ----
@@ -750,6 +891,8 @@ try {
   extra = unexpected(from);
   check(extra.length === 0, 'the modes tab: no console error', extra.join('\n    '));
   await screenshot(page, 'page-modes');
+  // ---- the sweep tab (web/sweep.js) ----
+  await checkSweeps(page, out);
   check(urls.every((u) => u.startsWith(out) || u.startsWith('blob:') || u.startsWith('data:')),
     'every request of the page went to the daemon', urls.filter((u) => !u.startsWith(out)).join(' '));
   await page.close();
