@@ -84,6 +84,7 @@ typedef struct dp_features {
     double xmax, xmin, vmax, vmin;
     int any;                     /* a point at t >= after was seen */
     double t_first, t_last;      /* of the points at t >= after */
+    double h;                    /* the longest gap between two points at t >= after: the run's step */
     int phase;                   /* the stick bookkeeping: the phase since `mark` */
     double mark, stick;
     double max_t[DP_FEATURES_MAXIMA], max_x[DP_FEATURES_MAXIMA]; /* ring of the latest maxima of x */

@@ -191,6 +191,8 @@ static void point(dp_features *f, dp_traj_point b)
         f->t_last = b.t;
     }
     const dp_traj_point *a = f->npts ? &f->p1 : NULL;
+    if (a != NULL && a->t >= f->plan.after && b.t - a->t > f->h)
+        f->h = b.t - a->t;
     if (a != NULL && b.t > a->t)
         step_extremum(f, a, &b);
     if (f->plan.section == DP_SECTION_PERIOD && (a == NULL || b.t > a->t))

@@ -15,16 +15,29 @@
 
 /* Longest period sought, in section points or maxima: a period-32 orbit is as far as a diagram is read. */
 #define PERIOD_MAX_P 32
-/* Points of a sequence "repeat" within this fraction of the motion's range (the extremes): far above the
- * solver's rounding and the Hermite interpolant's error (h^4 on smooth data), far below any bifurcation a
+/* Points of a sequence "repeat" within this fraction of the motion's range (the extremes) at least: far above
+ * the solver's rounding and the Hermite interpolant's error (h^4 on smooth data), far below any bifurcation a
  * diagram shows. */
 #define PERIOD_RTOL 1e-6
 
-/* The tolerance for "the same value" on a quantity ranging over [lo, hi]: PERIOD_RTOL of the range, and a
- * few roundings of its size (a motion at rest repeats exactly). */
-static double tolerance(double lo, double hi)
+/* The fraction the comparison allows: PERIOD_RTOL, or the discretization's own spread if larger. A step h
+ * that does not divide the period T puts the step grid at another phase of the motion in every cycle, and
+ * the θ-scheme's error (second order: about (ωh)²/12 of the range, ω = 2π/T) then differs from cycle to
+ * cycle by up to that much: a period-1 motion's maxima differ by ~1e-4 of the range at ω h = 0.03. Compared
+ * to 1e-6 they looked distinct, and a nearly commensurate 2T or 3T was reported instead of T. (ωh)² is 12
+ * times that spread, still far below a diagram's splittings at usable steps (ωh <= 0.1: 1e-2). `T` is the
+ * mean spacing of the sequence's points (one period of the basic motion), h the run's step. */
+static double rtol(double h, double T)
 {
-    return PERIOD_RTOL * (hi - lo) + 8 * DBL_EPSILON * fmax(fabs(lo), fabs(hi));
+    double wh = T > 0 ? 2 * M_PI * h / T : 0;
+    return isfinite(wh) && wh * wh > PERIOD_RTOL ? wh * wh : PERIOD_RTOL;
+}
+
+/* The tolerance for "the same value" on a quantity ranging over [lo, hi]: rtol of the range, and a few
+ * roundings of its size (a motion at rest repeats exactly). */
+static double tolerance(double rel, double lo, double hi)
+{
+    return rel * (hi - lo) + 8 * DBL_EPSILON * fmax(fabs(lo), fabs(hi));
 }
 
 /* The smallest p <= PERIOD_MAX_P with x[j + p] = x[j] (and v[j + p] = v[j] when v is given) for every j,
@@ -78,7 +91,9 @@ static void period_of_section(dp_features *f, double *t, double *x, double *v)
         null(o, DP_FEATURE_PERIOD, "fewer than 3 section points after t = after");
         return;
     }
-    size_t p = repeat(x, v, n, tolerance(f->xmin, f->xmax), tolerance(f->vmin, f->vmax));
+    double T = f->plan.section == DP_SECTION_PERIOD ? f->plan.section_period : mean_lag(t, n, 1);
+    double rel = rtol(f->h, T);
+    size_t p = repeat(x, v, n, tolerance(rel, f->xmin, f->xmax), tolerance(rel, f->vmin, f->vmax));
     if (p == 0)
         null(o, DP_FEATURE_PERIOD, "the section's points do not repeat within 32 of them (quasi-periodic or "
                                    "chaotic motion, or a transient longer than after)");
@@ -102,7 +117,7 @@ static void period_of_maxima(dp_features *f, double *t, double *x)
                                          "or does not turn)");
         return;
     }
-    size_t p = repeat(x, NULL, n, tolerance(f->xmin, f->xmax), 0);
+    size_t p = repeat(x, NULL, n, tolerance(rtol(f->h, mean_lag(t, n, 1)), f->xmin, f->xmax), 0);
     if (p == 0)
         null(&f->out, DP_FEATURE_PERIOD, "the maxima of x do not repeat within 32 of them (quasi-periodic or "
                                          "chaotic motion, or a transient longer than after)");
