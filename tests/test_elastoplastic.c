@@ -83,75 +83,237 @@ static void test_shakedown(void **state)
 
 /* ---- a mass on a Jenkins spring ------------------------------------------------------------------------ */
 
-/* m x'' + F_J(x) = F0 from x = 0, v = V (m = k = F_y = 1, F0 = 1/4, V = 2): elastic about F0/k until k x
- * = F_y at t1; then m x'' = F0 - F_y until v = 0 at t2 (offset p = x2 - F_y/k); then the elastic
- * oscillation about p + F0/k of amplitude (F_y - F0)/k, which never reaches -F_y. */
-typedef struct jenkins_ref { double t1, t2, x2, p; } jenkins_ref;
+/* m x'' + c x' + F_J(x) = F0 from x = 0, v = V, with m = k = F_y = 1, |F0| < F_y and 0 <= c < 2, in closed
+ * form. An elastic phase is a damped harmonic swing about p + F0, u = x - p - F0 = e^(-c s/2) (A cos w s +
+ * B sin w s), w = sqrt(1 - c^2/4); it yields at the first s > 0 where k (x - p) = +-F_y with x' pointing out
+ * (a transversal crossing of that closed-form curve, bracketed on a fine grid and bisected to rounding). A
+ * plastic phase in direction d is m x'' + c x' = F0 - d F_y: x' = v_inf + (v0 - v_inf) e^(-c s), v_inf =
+ * (F0 - d)/c (uniformly accelerated for c = 0), and unloads at x' = 0, s = ln((v0 - v_inf)/(-v_inf))/c,
+ * with p = x - d. The event times and the state at T. */
+typedef struct closed { double x, v, p, t[8]; int kind[8], n; } closed;
+typedef struct swing { double F0, c, A, B, w; } swing;
 
-static const double F0 = 0.25, V0 = 2;
-
-static jenkins_ref reference(void)
+static double swing_u(const swing *e, double s)
 {
-    jenkins_ref r;
-    double R = hypot(F0, V0), phi = atan2(F0, V0);
-    r.t1 = phi + asin((1 - F0) / R);
-    double v1 = R * cos(r.t1 - phi), a = 1 - F0;
-    r.t2 = r.t1 + v1 / a;
-    r.x2 = 1 + v1 * v1 / (2 * a);
-    r.p = r.x2 - 1;
-    return r;
+    return exp(-0.5 * e->c * s) * (e->A * cos(e->w * s) + e->B * sin(e->w * s));
 }
 
-static void exact_state(double t, double *x, double *v)
+static double swing_du(const swing *e, double s)
 {
-    jenkins_ref r = reference();
-    double R = hypot(F0, V0), phi = atan2(F0, V0), a = 1 - F0, A = 1 - F0;
-    if (t <= r.t1) {
-        *x = F0 + R * sin(t - phi), *v = R * cos(t - phi);
-    } else if (t <= r.t2) {
-        double v1 = R * cos(r.t1 - phi), s = t - r.t1;
-        *x = 1 + v1 * s - 0.5 * a * s * s, *v = v1 - a * s;
-    } else {
-        *x = r.p + F0 + A * cos(t - r.t2), *v = -A * sin(t - r.t2);
+    double sg = 0.5 * e->c, ca = cos(e->w * s), sa = sin(e->w * s);
+    return exp(-sg * s) * ((e->B * e->w - sg * e->A) * ca - (e->A * e->w + sg * e->B) * sa);
+}
+
+/* The first s in (0, T - t] where F0 + u(s) leaves [-1, 1] (INFINITY if none); *d its side. */
+static double swing_first_yield(const swing *e, double span, int *d)
+{
+    const double ds = 1e-3;
+    double s0 = 0, g0 = fabs(e->F0 + swing_u(e, 0)) - 1;
+    for (double s1 = ds; s0 < span; s0 = s1, s1 += ds) {
+        double g1 = fabs(e->F0 + swing_u(e, s1)) - 1;
+        if (g1 > 0 && !(g0 > 0)) {   /* a crossing in (s0, s1]: bisect it to rounding */
+            double a = s0, b = s1;
+            for (int k = 0; k < 200 && b - a > 0; k++) {
+                double m = 0.5 * (a + b);
+                if (m == a || m == b)
+                    break;
+                if (fabs(e->F0 + swing_u(e, m)) - 1 > 0)
+                    b = m;
+                else
+                    a = m;
+            }
+            *d = e->F0 + swing_u(e, b) > 0 ? 1 : -1;
+            return b;
+        }
+        g0 = g1;
+    }
+    return INFINITY;
+}
+
+static closed jenkins_closed_form(double F0, double c, double V, double T)
+{
+    closed o = { .n = 0 };
+    double t = 0, x = 0, v = V, p = 0;
+    int flow = 0;
+    for (;;) {
+        if (flow == 0) {
+            double w = sqrt(1 - 0.25 * c * c), A = x - p - F0;
+            swing e = { F0, c, A, (v + 0.5 * c * A) / w, w };
+            int d = 0;
+            double s = swing_first_yield(&e, T - t, &d);
+            if (t + s >= T) {
+                o.x = p + F0 + swing_u(&e, T - t), o.v = swing_du(&e, T - t), o.p = p;
+                return o;
+            }
+            t += s, x = p + d, v = swing_du(&e, s), flow = d;
+            o.t[o.n] = t, o.kind[o.n++] = DP_EVENT_YIELD;
+        } else {
+            double a = F0 - flow, vinf = c > 0 ? a / c : 0;
+            double dur = c > 0 ? log((v - vinf) / -vinf) / c : -v / a;
+            double s = fmin(dur, T - t);
+            double xs = c > 0 ? x + vinf * s + (v - vinf) * -expm1(-c * s) / c : x + v * s + 0.5 * a * s * s;
+            double vs = c > 0 ? vinf + (v - vinf) * exp(-c * s) : v + a * s;
+            if (t + dur >= T) {
+                o.x = xs, o.v = vs, o.p = xs - flow;
+                return o;
+            }
+            t += dur, x = xs, v = 0, p = x - flow, flow = 0;
+            o.t[o.n] = t, o.kind[o.n++] = DP_EVENT_UNLOAD;
+        }
     }
 }
 
-static const char *one_mass_doc = "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1},"
-    "\"damper\":{\"law\":\"none\"},\"forcing\":{\"kind\":\"constant\",\"value\":0.25}},\"initial\":{\"x\":0,\"v\":2},"
-    "\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":6,\"theta\":%g},\"output\":{\"every\":1000000}}";
+/* F0 = -1/4, V = 2: yield at k x = 1, slide, unload, swing back past -F_y (undamped, the swing's amplitude
+ * 5/4 about F0 reaches -3/2), yield in reverse, slide, unload, then an elastic swing about p + F0 of
+ * amplitude at most 3/4 that stays inside: four events before T = 8, with or without the damper c = 0.1. */
+typedef struct jcase { double F0, c, V, T; } jcase;
+static const jcase undamped = { -0.25, 0, 2, 8 }, damped = { -0.25, 0.1, 2, 8 };
 
-static const char *network_doc = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],"
-    "\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\","
-    "\"value\":0.25}]},\"initial\":{\"x\":[0],\"v\":[2]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,"
-    "\"t_end\":6,\"theta\":%g},\"output\":{\"every\":1000000}}";
+typedef struct run_end { double x, v, p, Fs; size_t ne; dp_event ev[8]; } run_end;
 
-typedef struct end_state { double x, v, p, Fs; size_t events; dp_event ev[8]; } end_state;
-
-static end_state run_one_mass(double dt, double theta)
+static run_end run_jenkins(const jcase *k, const char *solver)
 {
     char doc[1024];
-    snprintf(doc, sizeof doc, one_mass_doc, dt, theta);
+    snprintf(doc, sizeof doc, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1},"
+             "\"damper\":{\"law\":\"linear\",\"c\":%.17g},\"forcing\":{\"kind\":\"constant\",\"value\":%.17g}},"
+             "\"initial\":{\"x\":0,\"v\":%.17g},\"solver\":%s,\"output\":{\"every\":1000000}}", k->c, k->F0, k->V,
+             solver);
     traj t;
     assert_int_equal(traj_run(doc, &t), DP_OK);
     assert_int_equal(t.status, DP_DONE);
-    end_state e = { t.sum.final.x, t.sum.final.v, t.sum.final.p, t.sum.final.Fs, t.ne, { { 0 } } };
-    assert_true(t.sum.final.plastic);
+    assert_true(t.sum.final.plastic && fabs(t.sum.final.t - k->T) <= 1e-12);
+    run_end e = { t.sum.final.x, t.sum.final.v, t.sum.final.p, t.sum.final.Fs, t.ne, { { 0 } } };
     for (size_t i = 0; i < t.ne && i < 8; i++)
         e.ev[i] = t.e[i];
     traj_free(&t);
     return e;
 }
 
-static end_state run_network(double dt, double theta)
+/* A solver for the ratio checks: stick-slip with theta (par) and events, or newmark with beta (par). */
+typedef struct method { const jcase *k; int newmark; double par; const char *events; } method;
+
+static run_end run_method(const method *m, double dt)
+{
+    char solver[256];
+    if (m->newmark)
+        snprintf(solver, sizeof solver, "{\"kind\":\"newmark\",\"dt\":%.17g,\"t_end\":%g,\"beta\":%.17g,"
+                 "\"gamma\":0.5}", dt, m->k->T, m->par);
+    else
+        snprintf(solver, sizeof solver, "{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":%g,\"theta\":%g,"
+                 "\"events\":\"%s\"}", dt, m->k->T, m->par, m->events);
+    return run_jenkins(m->k, solver);
+}
+
+/* The run's events are the closed form's, in kind and order; returns the largest time error. */
+static double event_error(const run_end *e, const closed *ref)
+{
+    assert_int_equal(e->ne, (size_t)ref->n);
+    double worst = 0;
+    for (int i = 0; i < ref->n; i++) {
+        assert_int_equal(e->ev[i].kind, ref->kind[i]);
+        worst = fmax(worst, fabs(e->ev[i].t - ref->t[i]));
+    }
+    return worst;
+}
+
+/* Errors of x and p at T for dt, dt/2, dt/4, dt/8 (dt = 0.02) through the four events: each halving must
+ * divide them by ratio_lo..ratio_hi; p is checked so only where it carries an error (with no damper the
+ * theta = 1/2 step keeps the elastic energy exactly, so a located yield has the exact speed and p is exact
+ * to rounding: asserted instead). Returns the largest event-time error over dt^order. */
+static double check_ratios(const method *m, double ratio_lo, double ratio_hi, const char *what)
+{
+    closed ref = jenkins_closed_form(m->k->F0, m->k->c, m->k->V, m->k->T);
+    assert_int_equal(ref.n, 4);
+    int order = ratio_lo > 3 ? 2 : 1;
+    double ex[4], ep[4], ev_scaled = 0, dt = 0.02;
+    for (int i = 0; i < 4; i++, dt /= 2) {
+        run_end e = run_method(m, dt);
+        ex[i] = fabs(e.x - ref.x), ep[i] = fabs(e.p - ref.p);
+        ev_scaled = fmax(ev_scaled, event_error(&e, &ref) / pow(dt, order));
+        /* the final state is elastic: F = k (x - p) inside the yield interval */
+        assert_true(fabs(e.Fs - (e.x - e.p)) <= 1e-12 && fabs(e.Fs) < 1);
+    }
+    int p_exact = m->k->c == 0 && order == 2;
+    for (int i = 0; i < 3; i++) {
+        printf("%s: dt/%d: |x - x*| %.3e -> %.3e (ratio %.3f), |p - p*| %.3e -> %.3e (ratio %.3f)\n", what,
+               1 << i, ex[i], ex[i + 1], ex[i] / ex[i + 1], ep[i], ep[i + 1], ep[i] / ep[i + 1]);
+        assert_true(ex[i] / ex[i + 1] >= ratio_lo && ex[i] / ex[i + 1] <= ratio_hi);
+        if (p_exact)
+            assert_true(ep[i] <= 1e-12 && ep[i + 1] <= 1e-12);
+        else
+            assert_true(ep[i] / ep[i + 1] >= ratio_lo && ep[i] / ep[i + 1] <= ratio_hi);
+    }
+    printf("%s: event times within %.3g dt^%d\n", what, ev_scaled, order);
+    return ev_scaled;
+}
+
+/* theta = 1/2 with yield and unload located: second order through four events, the event times too. */
+static void test_located_events_second_order(void **state)
+{
+    (void)state;
+    method a = { &undamped, 0, 0.5, "locate" }, b = { &damped, 0, 0.5, "locate" };
+    assert_true(check_ratios(&a, 3.5, 4.5, "stick-slip theta 1/2") <= 1);   /* event times within dt^2 */
+    assert_true(check_ratios(&b, 3.5, 4.5, "stick-slip theta 1/2, c = 0.1") <= 1);
+}
+
+/* theta = 1 with the events located: first order, consistently (every halving halves the error). */
+static void test_located_events_theta_one(void **state)
+{
+    (void)state;
+    method a = { &undamped, 0, 1, "locate" }, b = { &damped, 0, 1, "locate" };
+    assert_true(check_ratios(&a, 1.8, 2.2, "stick-slip theta 1") <= 2);      /* event times within 2 dt */
+    assert_true(check_ratios(&b, 1.8, 2.2, "stick-slip theta 1, c = 0.1") <= 2);
+}
+
+/* Newmark's average acceleration (beta = 1/4, gamma = 1/2) split at yield and unload, each stretch with its
+ * phase's tangent stiffness: second order through the four events; Höschl's linear acceleration
+ * (beta = 1/6, not energy-conserving: p carries an O(dt^2) error even undamped) too. */
+static void test_newmark_located_second_order(void **state)
+{
+    (void)state;
+    method a = { &undamped, 1, 0.25, NULL }, b = { &damped, 1, 0.25, NULL }, c = { &damped, 1, 1.0 / 6, NULL };
+    assert_true(check_ratios(&a, 3.5, 4.5, "newmark beta 1/4") <= 1);
+    assert_true(check_ratios(&b, 3.5, 4.5, "newmark beta 1/4, c = 0.1") <= 1);
+    assert_true(check_ratios(&c, 3.5, 4.5, "newmark beta 1/6, c = 0.1") <= 1);
+}
+
+/* Where the event falls in its step does not matter: at every step from 0.01 down by 0.8 (t1 anywhere in
+ * its step) the error at T stays under C dt^2 with one C, and the events are at the closed form's times. */
+static void test_located_events_any_phase_of_the_step(void **state)
+{
+    (void)state;
+    method m = { &damped, 0, 0.5, "locate" };
+    closed ref = jenkins_closed_form(damped.F0, damped.c, damped.V, damped.T);
+    double worst = 0;
+    for (double n = 800; n <= 3200; n *= 1.25) {   /* dt = T/n: t_end on the grid */
+        double dt = damped.T / round(n);
+        run_end e = run_method(&m, dt);
+        worst = fmax(worst, fmax(fabs(e.x - ref.x), fabs(e.p - ref.p)) / (dt * dt));
+        assert_true(event_error(&e, &ref) <= dt * dt);
+    }
+    printf("theta 1/2, dt from 0.01 by 0.8: error at T within %.3f dt^2\n", worst);
+    assert_true(worst <= 1);
+}
+
+/* Events "none" keeps the unlocated step (a yield or unload reported at the end of its step): the one-mass
+ * inclusion step and the network's active-set step, separate codes for the same step, agree to rounding;
+ * networks do not locate these events, and their meta line says so ("step"). */
+static const char *network_doc = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],"
+    "\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1},\"damper\":{\"law\":\"linear\",\"c\":%.17g}}],"
+    "\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":%.17g}]},\"initial\":{\"x\":[0],\"v\":[%.17g]},"
+    "\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":%g,\"theta\":%g},\"output\":{\"every\":1000000}}";
+
+static run_end run_network(const jcase *k, double dt, double theta)
 {
     char doc[1024];
-    snprintf(doc, sizeof doc, network_doc, dt, theta);
+    snprintf(doc, sizeof doc, network_doc, k->c, k->F0, k->V, dt, k->T, theta);
     dp_spec spec;
     dp_errors errs;
     dp_spec_init(&spec);
     dp_errors_init(&errs);
     int s = dp_spec_parse(doc, strlen(doc), 0, &spec, &errs);
     assert_int_equal(s, DP_OK);
+    assert_string_equal(dp_spec_events_mode(&spec), "step");
     dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
     dp_spec_clear(&spec);
     assert_non_null(run);
@@ -162,12 +324,12 @@ static end_state run_network(double dt, double theta)
     assert_int_equal(c->width, 6);
     dp_record buf[64];
     size_t n;
-    end_state e = { 0 };
+    run_end e = { 0 };
     do {
         s = dp_run_next(run, buf, 64, &n);
         for (size_t i = 0; i < n; i++)
-            if (buf[i].type == DP_RECORD_EVENT && e.events < 8)
-                e.ev[e.events++] = buf[i].u.event;
+            if (buf[i].type == DP_RECORD_EVENT && e.ne < 8)
+                e.ev[e.ne++] = buf[i].u.event;
     } while (s == DP_MORE);
     assert_int_equal(s, DP_DONE);
     const double *row = dp_run_summary(run)->final_row.val;
@@ -176,58 +338,28 @@ static end_state run_network(double dt, double theta)
     return e;
 }
 
-static double error_of(const end_state *e)
+static void test_unlocated_one_mass_is_the_network(void **state)
 {
-    double x, v;
-    exact_state(6, &x, &v);
-    return fmax(fabs(e->x - x), fabs(e->v - v));
-}
-
-/* Elastic swing, one yield, one unload, the offset and the final oscillation against the closed form; the
- * order is the least-squares slope of log error against log dt over eight steps from 0.01 down by 0.8 (the
- * unlocated yield costs theta = 1/2 an O(dt^2) error whose constant depends on where t1 falls in its step,
- * so pairs of halvings scatter); one mass and the one-node network take the same steps. */
-static void check_theta(double theta, double order_lo, double order_hi)
-{
-    jenkins_ref ref = reference();
-    double dt = 0.01, sx = 0, sy = 0, sxx = 0, sxy = 0;
-    const int N = 8;
-    for (int i = 0; i < N; i++, dt *= 0.8) {
-        end_state a = run_one_mass(dt, theta), b = run_network(dt, theta);
-        double err = error_of(&a), lx = log(dt), ly = log(err);
-        sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
-        assert_true(fabs(a.x - b.x) <= 1e-9 && fabs(a.v - b.v) <= 1e-9 && fabs(a.p - b.p) <= 1e-9);
-        assert_int_equal(a.events, 2);
-        assert_int_equal(b.events, 2);
-        assert_int_equal(a.ev[0].kind, DP_EVENT_YIELD);
-        assert_int_equal(a.ev[1].kind, DP_EVENT_UNLOAD);
-        assert_int_equal(b.ev[0].kind, DP_EVENT_YIELD);
-        assert_int_equal(b.ev[1].kind, DP_EVENT_UNLOAD);
-        /* reported at the end of the step that made them */
-        assert_true(a.ev[0].t >= ref.t1 - 1e-12 && a.ev[0].t <= ref.t1 + dt + 1e-12);
-        assert_true(fabs(a.ev[1].t - ref.t2) <= 2 * dt);
-        assert_true(fabs(a.p - ref.p) <= (theta == 1 ? 5 : 0.5) * dt);
-        /* the final state is elastic: F = k (x - p) inside the yield interval */
-        assert_true(fabs(a.Fs - (a.x - a.p)) <= 1e-12 && fabs(a.Fs) < 1);
-        assert_true(fabs(b.Fs - (b.x - b.p)) <= 1e-12);
-        /* and the error is small in absolute terms, not only of the right order */
-        assert_true(err <= (theta == 1 ? 2 * dt : dt * dt));
+    (void)state;
+    closed ref = jenkins_closed_form(damped.F0, damped.c, damped.V, damped.T);
+    const double thetas[2] = { 0.5, 1 };
+    for (int k = 0; k < 2; k++) {
+        for (double dt = 0.01; dt > 0.002; dt /= 2) {
+            method m = { &damped, 0, thetas[k], "none" };
+            run_end a = run_method(&m, dt), b = run_network(&damped, dt, thetas[k]);
+            assert_true(fabs(a.x - b.x) <= 1e-9 && fabs(a.v - b.v) <= 1e-9 && fabs(a.p - b.p) <= 1e-9);
+            assert_int_equal(a.ne, 4);
+            assert_int_equal(b.ne, 4);
+            for (int i = 0; i < 4; i++) {
+                assert_int_equal(a.ev[i].kind, ref.kind[i]);
+                assert_int_equal(b.ev[i].kind, ref.kind[i]);
+                /* at the end of the step that made them: on the grid, within two steps of the closed form's */
+                assert_true(fabs(a.ev[i].t - b.ev[i].t) <= 1e-9);
+                assert_true(fabs(a.ev[i].t / dt - round(a.ev[i].t / dt)) <= 1e-6);
+                assert_true(fabs(a.ev[i].t - ref.t[i]) <= 2 * dt);
+            }
+        }
     }
-    double order = (N * sxy - sx * sy) / (N * sxx - sx * sx);
-    printf("theta %g: measured order %.3f\n", theta, order);
-    assert_true(order > order_lo && order < order_hi);
-}
-
-static void test_mass_on_jenkins_theta_one(void **state)
-{
-    (void)state;
-    check_theta(1, 0.85, 1.2);
-}
-
-static void test_mass_on_jenkins_theta_half(void **state)
-{
-    (void)state;
-    check_theta(0.5, 1.7, 2.5);
 }
 
 /* Before yield the Jenkins spring is the linear spring's theta-scheme: the same samples to rounding. */
@@ -254,52 +386,17 @@ static void test_elastic_swing_is_the_linear_spring(void **state)
     traj_free(&tb);
 }
 
-/* Höschl's incremental Newmark (beta = 1/6 and 1/4) on the same mass: the tangent stiffness is the last
- * step's (k, or 0 while the slider slides), so the step that crosses yield overshoots and the error's
- * constant depends on where t1 falls in its step: it converges, at least at first order in dt, to the same
- * closed form, with one yield and one unload. */
-static void test_newmark_on_jenkins(void **state)
-{
-    (void)state;
-    const double betas[2] = { 1.0 / 6, 0.25 };
-    for (int k = 0; k < 2; k++) {
-        double dt = 0.01, sx = 0, sy = 0, sxx = 0, sxy = 0;
-        const int N = 8;
-        for (int i = 0; i < N; i++, dt *= 0.8) {
-            char doc[1024];
-            snprintf(doc, sizeof doc, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"elastoplastic\",\"k\":1,"
-                     "\"yield\":1},\"damper\":{\"law\":\"none\"},\"forcing\":{\"kind\":\"constant\",\"value\":0.25}},"
-                     "\"initial\":{\"x\":0,\"v\":2},\"solver\":{\"kind\":\"newmark\",\"dt\":%.17g,\"t_end\":6,"
-                     "\"beta\":%.17g,\"gamma\":0.5},\"output\":{\"every\":1000000}}", dt, betas[k]);
-            traj t;
-            assert_int_equal(traj_run(doc, &t), DP_OK);
-            assert_int_equal(t.status, DP_DONE);
-            end_state e = { t.sum.final.x, t.sum.final.v, t.sum.final.p, t.sum.final.Fs, t.ne, { { 0 } } };
-            assert_int_equal(t.ne, 2);
-            assert_int_equal(t.e[0].kind, DP_EVENT_YIELD);
-            assert_int_equal(t.e[1].kind, DP_EVENT_UNLOAD);
-            traj_free(&t);
-            double err = error_of(&e), lx = log(dt), ly = log(err);
-            assert_true(err <= 0.02 * dt);
-            assert_true(fabs(e.p - reference().p) <= 0.02 * dt);
-            sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
-        }
-        double order = (N * sxy - sx * sy) / (N * sxx - sx * sx);
-        printf("newmark beta %.4f on the Jenkins spring: measured order %.3f\n", betas[k], order);
-        assert_true(order > 0.9);
-    }
-}
-
 /* A Jenkins spring beside a Coulomb damper under a slow harmonic load: the mass sticks at reversals while the
- * slider yields and unloads. The one-mass inclusion solver and the network's active-set solver are separate
- * codes for the same step; they agree on the whole path and on every event. */
+ * slider yields and unloads. With events "none" the one-mass inclusion solver and the network's active-set
+ * solver (which does not locate these events) are separate codes for the same step; they agree on the whole
+ * path and on every event. */
 static void test_yielding_beside_sticking(void **state)
 {
     (void)state;
     const char *one = "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1},"
         "\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5},\"forcing\":{\"kind\":\"harmonic\",\"amplitude\":1.6,"
         "\"omega\":0.3,\"phase\":0}},\"initial\":{\"x\":0,\"v\":0},\"solver\":{\"kind\":\"stick-slip\","
-        "\"dt\":0.01,\"t_end\":30,\"theta\":0.5},\"output\":{\"every\":100}}";
+        "\"dt\":0.01,\"t_end\":30,\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":100}}";
     const char *net = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
         "\"elastoplastic\",\"k\":1,\"yield\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5}}],\"forcing\":"
         "[{\"node\":0,\"kind\":\"harmonic\",\"amplitude\":1.6,\"omega\":0.3,\"phase\":0}]},\"initial\":{\"x\":[0],"
@@ -345,6 +442,90 @@ static void test_yielding_beside_sticking(void **state)
         assert_true(kinds[k] >= 2);
     dp_run_free(run);
     traj_free(&a);
+}
+
+/* The same mass with every event located: the damper's stick and slip and the spring's yield and unload
+ * met in time order inside the steps (a mass that stops while its slider slides unloads it at the same
+ * instant). No closed form, so the order is measured by halving: the differences of x and p at T between
+ * dt and dt/2 shrink by 4 per halving, and the event times move by O(dt^2). */
+static void test_located_beside_sticking(void **state)
+{
+    (void)state;
+    traj t[5];
+    for (int i = 0; i < 5; i++) {
+        char doc[1024];
+        snprintf(doc, sizeof doc, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1},"
+                 "\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5},\"forcing\":{\"kind\":\"harmonic\",\"amplitude\":1.6,"
+                 "\"omega\":0.3,\"phase\":0}},\"initial\":{\"x\":0,\"v\":0},\"solver\":{\"kind\":\"stick-slip\","
+                 "\"dt\":%.17g,\"t_end\":30,\"theta\":0.5},\"output\":{\"every\":1000000}}", 0.02 / (1 << i));
+        assert_int_equal(traj_run(doc, &t[i]), DP_OK);
+        assert_int_equal(t[i].status, DP_DONE);
+    }
+    size_t kinds[6] = { 0 };
+    for (size_t j = 0; j < t[0].ne; j++) {
+        kinds[t[0].e[j].kind]++;
+        assert_true(j == 0 || t[0].e[j].t >= t[0].e[j - 1].t);
+        if (t[0].e[j].kind == DP_EVENT_STICK && j + 1 < t[0].ne && t[0].e[j + 1].kind == DP_EVENT_UNLOAD)
+            assert_true(fabs(t[0].e[j + 1].t - t[0].e[j].t) <= 1e-9);   /* stops: stick and unload at once */
+    }
+    for (int k = DP_EVENT_STICK; k <= DP_EVENT_UNLOAD; k++)
+        assert_true(kinds[k] >= 2);
+    double dx[4], dp[4];
+    for (int i = 0; i < 4; i++) {
+        const dp_sample *a = &t[i].sum.final, *b = &t[i + 1].sum.final;
+        dx[i] = fabs(a->x - b->x), dp[i] = fabs(a->p - b->p);
+        assert_int_equal(t[i].ne, t[0].ne);   /* the same events at every step */
+        double dt = 0.02 / (1 << i), worst = 0;
+        for (size_t j = 0; j < t[i].ne; j++) {
+            assert_int_equal(t[i].e[j].kind, t[i + 1].e[j].kind);
+            worst = fmax(worst, fabs(t[i].e[j].t - t[i + 1].e[j].t));
+        }
+        printf("beside sticking, dt = %g: events move by %.3g dt^2\n", dt, worst / (dt * dt));
+        assert_true(worst <= dt * dt);
+    }
+    for (int i = 0; i < 3; i++) {
+        printf("beside sticking: differences of x %.3e -> %.3e (ratio %.3f), of p %.3e -> %.3e (ratio %.3f)\n",
+               dx[i], dx[i + 1], dx[i] / dx[i + 1], dp[i], dp[i + 1], dp[i] / dp[i + 1]);
+        assert_true(dx[i] / dx[i + 1] >= 3.5 && dx[i] / dx[i + 1] <= 4.5);
+        assert_true(dp[i] / dp[i + 1] >= 3.5 && dp[i] / dp[i + 1] <= 4.5);
+    }
+    for (int i = 0; i < 5; i++)
+        traj_free(&t[i]);
+}
+
+/* No creep: a mass at rest stays exactly where it is, every step, with no event: held by a Coulomb damper
+ * (the spring elastic, or at its yield force), or on the Jenkins spring alone in equilibrium (inside, or
+ * exactly on the yield surface with the load at F_y), by stick-slip (theta = 1/2) and by newmark. */
+static void test_no_creep(void **state)
+{
+    (void)state;
+    static const struct { const char *spring, *damper; double F, x; int newmark, sticks; } rest[] = {
+        { "", "{\"law\":\"coulomb\",\"phi0\":0.5}", 0.3, 0, 0, 1 },
+        { ",\"offset\":-1", "{\"law\":\"coulomb\",\"phi0\":0.5}", 1.3, 0, 0, 1 },   /* F_s = F_y, held */
+        { "", "{\"law\":\"none\"}", 0.5, 0.5, 0, 0 },
+        { "", "{\"law\":\"none\"}", 1, 1, 0, 0 },                                     /* on the surface */
+        { "", "{\"law\":\"none\"}", 0.5, 0.5, 1, 0 },
+        { "", "{\"law\":\"none\"}", 1, 1, 1, 0 },
+    };
+    for (size_t c = 0; c < sizeof rest / sizeof *rest; c++) {
+        char doc[1024];
+        snprintf(doc, sizeof doc, "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1%s},"
+                 "\"damper\":%s,\"forcing\":{\"kind\":\"constant\",\"value\":%g}},\"initial\":{\"x\":%g,\"v\":0},"
+                 "\"solver\":%s,\"output\":{\"every\":1}}", rest[c].spring, rest[c].damper, rest[c].F, rest[c].x,
+                 rest[c].newmark ? "{\"kind\":\"newmark\",\"dt\":0.01,\"t_end\":100}"
+                                 : "{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":100,\"theta\":0.5}");
+        traj t;
+        assert_int_equal(traj_run(doc, &t), DP_OK);
+        assert_int_equal(t.status, DP_DONE);
+        assert_int_equal(t.n, 10001);
+        double p0 = t.s[0].p;
+        for (size_t i = 0; i < t.n; i++)
+            assert_true(t.s[i].x == rest[c].x && t.s[i].v == 0 && t.s[i].p == p0);
+        assert_int_equal(t.ne, 0);
+        if (rest[c].sticks)
+            assert_true(fabs(t.sum.stick_time - 100) <= 1e-9);
+        traj_free(&t);
+    }
 }
 
 /* The well-posedness report: the Jenkins element is a stop operator, so with a maximal monotone damper the
@@ -419,10 +600,14 @@ int main(void)
         cmocka_unit_test(test_cycle_area_is_plastic_work),
         cmocka_unit_test(test_shakedown),
         cmocka_unit_test(test_elastic_swing_is_the_linear_spring),
-        cmocka_unit_test(test_mass_on_jenkins_theta_one),
-        cmocka_unit_test(test_mass_on_jenkins_theta_half),
-        cmocka_unit_test(test_newmark_on_jenkins),
+        cmocka_unit_test(test_located_events_second_order),
+        cmocka_unit_test(test_located_events_theta_one),
+        cmocka_unit_test(test_newmark_located_second_order),
+        cmocka_unit_test(test_located_events_any_phase_of_the_step),
+        cmocka_unit_test(test_unlocated_one_mass_is_the_network),
         cmocka_unit_test(test_yielding_beside_sticking),
+        cmocka_unit_test(test_located_beside_sticking),
+        cmocka_unit_test(test_no_creep),
         cmocka_unit_test(test_wellposedness_entry),
         cmocka_unit_test(test_bad_input),
     };

@@ -215,7 +215,7 @@ static void test_properties_as_today(void **state)
 #define BIT(x) (1 << DP_SPRING_##x)
     assert_int_equal(slinear, BIT(LINEAR));
     assert_int_equal(plastic, BIT(ELASTOPLASTIC));
-    assert_int_equal(locate, BIT(LINEAR) | BIT(ROPE) | BIT(GRAPH));
+    assert_int_equal(locate, BIT(LINEAR) | BIT(ROPE) | BIT(GRAPH) | BIT(ELASTOPLASTIC));
     assert_int_equal(locate_net, BIT(LINEAR));
     assert_int_equal(xmax, BIT(ROPE));
 #undef BIT

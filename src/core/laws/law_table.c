@@ -89,10 +89,11 @@ const dp_spring_law_info dp_spring_laws[] = {
         .row = { DP_SPRING_GRAPH, "graph", { { NULL } }, "x" },
         .build = spring_user, .locate = 1,
     },
-    [DP_SPRING_ELASTOPLASTIC] = {   /* Höschl 1983 §15; its graph moves with p, so its events go to the step */
+    [DP_SPRING_ELASTOPLASTIC] = {   /* Höschl 1983 §15; one mass locates its yield and unload (event_location.c),
+                                     * networks report them at the step's end (the graph moves with p) */
         .row = { DP_SPRING_ELASTOPLASTIC, "elastoplastic",
                  { SPRING(k, POSITIVE, 1), SPRING(yield, POSITIVE, 1), SPRING(offset, ANY, 0) }, NULL },
-        .build = spring_elastoplastic, .plastic = 1, .elastic = offsetof(dp_spring, k),
+        .build = spring_elastoplastic, .plastic = 1, .locate = 1, .elastic = offsetof(dp_spring, k),
     },
 };
 static_assert(sizeof dp_spring_laws / sizeof dp_spring_laws[0] == DP_SPRING_LAW_COUNT,

@@ -18,7 +18,8 @@ extern const dp_run_type dp_run_lcs;               /* lcs_run.c: linear compleme
 extern const dp_run_type dp_run_right_hand;        /* right_hand_run.c: friction with motion-dependent N */
 
 /* How a one-mass stick-slip run reports its events (stick_slip.c): "none" when not asked, "step" when a law's
- * entry does not locate them (an elastoplastic spring's graph moves with its offset), else "locate". */
+ * entry does not locate them (every entry does today: an elastoplastic spring's yield and unload too,
+ * event_location.c), else "locate". */
 const char *dp_one_mass_events_mode(const dp_spec *s);
 
 #endif

@@ -12,8 +12,9 @@
  *
  * An elastoplastic spring (Jenkins: docs/systems.md §3) takes the general inclusion with its step graph at the
  * current plastic offset, weighted like a linear spring: (1-theta) F + theta F+, F+ = S(x + h (1-theta) v
- * + h theta v+) the return mapping at the position update's own x+; p moves after the step. Its graph moves
- * with p, so its steps are not split at events (reported at the end of the step that made them).
+ * + h theta v+) the return mapping at the position update's own x+; p moves after the step. With events
+ * "locate" its steps are split at its yield and unload as at the damper's stick and slip (event_location.c);
+ * with "none" the spring's phase changes are reported at the end of the step that made them.
  */
 #include <math.h>
 #include <stdio.h>
@@ -60,8 +61,8 @@ static void set_forces(dp_run *r, double fc_graph, double fs_graph)
     c->Fd = L->gamma->kind == DP_RELAX_NONE ? c->Fc : c->Fc - dp_relaxation_eval(L->gamma, c->v - L->vb);
 }
 
-/* The elastoplastic spring's return mapping at the step's new position, its graph moved with p, and a
- * yield or unload event when its slider started or stopped sliding. */
+/* Events "none": the elastoplastic spring's return mapping at the step's new position, its graph moved with
+ * p, and a yield or unload event when its slider started or stopped sliding in the step. */
 static void plastic_step(dp_run *r)
 {
     dp_spring *sp = &r->spec.model.spring;
@@ -164,6 +165,7 @@ static int fast_steps(dp_run *r)
 int dp_stick_slip_advance(dp_run *r)
 {
     const dp_ss_law *L = &r->law;
+    int located_plastic = r->ep && r->spec.solver.events == DP_EVENTS_LOCATE;
     while (dp_run_room(r)) {
         if (dp_run_stopped(r, dp_run_work(r)))
             return r->status;
@@ -172,10 +174,15 @@ int dp_stick_slip_advance(dp_run *r)
         double h = dp_run_step_length(r), fc = 0, fs = 0;
         step_state s = { r->cur.t, r->cur.x, r->cur.v, r->cur.phase };
         dp_phase before = s.phase;
-        if (L->closed && L->locate) {
+        if (located_plastic) {
+            double held = dp_ss_located_plastic_step(r, &s, h, &fc, &fs);
+            if (held < 0)
+                return step_failed(r, &s);
+            r->sum.stick_time += held;
+        } else if (L->closed && L->locate) {
             r->sum.stick_time += dp_ss_located_step(r, &s, h, &fc);
         } else if (L->locate) {
-            double held = dp_ss_located_inclusion_step(r, &s, h, &fc, &fs);
+            double held = dp_ss_located_inclusion_step(r, &s, h, &fc, &fs, NULL);
             if (held < 0)
                 return step_failed(r, &s);
             r->sum.stick_time += held;
@@ -192,7 +199,7 @@ int dp_stick_slip_advance(dp_run *r)
         if (!isfinite(s.x) || !isfinite(s.v) || !isfinite(fc) || !isfinite(fs))
             return step_nonfinite(r, s.t, r->cur.t, r->cur.x, r->cur.v);
         r->cur.t = s.t, r->cur.x = s.x, r->cur.v = s.v, r->cur.phase = s.phase;
-        if (r->ep)
+        if (r->ep && !located_plastic)
             plastic_step(r);
         if (dp_run_sample_due(r)) { /* forces are only read in samples and the summary (the last step) */
             set_forces(r, fc, fs);

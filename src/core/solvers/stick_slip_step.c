@@ -70,17 +70,24 @@ dp_inclusion dp_ss_step_inclusion(const dp_ss_law *L, const step_state *s, doubl
     };
 }
 
+dp_inclusion dp_ss_run_inclusion(const dp_run *r, const step_state *s, double h)
+{
+    double th = r->law.theta;
+    dp_inclusion p = dp_ss_step_inclusion(&r->law, s, h);
+    if (r->ep) {   /* theta-weighted: the step graph is theta S (dp_elastoplastic_graph), its argument x+ */
+        p.s_x = s->x + h * (1 - th) * s->v, p.s_h = h * th;
+        p.b -= h * (1 - th) * r->ep_F;
+    }
+    return p;
+}
+
 /* One step through dp_inclusion_solve; returns DP_OK or DP_ESOLVE. */
 int dp_ss_inclusion_step(dp_run *r, step_state *s, double h, double *fc, double *fs)
 {
     const dp_ss_law *L = &r->law;
     double th = L->theta;
-    dp_inclusion p = dp_ss_step_inclusion(L, s, h);
+    dp_inclusion p = dp_ss_run_inclusion(r, s, h);
     double w, a, sp;
-    if (r->ep) {   /* theta-weighted: the step graph is theta S (dp_elastoplastic_graph), its argument x+ */
-        p.s_x = s->x + h * (1 - th) * s->v, p.s_h = h * th;
-        p.b -= h * (1 - th) * r->ep_F;
-    }
     if (dp_inclusion_solve(&p, &w, &a, &sp, &r->sum.iterations) != DP_OK)
         return DP_ESOLVE;
     double dir = sgn(s->v - L->vb);
