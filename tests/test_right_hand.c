@@ -416,17 +416,18 @@ static void rk4(const dp_right_hand_model *m, double y[4], double h)
         y[i] += h / 6 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
 }
 
-static dp_run *start(const dp_right_hand_model *m, const double x0[2], const double v0[2], double t_end, double dt)
+/* A run of model m from (x0, v0) (the rod's third entries, its end's height and rate, 0: on the floor). */
+static dp_run *start3(const dp_right_hand_model *m, const double x0[3], const double v0[3], double t_end, double dt)
 {
     dp_spec spec;
     dp_spec_init(&spec);
     spec.rh = malloc(sizeof *spec.rh);
-    spec.x0v = malloc(2 * sizeof(double));
-    spec.v0v = malloc(2 * sizeof(double));
+    spec.x0v = calloc(3, sizeof(double));
+    spec.v0v = calloc(3, sizeof(double));
     assert_non_null(spec.rh);
     *spec.rh = *m;
-    memcpy(spec.x0v, x0, 2 * sizeof(double));
-    memcpy(spec.v0v, v0, 2 * sizeof(double));
+    memcpy(spec.x0v, x0, 3 * sizeof(double));
+    memcpy(spec.v0v, v0, 3 * sizeof(double));
     spec.solver.kind = DP_SOLVER_RIGHT_HAND;
     spec.solver.t_end = t_end, spec.solver.dt = dt, spec.solver.rtol = 1e-11, spec.solver.atol = 1e-13;
     dp_errors errs;
@@ -437,6 +438,12 @@ static dp_run *start(const dp_right_hand_model *m, const double x0[2], const dou
     if (r == NULL)
         fail_msg("run refused: %s %s", errs.n ? errs.item[0].pointer : "", errs.n ? errs.item[0].message : "");
     return r;
+}
+
+static dp_run *start(const dp_right_hand_model *m, const double x0[2], const double v0[2], double t_end, double dt)
+{
+    double x[3] = { x0[0], x0[1], 0 }, v[3] = { v0[0], v0[1], 0 };
+    return start3(m, x, v, t_end, dt);
 }
 
 /* The reference from (t, y) to t1: RK4 steps of h in the phase of the velocities' signs; a step in which
@@ -755,7 +762,7 @@ static void test_random_runs_end(void **state)
         double v0[2] = { it % 3 ? urand(&seed, -3, 3) : 0, it % 2 ? urand(&seed, -5, 5) : 0 };
         dp_spec spec;
         dp_spec_init(&spec);
-        spec.rh = malloc(sizeof *spec.rh), spec.x0v = malloc(2 * sizeof(double)), spec.v0v = malloc(2 * sizeof(double));
+        spec.rh = malloc(sizeof *spec.rh), spec.x0v = calloc(3, sizeof(double)), spec.v0v = calloc(3, sizeof(double));
         *spec.rh = m;
         memcpy(spec.x0v, x0, sizeof x0), memcpy(spec.v0v, v0, sizeof v0);
         spec.solver.kind = DP_SOLVER_RIGHT_HAND, spec.solver.t_end = 3, spec.solver.dt = 0.1;
@@ -781,7 +788,8 @@ static void test_random_runs_end(void **state)
         else if (st == DP_ESOLVE && (strstr(why, "Painleve ") || strstr(why, "the rod ")))
             stopped++;
         else
-            fail_msg("run %d ended with %d: %s", it, st, why);
+            fail_msg("run %d ended with %d: %s (m %.17g %.17g %.17g x0 %.17g v0 %.17g %.17g)", it, st, why, m.m, m.length,
+                     m.mu, x0[1], v0[0], v0[1]);
         dp_run_free(r);
     }
     assert_true(done > 150 && stopped > 50);
