@@ -45,9 +45,12 @@
  * that a front end's deadline and cancellation are checked between calls): the segment resumes next call. */
 #define CALL_STEPS 100000
 /* A rebound whose accumulation of further bounces (2 v/(a (1 - e)) for the end's fall acceleration a, exact for
- * a point under constant a) would end within this fraction of dt is made plastic: the bounces left take less
- * time than location resolves (Zeno), as for the contacts of a network (docs/contact.md). */
+ * a point under constant a) would end within this fraction of dt, or whose height v^2/(2a) is below this
+ * fraction of the rod's length (the heights' rounding is ~1e-16 of it: a landing there is located by
+ * rounding noise), is made plastic: the bounces left are below what location resolves (Zeno), as for the
+ * contacts of a network (docs/contact.md). */
 #define ZENO_REL 1e-9
+#define HOP_REL 1e-12
 
 struct dp_right_hand_run {
     dp_right_hand_model m;
@@ -380,7 +383,8 @@ static int impact_at(dp_run *r, dp_right_hand_rod_state *s)
             return 0;
         }
         double fall = rr->m.g - l * sin(s->theta) * im.thetad * im.thetad; /* the end's fall acceleration */
-        if (!(im.vn > 0 && e < 1 && fall > 0 && 2 * im.vn < ZENO_REL * r->h * fall * (1 - e)))
+        if (!(im.vn > 0 && e < 1 && fall > 0 &&
+              (2 * im.vn < ZENO_REL * r->h * fall * (1 - e) || im.vn * im.vn < 2 * fall * HOP_REL * rr->m.length)))
             break;
         e = 0;                                   /* the bounces left accumulate within location's reach */
     }
