@@ -416,17 +416,18 @@ static void rk4(const dp_right_hand_model *m, double y[4], double h)
         y[i] += h / 6 * (k[0][i] + 2 * k[1][i] + 2 * k[2][i] + k[3][i]);
 }
 
-static dp_run *start(const dp_right_hand_model *m, const double x0[2], const double v0[2], double t_end, double dt)
+/* A run of model m from (x0, v0) (the rod's third entries, its end's height and rate, 0: on the floor). */
+static dp_run *start3(const dp_right_hand_model *m, const double x0[3], const double v0[3], double t_end, double dt)
 {
     dp_spec spec;
     dp_spec_init(&spec);
     spec.rh = malloc(sizeof *spec.rh);
-    spec.x0v = malloc(2 * sizeof(double));
-    spec.v0v = malloc(2 * sizeof(double));
+    spec.x0v = calloc(3, sizeof(double));
+    spec.v0v = calloc(3, sizeof(double));
     assert_non_null(spec.rh);
     *spec.rh = *m;
-    memcpy(spec.x0v, x0, 2 * sizeof(double));
-    memcpy(spec.v0v, v0, 2 * sizeof(double));
+    memcpy(spec.x0v, x0, 3 * sizeof(double));
+    memcpy(spec.v0v, v0, 3 * sizeof(double));
     spec.solver.kind = DP_SOLVER_RIGHT_HAND;
     spec.solver.t_end = t_end, spec.solver.dt = dt, spec.solver.rtol = 1e-11, spec.solver.atol = 1e-13;
     dp_errors errs;
@@ -437,6 +438,12 @@ static dp_run *start(const dp_right_hand_model *m, const double x0[2], const dou
     if (r == NULL)
         fail_msg("run refused: %s %s", errs.n ? errs.item[0].pointer : "", errs.n ? errs.item[0].message : "");
     return r;
+}
+
+static dp_run *start(const dp_right_hand_model *m, const double x0[2], const double v0[2], double t_end, double dt)
+{
+    double x[3] = { x0[0], x0[1], 0 }, v[3] = { v0[0], v0[1], 0 };
+    return start3(m, x, v, t_end, dt);
 }
 
 /* The reference from (t, y) to t1: RK4 steps of h in the phase of the velocities' signs; a step in which
@@ -755,7 +762,7 @@ static void test_random_runs_end(void **state)
         double v0[2] = { it % 3 ? urand(&seed, -3, 3) : 0, it % 2 ? urand(&seed, -5, 5) : 0 };
         dp_spec spec;
         dp_spec_init(&spec);
-        spec.rh = malloc(sizeof *spec.rh), spec.x0v = malloc(2 * sizeof(double)), spec.v0v = malloc(2 * sizeof(double));
+        spec.rh = malloc(sizeof *spec.rh), spec.x0v = calloc(3, sizeof(double)), spec.v0v = calloc(3, sizeof(double));
         *spec.rh = m;
         memcpy(spec.x0v, x0, sizeof x0), memcpy(spec.v0v, v0, sizeof v0);
         spec.solver.kind = DP_SOLVER_RIGHT_HAND, spec.solver.t_end = 3, spec.solver.dt = 0.1;
@@ -781,10 +788,294 @@ static void test_random_runs_end(void **state)
         else if (st == DP_ESOLVE && (strstr(why, "Painleve ") || strstr(why, "the rod ")))
             stopped++;
         else
-            fail_msg("run %d ended with %d: %s", it, st, why);
+            fail_msg("run %d ended with %d: %s (m %.17g %.17g %.17g x0 %.17g v0 %.17g %.17g)", it, st, why, m.m, m.length,
+                     m.mu, x0[1], v0[0], v0[1]);
         dp_run_free(r);
     }
     assert_true(done > 150 && stopped > 50);
+}
+
+/* ---- the rod off the floor: flight, landing, impact ---- */
+
+/* The test's own kinetic energy of the rod from A's velocity (xd, yd) and theta' (G = A + l (cos, sin)). */
+static double rod_T(const dp_right_hand_model *m, double th, double xd, double yd, double thd)
+{
+    double l = m->length / 2, vx = xd - l * sin(th) * thd, vy = yd + l * cos(th) * thd;
+    return 0.5 * m->m * (vx * vx + vy * vy) + 0.5 * m->m * l * l / 3 * thd * thd;
+}
+
+/* The rod's energy T + V from a row (q, qd, ..., gap = [y_A, y_A']). */
+static double row_energy(const dp_right_hand_model *m, const double *v)
+{
+    double l = m->length / 2;
+    return rod_T(m, v[1], v[2], v[12], v[3]) + m->m * m->g * (v[11] + l * sin(v[1]));
+}
+
+/* Records of a whole run (rows and events copied out), its status. */
+typedef struct recs {
+    int n, st;
+    dp_record rec[4096];
+    double val[4096][16];
+} recs;
+
+static void collect(dp_run *r, recs *out)
+{
+    dp_record buf[64];
+    size_t n;
+    out->n = 0;
+    do {
+        out->st = dp_run_next(r, buf, 64, &n);
+        for (size_t i = 0; i < n && out->n < 4096; i++) {
+            out->rec[out->n] = buf[i];
+            if (buf[i].type == DP_RECORD_ROW)
+                memcpy(out->val[out->n], buf[i].u.row.val, dp_run_columns(r)->width * sizeof(double));
+            out->n++;
+        }
+    } while (out->st == DP_MORE);
+}
+
+/* A rod thrown up from above the floor: before it lands every row is the closed form (G's parabola, theta
+ * uniform); the landing is the first zero of A's height, found here by a scan and bisection, to 1e-10, the
+ * impact's velocity before is the height's rate there, and with e = 0.5 it bounces (a lift-off follows). */
+static void test_flight_closed_form(void **state)
+{
+    (void)state;
+    dp_right_hand_model m = rod(1, 1, 0.4);
+    m.e = 0.5;
+    double x0[3] = { 0.1, 1.0, 0.2 }, v0[3] = { 0.3, 2.0, 3.0 }, l = 0.5, g = m.g;
+    double xG = x0[0] + l * cos(x0[1]), yG = x0[2] + l * sin(x0[1]);
+    double vx = v0[0] - l * sin(x0[1]) * v0[1], vy = v0[2] + l * cos(x0[1]) * v0[1], w = v0[1];
+#define HA(t) (yG + vy * (t) - 0.5 * g * (t) * (t) - l * sin(x0[1] + w * (t)))
+    double lo = 0, hi = 0;
+    for (double t = 1e-4; hi == 0; t += 1e-4) {
+        assert_true(yG + vy * t - 0.5 * g * t * t + l * sin(x0[1] + w * t) > 0); /* B stays up */
+        if (HA(t) < 0)
+            lo = t - 1e-4, hi = t;
+    }
+    for (int i = 0; i < 200; i++) {
+        double mid = 0.5 * (lo + hi);
+        if (HA(mid) > 0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double tland = lo, rate = vy - g * tland - l * w * cos(x0[1] + w * tland);
+    recs *R = malloc(sizeof *R);
+    dp_run *r = start3(&m, x0, v0, 1.2, 0.01);
+    collect(r, R);
+    dp_run_free(r);
+    int rows = 0, impact = -1;
+    for (int i = 0; i < R->n; i++) {
+        const dp_record *c = &R->rec[i];
+        if (c->type == DP_RECORD_EVENT && c->u.event.kind == DP_EVENT_IMPACT && impact < 0) {
+            impact = i;
+            if (fabs(c->u.event.t - tland) > 1e-10 || fabs(c->u.event.v - rate) > 1e-9)
+                fail_msg("landing at %.15g with rate %.15g, the closed form %.15g, %.15g", c->u.event.t, c->u.event.v,
+                         tland, rate);
+            assert_true(i + 1 < R->n && R->rec[i + 1].type == DP_RECORD_EVENT && R->rec[i + 1].u.event.kind == DP_EVENT_LIFTOFF);
+            assert_true(c->u.event.v_after > 0 && c->u.event.impulse > 0);
+        }
+        if (c->type != DP_RECORD_ROW || impact >= 0)
+            continue;
+        double t = c->u.row.t, th = x0[1] + w * t, *v = R->val[i];
+        double ref[6] = { xG + vx * t - l * cos(th), th, vx + l * sin(th) * w, w, HA(t), vy - g * t - l * cos(th) * w };
+        double got[6] = { v[0], v[1], v[2], v[3], v[11], v[12] };
+        for (int k = 0; k < 6; k++)
+            if (fabs(got[k] - ref[k]) > 1e-12 * (1 + fabs(ref[k])))
+                fail_msg("t = %g: entry %d %.17g, closed form %.17g", t, k, got[k], ref[k]);
+        assert_true(v[6] == 0 && v[7] == DP_PHASE_NONE);
+        rows++;
+    }
+#undef HA
+    assert_true(impact > 0 && rows == (int)floor(tland / 0.01) + 1);
+    free(R);
+}
+
+/* A frictionless impact: Newton's law at A with the effective mass m/(1 + 3 cos^2) (the normal's inverse
+ * Delassus entry): e = 1 keeps T to rounding, e < 1 loses (1 - e^2) m_eff vn^2 / 2 with the impulse
+ * (1 + e) m_eff |vn|; random states. */
+static void test_impact_frictionless(void **state)
+{
+    (void)state;
+    uint64_t seed = 11;
+    for (int it = 0; it < 500; it++) {
+        dp_right_hand_model m = rod(urand(&seed, 0.1, 5), urand(&seed, 0.1, 3), 0);
+        double th = urand(&seed, 0.02, M_PI - 0.02), xd = urand(&seed, -3, 3), yd = -urand(&seed, 0.01, 5);
+        double thd = urand(&seed, -5, 5), e = it % 2 ? 1 : urand(&seed, 0, 1), c = cos(th);
+        double meff = m.m / (1 + 3 * c * c), T0 = rod_T(&m, th, xd, yd, thd);
+        dp_right_hand_impact im;
+        assert_true(dp_right_hand_rod_impact(&m, th, xd, yd, thd, e, &im));
+        double T1 = rod_T(&m, th, im.vt, im.vn, im.thetad), loss = 0.5 * (1 - e * e) * meff * yd * yd;
+        if (fabs((T0 - T1) - loss) > 1e-13 * T0 || fabs(im.vn + e * yd) > 1e-12 * fabs(yd) ||
+            fabs(im.Pn - (1 + e) * meff * fabs(yd)) > 1e-12 * im.Pn || im.Pt != 0)
+            fail_msg("state %d (e = %g): T %.17g -> %.17g (loss %.17g, closed form %.17g), vn %.17g, Pn %.17g", it, e,
+                     T0, T1, T0 - T1, loss, im.vn, im.Pn);
+    }
+}
+
+/* With friction (mu up to 4, past Painlevé's 4/3) the impact never gains energy: T after <= T before, the
+ * friction impulse within its cone, the velocities after those of the impulse through the rod's own
+ * mechanics (G's momentum and the angular momentum about G), the energy change the works' sum, the
+ * restitution's work -e^2 that of compression unless the end stays down; sticking and slip that reverses
+ * both occur. */
+static void test_impact_dissipates(void **state)
+{
+    (void)state;
+    uint64_t seed = 12;
+    int sticks = 0, reverses = 0;
+    for (int it = 0; it < 3000; it++) {
+        dp_right_hand_model m = rod(urand(&seed, 0.1, 5), urand(&seed, 0.1, 3), urand(&seed, 0, 4));
+        double th = urand(&seed, 0.02, M_PI - 0.02), xd = it % 7 ? urand(&seed, -3, 3) : 0, yd = -urand(&seed, 0.01, 5);
+        double thd = urand(&seed, -5, 5), e = it % 5 ? urand(&seed, 0, 1) : 1, l = m.length / 2;
+        double T0 = rod_T(&m, th, xd, yd, thd);
+        dp_right_hand_impact im;
+        assert_true(dp_right_hand_rod_impact(&m, th, xd, yd, thd, e, &im));
+        double T1 = rod_T(&m, th, im.vt, im.vn, im.thetad);
+        /* G's velocity jumps by P/m, theta' by (r_A x P)/I with r_A = -l (cos, sin) */
+        double dw = (l * sin(th) * im.Pt - l * cos(th) * im.Pn) / (m.m * l * l / 3);
+        double vt = xd + im.Pt / m.m + dw * l * sin(th), vn = yd + im.Pn / m.m - dw * l * cos(th);
+        double sc = fabs(xd) + fabs(yd) + l * fabs(thd) + 1e-300;
+        if (!(T1 <= T0 * (1 + 1e-13)) || im.vn < 0 || fabs(im.Pt) > m.mu * im.Pn * (1 + 1e-12) + 1e-15 * im.Pn ||
+            fabs(im.thetad - thd - dw) > 1e-12 * (fabs(thd) + fabs(dw)) || fabs(vt - im.vt) > 1e-11 * sc ||
+            fabs(vn - im.vn) > 1e-11 * sc || fabs((T1 - T0) - (im.work_c + im.work_r + im.work_t)) > 1e-11 * T0)
+            fail_msg("state %d (mu %g, e %g, th %g): T %.17g -> %.17g, works %g %g %g, P (%g, %g), v (%g, %g) vs (%g, %g)",
+                     it, m.mu, e, th, T0, T1, im.work_c, im.work_r, im.work_t, im.Pt, im.Pn, im.vt, im.vn, vt, vn);
+        if (im.vn > 0 && fabs(im.work_r + e * e * im.work_c) > 1e-11 * T0)
+            fail_msg("state %d: restitution's work %.17g, -e^2 W_c %.17g", it, im.work_r, -e * e * im.work_c);
+        sticks += im.stick && xd != 0;
+        reverses += xd * im.vt < 0;
+    }
+    assert_true(sticks > 100 && reverses > 20);
+}
+
+/* A rod dropped on a frictionless floor (e = 0.6) bounces, the bounces accumulate and it slides until it lies
+ * flat: between two rows its energy T + V changes by the sum of the impacts' T changes in between, each
+ * (Pn/2)(du + du_after) from its event (no friction impulse), to 1e-9; the rows in flight or sliding keep it. */
+static void test_dropped_rod_frictionless(void **state)
+{
+    (void)state;
+    dp_right_hand_model m = rod(2, 1, 0);
+    m.e = 0.6;
+    double x0[3] = { 0, 1.0, 0.3 }, v0[3] = { 0, 1.5, 0 };
+    recs *R = malloc(sizeof *R);
+    dp_run *r = start3(&m, x0, v0, 1.5, 0.01);
+    collect(r, R);
+    if (R->st != DP_ESOLVE || strstr(dp_run_error(r), "lies flat") == NULL)
+        fail_msg("ended with %d: %s", R->st, dp_run_error(r));
+    dp_run_free(r);
+    double E = NAN, lost = 0, total = 0, E0 = NAN;
+    int impacts = 0, sliding = 0;
+    for (int i = 0; i < R->n; i++) {
+        const dp_record *c = &R->rec[i];
+        if (c->type == DP_RECORD_EVENT && c->u.event.kind == DP_EVENT_IMPACT) {
+            lost += 0.5 * c->u.event.impulse * (c->u.event.v + c->u.event.v_after);
+            impacts++;
+        }
+        if (c->type != DP_RECORD_ROW)
+            continue;
+        double e1 = row_energy(&m, R->val[i]);
+        if (isnan(E0))
+            E0 = e1;
+        else if (fabs(e1 - E - lost) > 1e-9 * E0)
+            fail_msg("t = %g: energy %.15g, before %.15g and the impacts' %.15g", c->u.row.t, e1, E, lost);
+        total += lost, lost = 0, E = e1;
+        sliding += R->val[i][11] == 0 && R->val[i][6] > 0;
+    }
+    assert_true(impacts >= 5 && sliding >= 3 && total < -0.1 * E0);
+    free(R);
+}
+
+/* The same rod on a rough floor (mu = 0.3, e = 0.5): it bounces, comes down to stick or slide (an event right
+ * after its last impact), the energy never grows from row to row, and is kept between rows in flight with no
+ * event between them. */
+static void test_dropped_rod_rough(void **state)
+{
+    (void)state;
+    dp_right_hand_model m = rod(1, 1, 0.3);
+    m.e = 0.5;
+    double x0[3] = { 0, 1.2, 0.5 }, v0[3] = { 0.5, 1, 0 };
+    recs *R = malloc(sizeof *R);
+    dp_run *r = start3(&m, x0, v0, 1.4, 0.01);
+    collect(r, R);
+    assert_int_equal(R->st, DP_DONE);
+    dp_run_free(r);
+    double E = INFINITY, E0 = NAN;
+    int impacts = 0, last = -1, events_since = 0, flying = 0, kept = 0;
+    for (int i = 0; i < R->n; i++) {
+        const dp_record *c = &R->rec[i];
+        if (c->type == DP_RECORD_EVENT) {
+            events_since++;
+            if (c->u.event.kind == DP_EVENT_IMPACT)
+                impacts++, last = i;
+            continue;
+        }
+        double e1 = row_energy(&m, R->val[i]);
+        if (isnan(E0))
+            E0 = e1;
+        if (e1 > E + 1e-10 * E0)
+            fail_msg("t = %g: the energy grows from %.15g to %.15g", c->u.row.t, E, e1);
+        int fl = R->val[i][7] == DP_PHASE_NONE;
+        if (fl && flying && events_since == 0) {
+            if (fabs(e1 - E) > 1e-10 * E0)
+                fail_msg("t = %g: in flight the energy moves from %.15g to %.15g", c->u.row.t, E, e1);
+            kept++;
+        }
+        E = e1, flying = fl, events_since = 0;
+    }
+    if (!(impacts >= 5 && kept >= 20 && last > 0 && E < 0.6 * E0))
+        fail_msg("%d impacts, %d kept, last %d, E %g of %g", impacts, kept, last, E, E0);
+    const dp_event *after = &R->rec[last + 1].u.event;
+    assert_true(R->rec[last + 1].type == DP_RECORD_EVENT && (after->kind == DP_EVENT_STICK || after->kind == DP_EVENT_SLIP));
+    free(R);
+}
+
+/* Hostile magnitudes (masses, lengths, g, heights and rates from 1e-300 to 1e300, restitution and mu over
+ * their ranges): each rod is refused by the rules or its run ends - done, a record, or the step limit - with
+ * every row finite. */
+static void test_rod_hostile(void **state)
+{
+    (void)state;
+    uint64_t seed = 13;
+    int ran = 0;
+    for (int it = 0; it < 300; it++) {
+        double dec[6];
+        for (int k = 0; k < 6; k++)
+            dec[k] = pow(10, urand(&seed, -300, 300) * (it % 3 == 0 ? 1 : 0.05));
+        dp_right_hand_model m = rod(dec[0], dec[1], urand(&seed, 0, 5));
+        m.e = urand(&seed, 0, 1), m.g = it % 2 ? dec[2] : 9.81;
+        double x0[3] = { 0, urand(&seed, 1e-9, M_PI - 1e-9), it % 4 ? dec[3] : 0 };
+        double v0[3] = { urand(&seed, -1, 1) * dec[4], urand(&seed, -1, 1) * dec[5], urand(&seed, -1, 1) * dec[3] };
+        dp_spec spec;
+        dp_spec_init(&spec);
+        spec.rh = malloc(sizeof *spec.rh), spec.x0v = malloc(3 * sizeof(double)), spec.v0v = malloc(3 * sizeof(double));
+        *spec.rh = m;
+        memcpy(spec.x0v, x0, sizeof x0), memcpy(spec.v0v, v0, sizeof v0);
+        spec.solver.kind = DP_SOLVER_RIGHT_HAND, spec.solver.t_end = 1, spec.solver.dt = 0.1;
+        spec.solver.rtol = 1e-10, spec.solver.atol = 1e-12;
+        dp_errors errs;
+        dp_errors_init(&errs);
+        int st;
+        dp_run *r = dp_run_alloc(&spec, 2e4, &errs, &st);
+        dp_spec_clear(&spec);
+        if (r == NULL) {
+            assert_true(errs.n > 0);
+            continue;
+        }
+        ran++;
+        dp_record buf[64];
+        size_t n;
+        do {
+            st = dp_run_next(r, buf, 64, &n);
+            for (size_t i = 0; i < n; i++)
+                for (size_t j = 0; buf[i].type == DP_RECORD_ROW && j < dp_run_columns(r)->width; j++)
+                    if (!isfinite(buf[i].u.row.val[j]))
+                        fail_msg("run %d: a row holds %g", it, buf[i].u.row.val[j]);
+        } while (st == DP_MORE);
+        if (st != DP_DONE && st != DP_ESOLVE && st != DP_ELIMIT)
+            fail_msg("run %d ended with %d: %s", it, st, dp_run_error(r));
+        dp_run_free(r);
+    }
+    assert_true(ran > 50);
 }
 
 int main(void)
@@ -803,6 +1094,12 @@ int main(void)
         cmocka_unit_test(test_contraction_where_23_holds),
         cmocka_unit_test(test_indeterminacy_mid_run),
         cmocka_unit_test(test_random_runs_end),
+        cmocka_unit_test(test_flight_closed_form),
+        cmocka_unit_test(test_impact_frictionless),
+        cmocka_unit_test(test_impact_dissipates),
+        cmocka_unit_test(test_dropped_rod_frictionless),
+        cmocka_unit_test(test_dropped_rod_rough),
+        cmocka_unit_test(test_rod_hostile),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

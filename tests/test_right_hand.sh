@@ -3,7 +3,7 @@
 # over HTTP and the CLI: the piston-hinge run in NDJSON and CSV (meta with the conditions and theorems, rows
 # with q, qd, qdd, N, mode, margin of the right lengths, no NaN, events naming their coordinate, the normal
 # force N1 recomputed here from the row by Newton's law), Painlevé's paradox at the start as a 422 problem
-# with its record, /v1/wellposedness for the rod, and every kind of bad input refused with 422 at its JSON
+# with its record, a rod dropped on the floor bouncing and coming down, /v1/wellposedness for the rod, and every kind of bad input refused with 422 at its JSON
 # Pointer (and by the CLI with exit 2). The JSON checks are python3, not the program's own parser.
 source "$(dirname "$0")/lib/daemon.bash"
 source "$(dirname "$0")/lib/post.bash"
@@ -89,6 +89,32 @@ assert any(c["hypothesis"].startswith("(2.3) for every state") and c["holds"] fo
 "$CLI" wellposedness "$SCRATCH/request" >"$SCRATCH/wp.json"
 check "rod wellposedness: CLI answers the same" cmp -s "$SCRATCH/wp.json" "$BODY"
 
+# A rod dropped from 0.5 above a rough floor (restitution 0.5): it bounces (impact, then lift-off), comes down
+# to stick or slide; the rows carry the end's height (gap) and the meta line the restitution. The impact's
+# rates are the end's height's before and after (0 height), and a bounce's lift-off carries the rebound.
+DROP='{"model": {"kind": "painleve-rod", "m": 1, "length": 1, "mu": 0.3, "restitution": 0.5},
+ "initial": {"x": [0, 1.2, 0.5], "v": [0.5, 1, 0]}, "solver": {"t_end": 1.2, "dt": 0.01}}'
+req "$U" application/x-ndjson "$DROP"
+check "dropped rod: bounces, then stick or slip" py "$BODY" '
+lines = [loads(l) for l in text.splitlines()]
+meta, rows = lines[0], [l for l in lines if l["type"] == "sample"]
+events = [l for l in lines if l["type"] == "event"]
+assert meta["parameters"]["restitution"] == 0.5 and meta["columns"]["gap"] == ["y_A", "yd_A"], meta
+assert lines[-1]["type"] == "summary" and len(rows) == 121, lines[-1]
+imp = [i for i, e in enumerate(events) if e["kind"] == "impact"]
+assert len(imp) >= 5, events
+for i in imp:
+    e, nxt = events[i], events[i + 1]
+    assert e["u"] == 0 and e["du"] < 0 <= e["du_after"] and e["impulse"] > 0, e
+    assert nxt["t"] == e["t"] and nxt["kind"] in ("liftoff", "stick", "slip"), (e, nxt)
+    assert nxt["kind"] != "liftoff" or nxt["du"] == e["du_after"] > 0, (e, nxt)
+assert events[imp[-1] + 1]["kind"] in ("stick", "slip"), events[imp[-1]:]
+for r in rows:
+    assert len(r["gap"]) == 2 and r["gap"][0] >= 0, r
+    assert (r["mode"][0] is None) == (r["gap"] != [0, 0]) and (r["N"][0] == 0) == (r["mode"][0] is None), r
+assert rows[0]["gap"] == [0.5, 0] and rows[-1]["gap"] == [0, 0] and rows[-1]["mode"][0] in ("stick", "slip"), rows[-1]
+'
+
 # bad DESCRIPTION POINTER DOC PATCH: DOC with the python statement applied to d is refused at POINTER.
 bad() {
     local doc
@@ -123,6 +149,11 @@ bad "negative rod length" /model/length "$ROD" 'd["model"]["length"] = -1'
 bad "negative rod mass" /model/m "$ROD" 'd["model"]["m"] = -1'
 bad "negative mu" /model/mu "$ROD" 'd["model"]["mu"] = -0.5'
 bad "rod below the floor" /initial/x/1 "$ROD" 'd["initial"]["x"] = [0, -0.1]'
+bad "restitution above 1" /model/restitution "$ROD" 'd["model"]["restitution"] = 1.5'
+bad "negative restitution" /model/restitution "$ROD" 'd["model"]["restitution"] = -0.1'
+bad "rod end under the floor" /initial/x/2 "$ROD" 'd["initial"]["x"] = [0, 1.1, -0.2]'
+bad "rod initial v of 4" /initial/v "$ROD" 'd["initial"]["v"] = [0, 1, 2, 3]'
+bad "piston initial x of 3" /initial/x "$PISTON" 'd["initial"]["x"] = [0, 0.8, 1]'
 
 stop_daemon rh
 check "SIGTERM: exit 0" is "$RC_rh" 0

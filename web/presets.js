@@ -250,6 +250,19 @@ PRESETS.push({
   },
 });
 PRESETS.push({
+  id: 'painleve-rod-drop', group: RH, label: 'Painlev\u00e9\u2019s rod dropped on a rough floor (\u03bc = 0.3, e = 0.5)',
+  kind: 'simulate',
+  note: 'The same rod held with its end 0.5 above the floor, let go moving and turning: it lands and bounces ' +
+    '(Stronge\u2019s energetic restitution with friction), the bounces accumulate, it comes down sticking and ' +
+    'slides until it lies flat (shaded after). The rows\u2019 gap is the end\u2019s height.',
+  spec: {
+    model: { kind: 'painleve-rod', m: 1, length: 1, mu: 0.3, restitution: 0.5 },
+    initial: { x: [0, 1.2, 0.5], v: [0.5, 1, 0] },
+    solver: { kind: 'right-hand', t_end: 1.6, dt: 0.002 },
+    output: { every: 1 },
+  },
+});
+PRESETS.push({
   id: 'painleve-indeterminacy', group: RH, label: 'A run that meets Painlev\u00e9\u2019s indeterminacy', kind: 'simulate',
   note: 'Both coordinates sliding with f1 = 5.2: at t = 0.0853 a second acceleration appears from infinity and the ' +
     'friction law no longer decides the motion. The run stops there with both candidates (shaded after).',

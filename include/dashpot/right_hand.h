@@ -24,6 +24,7 @@ typedef struct dp_right_hand_model {
     dp_right_hand_kind kind;
     double m1, m2, J_C, r, alpha, f1, f2;
     double m, length, mu;
+    double e;         /* the rod's restitution at an impact: Stronge's energetic coefficient, in [0, 1] */
     double g;
 } dp_right_hand_model;
 
@@ -89,6 +90,55 @@ void dp_right_hand_conditions_at(const dp_right_hand_model *m, const double q[2]
 struct dp_wp_report;
 /* The theorems of Matrosov & Finogenko 1995 (3.1, 4.1/4.2, 5.1) and their hypotheses at the initial state (q, qd). */
 void dp_right_hand_wellposedness(const dp_right_hand_model *m, const double q[2], const double qd[2], struct dp_wp_report *rep);
+
+/* The rod off the floor and back (src/core/right_hand/rod_flight.c). Its state in the plane: the end A at
+ * (x, y) (y its height above the floor, 0 in contact), theta the angle from A to the other end B, and their
+ * rates; the centre G = A + l (cos theta, sin theta), l = length/2, the moment of inertia m l^2/3 about G. */
+typedef struct dp_right_hand_rod_state {
+    double x, y, theta, xd, yd, thetad;
+} dp_right_hand_rod_state;
+
+/* A free flight from t0: G's parabola from (xG, yG) with (vx, vy), the rod turning uniformly at omega. */
+typedef struct dp_right_hand_flight {
+    double t0, xG, yG, vx, vy, theta, omega;
+} dp_right_hand_flight;
+
+void dp_right_hand_flight_start(const dp_right_hand_model *m, double t0, const dp_right_hand_rod_state *s,
+                                dp_right_hand_flight *f);
+/* The state at t (closed form); xdd receives x'' (the end A's horizontal acceleration). */
+void dp_right_hand_flight_at(const dp_right_hand_model *m, const dp_right_hand_flight *f, double t,
+                             dp_right_hand_rod_state *s, double *xdd);
+
+enum { DP_FLIGHT_ON = 0, DP_FLIGHT_LANDS = 1, DP_FLIGHT_BUDGET = -1, DP_FLIGHT_OVERFLOW = -2 };
+
+/* The first time after *t, and not after t_max, at which an end of the rod reaches the floor: *t moves only
+ * by advances under which no end can reach it (a lower bound of the end's height by its Taylor polynomial,
+ * the third derivative bounded by l |omega|^3), so no landing is stepped over. Returns DP_FLIGHT_LANDS with
+ * *t the landing and *end 0 for A, 1 for B; DP_FLIGHT_ON with *t = t_max; DP_FLIGHT_BUDGET after `budget`
+ * advances (*t safe, to resume from); DP_FLIGHT_OVERFLOW when the motion leaves double precision. *used
+ * counts the advances. */
+int dp_right_hand_flight_landing(const dp_right_hand_model *m, const dp_right_hand_flight *f, double *t, double t_max,
+                                 unsigned long budget, unsigned long *used, int *end);
+
+/* One impact of the end A on the floor (Stronge's energetic restitution with Coulomb friction, the impulse
+ * integrated along the normal impulse after Routh: right_hand/rod_flight.c, docs/right-hand.md). */
+typedef struct dp_right_hand_impact {
+    double vt0, vn0;        /* A's velocity before: along the floor and up */
+    double vt, vn;          /* after */
+    double thetad;          /* theta' after */
+    double Pt, Pn;          /* the impulse of the floor on A */
+    double work_c, work_r;  /* the normal impulse's work in compression (<= 0) and in restitution (>= 0) */
+    double work_t;          /* the friction impulse's work (<= 0) */
+    int stick;              /* A sticks at the end of the impulse (vt = 0 exactly) */
+} dp_right_hand_impact;
+
+/* The impact of the rod at theta with A's velocity (xd, yd), yd < 0, and rate thetad, restitution e;
+ * 0 when the impulse does not end (not for a rod: its Delassus matrix is positive definite). */
+int dp_right_hand_rod_impact(const dp_right_hand_model *m, double theta, double xd, double yd, double thetad, double e,
+                             dp_right_hand_impact *out);
+
+/* The rod's kinetic energy in the state s. */
+double dp_right_hand_rod_kinetic(const dp_right_hand_model *m, const dp_right_hand_rod_state *s);
 
 /* "piston-hinge" or "painleve-rod". */
 const char *dp_right_hand_kind_name(dp_right_hand_kind k);

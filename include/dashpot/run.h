@@ -27,12 +27,14 @@ typedef struct dp_sample {
 } dp_sample;
 
 typedef enum dp_event_kind {
-    DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2, DP_EVENT_YIELD = 3, DP_EVENT_UNLOAD = 4, DP_EVENT_IMPACT = 5
+    DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2, DP_EVENT_YIELD = 3, DP_EVENT_UNLOAD = 4, DP_EVENT_IMPACT = 5,
+    DP_EVENT_LIFTOFF = 6
 } dp_event_kind;
 
 /* A phase change: DP_EVENT_STICK is slip -> stick, DP_EVENT_SLIP is stick -> slip; an elastoplastic
  * spring's DP_EVENT_YIELD (its slider starts sliding) and DP_EVENT_UNLOAD (it stops: elastic again); a
- * contact's DP_EVENT_IMPACT (v the rate before, v_after after, impulse >= 0 pushing the ends apart). */
+ * contact's DP_EVENT_IMPACT (v the rate before, v_after after, impulse >= 0 pushing the ends apart); Painlevé's
+ * rod leaving the floor, DP_EVENT_LIFTOFF (x, v: the end's height and upward rate, docs/right-hand.md). */
 typedef struct dp_event {
     dp_event_kind kind;
     double t, x, v;

@@ -77,7 +77,8 @@ typedef struct dp_spec {
     dp_solver_spec solver;
     dp_output_spec output;
     dp_network *net;      /* a network document ("masses" or "mass_matrix"); NULL for the one-mass model */
-    double *x0v, *v0v;    /* networks: the initial state, net->n each; right-hand models: 2 each */
+    double *x0v, *v0v;    /* networks: the initial state, net->n each; right-hand models: 2 each,
+                                 * Painlevé's rod 3: its end's height and rate after q */
     struct dp_lcs_model *lcs; /* a linear complementarity system (lcs.h); NULL otherwise */
     unsigned chosen;      /* DP_CHOSEN_* bits: the members dashpot chose because the document left them out */
     struct dp_right_hand_model *rh; /* a right-hand friction model (right_hand.h); NULL otherwise */

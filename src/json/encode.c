@@ -119,7 +119,7 @@ static char *put_event_members(char *p, const dp_event *ev, int network)
 {
     p = ev->kind == DP_EVENT_STICK ? PUT(p, "\"kind\":\"stick\"") : ev->kind == DP_EVENT_SLIP ? PUT(p, "\"kind\":\"slip\"")
       : ev->kind == DP_EVENT_YIELD ? PUT(p, "\"kind\":\"yield\"") : ev->kind == DP_EVENT_IMPACT ? PUT(p, "\"kind\":\"impact\"")
-      : PUT(p, "\"kind\":\"unload\"");
+      : ev->kind == DP_EVENT_LIFTOFF ? PUT(p, "\"kind\":\"liftoff\"") : PUT(p, "\"kind\":\"unload\"");
     if (network) {   /* the element, when, and its elongation u and rate du at that instant */
         char num[24];
         int len = snprintf(num, sizeof num, "%zu", ev->element);

@@ -1,6 +1,7 @@
 /* src/json/right_hand_json.c - the right-hand friction models (docs/systems.md §6) for dp_spec_parse:
  * {"kind": "piston-hinge", "m1", "m2", "J_C", "r", "alpha", "f1", "f2", "g"} and {"kind": "painleve-rod",
- * "m", "length", "mu", "g"}, with "initial": {"x": [q0, q1], "v": [q0', q1']}.
+ * "m", "length", "mu", "restitution", "g"}, with "initial": {"x": [q0, q1], "v": [q0', q1']} (the rod may add
+ * its end's height and upward rate as a third entry: a rod that starts in the air).
  *
  * Its own file for what only these models have; it reads with the walker (walk.h) so that a bad field gets
  * the same message and pointer as anywhere else. The cross-field rules are in
@@ -12,6 +13,7 @@
 #include "spec_parts.h"
 
 static const range ALPHA = { 0, M_PI / 2, 0, " in [0, pi/2] (radians)" };
+static const range RESTITUTION = { 0, 1, 0, " in [0, 1]" };
 
 /* A model with a "kind" is one of these (the one-mass model and networks have none). */
 int js_is_right_hand(const cJSON *o)
@@ -22,14 +24,14 @@ int js_is_right_hand(const cJSON *o)
 void js_parse_right_hand(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 {
     static const char *const piston[] = { "kind", "m1", "m2", "J_C", "r", "alpha", "f1", "f2", "g", NULL };
-    static const char *const rod[] = { "kind", "m", "length", "mu", "g", NULL };
+    static const char *const rod[] = { "kind", "m", "length", "mu", "restitution", "g", NULL };
     static const char *const kinds[] = { "piston-hinge", "painleve-rod", NULL };
     int kind = jw_get_enum(c, o, ptr, "kind", kinds, -1);
     if (kind < 0)
         return;
     dp_right_hand_model *m = calloc(1, sizeof *m);
-    s->x0v = calloc(2, sizeof *s->x0v);
-    s->v0v = calloc(2, sizeof *s->v0v);
+    s->x0v = calloc(3, sizeof *s->x0v);   /* the rod's third entry: its end's height and rate, 0 if not given */
+    s->v0v = calloc(3, sizeof *s->v0v);
     if (m == NULL || s->x0v == NULL || s->v0v == NULL) {
         free(m);
         c->nomem = 1;
@@ -45,6 +47,7 @@ void js_parse_right_hand(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
         jw_get_num(c, o, ptr, "m", &POSITIVE, 1, 0, &m->m);
         jw_get_num(c, o, ptr, "length", &POSITIVE, 1, 0, &m->length);
         jw_get_num(c, o, ptr, "mu", &NONNEG, 1, 0, &m->mu);
+        jw_get_num(c, o, ptr, "restitution", &RESTITUTION, 0, 0, &m->e);
     } else {
         m->kind = DP_RIGHT_HAND_PISTON_HINGE;
         jw_check_keys(c, o, ptr, piston, "kind", "piston-hinge");
@@ -59,14 +62,16 @@ void js_parse_right_hand(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
     jw_get_num(c, o, ptr, "g", &POSITIVE, 0, 0, &m->g);
 }
 
-/* Two finite numbers [q0, q1] into out. */
-static void parse_pair_of(ctx *c, const cJSON *v, const at *p, const char *names, double *out)
+/* Two finite numbers [q0, q1] into out (or three, when `three` allows: the rod's end off the floor). */
+static void parse_pair_of(ctx *c, const cJSON *v, const at *p, const char *names, int three, double *out)
 {
-    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != 2) {
-        if (cJSON_IsArray(v))
-            jw_fail(c, p, "must be an array of 2 numbers %s, got %d", names, cJSON_GetArraySize(v));
+    int n = cJSON_IsArray(v) ? cJSON_GetArraySize(v) : -1;
+    if (n != 2 && !(three && n == 3)) {
+        const char *count = three ? "2 or 3" : "2";
+        if (n >= 0)
+            jw_fail(c, p, "must be an array of %s numbers %s, got %d", count, names, n);
         else
-            jw_fail(c, p, "must be an array of 2 numbers %s, got %s", names, jb_type_name(v));
+            jw_fail(c, p, "must be an array of %s numbers %s, got %s", count, names, jb_type_name(v));
         return;
     }
     size_t i = 0;
@@ -88,9 +93,9 @@ void js_parse_right_hand_initial(ctx *c, const cJSON *o, const at *ptr, dp_spec 
     int rod = s->rh->kind == DP_RIGHT_HAND_ROD;
     const cJSON *v = jw_member(c, o, ptr, "x", NULL, &p);
     if (v != NULL)
-        parse_pair_of(c, v, &p, rod ? "[x_A, theta]" : "[x, beta]", s->x0v);
+        parse_pair_of(c, v, &p, rod ? "[x_A, theta] or [x_A, theta, y_A]" : "[x, beta]", rod, s->x0v);
     if ((v = jw_member(c, o, ptr, "v", NULL, &p)) != NULL)
-        parse_pair_of(c, v, &p, rod ? "[x_A', theta']" : "[x', beta']", s->v0v);
+        parse_pair_of(c, v, &p, rod ? "[x_A', theta'] or [x_A', theta', y_A']" : "[x', beta']", rod, s->v0v);
 }
 
 /* /v1/wellposedness for these models: parsed as strictly as a run's, then the theorems of Matrosov &

@@ -29,7 +29,8 @@ static int parameters(const dp_right_hand_model *m, dp_buf *out)
     char t[40];
     st |= dp_buf_append(out, t, dp_format_double(t, m->g));
     if (m->kind == DP_RIGHT_HAND_ROD)
-        return st | num(out, "m", m->m) | num(out, "length", m->length) | num(out, "mu", m->mu) | lit(out, "}");
+        return st | num(out, "m", m->m) | num(out, "length", m->length) | num(out, "mu", m->mu) |
+               num(out, "restitution", m->e) | lit(out, "}");
     st |= num(out, "m1", m->m1) | num(out, "m2", m->m2) | num(out, "J_C", m->J_C) | num(out, "r", m->r);
     return st | num(out, "alpha", m->alpha) | num(out, "f1", m->f1) | num(out, "f2", m->f2) | lit(out, "}");
 }
@@ -60,7 +61,8 @@ int dp_right_hand_meta_json(const dp_spec *s, dp_buf *out)
     st |= num(out, "dt", sv->dt) | num(out, "t_end", sv->t_end) | num(out, "steps", dp_spec_steps(s));
     st |= num(out, "every", (double)s->output.every) | dp_chosen_json(s, out);
     st |= parameters(m, out);
-    st |= lit(out, rod ? ",\"columns\":{\"q\":[\"x_A\",\"theta\"],\"N\":[\"N\"],\"margin\":[\"1.2\",\"2.3\"]}"
+    st |= lit(out, rod ? ",\"columns\":{\"q\":[\"x_A\",\"theta\"],\"N\":[\"N\"],\"margin\":[\"1.2\",\"2.3\"],"
+                         "\"gap\":[\"y_A\",\"yd_A\"]}"
                        : ",\"columns\":{\"q\":[\"x\",\"beta\"],\"N\":[\"N1\",\"N2\"],"
                          "\"margin\":[\"1.2\",\"2.3\",\"6.2\",\"6.4\"]}");
     st |= conditions(s, out);

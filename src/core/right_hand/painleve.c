@@ -98,6 +98,8 @@ int dp_right_hand_model_valid(const dp_right_hand_model *m, const char **key, co
             return bad(key, why, "length", "must be a finite number > 0");
         if (!(m->mu >= 0 && isfinite(m->mu)))
             return bad(key, why, "mu", "must be a finite number >= 0");
+        if (!(m->e >= 0 && m->e <= 1))
+            return bad(key, why, "restitution", "must be in [0, 1] (Stronge's energetic coefficient: 0 plastic, 1 elastic)");
         return 1;
     }
     if (!(m->m1 > 0 && isfinite(m->m1)))

@@ -31,7 +31,7 @@ static size_t members(const dp_spec *s, member *out)
         out[n++] = (member){ "/model/f1", m->f1 }, out[n++] = (member){ "/model/f2", m->f2 };
     }
     out[n++] = (member){ "/model/g", m->g };
-    for (int i = 0; i < 2; i++) {
+    for (int i = 0; i < (m->kind == DP_RIGHT_HAND_ROD ? 3 : 2); i++) {
         out[n] = (member){ "", s->x0v[i] }, snprintf(out[n].ptr, sizeof out[n].ptr, "/initial/x/%d", i), n++;
         out[n] = (member){ "", s->v0v[i] }, snprintf(out[n].ptr, sizeof out[n].ptr, "/initial/v/%d", i), n++;
     }
@@ -56,6 +56,8 @@ static void check_finite(const dp_spec *s, dp_errors *e)
         }
     for (int k = 0; k < 2; k++)
         big = fmax(big, fabs(s->x0v[k]) + T * fabs(s->v0v[k]));
+    if (s->rh->kind == DP_RIGHT_HAND_ROD)   /* a flight's reach: its height, rate and fall */
+        big = fmax(big, fabs(s->x0v[2]) + T * fabs(s->v0v[2]) + T * T * s->rh->g);
     dp_right_hand_frame fr;   /* the equations themselves, which a paradox with no candidate also reads */
     dp_right_hand_frame_at(s->rh, s->x0v, s->v0v, &fr);
     for (int i = 0; i < 2; i++)
@@ -103,8 +105,13 @@ void dp_right_hand_check(const dp_spec *s, dp_errors *e)
     if (!(s->solver.rtol > 0 && s->solver.rtol < 1))
         dp_errors_add(e, "/solver/rtol", "must be in (0, 1), got %g", s->solver.rtol);
     if (s->rh->kind == DP_RIGHT_HAND_ROD && s->x0v && !(s->x0v[1] > 0 && s->x0v[1] < M_PI))
-        dp_errors_add(e, "/initial/x/1", "the rod's angle to the floor must be in (0, pi) with its end A on "
-                      "the floor and the rod above it, got %g", s->x0v[1]);
+        dp_errors_add(e, "/initial/x/1", "the rod's angle to the floor must be in (0, pi) with its end A "
+                      "lowest and the rod above it, got %g", s->x0v[1]);
+    if (s->rh->kind == DP_RIGHT_HAND_ROD && s->x0v && !(s->x0v[2] >= 0 && isfinite(s->x0v[2])))
+        dp_errors_add(e, "/initial/x/2", "the height of the rod's end A above the floor must be a finite number "
+                      ">= 0, got %g", s->x0v[2]);
+    if (s->rh->kind == DP_RIGHT_HAND_ROD && s->v0v && !isfinite(s->v0v[2]))
+        dp_errors_add(e, "/initial/v/2", "must be a finite number, got %g", s->v0v[2]);
     if (e->n + e->dropped == before && s->x0v && s->v0v)
         check_finite(s, e);
 }

@@ -45,7 +45,8 @@ int dp_spec_is_network(const dp_spec *s) { return s->net != NULL; }
 int dp_spec_is_lcs(const dp_spec *s) { return s->lcs != NULL; }
 int dp_spec_is_right_hand_model(const dp_spec *s) { return s->rh != NULL; }
 size_t dp_spec_network_nodes(const dp_spec *s) { return s->net->n; }
-size_t dp_spec_right_hand_coordinates(const dp_spec *s) { (void)s; return 2; }
+/* q and q' (the rod adds its end's height and upward rate: 0 and 0 on the floor) */
+size_t dp_spec_right_hand_coordinates(const dp_spec *s) { return s->rh->kind == DP_RIGHT_HAND_ROD ? 3 : 2; }
 
 dp_family dp_spec_family(const dp_spec *s)
 {

@@ -9,6 +9,11 @@
  * At the event the full enumeration (dp_right_hand_solve) picks the next mode: accelerations may jump there. When
  * it finds no solution or several, the run stops with the time, state and candidates in its error:
  * Painlevé's inconsistency or indeterminacy, never guessed.
+ *
+ * The rod leaves the floor when the enumeration's only motion is the free flight (lift-off): it flies in
+ * closed form (right_hand/rod_flight.c) until an end lands, located by safe advances on the end's height;
+ * the impact there (Stronge's energetic restitution with Coulomb friction) ends in a bounce (flight again)
+ * or with the end on the floor, where the enumeration picks stick, slip or lift-off as at any event.
  */
 #include <math.h>
 #include <stdio.h>
@@ -39,10 +44,20 @@
 /* Integrator steps one dp_run_next call may take before it hands control back (as the other solvers do, so
  * that a front end's deadline and cancellation are checked between calls): the segment resumes next call. */
 #define CALL_STEPS 100000
+/* A rebound whose accumulation of further bounces (2 v/(a (1 - e)) for the end's fall acceleration a, exact for
+ * a point under constant a) would end within this fraction of dt, or whose height v^2/(2a) is below this
+ * fraction of the rod's length (the heights' rounding is ~1e-16 of it: a landing there is located by
+ * rounding noise), is made plastic: the bounces left are below what location resolves (Zeno), as for the
+ * contacts of a network (docs/contact.md). */
+#define ZENO_REL 1e-9
+#define HOP_REL 1e-12
 
 struct dp_right_hand_run {
     dp_right_hand_model m;
     double t, y[4];                 /* q0, q1, q0', q1' */
+    double ya[2];                   /* the rod: the end A's height and its rate (0, 0 on the floor) */
+    int flight;                     /* the rod is off the floor, moving as fl says */
+    dp_right_hand_flight fl;
     dp_right_hand_mode mode[2];
     dp_right_hand_sol sol;                  /* the mode's solution at (t, y): the right-hand derivative */
     gsl_odeiv2_system sys;
@@ -184,6 +199,8 @@ static void fill_row(const struct dp_right_hand_run *rr, double *row)
     row[i++] = c.c12, row[i++] = c.c23;
     if (rr->m.kind == DP_RIGHT_HAND_PISTON_HINGE)
         row[i++] = c.c62, row[i++] = c.c64;
+    else
+        row[i++] = rr->ya[0], row[i++] = rr->ya[1];
 }
 
 static int all_finite(const double *v, size_t n)
@@ -257,6 +274,53 @@ static void paradox(struct dp_right_hand_run *rr, const dp_right_hand_result *re
     rr->fail = 1;
 }
 
+/* The rod's planar state from the run's: q, q' on the floor's coordinates, the end A's height apart. */
+static dp_right_hand_rod_state rod_state(const struct dp_right_hand_run *rr)
+{
+    return (dp_right_hand_rod_state){ .x = rr->y[0], .y = rr->ya[0], .theta = rr->y[1], .xd = rr->y[2], .yd = rr->ya[1],
+                                      .thetad = rr->y[3] };
+}
+
+static void set_rod_state(struct dp_right_hand_run *rr, const dp_right_hand_rod_state *s)
+{
+    rr->y[0] = s->x, rr->y[1] = s->theta, rr->y[2] = s->xd, rr->y[3] = s->thetad;
+    rr->ya[0] = s->y, rr->ya[1] = s->yd;
+}
+
+/* In flight a row's accelerations are the free rod's (theta'' = 0), its reaction 0, no mode. */
+static void flight_sol(struct dp_right_hand_run *rr, double xdd)
+{
+    rr->sol = (dp_right_hand_sol){ .qdd = { xdd, 0 }, .mode = { DP_RIGHT_HAND_FREE, DP_RIGHT_HAND_FREE }, .liftoff = 1 };
+    rr->mode[0] = rr->mode[1] = DP_RIGHT_HAND_FREE;
+}
+
+/* One event into the stream (counted whether written or not); 0 out of memory. */
+static int event(dp_run *r, dp_event ev)
+{
+    struct dp_right_hand_run *rr = r->state;
+    r->sum.events++;
+    dp_record rec = { .type = DP_RECORD_EVENT, .u.event = ev };
+    if (r->spec.output.events && dp_row_queue_push(&rr->queue, &rec, NULL) != DP_OK)
+        return dp_run_fail(r, DP_ENOMEM, "out of memory for the events"), 0;
+    return 1;
+}
+
+/* The rod leaves the floor at the current state: a free flight from here, announced by a lift-off event
+ * (the end's height and upward rate: 0 and 0 from sliding or sticking, the rebound after a bounce). */
+static int take_off(dp_run *r, int announce)
+{
+    struct dp_right_hand_run *rr = r->state;
+    dp_right_hand_rod_state s = rod_state(rr);
+    double xdd;
+    rr->flight = 1;
+    dp_right_hand_flight_start(&rr->m, rr->t, &s, &rr->fl);
+    dp_right_hand_flight_at(&rr->m, &rr->fl, rr->t, &s, &xdd);
+    flight_sol(rr, xdd);
+    if (!announce)
+        return 1;
+    return event(r, (dp_event){ .kind = DP_EVENT_LIFTOFF, .t = rr->t, .x = rr->ya[0], .v = rr->ya[1], .element = 0 });
+}
+
 /* The full acceleration problem at the current state picks the mode (events for the coordinates whose
  * stick/slip changed); 0 when the run must stop (a paradox, the rod lifting off). */
 static int classify(dp_run *r, int initial)
@@ -268,8 +332,8 @@ static int classify(dp_run *r, int initial)
     }
     if (rr->m.kind == DP_RIGHT_HAND_ROD && !(rr->y[1] > 0 && rr->y[1] < M_PI)) {
         snprintf(rr->why, sizeof rr->why, "the rod reaches the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
-                 "an impact this model (end A on the floor, 0 < theta < pi) does not follow", rr->t, rr->y[0],
-                 rr->y[1], rr->y[2], rr->y[3]);
+                 "it lies flat, both ends on the floor, a contact this model (one end on the floor, 0 < theta < pi) "
+                 "does not follow", rr->t, rr->y[0], rr->y[1], rr->y[2], rr->y[3]);
         rr->fail = 1;
         return 0;
     }
@@ -284,13 +348,8 @@ static int classify(dp_run *r, int initial)
         overflow(rr, "acceleration problem (q'', N or Q)");
         return 0;
     }
-    if (s->liftoff) {
-        snprintf(rr->why, sizeof rr->why, "the rod lifts off the floor at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g]: "
-                 "its only motion is free flight, which this model (end A on the floor) does not follow",
-                 rr->t, rr->y[0], rr->y[1], rr->y[2], rr->y[3]);
-        rr->fail = 1;
-        return 0;
-    }
+    if (s->liftoff)
+        return take_off(r, !initial);
     for (int k = 0; k < 2 && !initial; k++) {
         int now = s->mode[k] == DP_RIGHT_HAND_STICK;
         if (rr->mode[k] == s->mode[k] || s->mode[k] == DP_RIGHT_HAND_FREE)
@@ -306,6 +365,106 @@ static int classify(dp_run *r, int initial)
     memcpy(rr->mode, s->mode, sizeof rr->mode);
     rr->sol = *s;
     return 1;
+}
+
+/* The impact of the end A, on the floor in state s with s->yd <= 0: the impulse, an impact event (the end's
+ * height 0, its upward rate before and after, the normal impulse), then a bounce (lift-off) or the end on the
+ * floor, where the enumeration chooses stick, slip or lift-off (classify). 0 when the run stops. */
+static int impact_at(dp_run *r, dp_right_hand_rod_state *s)
+{
+    struct dp_right_hand_run *rr = r->state;
+    dp_right_hand_impact im;
+    double e = rr->m.e, l = rr->m.length / 2;
+    for (int pass = 0; pass < 2; pass++) {
+        if (!dp_right_hand_rod_impact(&rr->m, s->theta, s->xd, s->yd, s->thetad, e, &im)) {
+            snprintf(rr->why, sizeof rr->why, "the impact at t=%.10g, q=[%.9g,%.9g], qd=[%.9g,%.9g] does not end",
+                     rr->t, s->x, s->theta, s->xd, s->thetad);
+            rr->fail = 1;
+            return 0;
+        }
+        double fall = rr->m.g - l * sin(s->theta) * im.thetad * im.thetad; /* the end's fall acceleration */
+        if (!(im.vn > 0 && e < 1 && fall > 0 &&
+              (2 * im.vn < ZENO_REL * r->h * fall * (1 - e) || im.vn * im.vn < 2 * fall * HOP_REL * rr->m.length)))
+            break;
+        e = 0;                                   /* the bounces left accumulate within location's reach */
+    }
+    double out[5] = { im.vt, im.vn, im.thetad, im.Pt, im.Pn };
+    if (!all_finite(out, 5)) {
+        overflow(rr, "impact");
+        return 0;
+    }
+    r->sum.impacts++;
+    if (!event(r, (dp_event){ .kind = DP_EVENT_IMPACT, .t = rr->t, .x = 0, .v = s->yd, .v_after = im.vn,
+                              .impulse = im.Pn, .element = 0 }))
+        return 0;
+    s->y = 0, s->xd = im.vt, s->yd = im.vn, s->thetad = im.thetad;
+    set_rod_state(rr, s);
+    if (im.vn > 0)
+        return take_off(r, 1);
+    rr->flight = 0;
+    rr->ya[0] = rr->ya[1] = 0;
+    rr->mode[0] = rr->mode[1] = DP_RIGHT_HAND_FREE;   /* the mode on the floor is an event: stick or slip */
+    gsl_odeiv2_evolve_reset(rr->ev);
+    rr->h = rr->h0;
+    return classify(r, 0);
+}
+
+/* The state at a landing of end `end` (1: B, which becomes A: the rod's ends are alike), theta taken back
+ * into (-pi, pi]; 0 when the rod lands flat (both ends at once: the run stops). */
+static int landing_state(struct dp_right_hand_run *rr, int end, dp_right_hand_rod_state *s)
+{
+    double xdd, l = rr->m.length / 2;
+    dp_right_hand_flight_at(&rr->m, &rr->fl, rr->t, s, &xdd);
+    if (end == 1) {
+        double sn = sin(s->theta), cs = cos(s->theta);
+        s->x += 2 * l * cs, s->xd -= 2 * l * sn * s->thetad, s->yd += 2 * l * cs * s->thetad;
+        s->theta += M_PI;
+    }
+    s->theta = remainder(s->theta, 2 * M_PI);
+    s->y = 0;
+    if (s->theta > 0 && s->theta < M_PI)
+        return 1;
+    snprintf(rr->why, sizeof rr->why, "the rod lands flat at t=%.10g, x_A=%.9g, qd=[%.9g,%.9g]: an impact at both ends "
+             "at once, which this model (one end on the floor) does not follow", rr->t, s->x, s->xd, s->thetad);
+    rr->fail = 1;
+    return 0;
+}
+
+/* The free flight up to t1: the landing located (rod_flight.c), the impact there; the advances count as the
+ * integrator's steps. */
+static int fly(dp_run *r, double t1)
+{
+    struct dp_right_hand_run *rr = r->state;
+    while (rr->flight && rr->t < t1) {
+        if (rr->call_steps >= CALL_STEPS)
+            return DP_MORE;
+        unsigned long used = 0;
+        double t = rr->t, xdd;
+        int end = 0, s = dp_right_hand_flight_landing(&rr->m, &rr->fl, &t, t1, CALL_STEPS - rr->call_steps, &used, &end);
+        rr->call_steps += used;
+        r->sum.steps += used;
+        if ((double)r->sum.steps > r->max_steps)
+            return dp_run_fail(r, DP_ELIMIT, "the integrator took more than %.6g steps", r->max_steps);
+        if (s == DP_FLIGHT_OVERFLOW) {
+            overflow(rr, "flight");
+            return DP_OK;
+        }
+        rr->t = t;
+        dp_right_hand_rod_state st;
+        dp_right_hand_flight_at(&rr->m, &rr->fl, t, &st, &xdd);
+        set_rod_state(rr, &st);
+        flight_sol(rr, xdd);
+        if (s == DP_FLIGHT_BUDGET)
+            return DP_MORE;
+        if (s != DP_FLIGHT_LANDS)
+            continue;
+        if (++rr->events > MAX_EVENTS)
+            return dp_run_fail(r, DP_ESOLVE, "more than %d located events (t=%.10g): an accumulation of "
+                               "events (Zeno) this solver does not cross", MAX_EVENTS, rr->t);
+        if (!landing_state(rr, end, &st) || !impact_at(r, &st))
+            return DP_OK;
+    }
+    return DP_OK;
 }
 
 /* The first of 4^k LOCATE_REL-scaled lengths (up to 1e-3) at which a step from (t0, y0) leaves the phase,
@@ -324,6 +483,12 @@ static int segment(dp_run *r, double t1)
 {
     struct dp_right_hand_run *rr = r->state;
     while (rr->t < t1) {
+        if (rr->flight) {
+            int s = fly(r, t1);
+            if (s != DP_OK || rr->fail || r->status != DP_OK)
+                return s;
+            continue;
+        }
         double t0 = rr->t, y0[4], hb = fmin(rr->h, t1 - t0), hi;
         memcpy(y0, rr->y, sizeof y0);
         if ((double)++r->sum.steps > r->max_steps)
@@ -406,13 +571,14 @@ static int rh_run_pending(const dp_run *r)
 
 static void setup_columns(struct dp_right_hand_run *rr)
 {
-    static const char *const names[] = { "q", "qd", "qdd", "N", "mode", "margin" };
-    rr->nN = rr->m.kind == DP_RIGHT_HAND_ROD ? 1 : 2;
-    rr->nmargin = rr->m.kind == DP_RIGHT_HAND_ROD ? 2 : 4;
-    size_t n[] = { 2, 2, 2, rr->nN, 2, rr->nmargin };
-    rr->cols.ngroups = 6;
+    static const char *const names[] = { "q", "qd", "qdd", "N", "mode", "margin", "gap" };
+    int rod = rr->m.kind == DP_RIGHT_HAND_ROD;
+    rr->nN = rod ? 1 : 2;
+    rr->nmargin = rod ? 2 : 4;
+    size_t n[] = { 2, 2, 2, rr->nN, 2, rr->nmargin, 2 };
+    rr->cols.ngroups = rod ? 7 : 6;           /* the rod's gap: the end A's height and rate */
     rr->cols.width = 0;
-    for (size_t g = 0; g < 6; g++) {
+    for (size_t g = 0; g < rr->cols.ngroups; g++) {
         rr->cols.group[g] = (dp_column_group){ .name = names[g], .n = n[g], .index = NULL, .phase = g == 4 };
         rr->cols.width += n[g];
     }
@@ -441,7 +607,15 @@ static int rh_run_init(dp_run *r)
     if (rr->st == NULL || rr->ctl == NULL || rr->ev == NULL)
         return DP_ENOMEM;
     rr->h0 = rr->h = fmin(r->h, 1e-3);
-    classify(r, 1); /* a paradox at t = 0 stops the run in its first block, with its record */
+    if (rr->m.kind == DP_RIGHT_HAND_ROD)
+        rr->ya[0] = r->spec.x0v[2], rr->ya[1] = r->spec.v0v[2];
+    dp_right_hand_rod_state s = rod_state(rr);
+    if (rr->ya[0] > 0 || rr->ya[1] > 0)
+        take_off(r, 0);   /* the rod starts in the air */
+    else if (rr->ya[1] < 0)
+        impact_at(r, &s); /* ...or hitting the floor */
+    else
+        classify(r, 1); /* a paradox at t = 0 stops the run in its first block, with its record */
     return DP_OK;
 }
 
