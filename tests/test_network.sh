@@ -241,9 +241,9 @@ assert all(math.isfinite(float(f)) for l in lines[1:] for f in l.split(",")[:-1]
 # Generalized Coulomb φ0 = 0.3, φ1 = 0.5 (the rest branch): slipping it carries ±φ0, stuck anything in
 # [−φ1, φ1], and it does hold a force over φ0 at rest (else the static threshold would not matter here).
 req "$U" application/x-ndjson "$(patch 'd["model"]["elements"][0]["damper"] = {"law": "generalized-coulomb", "phi0": 0.3, "phi1": 0.5}; d["output"] = {"every": 10}')"
-check "a static threshold phi1 > phi0 on an element: slipping |Fd| = 0.3, stuck |Fd| <= 0.5 and over 0.3 somewhere" py "$BODY" '
+check "a static threshold phi1 > phi0 on an element, events located: slipping |Fd| = 0.3, stuck |Fd| <= 0.5 and over 0.3 somewhere" py "$BODY" '
 rows = [loads(l) for l in text.splitlines()]
-assert rows[0]["events_mode"] == "step" and rows[-1]["type"] == "summary", rows[0]
+assert rows[0]["events_mode"] == "locate" and rows[-1]["type"] == "summary", rows[0]
 s = [r for r in rows if r["type"] == "sample"]
 stuck = [abs(r["Fd"][0]) for r in s if r["phase"][0] == "stick"]
 assert all(abs(abs(r["Fd"][0]) - 0.3) < 1e-12 for r in s if r["phase"][0] == "slip")
