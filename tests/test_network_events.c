@@ -1,5 +1,5 @@
 /* tests/test_network_events.c - located events on networks for the laws whose phase changes are not a
- * linear spring's threshold: static thresholds (generalized Coulomb, phi1 > phi0), ... Each is checked
+ * linear spring's threshold: static thresholds (generalized Coulomb, phi1 > phi0) and relaxation (thesis (3.2)) Each is checked
  * against an independent reference: a closed form of stick-slip on a belt (Pražák & Rajagopal 2016 §4),
  * the one-mass solver's own event location, or the same network at dt/64; theta = 1/2 stays second order
  * (errors fall by about 4 per halving of dt, about 2 with events "none"), and a stuck block does not creep. */
@@ -259,6 +259,92 @@ static void test_static_threshold_follows_one_mass(void **state)
     assert_true(events >= 10);
 }
 
+/* ---- a chain against itself at dt/64 ------------------------------------------------------------- */
+
+/* Two blocks on a belt-driven chain (dampers d0 on [ground, 0], d1 on [ground, 1], a spring between them,
+ * a harmonic load on node 1) to t = 10, sampled every 0.5. */
+static void chain_run(const char *d0, const char *d1, double dt, const char *events, rows *r)
+{
+    char json[1536];
+    snprintf(json, sizeof json, "{\"model\":{\"masses\":[1,1.5],\"elements\":["
+             "{\"between\":[\"ground\",0],\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":%s},"
+             "{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":2}},"
+             "{\"between\":[\"ground\",1],\"damper\":%s}],"
+             "\"forcing\":[{\"node\":1,\"kind\":\"harmonic\",\"amplitude\":0.8,\"omega\":0.9}]},"
+             "\"initial\":{\"x\":[0.5,-0.2]},\"solver\":{\"dt\":%.17g,\"t_end\":10,\"theta\":0.5,"
+             "\"events\":\"%s\"},\"output\":{\"every\":%ld}}", d0, d1, dt, events, lround(0.5 / dt));
+    if (strcmp(events, "locate") == 0)
+        assert_events_mode(json, "locate");
+    rows_run(json, r);
+}
+
+/* The largest error of x and v over the samples against `ref`. */
+static double chain_error(const char *d0, const char *d1, double dt, const char *events, const rows *ref)
+{
+    rows r;
+    chain_run(d0, d1, dt, events, &r);
+    assert_int_equal(r.n, ref->n);
+    double worst = 0;
+    for (size_t i = 0; i < r.n; i++)
+        for (size_t j = 1; j < 5; j++)
+            worst = fmax(worst, fabs(r.d[i * r.width + j] - ref->d[i * ref->width + j]));
+    free(r.d);
+    return worst;
+}
+
+/* theta = 1/2 through the chain's events: errors against dt/64 fall by 3.5..4.5 per halving of dt from
+ * 0.02 to 0.0025 with events located; events "none" falls by less over the same three halvings. */
+static void assert_chain_second_order(const char *d0, const char *d1, size_t min_events)
+{
+    rows ref;
+    chain_run(d0, d1, 0.0025 / 64, "locate", &ref);
+    assert_true(ref.events >= min_events);
+    double e[4], f[4];
+    for (int i = 0; i < 4; i++) {
+        e[i] = chain_error(d0, d1, 0.02 / (1 << i), "locate", &ref);
+        f[i] = chain_error(d0, d1, 0.02 / (1 << i), "none", &ref);
+    }
+    assert_ratios(e, 4, 3.5, 4.5);
+    fprintf(stderr, " events none:\n");
+    for (int i = 0; i + 1 < 4; i++)
+        fprintf(stderr, "  error %.3e, ratio %.3f\n", f[i], f[i] / f[i + 1]);
+    assert_true(f[0] / f[3] < 0.5 * e[0] / e[3]);
+    free(ref.d);
+}
+
+static void test_relaxation_chain_is_second_order(void **state)
+{
+    (void)state;
+    assert_chain_second_order(
+        "{\"law\":\"coulomb\",\"phi0\":0.4,\"belt_velocity\":0.3,\"relaxation\":{\"kind\":\"rational\",\"a\":0.2,\"b\":0.5}}",
+        "{\"law\":\"bingham\",\"tau\":0.5,\"c\":0.1,\"relaxation\":{\"kind\":\"linear\",\"L\":0.2}}", 4);
+}
+
+static void test_static_threshold_chain_is_second_order(void **state)
+{
+    (void)state;
+    assert_chain_second_order(
+        "{\"law\":\"generalized-coulomb\",\"phi0\":0.3,\"phi1\":0.6,\"belt_velocity\":0.3}",
+        "{\"law\":\"generalized-coulomb\",\"phi0\":0.3,\"phi1\":0.5,\"relaxation\":{\"kind\":\"rational\",\"a\":0.1,\"b\":0.5}}", 4);
+}
+
+/* Relaxation (thesis (3.2)): the held step iterates on gamma as the whole step does; the one-mass solver's
+ * located events are followed, events and all. */
+static void test_relaxation_follows_one_mass(void **state)
+{
+    (void)state;
+    static const char *const located[] = {
+        "{\"law\":\"coulomb\",\"phi0\":0.5,\"relaxation\":{\"kind\":\"rational\",\"a\":0.5,\"b\":1}}",
+        "{\"law\":\"bingham\",\"tau\":0.4,\"c\":0.3,\"belt_velocity\":0.2,\"relaxation\":{\"kind\":\"linear\",\"L\":0.3}}",
+        "{\"law\":\"generalized-coulomb\",\"phi0\":0.3,\"phi1\":0.6,\"relaxation\":{\"kind\":\"rational\",\"a\":0.2,\"b\":1}}",
+    };
+    size_t events = 0;
+    for (size_t d = 0; d < 3; d++)
+        for (int th = 0; th < 2; th++)
+            assert_network_follows_one_mass(located[d], th ? "1" : "0.5", &events);
+    assert_true(events >= 15);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -266,6 +352,9 @@ int main(void)
         cmocka_unit_test(test_static_threshold_belt_events),
         cmocka_unit_test(test_static_threshold_follows_one_mass),
         cmocka_unit_test(test_static_threshold_no_creep),
+        cmocka_unit_test(test_relaxation_follows_one_mass),
+        cmocka_unit_test(test_relaxation_chain_is_second_order),
+        cmocka_unit_test(test_static_threshold_chain_is_second_order),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -50,6 +50,7 @@ static double held_margin(void *vctx, double s)
     struct dp_network_run *nr = c->r->state;
     dp_network_step_pattern_restore(nr->ws, nr->pattern);
     network_run_step_rhs(nr, c->t, s);
+    dp_network_step_relaxation_start(nr->ws, nr->v);
     if (dp_network_step_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
         return NAN;
     network_run_contacts_margins(nr, s);

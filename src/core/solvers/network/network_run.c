@@ -604,8 +604,8 @@ static int element_locates(const dp_element *e, int network)
 }
 
 /* Location holds an assignment over shorter steps: its pieces must not move with the step's length, so
- * graph springs (vertices at (y - u)/h) and relaxation are stepped without it; a static threshold is held on
- * the graph of its phase (network_events.c). */
+ * graph springs (vertices at (y - u)/h) are stepped without it; a static threshold is held on the graph of
+ * its phase, relaxation iterated in the held step (network_events.c). */
 int dp_network_locates(const dp_spec *s)
 {
     if (dp_network_is_one_mass(s))   /* the one-mass solver locates every damper that can stick */
@@ -618,8 +618,6 @@ int dp_network_locates(const dp_spec *s)
             return 0;     /* a compliant contact is a graph spring */
         sticky |= e->has_contact;
         if (!element_locates(e, 1))
-            return 0;
-        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
             return 0;
         sticky |= dp_element_can_stick(e);
     }
