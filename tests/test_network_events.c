@@ -1,8 +1,9 @@
 /* tests/test_network_events.c - located events on networks for the laws whose phase changes are not a
- * linear spring's threshold: static thresholds (generalized Coulomb, phi1 > phi0) and relaxation (thesis (3.2)) Each is checked
- * against an independent reference: a closed form of stick-slip on a belt (Pražák & Rajagopal 2016 §4),
- * the one-mass solver's own event location, or the same network at dt/64; theta = 1/2 stays second order
- * (errors fall by about 4 per halving of dt, about 2 with events "none"), and a stuck block does not creep. */
+ * linear spring's threshold: static thresholds (generalized Coulomb, phi1 > phi0) and relaxation (thesis
+ * (3.2)). Each is checked against an independent reference: a closed form of stick-slip on a belt
+ * (Pražák & Rajagopal 2016 §4), the one-mass solver's own event location, or the same network at dt/64;
+ * theta = 1/2 stays second order (errors fall by about 4 per halving of dt, far less with events "none"),
+ * and a stuck block does not creep. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,6 +17,8 @@
 #include "dashpot/run.h"
 #include "rows.h"
 #include "trajectory.h"
+
+#define LINEAR "{\"law\":\"linear\",\"k\":1}"
 
 /* Runs a network document; its rows are t, x, v, Fs, Fd, phase (no contacts). */
 static void rows_run(const char *json, rows *r)
@@ -203,21 +206,21 @@ static void test_static_threshold_no_creep(void **state)
 
 /* The one-mass solver locates its events on its own (stick_slip.c): a network of two unconnected copies of a
  * one-mass document (the general network step) follows it, events and all, to the root finders' tolerance. */
-static void assert_network_follows_one_mass(const char *damper, const char *theta, size_t *events)
+static void assert_network_follows_one_mass(const char *spring, const char *damper, const char *theta, size_t *events)
 {
     char one[1024], net[1024];
     for (int f = 0; f < 2; f++) {
         const char *load = f ? ",\"forcing\":{\"kind\":\"harmonic\",\"amplitude\":0.9,\"omega\":1.3}" : "";
         const char *nload = f ? ",\"forcing\":[{\"node\":0,\"kind\":\"harmonic\",\"amplitude\":0.9,\"omega\":1.3},"
                                 "{\"node\":1,\"kind\":\"harmonic\",\"amplitude\":0.9,\"omega\":1.3}]" : "";
-        snprintf(one, sizeof one, "{\"model\":{\"mass\":1.3,\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":%s%s},"
+        snprintf(one, sizeof one, "{\"model\":{\"mass\":1.3,\"spring\":%s,\"damper\":%s%s},"
                  "\"initial\":{\"x\":1.5,\"v\":0.2},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":%s},"
-                 "\"output\":{\"every\":10}}", damper, load, theta);
+                 "\"output\":{\"every\":10}}", spring, damper, load, theta);
         snprintf(net, sizeof net, "{\"model\":{\"masses\":[1.3,1.3],\"elements\":[{\"between\":[\"ground\",0],"
-                 "\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":%s},{\"between\":[\"ground\",1],"
-                 "\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":%s}]%s},\"initial\":{\"x\":[1.5,1.5],"
+                 "\"spring\":%s,\"damper\":%s},{\"between\":[\"ground\",1],"
+                 "\"spring\":%s,\"damper\":%s}]%s},\"initial\":{\"x\":[1.5,1.5],"
                  "\"v\":[0.2,0.2]},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":%s},\"output\":{\"every\":10}}",
-                 damper, damper, nload, theta);
+                 spring, damper, spring, damper, nload, theta);
         assert_events_mode(net, "locate");
         traj a;
         rows b;
@@ -255,7 +258,7 @@ static void test_static_threshold_follows_one_mass(void **state)
     size_t events = 0;
     for (size_t d = 0; d < 2; d++)
         for (int th = 0; th < 2; th++)
-            assert_network_follows_one_mass(located[d], th ? "1" : "0.5", &events);
+            assert_network_follows_one_mass(LINEAR, located[d], th ? "1" : "0.5", &events);
     assert_true(events >= 10);
 }
 
@@ -341,7 +344,7 @@ static void test_relaxation_follows_one_mass(void **state)
     size_t events = 0;
     for (size_t d = 0; d < 3; d++)
         for (int th = 0; th < 2; th++)
-            assert_network_follows_one_mass(located[d], th ? "1" : "0.5", &events);
+            assert_network_follows_one_mass(LINEAR, located[d], th ? "1" : "0.5", &events);
     assert_true(events >= 15);
 }
 
