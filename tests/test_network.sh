@@ -218,14 +218,16 @@ patch() { python3 -c 'import json,sys; d=json.loads(sys.argv[1]); exec(sys.argv[
 # Rational relaxation γ(z) = a z/(b + |z|) on the Coulomb element (thesis (3.2)): a slipping element carries
 # F_d = φ0 sign z − γ(z) (z = v0, the ground does not move), checked on every slipping sample.
 req "$U" application/x-ndjson "$(patch 'd["model"]["elements"][0]["damper"]["relaxation"] = {"kind": "rational", "a": 0.2, "b": 0.5}; d["output"] = {"every": 100}')"
-check "rational relaxation on an element: 200, meta events_mode step, F_d = 0.3 sign v − 0.2 v/(0.5 + |v|) when slipping" py "$BODY" '
+check "rational relaxation on an element: 200, meta events_mode locate, F_d = 0.3 sign v − 0.2 v/(0.5 + |v|) when slipping" py "$BODY" '
 rows = [loads(l) for l in text.splitlines()]
 meta, s = rows[0], [r for r in rows if r["type"] == "sample"]
-assert meta["events_mode"] == "step" and rows[-1]["type"] == "summary", (meta["events_mode"], rows[-1])
+assert meta["events_mode"] == "locate" and rows[-1]["type"] == "summary", (meta["events_mode"], rows[-1])
 assert [c["holds"] for c in meta["wellposedness"]["checks"]] == [True] * 4, meta["wellposedness"]
 assert s[0]["phase"][0] == "slip" and s[0]["Fd"][0] == -0.3, s[0]     # at rest, pushed by Fs = 1 > 0.3
 slip = [r for r in s[1:] if r["phase"][0] == "slip"]
-assert len(slip) > 150 and rows[-1]["events"] >= 2, (len(slip), rows[-1])
+# located, node 0 reverses through v = 0 without sticking (as a run at dt = 2e-5 shows); stepped, each
+# reversal showed a stick of one step
+assert len(slip) == 200 and rows[-1]["events"] == 0, (len(slip), rows[-1])
 for r in slip:
     z = r["v"][0]
     want = 0.3 * (1 if z > 0 else -1) - 0.2 * z / (0.5 + abs(z))
@@ -241,9 +243,9 @@ assert all(math.isfinite(float(f)) for l in lines[1:] for f in l.split(",")[:-1]
 # Generalized Coulomb φ0 = 0.3, φ1 = 0.5 (the rest branch): slipping it carries ±φ0, stuck anything in
 # [−φ1, φ1], and it does hold a force over φ0 at rest (else the static threshold would not matter here).
 req "$U" application/x-ndjson "$(patch 'd["model"]["elements"][0]["damper"] = {"law": "generalized-coulomb", "phi0": 0.3, "phi1": 0.5}; d["output"] = {"every": 10}')"
-check "a static threshold phi1 > phi0 on an element: slipping |Fd| = 0.3, stuck |Fd| <= 0.5 and over 0.3 somewhere" py "$BODY" '
+check "a static threshold phi1 > phi0 on an element, events located: slipping |Fd| = 0.3, stuck |Fd| <= 0.5 and over 0.3 somewhere" py "$BODY" '
 rows = [loads(l) for l in text.splitlines()]
-assert rows[0]["events_mode"] == "step" and rows[-1]["type"] == "summary", rows[0]
+assert rows[0]["events_mode"] == "locate" and rows[-1]["type"] == "summary", rows[0]
 s = [r for r in rows if r["type"] == "sample"]
 stuck = [abs(r["Fd"][0]) for r in s if r["phase"][0] == "stick"]
 assert all(abs(abs(r["Fd"][0]) - 0.3) < 1e-12 for r in s if r["phase"][0] == "slip")

@@ -1058,12 +1058,63 @@ void dp_network_step_pattern_restore(dp_network_step *w, const void *buf)
     memcpy(w->es, buf, w->ne * sizeof *w->es);
 }
 
+void dp_network_step_relaxation_start(dp_network_step *w, const double *v_start)
+{
+    for (size_t i = 0; w->gamma && i < w->ne; i++) {
+        w->zk[i] = rel_velocity(&w->el[i], v_start);
+        w->gshift[i] = (1 - w->theta) * w->zk[i] - w->el[i].vb;
+    }
+}
+
+/* With relaxation, a held step's free elements keep their pieces (gamma is smooth: no vertex moves) but take
+ * their slope and force again at the current linearization, as a whole solve's start does (set_free). */
+static void refresh_free(dp_network_step *w, double h, const double *u)
+{
+    for (size_t i = 0; i < w->ne; i++) {
+        elem_state *s = &w->es[i];
+        if (s->st != FREE || w->gamma[i] == NULL)
+            continue;
+        int dir = isfinite(s->lo.z) ? 1 : -1;
+        vertex at = isfinite(s->lo.z) ? s->lo : isfinite(s->hi.z) ? s->hi : (vertex){ s->zref, SRC_NONE, 0 }, nx;
+        double slope, f;
+        if (sigma_piece(w, i, u[i], h, &at, dir, &slope, &f, &nx))
+            s->zref = at.z, s->lam0 = f, s->slope = slope;
+    }
+}
+
+/* The held assignment's linear solve; with relaxation Newton-Josephy's iterations on gamma from the start
+ * velocity (dp_network_step_relaxation_start), as dp_network_step_solve, the assignment held throughout. */
+static int solve_held(dp_network_step *w, double h, const double *rhs, const double *u)
+{
+    double th = w->theta;
+    for (int it = 0; it < 100; it++) {
+        for (size_t i = 0; w->gamma && i < w->ne; i++) {
+            if (w->gamma[i] == NULL)
+                continue;
+            double arg = th * w->zk[i] + w->gshift[i];
+            w->g0[i] = dp_relaxation_eval(w->gamma[i], arg);
+            w->g1[i] = th * dp_relaxation_slope(w->gamma[i], arg);
+        }
+        if (w->gamma)
+            refresh_free(w, h, u);
+        build_forest(w);
+        int s = prepare(w, h, rhs);
+        s = s ? s : solve_assignment(w);
+        if (s != DP_OK || w->gamma == NULL)
+            return s;
+        double change = zmax_change(w, w->vs);
+        for (size_t i = 0; i < w->ne; i++)
+            w->zk[i] = rel_velocity(&w->el[i], w->vs);
+        if (change <= 1e-14)
+            return DP_OK;
+    }
+    return DP_ESOLVE;
+}
+
 int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs, const double *u, double *v, dp_network_step_forces *f,
                         double *margin)
 {
-    build_forest(w);
-    int s = prepare(w, h, rhs);
-    s = s ? s : solve_assignment(w);
+    int s = solve_held(w, h, rhs, u);
     if (s != DP_OK)
         return s;
     if (polled_stop(w))

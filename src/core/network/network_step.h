@@ -85,6 +85,10 @@ void dp_network_step_pattern_restore(dp_network_step *w, const void *buf);
 int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs, const double *u, double *v, dp_network_step_forces *f,
                         double *margin);
 
+/* With relaxation: the velocity a held step starts from (gamma's argument is theta z + (1-theta) z_start);
+ * solve_frozen then iterates on gamma as a whole solve does. Nothing without relaxation. */
+void dp_network_step_relaxation_start(dp_network_step *w, const double *v_start);
+
 /* Whether the current assignment is the saved one (same fixed vertices, same pieces). */
 int dp_network_step_pattern_same(const dp_network_step *w, const void *buf);
 

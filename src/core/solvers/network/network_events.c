@@ -4,7 +4,13 @@
  * that fail there switch (a stick, a release, or a reversal through the belt speed without a stick) and the
  * rest of the step goes on from that instant. So theta = 1/2 stays second order through stick-slip, as the
  * one-mass solver's event location keeps it. A contact that is not armed joins as one more margin, its gap,
- * and its impact is taken at the next sub-step's start (network_contact.c). */
+ * and its impact is taken at the next sub-step's start (network_contact.c).
+ *
+ * A static threshold (generalized Coulomb, phi1 > phi0; Pražák & Rajagopal 2016 §4) is located the same way
+ * with the graph its phase gives it: a sticking element is held on its static interval [-phi1, phi1], so its
+ * margin is its force against phi1 and it breaks away onto the kinetic graph (+-phi0); a slipping one is on
+ * its kinetic graph, its margin its relative velocity, and where that reaches zero it sticks if the static
+ * interval holds it just after, else it reverses (the one-mass rest branch, stick_slip.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +24,24 @@ typedef struct held_ctx {
     const unsigned char *cand;   /* the elements whose held assignment fails by the step's end */
 } held_ctx;
 
+/* Element k's damper graph: the static one (phi1) if `stick`, else the kinetic one; the step's factors are
+ * renewed when it changes. */
+static void static_graph(struct dp_network_run *nr, size_t k, int stick)
+{
+    const dp_graph *g = stick ? &nr->static_A[k] : &nr->net->el[nr->act_el[k]].damper.graph;
+    if (nr->static_A[k].n == 0 || nr->act[k].A == g)
+        return;
+    nr->act[k].A = g;
+    dp_network_step_W_changed(nr->ws);
+}
+
+/* The graphs of the assignment at a sub-step's start: static for the elements sticking there (`phase`). */
+static void static_graphs(struct dp_network_run *nr, const unsigned char *phase)
+{
+    for (size_t k = 0; nr->has_static && k < nr->nact; k++)
+        static_graph(nr, k, phase[nr->act_el[k]] == DP_PHASE_STICK);
+}
+
 /* The smallest margin among the candidates after a step of length s with the sub-step's starting
  * assignment held (nr->margin gets every element's). */
 static double held_margin(void *vctx, double s)
@@ -26,6 +50,7 @@ static double held_margin(void *vctx, double s)
     struct dp_network_run *nr = c->r->state;
     dp_network_step_pattern_restore(nr->ws, nr->pattern);
     network_run_step_rhs(nr, c->t, s);
+    dp_network_step_relaxation_start(nr->ws, nr->v);
     if (dp_network_step_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
         return NAN;
     network_run_contacts_margins(nr, s);
@@ -116,9 +141,13 @@ static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
     double s0 = 1e-9 * (left > 0 ? left : 1);
     if (dp_network_step_fixed(nr->ws, k)) {
         int dir = dp_network_step_violation(nr->ws, k, s0, nr->u);
+        static_graph(nr, k, 0);    /* broken away: on to the kinetic graph */
         dp_network_step_slip(nr->ws, k, s0, nr->u, dir >= 0 ? 1 : -1);
     } else {
         dp_network_step_fix_end(nr->ws, k, nr->v);
+        static_graph(nr, k, 1);    /* at rest the static interval holds it */
+        if (!dp_network_step_at_rest(nr->ws, k))
+            static_graph(nr, k, 0);
         dp_network_step_pattern_save(nr->ws, nr->pattern);
         unsigned char *only = calloc(nr->nact, 1);
         if (only == NULL)
@@ -126,8 +155,11 @@ static unsigned char switch_element(dp_run *r, double t, double left, size_t k)
         only[k] = 1;
         double m = left > 0 ? held_margin(&(held_ctx){ r, t, only }, s0) : 0;
         free(only);
-        if (m < 0)
-            dp_network_step_slip(nr->ws, k, s0, nr->u, dp_network_step_violation(nr->ws, k, s0, nr->u) >= 0 ? 1 : -1);
+        if (m < 0) {
+            int dir = dp_network_step_violation(nr->ws, k, s0, nr->u);
+            static_graph(nr, k, 0);
+            dp_network_step_slip(nr->ws, k, s0, nr->u, dir >= 0 ? 1 : -1);
+        }
     }
     if (!nr->can_stick[nr->act_el[k]])
         return DP_PHASE_NONE;
@@ -149,6 +181,7 @@ static int breaks_away(dp_run *r, double t, double h)
         any = dp_network_step_fixed(nr->ws, k);
     if (!any)
         return 0;
+    static_graphs(nr, nr->phase_prev);
     held_margin(&(held_ctx){ r, t, NULL }, h / nr->theta);
     for (size_t k = 0; k < nr->nact; k++)
         if (dp_network_step_fixed(nr->ws, k) && nr->margin[k] < 0)
@@ -250,6 +283,7 @@ int network_run_located_step(dp_run *r, double t, double h)
         /* impacts add sub-steps of their own (accumulating ones end plastic: network_contact.c) */
         if (sub > 2 * nr->nact + 4 + 2 * nr->impacts_step)
             return finish_step(r, t, left);
+        static_graphs(nr, nr->phase_prev);   /* the held assignment's graphs: its phases at t */
         double at = earliest_event(r, t, left, nr->fails);
         if (network_run_cancelled(r))
             return DP_ECANCEL;   /* the stop hook, polled inside the held solves */
@@ -263,6 +297,10 @@ int network_run_located_step(dp_run *r, double t, double h)
                 return finish_step(r, t, left);
             at = 1e-9 * left;
         }
+        /* a static threshold's event at the step's end to rounding: no sliver of a sub-step after it (a
+         * breakaway there would stick again in the sliver's rounding; elsewhere a sliver is harmless) */
+        if (nr->has_static && left - at <= 1e-12 * left)
+            at = left;
         held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
         network_run_take_velocity(nr, at);
         network_run_element_forces(nr, 1);

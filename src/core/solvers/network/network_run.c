@@ -515,6 +515,8 @@ static int network_run_init(dp_run *r)
      * elements the stick intervals hold at t = 0 (one mass: the force needed against the interval) and
      * leaves its assignment for the first located step. */
     double h0 = 1e-9 * r->h;
+    if (nr->has_static)   /* the rest branch: an element at rest at t = 0 starts on its static interval */
+        network_run_element_forces(nr, 0);
     if (nr->nc)
         network_run_contacts_arm_mj(nr, h0);
     if (network_run_net_step_keep(r, 0, h0) == DP_OK)
@@ -602,7 +604,8 @@ static int element_locates(const dp_element *e, int network)
 }
 
 /* Location holds an assignment over shorter steps: its pieces must not move with the step's length, so
- * graph springs (vertices at (y - u)/h), relaxation and static thresholds are stepped without it. */
+ * graph springs (vertices at (y - u)/h) are stepped without it; a static threshold is held on the graph of
+ * its phase, relaxation iterated in the held step (network_events.c). */
 int dp_network_locates(const dp_spec *s)
 {
     if (dp_network_is_one_mass(s))   /* the one-mass solver locates every damper that can stick */
@@ -615,9 +618,6 @@ int dp_network_locates(const dp_spec *s)
             return 0;     /* a compliant contact is a graph spring */
         sticky |= e->has_contact;
         if (!element_locates(e, 1))
-            return 0;
-        if (e->has_damper && (e->damper.relaxation.kind != DP_RELAX_NONE ||
-                              dp_damper_static(&e->damper) > dp_damper_kinetic(&e->damper)))
             return 0;
         sticky |= dp_element_can_stick(e);
     }
