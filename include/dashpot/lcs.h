@@ -137,8 +137,15 @@ size_t dp_lcs_boundaries(const dp_lcs_stepper *st, const size_t **first);
 
 /* After a step, each boundary's margin: > 0 when the step's solution lies past it along the graph, < 0 before
  * it, 0 on it. Each is z - w (or w - z) of one complementary pair of the step's LCP, of which Lemke's settled
- * answer makes one exactly 0: its sign is exact, and it is continuous in the data of the step. */
+ * answer makes one exactly 0, so its sign is exact. On the side where u moves along a piece it measures u, on
+ * the other the force -w. */
 void dp_lcs_margins(const dp_lcs_stepper *st, double *margin);
+
+/* The side of boundary b (+1: past it, -1: before it, 0: neither) where the margin is a multiplier's: u on a
+ * flat piece of a component whose w does not depend on u (D's row and column zero; an ideal diode that
+ * blocks with D = 0 holds w = 0 by u). The θ-step takes such a u as its mean over the step, which is u at
+ * the step's θ-point to second order, not at its end; the other margins are the end's. */
+int dp_lcs_boundary_lag(const dp_lcs_stepper *st, size_t b);
 
 /* A mode change located inside a step: component `component` went from mode `from` to mode `mode` at time t
  * (on: along its graph to the right, u or -w growing: for complementarity u_i leaves 0; off: back), u and w

@@ -40,6 +40,7 @@ typedef struct piece {
 typedef struct boundary {
     size_t row;
     double sign;
+    int lag;    /* +1 or -1: the side of that sign where u is a multiplier (dp_lcs_boundary_lag); 0: neither */
 } boundary;
 
 struct dp_lcs_stepper {
@@ -290,22 +291,33 @@ static int discretize(dp_lcs_stepper *st, const dp_lcs *s, double h, double thet
  * second row, before a piece τ - w of its row (w > 0 while F is below its start force). At a kink (no jump) the
  * one boundary is read after the piece when the next one rises (F then passes the end force) and before the
  * next one otherwise (the piece then rises into it). Appends to bd; returns the count. */
-static size_t component_boundaries(const piece *pc, size_t a0, size_t a1, boundary *bd)
+static size_t component_boundaries(const piece *pc, size_t a0, size_t a1, int held, boundary *bd)
 {
     size_t nb = 0;
     if (a1 > a0 && pc[a0].sign > 0)
-        bd[nb++] = (boundary){ a0, 1.0 };
+        bd[nb++] = (boundary){ a0, 1.0, held && pc[a0].slope == 0 };
     for (size_t j = a0; j < a1; j++) {
         const piece *P = &pc[j];
         if (P->sign > 0 && !isfinite(P->len))
             continue;      /* the right ray: nothing after it */
-        boundary after = P->sign < 0 ? (boundary){ j, -1.0 } : (boundary){ P->upper, 1.0 };
+        int lag = held && P->slope == 0 ? -1 : 0;
+        boundary after = P->sign < 0 ? (boundary){ j, -1.0, lag } : (boundary){ P->upper, 1.0, lag };
         if (j + 1 == a1 || pc[j + 1].f > P->fend || pc[j + 1].slope > 0)
             bd[nb++] = after;
         if (j + 1 < a1 && (pc[j + 1].f > P->fend || !(pc[j + 1].slope > 0)))
-            bd[nb++] = (boundary){ j + 1, 1.0 };
+            bd[nb++] = (boundary){ j + 1, 1.0, held && pc[j + 1].slope == 0 };
     }
     return nb;
+}
+
+/* Whether component i's w does not depend on u algebraically (D's row and column i zero): on a flat piece its
+ * u is then a multiplier of a held w, which the θ-step takes as the mean of u over the step. */
+static int multiplier(const dp_lcs *s, size_t i)
+{
+    for (size_t j = 0; j < s->m; j++)
+        if (s->D[i * s->m + j] != 0 || s->D[j * s->m + i] != 0)
+            return 0;
+    return 1;
 }
 
 /* Every component's pieces, rows first, then the second rows of the bounded ones; returns the LCP size. */
@@ -332,7 +344,7 @@ static size_t layout(dp_lcs_stepper *st, const dp_lcs *s)
         while (a1 < np && st->pc[a1].comp == i)
             a1++;
         st->first[i] = st->nb;
-        st->nb += component_boundaries(st->pc, a0, a1, st->bd + st->nb);
+        st->nb += component_boundaries(st->pc, a0, a1, multiplier(s, i), st->bd + st->nb);
         a0 = a1;
     }
     st->first[s->m] = st->nb;
@@ -467,6 +479,11 @@ size_t dp_lcs_boundaries(const dp_lcs_stepper *st, const size_t **first)
 {
     *first = st->first;
     return st->nb;
+}
+
+int dp_lcs_boundary_lag(const dp_lcs_stepper *st, size_t b)
+{
+    return b < st->nb ? st->bd[b].lag : 0;
 }
 
 void dp_lcs_margins(const dp_lcs_stepper *st, double *margin)
