@@ -7,6 +7,10 @@
  * §5, a backward Euler treatment of B u). Then what the step refuses and where it says the blame lies (every
  * product it forms from the data checked finite), and a step whose LCP pivots for long (Murty 1978's matrix
  * as D) ended by the stop hook or by Lemke's pivot limit, x unchanged.
+ * Then mode changes located inside the step (lcs_events.c): the half-wave rectifier against its piecewise
+ * closed form (state error and switch times O(h^2) at θ = 1/2, ratios near 4 as h halves), the breakdown
+ * RLC located against plain θ-steps (first order at its switches), no event where nothing switches (the
+ * located steps then the plain ones bit for bit), the bridge's four at π, and magnitudes 1e±150, 1e±300.
  */
 #include <math.h>
 #include <setjmp.h>
@@ -529,6 +533,84 @@ static void test_breakdown_contrast(void **state)
           0.01 / 8);
 }
 
+/* No switch, no event: an overdamped series RLC (R = 3, L = C = 1) charged by a constant source from
+ * i(0) = 0.5 keeps i > 0 (q' = 0.36 e^{-0.38t} + 0.14 e^{-2.62t}), so the located steps are the plain ones,
+ * bit for bit, and none is split. The bridge's diodes switch in pairs when v_C = -2 e^{-t} sin t changes sign
+ * at t = π: four events at one instant, O(h^2) from π, none at t = 0 where every pair is 0 = 0. */
+static void test_no_spurious_events(void **state)
+{
+    (void)state;
+    double A[4] = { 0, 1, -1, -3 }, B[2] = { 0, 1 }, C[2] = { 0, 1 }, D[1] = { 0 }, p[2] = { 0, 1 }, q[1] = { 0 };
+    dp_lcs_law law = { DP_LCS_COMPLEMENTARITY, 0, 0 };
+    dp_lcs sys = { 2, 1, A, B, C, D, p, q, &law };
+    int s;
+    dp_lcs_stepper *st = dp_lcs_stepper_alloc(&sys, 0.01, 0.5, &s), *alg = dp_lcs_stepper_alloc(&sys, 0, 1, &s);
+    dp_lcs_stepper *plain = dp_lcs_stepper_alloc(&sys, 0.01, 0.5, &s);
+    dp_lcs_locator *lc = dp_lcs_locator_alloc(&sys, NULL, 0.01, 0.5, &s);
+    double x[2] = { 0, 0.5 }, y[2] = { 0, 0.5 }, u[1], w[1], v[1], z[1];
+    dp_lcp_result res;
+    CHECK(dp_lcs_step(alg, x, u, w, &res) == DP_OK, "algebraic part");
+    dp_lcs_locator_start(lc, alg);
+    size_t events = 0, ne;
+    for (int k = 0; k < 2000; k++) {
+        CHECK(dp_lcs_step_located(lc, st, k * 0.01, 0.01, x, u, w, &res, NULL) == DP_OK, "step %d", k);
+        CHECK(dp_lcs_step(plain, y, v, z, &res) == DP_OK, "plain step %d", k);
+        dp_lcs_located_events(lc, &ne);
+        events += ne;
+        CHECK(x[0] == y[0] && x[1] == y[1] && u[0] == v[0], "step %d: located (%.17g, %.17g), plain (%.17g, %.17g)",
+              k, x[0], x[1], y[0], y[1]);
+    }
+    CHECK(events == 0 && dp_lcs_locator_substeps(lc) == 0 && x[1] > 0, "%zu events, %llu sub-steps, i = %g", events,
+          dp_lcs_locator_substeps(lc), x[1]);
+    dp_lcs_locator_free(lc);
+    dp_lcs_stepper_free(plain);
+    dp_lcs_stepper_free(alg);
+    dp_lcs_stepper_free(st);
+
+    const double c = 0.5, h = 1e-3;
+    double Ab[4] = { 0, -1 / c, 1, 0 }, Bb[8] = { 0, 0, -1 / c, 1 / c, 0, 0, 0, 0 };
+    double Cb[8] = { 0, 0, 0, 0, -1, 0, 1, 0 }, Db[16] = { 1, 1, -1, 0, 1, 1, 0, -1, 1, 0, 0, 0, 0, 1, 0, 0 };
+    double pb[2] = { 0, 0 }, qb[4] = { 0, 0, 0, 0 }, xb[2] = { 0, 1 }, ub[4], wb[4];
+    dp_lcs_law lb[4] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
+    dp_lcs bridge = { 2, 4, Ab, Bb, Cb, Db, pb, qb, lb };
+    st = dp_lcs_stepper_alloc(&bridge, h, 0.5, &s), alg = dp_lcs_stepper_alloc(&bridge, 0, 1, &s);
+    lc = dp_lcs_locator_alloc(&bridge, NULL, h, 0.5, &s);
+    CHECK(dp_lcs_step(alg, xb, ub, wb, &res) == DP_OK, "bridge: algebraic part");
+    dp_lcs_locator_start(lc, alg);
+    size_t seen = 0;
+    for (int k = 0; k < 4000; k++) {
+        CHECK(dp_lcs_step_located(lc, st, k * h, h, xb, ub, wb, &res, NULL) == DP_OK, "bridge step %d", k);
+        const dp_lcs_event *ev = dp_lcs_located_events(lc, &ne);
+        for (size_t j = 0; j < ne; j++, seen++)
+            CHECK(fabs(ev[j].t - M_PI) < h * h && ev[j].component == j && ev[j].on == (j % 2 == 0),
+                  "bridge event %zu: component %zu %s at %.15f", seen, ev[j].component, ev[j].on ? "on" : "off", ev[j].t);
+    }
+    CHECK(seen == 4, "bridge: %zu events, expected 4 at t = π", seen);
+    dp_lcs_locator_free(lc);
+    dp_lcs_stepper_free(alg);
+    dp_lcs_stepper_free(st);
+}
+
+/* The rectifier scaled by 1e±150 (its source and so its whole solution: the system is linear) switches at the
+ * same instants as at scale 1, to 1e-9 of a step: every decision is taken on signs and scaled margins. At
+ * 1e±300 the sub-steps' LCPs leave the normal doubles and may fail their check: a change is then dated at the
+ * end of its step (the locator gives up, never the run), so within a step. */
+static void test_hostile_magnitudes(void **state)
+{
+    (void)state;
+    const double h = 0.01;
+    rect_run one = rectifier_run(&RECT, h, 6, 0.05, 1, 1, NULL);
+    double scales[] = { 1e150, 1e-150, 1e300, 1e-300 };
+    for (size_t k = 0; k < sizeof scales / sizeof *scales; k++) {
+        rect_run big = rectifier_run(&RECT, h, 6, 0.05, 1, scales[k], NULL);
+        double tol = k < 2 ? 1e-9 * h : h;
+        CHECK(big.nev == one.nev, "scale %g: %zu events, %zu at scale 1", scales[k], big.nev, one.nev);
+        for (size_t j = 0; j < one.nev; j++)
+            CHECK(fabs(big.t_ev[j] - one.t_ev[j]) <= tol && big.on_ev[j] == one.on_ev[j],
+                  "scale %g: event %zu at %.15f, at scale 1 %.15f", scales[k], j, big.t_ev[j], one.t_ev[j]);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -537,6 +619,7 @@ int main(void)
         cmocka_unit_test(test_bridge),          cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_located_refusals), cmocka_unit_test(test_long_step_stopped),
         cmocka_unit_test(test_rectifier_convergence), cmocka_unit_test(test_breakdown_contrast),
+        cmocka_unit_test(test_no_spurious_events),  cmocka_unit_test(test_hostile_magnitudes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
