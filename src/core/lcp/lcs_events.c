@@ -16,6 +16,12 @@
  * iteration of base/root.c, each evaluation one sub-step (the step's data are those of the system at s). The
  * step goes to the root, the components that are on their boundary there change mode, and the rest of the
  * step is taken again from there, until a rest of the step keeps every mode.
+ *
+ * A multiplier's side (an ideal diode that blocks with D = 0: u holds w = 0) is read at the step's θ-point,
+ * not its end: the θ-step's u is then u's mean over the step (Moreau–Jean's impulse over h). Its margin σ
+ * into the step is therefore read from a sub-step of σ/θ, and a change in the step's last (1 - θ) h, which
+ * the nominal step's mean does not show, is foreseen by extrapolating the last two steps' margins and
+ * confirmed by a sub-step of h/θ. Without that the switch would be dated up to (1 - θ) h late.
  */
 #include <math.h>
 #include <stdlib.h>
