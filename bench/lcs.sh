@@ -67,7 +67,7 @@ def peer(c, steps):
 def dashpot(c, steps, samples):
     lcs = {k: c[k] for k in "ABCDpq" if k in c}
     doc = {"model": {"lcs": lcs, "laws": [{"law": "complementarity"}] * len(c["D"])},
-           "initial": {"x": c["x0"]}, "solver": {"kind": "stick-slip", "dt": h, "t_end": steps * h, "theta": theta},
+           "initial": {"x": c["x0"]}, "solver": {"kind": "stick-slip", "dt": h, "t_end": steps * h, "theta": theta, "events": "none"},
            "output": {"samples": samples}}
     t0 = time.perf_counter()
     r = subprocess.run([build + "/dashpot", "simulate", "-", "--format", "ndjson", "--quiet"], input=json.dumps(doc),

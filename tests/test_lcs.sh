@@ -139,8 +139,20 @@ assert e1 < 2e-6, ('before t*', e1)
 assert all(abs(s['x'][1]) < 1e-12 and abs(s['x'][0] - q(ts)) < 2e-6 and abs(s['u'][0] - q(ts) / C) < 1e-5 for s in after)
 assert all(s['u'][0] >= 0 and s['w'][0] >= 0 and s['u'][0] * s['w'][0] == 0 for s in samples)
 assert meta['model'] == 'lcs' and meta['step']['theory']['p_matrix'] is True and meta['step']['uniqueness'].startswith('one u')
+ev = [r for r in rows if r['type'] == 'event']
+assert meta['events_mode'] == 'locate' and len(ev) == 1, ev  # the diode blocks (u = -v_D leaves 0: "on") at t*
+assert ev[0]['kind'] == 'on' and ev[0]['component'] == 0 and ev[0]['mode'] == 1 and abs(ev[0]['t'] - ts) < 1e-6, ev
 PY
-check "rlc: the closed form before t*, blocked for good after it, 0 <= u ⊥ w >= 0 at every row" python3 "$T/rlc_check.py" "$T/rlc.ndjson"
+check "rlc: the closed form before t*, blocked for good after it, 0 <= u ⊥ w >= 0 at every row, one event at t*" python3 "$T/rlc_check.py" "$T/rlc.ndjson"
+
+# "events": "none": the plain θ-steps, no event lines, and the meta line says so.
+python3 -c "import json; d=json.load(open('$T/rlc.json')); d['solver']['events']='none'; print(json.dumps(d))" >"$T/rlc_none.json"
+"$BIN" simulate "$T/rlc_none.json" --format ndjson >"$T/rlc_none.ndjson"
+check "rlc with events none: no event line, events_mode none, the same rows before t*" python3 -c "
+import json
+a = [json.loads(l) for l in open('$T/rlc_none.ndjson')]; b = [json.loads(l) for l in open('$T/rlc.ndjson')]
+assert a[0]['events_mode'] == 'none' and not [r for r in a if r['type'] == 'event']
+assert [r for r in a if r['type'] == 'sample' and r['t'] < 0.72] == [r for r in b if r['type'] == 'sample' and r['t'] < 0.72]"
 
 # The same with a breakdown diode, V_b = 0.5 < q*/C: u = v_D in [-0.5, 0], B = -b, C = -c. At t* the
 # current reverses: y = q - C V_b, y(s) = y* e^{-as}(cos wd s + (a/wd) sin wd s), i = -y* (w0^2/wd) e^{-as} sin wd s.
@@ -162,11 +174,16 @@ assert len(rev) > 1000
 err = max(max(abs(s['x'][1] + ys * w02 / wd * math.exp(-a * (s['t'] - ts)) * math.sin(wd * (s['t'] - ts))),
               abs(s['x'][0] - C * Vb - ys * math.exp(-a * (s['t'] - ts)) * (math.cos(wd * (s['t'] - ts)) +
                   a / wd * math.sin(wd * (s['t'] - ts))))) for s in rev)
-assert err < 1e-3, err  # O(h): the switch lands on a step boundary (measured 2.2e-4)
+assert err < 2e-6, err  # O(h^2): the switch located inside its step (measured 6.0e-7; 2.2e-4 unlocated)
 assert all(s['u'][0] == -Vb for s in rev), 'in breakdown v_D = -V_b'
 assert all(-Vb <= s['u'][0] <= 0 for s in samples)
+rows = [json.loads(l) for l in open(sys.argv[1])]
+ev = [r for r in rows if r['type'] == 'event']
+assert rows[0]['events_mode'] == 'locate' and len(ev) == 1, ev
+assert ev[0]['kind'] == 'off' and ev[0]['component'] == 0 and ev[0]['mode'] == 0 and abs(ev[0]['t'] - ts) < 1e-6, ev
 PY
-check "breakdown diode: reverse current about q = C V_b after t*, v_D = -V_b throughout it" python3 "$T/bd_check.py" "$T/bd.ndjson"
+check "breakdown diode: reverse current about q = C V_b after t*, v_D = -V_b throughout it, one event at t*" \
+    python3 "$T/bd_check.py" "$T/bd.ndjson"
 
 # The four-diode bridge (Ex. 1.10) with the seed's matrices, R = 1, L = 1, C = 0.5, x = (v_C, i_L): a parallel
 # RLC, v_C = -(i0/(C wd)) e^{-at} sin wd t, a = 1/(2RC), and the load current i_DF1 + i_DR1 = |v_C|/R.
@@ -198,7 +215,8 @@ check "bridge: a parallel RLC, the load current |v_C|/R both ways (rectified), t
 
 # The one-mass Coulomb oscillator written as an LCS: x = (x, v), u = F_d ∈ φ0 Sgn(v) is u ∈ [-φ0, φ0] with
 # v ∈ N(u), i.e. w = -v ∈ -N(u): B = (0, -1/m), C = (0, -1). Its θ-step is the stick-slip solver's own
-# (u at the step's end, "events": "none"), so the two trajectories agree to rounding at every step.
+# (u at the step's end, "events": "none" for both: plain θ-steps), so the two trajectories agree to rounding
+# at every step.
 for th in 0.5 1; do
     cat >"$T/coulomb.json" <<JSON
 {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 1}},
@@ -207,7 +225,7 @@ JSON
     cat >"$T/coulomb_lcs.json" <<JSON
 {"model": {"lcs": {"A": [[0, 1], [-1, 0]], "B": [[0], [-1]], "C": [[0, -1]]},
            "laws": [{"law": "interval", "min": -1, "max": 1}]},
- "initial": {"x": [4.5, 0]}, "solver": {"kind": "stick-slip", "dt": 0.01, "t_end": 10, "theta": $th}}
+ "initial": {"x": [4.5, 0]}, "solver": {"kind": "stick-slip", "dt": 0.01, "t_end": 10, "theta": $th, "events": "none"}}
 JSON
     "$BIN" simulate "$T/coulomb.json" --format csv >"$T/c1.csv"
     "$BIN" simulate "$T/coulomb_lcs.json" --format csv >"$T/c2.csv"

@@ -118,6 +118,74 @@ const gsl_matrix *dp_lcs_step_matrix(const dp_lcs_stepper *st);
 /* Sets the offset p (n numbers) of the following steps: p(t_n + θh) for a time-dependent one. O(n^2). */
 void dp_lcs_stepper_set_p(dp_lcs_stepper *st, const double *p);
 
+/* Discretizes the stepper again for the step h > 0 (the same system, θ and current p): a sub-step of a step
+ * split at an event. DP_OK, DP_EINVAL (I - hθA singular, or a product beyond the doubles, at this h: the
+ * stepper is then unusable until a later call succeeds), DP_ENOMEM. O(n^3). */
+int dp_lcs_stepper_set_h(dp_lcs_stepper *st, double h);
+
+/* ---- modes and their boundaries (docs/lcs.md, "Mode changes are events") ----------------------------------
+ * A component's law splits its graph in the (u, -w) plane into modes, numbered 0, 1, ... left to right along
+ * the graph: each vertical piece (u held while w moves) and each non-vertical piece (u moves) is one. An ideal
+ * diode's complementarity has two, 0 (u = 0 <= w) and 1 (u > 0 = w); an interval three, 0 (u = lo, w >= 0),
+ * 1 (lo < u < hi, w = 0) and 2 (u = hi, w <= 0); `coulomb` three (sliding left, held, sliding right); a graph
+ * one per piece. Consecutive modes meet at a boundary, a point of the graph; a component in mode k has passed
+ * exactly k of its boundaries. */
+
+/* The number of boundaries of the stepper's laws, component i's numbered first[i] .. first[i+1] - 1 in order
+ * along its graph (*first: m + 1 entries, owned by the stepper). */
+size_t dp_lcs_boundaries(const dp_lcs_stepper *st, const size_t **first);
+
+/* After a step, each boundary's margin: > 0 when the step's solution lies past it along the graph, < 0 before
+ * it, 0 on it. Each is z - w (or w - z) of one complementary pair of the step's LCP, of which Lemke's settled
+ * answer makes one exactly 0, so its sign is exact. On the side where u moves along a piece it measures u, on
+ * the other the force -w. */
+void dp_lcs_margins(const dp_lcs_stepper *st, double *margin);
+
+/* The side of boundary b (+1: past it, -1: before it, 0: neither) where the margin is a multiplier's: u on a
+ * flat piece of a component whose w does not depend on u (D's row and column zero; an ideal diode that
+ * blocks with D = 0 holds w = 0 by u). The θ-step takes such a u as its mean over the step, which is u at
+ * the step's θ-point to second order, not at its end; the other margins are the end's. */
+int dp_lcs_boundary_lag(const dp_lcs_stepper *st, size_t b);
+
+/* A mode change located inside a step: component `component` went from mode `from` to mode `mode` at time t
+ * (on: along its graph to the right, u or -w growing: for complementarity u_i leaves 0; off: back), u and w
+ * its u_i and w_i there. Changes through several modes at one instant are one event. */
+typedef struct dp_lcs_event {
+    size_t component, from, mode;
+    int on;
+    double t, u, w;
+} dp_lcs_event;
+
+/* Locates mode changes: each step that changes a component's mode is split at the instant the first change
+ * happens (a root of that boundary's margin as a function of the sub-step's length, by a safeguarded
+ * Illinois iteration on sub-steps from the step's start), and continued from there with the new mode, so
+ * θ = 1/2 keeps its order through the switches. */
+typedef struct dp_lcs_locator dp_lcs_locator;
+
+/* A locator for steps of the system with θ in [0, 1]; pf is NULL or n forcings, p(t) = sys->p + pf(t) taken
+ * at each sub-step's θ-point. The system's arrays and pf must outlive it. NULL with *status (as
+ * dp_lcs_stepper_alloc; h is a step the system admits, the locator's sub-steps are shorter). */
+dp_lcs_locator *dp_lcs_locator_alloc(const dp_lcs *sys, const dp_forcing *pf, double h, double theta, int *status);
+void dp_lcs_locator_free(dp_lcs_locator *lc);
+
+/* The modes at the start, from a step just taken by st (the algebraic part at x0): a component on one of its
+ * boundaries has no mode until a step leaves it, and no event then. */
+void dp_lcs_locator_start(dp_lcs_locator *lc, const dp_lcs_stepper *st);
+
+/* One step of length h from time t: x (n), u, w (m) in and out, as dp_lcs_step_until with `nominal` (its
+ * offset already p at this step's θ-point). When the nominal step leaves every mode as it was, its result is
+ * taken as it is (bit for bit); otherwise the step is split at each change, found to a few ulps of t. A
+ * sub-step that fails (I - hθA singular at its length, no LCP solution) gives the change up: the nominal
+ * step is taken and its changes dated at its end. Statuses as dp_lcs_step_until, for the nominal step. */
+int dp_lcs_step_located(dp_lcs_locator *lc, dp_lcs_stepper *nominal, double t, double h, double *x, double *u,
+                        double *w, dp_lcp_result *res, const dp_stop *stop);
+
+/* The changes of the last located step, in time order: *n of them. */
+const dp_lcs_event *dp_lcs_located_events(const dp_lcs_locator *lc, size_t *n);
+
+/* The sub-steps taken so far to locate changes (each one LCP). */
+unsigned long long dp_lcs_locator_substeps(const dp_lcs_locator *lc);
+
 /* One step: x (n) in, x+ out; u, w (m) out at the step's end. DP_OK, DP_ESOLVE when the step's LCP has no
  * solution Lemke can find (res->outcome: a ray, or an answer that fails its check; x unchanged), DP_ELIMIT
  * (Lemke's pivot limit; x unchanged), DP_ENONFINITE (the step's LCP offsets leave the doubles). res: Lemke's

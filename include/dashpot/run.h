@@ -28,18 +28,21 @@ typedef struct dp_sample {
 
 typedef enum dp_event_kind {
     DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2, DP_EVENT_YIELD = 3, DP_EVENT_UNLOAD = 4, DP_EVENT_IMPACT = 5,
-    DP_EVENT_LIFTOFF = 6
+    DP_EVENT_LIFTOFF = 6, DP_EVENT_ON = 7, DP_EVENT_OFF = 8
 } dp_event_kind;
 
 /* A phase change: DP_EVENT_STICK is slip -> stick, DP_EVENT_SLIP is stick -> slip; an elastoplastic
  * spring's DP_EVENT_YIELD (its slider starts sliding) and DP_EVENT_UNLOAD (it stops: elastic again); a
  * contact's DP_EVENT_IMPACT (v the rate before, v_after after, impulse >= 0 pushing the ends apart); Painlevé's
- * rod leaving the floor, DP_EVENT_LIFTOFF (x, v: the end's height and upward rate, docs/right-hand.md). */
+ * rod leaving the floor, DP_EVENT_LIFTOFF (x, v: the end's height and upward rate, docs/right-hand.md); a linear
+ * complementarity system's mode change (lcs.h), DP_EVENT_ON along the component's graph, DP_EVENT_OFF back
+ * (element: the component, mode: the mode entered, x, v: its u and w then). */
 typedef struct dp_event {
     dp_event_kind kind;
     double t, x, v;
     size_t element;  /* networks: the element that changed phase (x, v: its elongation and rate) */
     double v_after, impulse;   /* DP_EVENT_IMPACT only */
+    size_t mode;     /* DP_EVENT_ON, DP_EVENT_OFF only */
 } dp_event;
 
 /* One named group of a row's numbers: written as an array "name": [...] in JSON, as columns name<index>

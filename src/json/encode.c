@@ -115,8 +115,24 @@ static char *put_sample_members(dp_number_text *recent, char *p, const dp_sample
     return p;
 }
 
+/* A linear complementarity system's mode change: "kind":"on"|"off","component":i,"t":..,"mode":k,"u":..,"w":.. */
+static char *put_mode_change(char *p, const dp_event *ev)
+{
+    char num[48];
+    int len = snprintf(num, sizeof num, "\",\"component\":%zu", ev->element);
+    p = ev->kind == DP_EVENT_ON ? PUT(p, "\"kind\":\"on") : PUT(p, "\"kind\":\"off");
+    p = put_lit(p, num, (size_t)len);
+    p = put_num(PUT(p, ",\"t\":"), ev->t);
+    len = snprintf(num, sizeof num, ",\"mode\":%zu", ev->mode);
+    p = put_lit(p, num, (size_t)len);
+    p = put_num(PUT(p, ",\"u\":"), ev->x);
+    return put_num(PUT(p, ",\"w\":"), ev->v);
+}
+
 static char *put_event_members(char *p, const dp_event *ev, int network)
 {
+    if (ev->kind == DP_EVENT_ON || ev->kind == DP_EVENT_OFF)
+        return put_mode_change(p, ev);
     p = ev->kind == DP_EVENT_STICK ? PUT(p, "\"kind\":\"stick\"") : ev->kind == DP_EVENT_SLIP ? PUT(p, "\"kind\":\"slip\"")
       : ev->kind == DP_EVENT_YIELD ? PUT(p, "\"kind\":\"yield\"") : ev->kind == DP_EVENT_IMPACT ? PUT(p, "\"kind\":\"impact\"")
       : ev->kind == DP_EVENT_LIFTOFF ? PUT(p, "\"kind\":\"liftoff\"") : PUT(p, "\"kind\":\"unload\"");

@@ -355,6 +355,7 @@ int dp_lcs_meta_json(const struct dp_spec *sp, dp_buf *b)
              "\"variant\":\"exact\",\"model\":\"lcs\"", DP_VERSION);
     int s = put(b, head) || put_kv(b, "theta", sv->theta) || put_kv(b, "dt", sv->dt) || put_kv(b, "t_end", sv->t_end);
     s = s || put_kv(b, "steps", dp_spec_steps(sp)) || put_kv(b, "every", (double)sp->output.every) || dp_chosen_json(sp, b);
+    s = s || put(b, ",\"events_mode\":\"") || put(b, dp_spec_events_mode(sp)) || put(b, "\"");
     s = s || put_kv(b, "states", (double)lm->n) || put_kv(b, "components", (double)lm->m) || put(b, ",\"laws\":[");
     for (size_t i = 0; i < lm->m && !s; i++)
         s = put(b, i ? "," : "") || put_law(b, &lm->law[i]);

@@ -32,12 +32,25 @@
 typedef struct piece {
     size_t comp, upper;         /* the component; a bounded piece's second row (its μ), 0 for a ray */
     double sign, f, slope, len; /* σ, the force at its first vertex, κ >= 0, len (INFINITY for a ray) */
+    double fend;                /* the force at its right end, from the graph's own points (a ray to the right: none) */
 } piece;
+
+/* A boundary between two modes of a component (dp_lcs_boundaries): the LCP row whose complementary pair
+ * (z, w) tells the side, its margin sign (z - w), sign +1 or -1. */
+typedef struct boundary {
+    size_t row;
+    double sign;
+    int lag;    /* +1 or -1: the side of that sign where u is a multiplier (dp_lcs_boundary_lag); 0: neither */
+} boundary;
 
 struct dp_lcs_stepper {
     size_t n, m, ma, np;        /* states, components, LCP size, pieces (the first np rows) */
     gsl_matrix *E, *WB, *C, *D, *M, *Ma, *W;
-    double h;
+    gsl_matrix *A, *B;          /* the system's, kept to discretize again at another h (dp_lcs_stepper_set_h) */
+    gsl_vector *p;              /* the offset of the following steps */
+    double h, theta;
+    boundary *bd;               /* the modes' boundaries, component by component (first[i] .. first[i+1]-1) */
+    size_t nb, *first;
     gsl_vector *Whp, *q, *u0, *lo, *hi;  /* u at the start of each graph, its domain [lo, hi] */
     piece *pc;
     gsl_vector *xh, *r, *qa, *za, *wa, *u;
@@ -48,13 +61,16 @@ void dp_lcs_stepper_free(dp_lcs_stepper *st)
 {
     if (st == NULL)
         return;
-    gsl_matrix *mats[] = { st->E, st->WB, st->C, st->D, st->M, st->Ma, st->W };
-    gsl_vector *vecs[] = { st->Whp, st->q, st->u0, st->lo, st->hi, st->xh, st->r, st->qa, st->za, st->wa, st->u };
+    gsl_matrix *mats[] = { st->E, st->WB, st->C, st->D, st->M, st->Ma, st->W, st->A, st->B };
+    gsl_vector *vecs[] = { st->Whp, st->q, st->u0, st->lo, st->hi, st->xh, st->r, st->qa, st->za, st->wa, st->u,
+                           st->p };
     for (size_t i = 0; i < sizeof mats / sizeof mats[0]; i++)
         gsl_matrix_free(mats[i]);
     for (size_t i = 0; i < sizeof vecs / sizeof vecs[0]; i++)
         gsl_vector_free(vecs[i]);
     free(st->pc);
+    free(st->bd);
+    free(st->first);
     dp_lcp_free(st->lcp);
     free(st);
 }
@@ -102,7 +118,7 @@ static size_t law_pieces(const dp_lcs_law *law, size_t comp, piece *out, double 
         *u0 = *lo = iv ? law->lo : 0.0;
         *hi = iv ? law->hi : INFINITY;
         if (out)
-            out[0] = (piece){ comp, 0, 1.0, 0.0, 0.0, iv ? law->hi - law->lo : INFINITY };
+            out[0] = (piece){ comp, 0, 1.0, 0.0, 0.0, iv ? law->hi - law->lo : INFINITY, iv ? 0.0 : INFINITY };
         *bounded = iv;
         return 1;
     }
@@ -120,19 +136,19 @@ static size_t law_pieces(const dp_lcs_law *law, size_t comp, piece *out, double 
     *hi = g->right[0] > 0 ? INFINITY : g->y[last];
     *bounded = 0;
     if (in[0] > 0 && out)
-        out[np] = (piece){ comp, 0, -1.0, g->f[first], in[1] / in[0], INFINITY };
+        out[np] = (piece){ comp, 0, -1.0, g->f[first], in[1] / in[0], INFINITY, g->f[first] };
     np += in[0] > 0;
     for (size_t v = first, next = first + 1; v < last; v = next++) {
         while (next < last && !turns(g, next))
             next++;
         double dy = g->y[next] - g->y[v];
         if (dy > 0 && out)
-            out[np] = (piece){ comp, 0, 1.0, g->f[v], isfinite(dy) ? (g->f[next] - g->f[v]) / dy : NAN, dy };
+            out[np] = (piece){ comp, 0, 1.0, g->f[v], isfinite(dy) ? (g->f[next] - g->f[v]) / dy : NAN, dy, g->f[next] };
         np += dy > 0, *bounded += dy > 0;
     }
     directions(g, last, in, dir);
     if (dir[0] > 0 && out)
-        out[np] = (piece){ comp, 0, 1.0, g->f[last], dir[1] / dir[0], INFINITY };
+        out[np] = (piece){ comp, 0, 1.0, g->f[last], dir[1] / dir[0], INFINITY, INFINITY };
     return np + (dir[0] > 0);
 }
 
@@ -267,6 +283,43 @@ static int discretize(dp_lcs_stepper *st, const dp_lcs *s, double h, double thet
     return ok;
 }
 
+/* The boundaries between the modes of one component, whose pieces are pc[a0 .. a1-1] in order along its graph
+ * (docs/lcs.md, "Mode changes"): before the first piece when it is no left ray (u held at its lowest value), after
+ * each piece but the right ray, and where the graph jumps (a vertical piece between two pieces) before the next
+ * one too. A boundary's side is read from one LCP row whose margin has a strict sign on either side: after a
+ * left ray w - z of its row (w > 0 once F passes its end force), after a bounded piece μ - (len - τ) of its
+ * second row, before a piece τ - w of its row (w > 0 while F is below its start force). At a kink (no jump) the
+ * one boundary is read after the piece when the next one rises (F then passes the end force) and before the
+ * next one otherwise (the piece then rises into it). Appends to bd; returns the count. */
+static size_t component_boundaries(const piece *pc, size_t a0, size_t a1, int held, boundary *bd)
+{
+    size_t nb = 0;
+    if (a1 > a0 && pc[a0].sign > 0)
+        bd[nb++] = (boundary){ a0, 1.0, held && pc[a0].slope == 0 };
+    for (size_t j = a0; j < a1; j++) {
+        const piece *P = &pc[j];
+        if (P->sign > 0 && !isfinite(P->len))
+            continue;      /* the right ray: nothing after it */
+        int lag = held && P->slope == 0 ? -1 : 0;
+        boundary after = P->sign < 0 ? (boundary){ j, -1.0, lag } : (boundary){ P->upper, 1.0, lag };
+        if (j + 1 == a1 || pc[j + 1].f > P->fend || pc[j + 1].slope > 0)
+            bd[nb++] = after;
+        if (j + 1 < a1 && (pc[j + 1].f > P->fend || !(pc[j + 1].slope > 0)))
+            bd[nb++] = (boundary){ j + 1, 1.0, held && pc[j + 1].slope == 0 };
+    }
+    return nb;
+}
+
+/* Whether component i's w does not depend on u algebraically (D's row and column i zero): on a flat piece its
+ * u is then a multiplier of a held w, which the θ-step takes as the mean of u over the step. */
+static int multiplier(const dp_lcs *s, size_t i)
+{
+    for (size_t j = 0; j < s->m; j++)
+        if (s->D[i * s->m + j] != 0 || s->D[j * s->m + i] != 0)
+            return 0;
+    return 1;
+}
+
 /* Every component's pieces, rows first, then the second rows of the bounded ones; returns the LCP size. */
 static size_t layout(dp_lcs_stepper *st, const dp_lcs *s)
 {
@@ -284,6 +337,17 @@ static size_t layout(dp_lcs_stepper *st, const dp_lcs *s)
         if (isfinite(st->pc[a].len))
             st->pc[a].upper = ma++;
     st->np = np;
+    size_t a0 = 0;
+    st->nb = 0;
+    for (size_t i = 0; i < s->m; i++) {
+        size_t a1 = a0;
+        while (a1 < np && st->pc[a1].comp == i)
+            a1++;
+        st->first[i] = st->nb;
+        st->nb += component_boundaries(st->pc, a0, a1, multiplier(s, i), st->bd + st->nb);
+        a0 = a1;
+    }
+    st->first[s->m] = st->nb;
     return ma;
 }
 
@@ -364,10 +428,12 @@ dp_lcs_stepper *dp_lcs_stepper_alloc_why(const dp_lcs *s, double h, double theta
     st->lo = gsl_vector_alloc(m), st->hi = gsl_vector_alloc(m), st->xh = gsl_vector_alloc(n);
     st->r = gsl_vector_alloc(m), st->qa = gsl_vector_alloc(ka), st->za = gsl_vector_alloc(ka);
     st->wa = gsl_vector_alloc(ka), st->u = gsl_vector_alloc(m), st->pc = calloc(np ? np : 1, sizeof *st->pc);
+    st->A = gsl_matrix_alloc(n, n), st->B = gsl_matrix_alloc(n, m), st->p = gsl_vector_alloc(n);
+    st->bd = calloc(2 * np + m, sizeof *st->bd), st->first = calloc(m + 1, sizeof *st->first);
     st->lcp = ma ? dp_lcp_alloc(ma) : NULL;
     if (!st->E || !st->WB || !st->W || !st->C || !st->D || !st->M || !st->Ma || !st->Whp || !st->q || !st->u0 ||
         !st->lo || !st->hi || !st->xh || !st->r || !st->qa || !st->za || !st->wa || !st->u || !st->pc ||
-        (ma && !st->lcp)) {
+        !st->A || !st->B || !st->p || !st->bd || !st->first || (ma && !st->lcp)) {
         dp_lcs_stepper_free(st);
         *why = "out of memory";
         return NULL;
@@ -375,6 +441,10 @@ dp_lcs_stepper *dp_lcs_stepper_alloc_why(const dp_lcs *s, double h, double theta
     memcpy(st->C->data, s->C, m * n * sizeof(double));
     memcpy(st->D->data, s->D, m * m * sizeof(double));
     memcpy(st->q->data, s->q, m * sizeof(double));
+    memcpy(st->A->data, s->A, n * n * sizeof(double));
+    memcpy(st->B->data, s->B, n * m * sizeof(double));
+    memcpy(st->p->data, s->p, n * sizeof(double));
+    st->theta = theta;
     layout(st, s);
     if (!discretize(st, s, h, theta, &no) || !assemble(st, &no)) {
         *status = no.where[0] ? DP_EINVAL : DP_ENOMEM;
@@ -388,8 +458,40 @@ dp_lcs_stepper *dp_lcs_stepper_alloc_why(const dp_lcs *s, double h, double theta
 
 void dp_lcs_stepper_set_p(dp_lcs_stepper *st, const double *p)
 {
-    gsl_vector_const_view pv = gsl_vector_const_view_array(p, st->n);
-    gsl_blas_dgemv(CblasNoTrans, st->h, st->W, &pv.vector, 0.0, st->Whp);
+    memcpy(st->p->data, p, st->n * sizeof *p);
+    gsl_blas_dgemv(CblasNoTrans, st->h, st->W, st->p, 0.0, st->Whp);
+}
+
+int dp_lcs_stepper_set_h(dp_lcs_stepper *st, double h)
+{
+    if (!(h >= 0) || !isfinite(h))
+        return DP_EINVAL;
+    /* the system as discretize and assemble read it: its A, B and the current p (C, D, q, the pieces kept) */
+    dp_lcs sys = { st->n, st->m, st->A->data, st->B->data, NULL, NULL, st->p->data, NULL, NULL };
+    refusal no = { "", "" };
+    st->h = h;
+    if (!discretize(st, &sys, h, st->theta, &no) || !assemble(st, &no))
+        return no.where[0] ? DP_EINVAL : DP_ENOMEM;
+    return DP_OK;
+}
+
+size_t dp_lcs_boundaries(const dp_lcs_stepper *st, const size_t **first)
+{
+    *first = st->first;
+    return st->nb;
+}
+
+int dp_lcs_boundary_lag(const dp_lcs_stepper *st, size_t b)
+{
+    return b < st->nb ? st->bd[b].lag : 0;
+}
+
+void dp_lcs_margins(const dp_lcs_stepper *st, double *margin)
+{
+    for (size_t b = 0; b < st->nb; b++) {
+        const boundary *bd = &st->bd[b];
+        margin[b] = bd->sign * (gsl_vector_get(st->za, bd->row) - gsl_vector_get(st->wa, bd->row));
+    }
 }
 
 const gsl_matrix *dp_lcs_step_matrix(const dp_lcs_stepper *st)
