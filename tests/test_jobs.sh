@@ -13,7 +13,8 @@
 #      the daemon exits 0 within grace + 1.5 s;
 #   6. the library polls the hook inside Lemke's pivots and a response curve's points: with --max-wall 1,
 #      Murty's 300 x 300 LCP (2^300 pivots, cut at Lemke's limit of 61 000: seconds of work) and a 300-node
-#      response with non-proportional damping at its most points answer 503 /problems/timeout within 2.5 s.
+#      response with non-proportional damping at its most points answer 503 /problems/timeout within 2.5 s,
+#      and an LCS whose algebraic part at t = 0 is Murty's 250 x 250 ends its stream at the limit.
 # The bounds are coarse functional guarantees, not benchmarks (the probes' is 2 s under DASHPOT_VALGRIND=1,
 # which runs one thread at a time). Env BUILD (default build), DASHPOT_VALGRIND (tests/lib/daemon.bash).
 source "$(dirname "$0")/lib/daemon.bash"
@@ -214,6 +215,21 @@ for k in murty resp; do
     check "$route: 503 /problems/timeout" pyjson "$SCRATCH/$k.out" "d['status'] == 503 and d['type'] == '/problems/timeout'"
     check "...within 1 s + 1.5 s" below "$(cat "$SCRATCH/$k.time")" 2.5
 done
+python3 - >"$SCRATCH/lcs.json" <<'PY'
+import json
+m = 250  # an LCS whose algebraic part at t = 0 is Murty's LCP: the document's check leaves it undecided
+D = [[1 if i == j else 1.5 if j < i else 0 for j in range(m)] for i in range(m)]
+print(json.dumps({"model": {"lcs": {"A": [[-1]], "B": [[0] * m], "C": [[0]] * m, "D": D, "q": [-1] * m},
+                            "laws": [{"law": "complementarity"}] * m},
+                  "initial": {"x": [0]}, "solver": {"kind": "stick-slip", "dt": 0.01, "t_end": 0.05}}))
+PY
+curl -s -m 20 -o "$SCRATCH/lcs.out" -w '%{time_total}' -H 'Accept: application/x-ndjson' \
+    --data-binary @"$SCRATCH/lcs.json" "$URL_wall/v1/simulate" >"$SCRATCH/lcs.time"
+echo "    an LCS with Murty's 250 x 250 at t = 0: answered after $(cat "$SCRATCH/lcs.time") s"
+check "simulate, an LCS whose t = 0 problem is Murty's: its stream ends with the wall limit's error line" \
+    grep -q '"status":503.*wall-time limit' "$SCRATCH/lcs.out"
+check "...within 1 s + 1.5 s (the document's check stops within its budget, the run on its hook)" \
+    below "$(cat "$SCRATCH/lcs.time")" 2.5
 check "no slot left taken" is "$(metric "$URL_wall" dashpot_workers_busy)" 0
 stop_daemon wall
 check "exit 0" is "$RC_wall" 0

@@ -68,15 +68,17 @@ static void declare_columns(struct dp_lcs_run *lr)
     lr->cols.width = lr->width;
 }
 
-/* The initial u, w: the algebraic part at x0 (dp_lcs_check made sure there is one). */
-static int initial_algebraic(struct dp_lcs_run *lr, const dp_lcs *sys, dp_lcp_result *res)
+/* The initial u, w: the algebraic part at x0 (dp_lcs_check made sure there is one, or left a problem too
+ * large for its budget undecided). Solved at the run's first advance, not at its set-up, so that its pivots
+ * are under the run's stop hook (a set-up runs before the caller can give one). */
+static int initial_algebraic(struct dp_lcs_run *lr, const dp_lcs *sys, dp_lcp_result *res, const dp_stop *stop)
 {
     int s;
     *res = (dp_lcp_result){ DP_LCP_SOLVED, 0, 0.0 };
     dp_lcs_stepper *alg = dp_lcs_stepper_alloc(sys, 0.0, 1.0, &s);
     if (alg == NULL)
         return s;
-    s = dp_lcs_step(alg, lr->x, lr->u, lr->w, res);
+    s = dp_lcs_step_until(alg, lr->x, lr->u, lr->w, res, stop);
     if (s == DP_OK && lr->locate)
         dp_lcs_locator_start(lr->locate, alg);   /* the modes at t = 0 */
     dp_lcs_stepper_free(alg);
@@ -147,11 +149,6 @@ static int lcs_run_init(dp_run *r)
         if (lr->locate == NULL)
             return setup_failed(r, s, "", "the location of mode changes could not be set up: %s", dp_strerror(s));
     }
-    dp_lcp_result res;
-    if ((s = initial_algebraic(lr, &sys, &res)) == DP_ESOLVE && res.outcome == DP_LCP_RAY)
-        return dp_run_fail(r, s, "the laws admit no u at the initial state");
-    if (s != DP_OK)
-        return step_failed(r, s, &res, "the algebraic part at t = 0");
     declare_columns(lr);
     r->cols = &lr->cols;
     r->cur.t = 0;
@@ -252,6 +249,14 @@ static int lcs_run_advance(dp_run *r)
     if (reserve_rows(r, lr) != DP_OK)
         return dp_run_fail(r, DP_ENOMEM, "out of memory for the rows of a block");
     if (!lr->started) {
+        dp_lcs sys = dp_lcs_model_system(r->spec.lcs);
+        const dp_stop stop = { r->stop, r->stop_ctx };
+        dp_lcp_result res;
+        int s = initial_algebraic(lr, &sys, &res, &stop);
+        if (s == DP_ESOLVE && res.outcome == DP_LCP_RAY)
+            return dp_run_fail(r, s, "the laws admit no u at the initial state");
+        if (s != DP_OK)
+            return step_failed(r, s, &res, "the algebraic part at t = 0");
         lr->started = 1;
         if (emit_row(r, lr) != DP_OK)
             return dp_run_fail(r, DP_ENOMEM, "out of memory for the records of a block");
