@@ -530,12 +530,8 @@ static int solve_assignment(dp_network_step *w)
     for (size_t i = 0; i < n; i++)
         if (w->kidx[i] >= 0)
             w->y[w->kidx[i]] += w->rhs_eff[i] - w->res[i];
-    if (w->nr) {
-        gsl_matrix_view Rv = gsl_matrix_view_array(w->R, w->nr, w->pr + 1);
-        gsl_vector_view yv = gsl_vector_view_array(w->y, w->nr);
-        if (gsl_linalg_cholesky_band_svx(&Rv.matrix, &yv.vector) != 0)
-            return DP_ESOLVE;
-    }
+    if (w->nr && dp_band_cholesky_solve(w->R, w->nr, w->pr, w->y) != DP_OK)
+        return DP_ESOLVE;
     for (size_t i = 0; i < n; i++)
         w->vs[i] = (w->kidx[i] >= 0 ? w->y[w->kidx[i]] : 0) + w->c[i];
     return DP_OK;
@@ -617,6 +613,43 @@ static int domain_end(const dp_network_step_element *e, double z, vertex *at)
     return 1;
 }
 
+/* First index k with y[k] >= x (n if none), as the graph's own search (laws/graph.c). */
+static size_t first_at_or_above(const double *y, size_t n, double x)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (y[mid] < x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* The start assignment of a damper-only element (no spring graph, no relaxation: a Coulomb element on a
+ * belt) whose z lies strictly inside its graph's domain and on no vertex: free on the piece holding z, from
+ * the vertex below to the one above. What assign_start's general path finds, without its second search and
+ * its force interval (single-valued off the vertices); 0 when z is not such a point (the general path then
+ * decides). */
+static int start_inside_piece(dp_network_step *w, size_t i, double h, const double *u, double z)
+{
+    const dp_network_step_element *e = &w->el[i];
+    const dp_graph *A = e->A;
+    if (A == NULL || e->S != NULL || (w->gamma && w->gamma[i]))
+        return 0;
+    double y = z - e->vb;
+    size_t n = A->n, k = first_at_or_above(A->y, n, y);
+    if (!isfinite(y) || (k < n && A->y[k] == y) || (y < A->y[0] && !(A->left[0] > 0)) ||
+        (y > A->y[n - 1] && !(A->right[0] > 0)))
+        return 0;
+    vertex at = { z, SRC_NONE, 0 };
+    if (!set_free(w, i, u[i], h, &at, +1))
+        return 0;
+    w->es[i].lo = k > 0 ? (vertex){ A->y[k - 1] + e->vb, SRC_A, A->y[k - 1] } : (vertex){ -INFINITY, SRC_NONE, 0 };
+    return 1;
+}
+
 /* The assignment at a start point v: elements on a vertex of A are fixed there (while independent),
  * others free on the piece holding z; one whose z lies beyond a vertical end of A fixed at that end. 0 when
  * some z lies outside its graph's domain otherwise. */
@@ -626,6 +659,8 @@ static int assign_start(dp_network_step *w, double h, const double *u, const dou
     for (size_t i = 0; i < w->ne; i++) {
         const dp_network_step_element *e = &w->el[i];
         double z = rel_velocity(e, v), lo, hi, slope, f;
+        if (start_inside_piece(w, i, h, u, z))
+            continue;
         vertex at = { z, SRC_NONE, 0 }, below;
         if (e->A && dp_graph_has_vertex(e->A, z - e->vb))
             at.src = SRC_A, at.y = z - e->vb;
@@ -841,7 +876,7 @@ static void report(dp_network_step *w, double h, const double *u, const double *
         vertex at = s->st == FIXED ? s->fix : (vertex){ o->z, SRC_NONE, 0 };
         o->lambda = s->st == FIXED ? s->lam : s->lam0 + s->slope * (o->z - s->zref);
         o->lambda += w->g0[i] + w->g1[i] * (at.z - w->zk[i]);   /* the graphs' part, without gamma */
-        if (e->A)
+        if (e->A && (s->st == FIXED || e->S))   /* a free damper alone: its force is lambda, not at rest */
             dp_graph_force(e->A, arg_A(e, &at), &alo, &ahi);
         if (e->S) {
             dp_graph_force(e->S, arg_S(e, u[i], h, &at), &slo, &shi);
