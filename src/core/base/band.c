@@ -34,6 +34,11 @@ void dp_band_symv(const double *A, size_t n, size_t p, const double *x, double *
 {
     if (n == 0)
         return;
+    if (p == 0) {   /* diagonal (masses alone, one node) */
+        for (size_t i = 0; i < n; i++)
+            y[i] = A[i] * x[i];
+        return;
+    }
     if (p == 1) {
         symv_tridiagonal(A, n, x, y);
         return;
