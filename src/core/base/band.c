@@ -1,8 +1,10 @@
 /* src/core/base/band.c - symmetric band matrices (band.h): written once here, the network step, the Newmark
- * step and the network run had each kept their own copy. The factorization is GSL's; the solve with a factor
- * of half-bandwidth one (a chain: the network step's every solve) is written out, since GSL's generic
- * triangular band solve (cblas_dtbsv) costs several times the two bidiagonal sweeps it performs there. Each
- * entry is formed by the same operations in the same order as GSL's, so the answers are the same bit for bit. */
+ * step and the network run had each kept their own copy. The factorization and the solve are GSL's; at
+ * half-bandwidth one (a chain: the network step's every solve and refactorization) both are written out,
+ * since GSL's generic band routines (dscal, dsyr, dtbsv through CBLAS) cost several times the bidiagonal
+ * sweeps they perform there. Each entry is formed by the same operations in the same order as GSL's, so the
+ * answers are the same bit for bit (checked against GSL on random bands while writing them). */
+#include <math.h>
 #include <stdlib.h>
 
 #include <gsl/gsl_linalg.h>
@@ -84,8 +86,30 @@ void dp_band_add_incidence(double *B, size_t p, long a, long b, double w)
     }
 }
 
+/* GSL's band Cholesky at half-bandwidth one, operation for operation (gsl_linalg_cholesky_band_decomp: the
+ * pivot's square root, the column scaled by its inverse (dscal), the next pivot less the column's square
+ * (dsyr with alpha -1)), without the 1-norm GSL keeps in the unused last entry for its condition estimate. */
+static int cholesky_bidiagonal(double *F, size_t n)
+{
+    for (size_t j = 0; j < n; j++) {
+        double ajj = F[2 * j];
+        if (ajj <= 0.0)
+            return DP_ESOLVE;
+        ajj = sqrt(ajj);
+        F[2 * j] = ajj;
+        if (j + 1 < n) {
+            double v = (1.0 / ajj) * F[2 * j + 1];
+            F[2 * j + 1] = v;
+            F[2 * (j + 1)] += v * (-1.0 * v);
+        }
+    }
+    return DP_OK;
+}
+
 int dp_band_cholesky(double *F, size_t n, size_t p)
 {
+    if (p == 1 && n > 1)
+        return cholesky_bidiagonal(F, n);
     gsl_matrix_view Fv = gsl_matrix_view_array(F, n, p + 1);
     return gsl_linalg_cholesky_band_decomp(&Fv.matrix) == 0 ? DP_OK : DP_ESOLVE;
 }

@@ -510,9 +510,8 @@ static int factor_reduced(dp_network_step *w)
     }
     if (w->poll != NULL && w->nr * q * q > LONG_FACTOR)
         return polled_cholesky(w, q);
-    gsl_matrix_view Rv = gsl_matrix_view_array(w->R, w->nr, q);
     w->work += w->nr * q * q;      /* the band Cholesky's multiply-adds, to within a factor of two */
-    return gsl_linalg_cholesky_band_decomp(&Rv.matrix) == 0 ? DP_OK : DP_ESOLVE;
+    return dp_band_cholesky(w->R, w->nr, pr);
 }
 
 /* y = H x for the symmetric band H. */
