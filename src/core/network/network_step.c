@@ -631,7 +631,7 @@ static size_t first_at_or_above(const double *y, size_t n, double x)
  * the vertex below to the one above. What assign_start's general path finds, without its second search and
  * its force interval (single-valued off the vertices); 0 when z is not such a point (the general path then
  * decides). */
-static int start_inside_piece(dp_network_step *w, size_t i, double h, const double *u, double z)
+static int start_inside_piece(dp_network_step *w, size_t i, double z)
 {
     const dp_network_step_element *e = &w->el[i];
     const dp_graph *A = e->A;
@@ -642,10 +642,24 @@ static int start_inside_piece(dp_network_step *w, size_t i, double h, const doub
     if (!isfinite(y) || (k < n && A->y[k] == y) || (y < A->y[0] && !(A->left[0] > 0)) ||
         (y > A->y[n - 1] && !(A->right[0] > 0)))
         return 0;
-    vertex at = { z, SRC_NONE, 0 };
-    if (!set_free(w, i, u[i], h, &at, +1))
-        return 0;
-    w->es[i].lo = k > 0 ? (vertex){ A->y[k - 1] + e->vb, SRC_A, A->y[k - 1] } : (vertex){ -INFINITY, SRC_NONE, 0 };
+    /* the piece towards +1 as dp_graph_piece and sigma_piece form it (y is on no vertex, so the first vertex
+     * above it is y[k]), operation for operation: the same slope and force bit for bit */
+    double slope, y0, f0, next;
+    if (k == n)
+        slope = A->right[1] / A->right[0], y0 = A->y[n - 1], f0 = A->f[n - 1], next = INFINITY;
+    else if (k == 0)
+        slope = A->left[0] > 0 ? A->left[1] / A->left[0] : 0, y0 = A->y[0], f0 = A->f[0], next = A->y[0];
+    else
+        slope = (A->f[k] - A->f[k - 1]) / (A->y[k] - A->y[k - 1]), y0 = A->y[k - 1], f0 = A->f[k - 1], next = A->y[k];
+    double s = 0, f = 0;
+    s += slope, f += y == y0 ? f0 : f0 + slope * (y - y0);
+    s -= w->g1[i];
+    f -= w->g0[i] + w->g1[i] * (z - w->zk[i]);
+    elem_state *st = &w->es[i];
+    st->st = FREE;
+    st->zref = z, st->lam0 = f, st->slope = s;
+    st->hi = isfinite(next) ? (vertex){ next + e->vb, SRC_A, next } : (vertex){ INFINITY, SRC_NONE, 0 };
+    st->lo = k > 0 ? (vertex){ A->y[k - 1] + e->vb, SRC_A, A->y[k - 1] } : (vertex){ -INFINITY, SRC_NONE, 0 };
     return 1;
 }
 
@@ -658,7 +672,7 @@ static int assign_start(dp_network_step *w, double h, const double *u, const dou
     for (size_t i = 0; i < w->ne; i++) {
         const dp_network_step_element *e = &w->el[i];
         double z = rel_velocity(e, v), lo, hi, slope, f;
-        if (start_inside_piece(w, i, h, u, z))
+        if (start_inside_piece(w, i, z))
             continue;
         vertex at = { z, SRC_NONE, 0 }, below;
         if (e->A && dp_graph_has_vertex(e->A, z - e->vb))
