@@ -322,6 +322,8 @@ static void forest_reset(dp_network_step *w)
         w->parent[i] = (long)i, w->pot[i] = 0;
 }
 
+static void index_forest(dp_network_step *w);
+
 /* Builds the forest of the fixed elements and the map node -> reduced unknown. */
 static void build_forest(dp_network_step *w)
 {
@@ -329,6 +331,12 @@ static void build_forest(dp_network_step *w)
     for (size_t i = 0; i < w->ne; i++)
         if (w->es[i].st == FIXED)
             join(w, &w->el[i], w->es[i].fix.z);
+    index_forest(w);
+}
+
+/* The map node -> reduced unknown of the forest just joined. */
+static void index_forest(dp_network_step *w)
+{
     long ground = find(w, (long)w->n);
     size_t nr = 0;
     for (size_t i = 0; i <= w->n; i++)
@@ -536,16 +544,24 @@ static int solve_assignment(dp_network_step *w)
     return DP_OK;
 }
 
+/* Row i of the symmetric band product A x, its terms summed in dp_band_symv's order (the diagonal, the rows
+ * above, then its own row), so that it equals that product's entry bit for bit. */
+static double band_row(const double *A, size_t n, size_t p, const double *x, size_t i)
+{
+    size_t p1 = p + 1;
+    double y = A[i * p1] * x[i];
+    for (size_t r = i > p ? i - p : 0; r < i; r++)
+        y += A[r * p1 + (i - r)] * x[r];
+    for (size_t d = 1; d <= p && i + d < n; d++)
+        y += A[i * p1 + d] * x[i + d];
+    return y;
+}
+
 /* The fixed elements' multipliers from the residual h sum_F b_e lambda_e = rhs_eff - H v, peeled off the
  * forest leaf by leaf (each leaf's residual belongs to its one remaining edge). */
 static void multipliers(dp_network_step *w, double h)
 {
     size_t n = w->n, nq = 0;
-    band_mul(w, w->vs, w->res);
-    for (size_t i = 0; i < n; i++) {   /* a residual's rounding: eps times what it is the difference of */
-        w->res_err[i] = 8 * DBL_EPSILON * (fabs(w->rhs_eff[i]) + fabs(w->res[i]));
-        w->res[i] = w->rhs_eff[i] - w->res[i];
-    }
     for (size_t i = 0; i <= n; i++)
         w->head[i] = -1, w->deg[i] = 0;
     for (size_t k = 0; k < w->ne; k++) {
@@ -557,9 +573,15 @@ static void multipliers(dp_network_step *w, double h)
         w->deg[a]++, w->deg[b]++;
         w->es[k].lam = NAN;
     }
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {   /* residuals on the forest's nodes only: no other is read */
+        if (w->deg[i] == 0)
+            continue;
+        double Hv = band_row(w->H, n, w->p, w->vs, i);
+        w->res_err[i] = 8 * DBL_EPSILON * (fabs(w->rhs_eff[i]) + fabs(Hv));   /* eps times its two terms */
+        w->res[i] = w->rhs_eff[i] - Hv;
         if (w->deg[i] == 1)
             w->queue[nq++] = i;
+    }
     for (size_t qi = 0; qi < nq; qi++) {
         size_t i = w->queue[qi];
         if (w->deg[i] != 1)
@@ -972,10 +994,10 @@ static int fixed_forest(dp_network_step *w)
 static int pdas(dp_network_step *w, double h, const double *rhs, const double *u, double *v, unsigned long long *iters)
 {
     for (int it = 0; it < 12; it++) {
-        if (!fixed_forest(w))
+        if (!fixed_forest(w))   /* joins the fixed forest, as build_forest would */
             return 1;
         (*iters)++;
-        build_forest(w);
+        index_forest(w);
         if (prepare(w, h, rhs) != DP_OK || solve_assignment(w) != DP_OK)
             return 1;
         if (polled_stop(w))
