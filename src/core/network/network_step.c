@@ -648,17 +648,33 @@ static size_t first_at_or_above(const double *y, size_t n, double x)
     return lo;
 }
 
+/* An element with no law in the step (a contact not armed for it): free on the whole line with no force,
+ * sigma_piece's sums for it written out. */
+static int start_lawless(dp_network_step *w, size_t i, double z)
+{
+    double s = 0, f = 0;
+    s -= w->g1[i];
+    f -= w->g0[i] + w->g1[i] * (z - w->zk[i]);
+    elem_state *st = &w->es[i];
+    st->st = FREE;
+    st->zref = z, st->lam0 = f, st->slope = s;
+    st->lo = (vertex){ -INFINITY, SRC_NONE, 0 }, st->hi = (vertex){ INFINITY, SRC_NONE, 0 };
+    return 1;
+}
+
 /* The start assignment of a damper-only element (no spring graph, no relaxation: a Coulomb element on a
  * belt) whose z lies strictly inside its graph's domain and on no vertex: free on the piece holding z, from
  * the vertex below to the one above. What assign_start's general path finds, without its second search and
- * its force interval (single-valued off the vertices); 0 when z is not such a point (the general path then
- * decides). */
+ * its force interval (single-valued off the vertices); an element with no law at all free on the line. 0
+ * when z is not such a point (the general path then decides). */
 static int start_inside_piece(dp_network_step *w, size_t i, double z)
 {
     const dp_network_step_element *e = &w->el[i];
     const dp_graph *A = e->A;
-    if (A == NULL || e->S != NULL || (w->gamma && w->gamma[i]))
+    if (e->S != NULL || (w->gamma && w->gamma[i]))
         return 0;
+    if (A == NULL)
+        return isfinite(z) && start_lawless(w, i, z);
     double y = z - e->vb;
     size_t n = A->n, k = first_at_or_above(A->y, n, y);
     if (!isfinite(y) || (k < n && A->y[k] == y) || (y < A->y[0] && !(A->left[0] > 0)) ||
