@@ -322,6 +322,8 @@ static void forest_reset(dp_network_step *w)
         w->parent[i] = (long)i, w->pot[i] = 0;
 }
 
+static void index_forest(dp_network_step *w);
+
 /* Builds the forest of the fixed elements and the map node -> reduced unknown. */
 static void build_forest(dp_network_step *w)
 {
@@ -329,6 +331,12 @@ static void build_forest(dp_network_step *w)
     for (size_t i = 0; i < w->ne; i++)
         if (w->es[i].st == FIXED)
             join(w, &w->el[i], w->es[i].fix.z);
+    index_forest(w);
+}
+
+/* The map node -> reduced unknown of the forest just joined. */
+static void index_forest(dp_network_step *w)
+{
     long ground = find(w, (long)w->n);
     size_t nr = 0;
     for (size_t i = 0; i <= w->n; i++)
@@ -510,9 +518,8 @@ static int factor_reduced(dp_network_step *w)
     }
     if (w->poll != NULL && w->nr * q * q > LONG_FACTOR)
         return polled_cholesky(w, q);
-    gsl_matrix_view Rv = gsl_matrix_view_array(w->R, w->nr, q);
     w->work += w->nr * q * q;      /* the band Cholesky's multiply-adds, to within a factor of two */
-    return gsl_linalg_cholesky_band_decomp(&Rv.matrix) == 0 ? DP_OK : DP_ESOLVE;
+    return dp_band_cholesky(w->R, w->nr, pr);
 }
 
 /* y = H x for the symmetric band H. */
@@ -530,15 +537,24 @@ static int solve_assignment(dp_network_step *w)
     for (size_t i = 0; i < n; i++)
         if (w->kidx[i] >= 0)
             w->y[w->kidx[i]] += w->rhs_eff[i] - w->res[i];
-    if (w->nr) {
-        gsl_matrix_view Rv = gsl_matrix_view_array(w->R, w->nr, w->pr + 1);
-        gsl_vector_view yv = gsl_vector_view_array(w->y, w->nr);
-        if (gsl_linalg_cholesky_band_svx(&Rv.matrix, &yv.vector) != 0)
-            return DP_ESOLVE;
-    }
+    if (w->nr && dp_band_cholesky_solve(w->R, w->nr, w->pr, w->y) != DP_OK)
+        return DP_ESOLVE;
     for (size_t i = 0; i < n; i++)
         w->vs[i] = (w->kidx[i] >= 0 ? w->y[w->kidx[i]] : 0) + w->c[i];
     return DP_OK;
+}
+
+/* Row i of the symmetric band product A x, its terms summed in dp_band_symv's order (the diagonal, the rows
+ * above, then its own row), so that it equals that product's entry bit for bit. */
+static double band_row(const double *A, size_t n, size_t p, const double *x, size_t i)
+{
+    size_t p1 = p + 1;
+    double y = A[i * p1] * x[i];
+    for (size_t r = i > p ? i - p : 0; r < i; r++)
+        y += A[r * p1 + (i - r)] * x[r];
+    for (size_t d = 1; d <= p && i + d < n; d++)
+        y += A[i * p1 + d] * x[i + d];
+    return y;
 }
 
 /* The fixed elements' multipliers from the residual h sum_F b_e lambda_e = rhs_eff - H v, peeled off the
@@ -546,11 +562,6 @@ static int solve_assignment(dp_network_step *w)
 static void multipliers(dp_network_step *w, double h)
 {
     size_t n = w->n, nq = 0;
-    band_mul(w, w->vs, w->res);
-    for (size_t i = 0; i < n; i++) {   /* a residual's rounding: eps times what it is the difference of */
-        w->res_err[i] = 8 * DBL_EPSILON * (fabs(w->rhs_eff[i]) + fabs(w->res[i]));
-        w->res[i] = w->rhs_eff[i] - w->res[i];
-    }
     for (size_t i = 0; i <= n; i++)
         w->head[i] = -1, w->deg[i] = 0;
     for (size_t k = 0; k < w->ne; k++) {
@@ -562,9 +573,15 @@ static void multipliers(dp_network_step *w, double h)
         w->deg[a]++, w->deg[b]++;
         w->es[k].lam = NAN;
     }
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {   /* residuals on the forest's nodes only: no other is read */
+        if (w->deg[i] == 0)
+            continue;
+        double Hv = band_row(w->H, n, w->p, w->vs, i);
+        w->res_err[i] = 8 * DBL_EPSILON * (fabs(w->rhs_eff[i]) + fabs(Hv));   /* eps times its two terms */
+        w->res[i] = w->rhs_eff[i] - Hv;
         if (w->deg[i] == 1)
             w->queue[nq++] = i;
+    }
     for (size_t qi = 0; qi < nq; qi++) {
         size_t i = w->queue[qi];
         if (w->deg[i] != 1)
@@ -617,6 +634,73 @@ static int domain_end(const dp_network_step_element *e, double z, vertex *at)
     return 1;
 }
 
+/* First index k with y[k] >= x (n if none), as the graph's own search (laws/graph.c). */
+static size_t first_at_or_above(const double *y, size_t n, double x)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (y[mid] < x)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* An element with no law in the step (a contact not armed for it): free on the whole line with no force,
+ * sigma_piece's sums for it written out. */
+static int start_lawless(dp_network_step *w, size_t i, double z)
+{
+    double s = 0, f = 0;
+    s -= w->g1[i];
+    f -= w->g0[i] + w->g1[i] * (z - w->zk[i]);
+    elem_state *st = &w->es[i];
+    st->st = FREE;
+    st->zref = z, st->lam0 = f, st->slope = s;
+    st->lo = (vertex){ -INFINITY, SRC_NONE, 0 }, st->hi = (vertex){ INFINITY, SRC_NONE, 0 };
+    return 1;
+}
+
+/* The start assignment of a damper-only element (no spring graph, no relaxation: a Coulomb element on a
+ * belt) whose z lies strictly inside its graph's domain and on no vertex: free on the piece holding z, from
+ * the vertex below to the one above. What assign_start's general path finds, without its second search and
+ * its force interval (single-valued off the vertices); an element with no law at all free on the line. 0
+ * when z is not such a point (the general path then decides). */
+static int start_inside_piece(dp_network_step *w, size_t i, double z)
+{
+    const dp_network_step_element *e = &w->el[i];
+    const dp_graph *A = e->A;
+    if (e->S != NULL || (w->gamma && w->gamma[i]))
+        return 0;
+    if (A == NULL)
+        return isfinite(z) && start_lawless(w, i, z);
+    double y = z - e->vb;
+    size_t n = A->n, k = first_at_or_above(A->y, n, y);
+    if (!isfinite(y) || (k < n && A->y[k] == y) || (y < A->y[0] && !(A->left[0] > 0)) ||
+        (y > A->y[n - 1] && !(A->right[0] > 0)))
+        return 0;
+    /* the piece towards +1 as dp_graph_piece and sigma_piece form it (y is on no vertex, so the first vertex
+     * above it is y[k]), operation for operation: the same slope and force bit for bit */
+    double slope, y0, f0, next;
+    if (k == n)
+        slope = A->right[1] / A->right[0], y0 = A->y[n - 1], f0 = A->f[n - 1], next = INFINITY;
+    else if (k == 0)
+        slope = A->left[0] > 0 ? A->left[1] / A->left[0] : 0, y0 = A->y[0], f0 = A->f[0], next = A->y[0];
+    else
+        slope = (A->f[k] - A->f[k - 1]) / (A->y[k] - A->y[k - 1]), y0 = A->y[k - 1], f0 = A->f[k - 1], next = A->y[k];
+    double s = 0, f = 0;
+    s += slope, f += y == y0 ? f0 : f0 + slope * (y - y0);
+    s -= w->g1[i];
+    f -= w->g0[i] + w->g1[i] * (z - w->zk[i]);
+    elem_state *st = &w->es[i];
+    st->st = FREE;
+    st->zref = z, st->lam0 = f, st->slope = s;
+    st->hi = isfinite(next) ? (vertex){ next + e->vb, SRC_A, next } : (vertex){ INFINITY, SRC_NONE, 0 };
+    st->lo = k > 0 ? (vertex){ A->y[k - 1] + e->vb, SRC_A, A->y[k - 1] } : (vertex){ -INFINITY, SRC_NONE, 0 };
+    return 1;
+}
+
 /* The assignment at a start point v: elements on a vertex of A are fixed there (while independent),
  * others free on the piece holding z; one whose z lies beyond a vertical end of A fixed at that end. 0 when
  * some z lies outside its graph's domain otherwise. */
@@ -626,6 +710,8 @@ static int assign_start(dp_network_step *w, double h, const double *u, const dou
     for (size_t i = 0; i < w->ne; i++) {
         const dp_network_step_element *e = &w->el[i];
         double z = rel_velocity(e, v), lo, hi, slope, f;
+        if (start_inside_piece(w, i, z))
+            continue;
         vertex at = { z, SRC_NONE, 0 }, below;
         if (e->A && dp_graph_has_vertex(e->A, z - e->vb))
             at.src = SRC_A, at.y = z - e->vb;
@@ -841,7 +927,7 @@ static void report(dp_network_step *w, double h, const double *u, const double *
         vertex at = s->st == FIXED ? s->fix : (vertex){ o->z, SRC_NONE, 0 };
         o->lambda = s->st == FIXED ? s->lam : s->lam0 + s->slope * (o->z - s->zref);
         o->lambda += w->g0[i] + w->g1[i] * (at.z - w->zk[i]);   /* the graphs' part, without gamma */
-        if (e->A)
+        if (e->A && (s->st == FIXED || e->S))   /* a free damper alone: its force is lambda, not at rest */
             dp_graph_force(e->A, arg_A(e, &at), &alo, &ahi);
         if (e->S) {
             dp_graph_force(e->S, arg_S(e, u[i], h, &at), &slo, &shi);
@@ -924,10 +1010,10 @@ static int fixed_forest(dp_network_step *w)
 static int pdas(dp_network_step *w, double h, const double *rhs, const double *u, double *v, unsigned long long *iters)
 {
     for (int it = 0; it < 12; it++) {
-        if (!fixed_forest(w))
+        if (!fixed_forest(w))   /* joins the fixed forest, as build_forest would */
             return 1;
         (*iters)++;
-        build_forest(w);
+        index_forest(w);
         if (prepare(w, h, rhs) != DP_OK || solve_assignment(w) != DP_OK)
             return 1;
         if (polled_stop(w))
