@@ -619,7 +619,7 @@ int dp_network_locates(const dp_spec *s)
         sticky |= e->has_contact;
         if (!element_locates(e, 1))
             return 0;
-        sticky |= dp_element_can_stick(e);
+        sticky |= dp_element_can_stick(e) || is_ep(e);   /* a slider sticks and slides too */
     }
     return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }
