@@ -26,6 +26,12 @@
 #include "solvers/network/network_run.h"
 #include "base/root.h"
 
+/* The part of what is left of a step over which a slider's assignment is renewed once its graph moved: long
+ * enough that a slider still sliding at a crawl moves its elongation past rounding there (a billionth, as
+ * elsewhere, leaves one stopping a ten-thousandth of a step on on the wrong piece by rounding), short enough
+ * that the phase it finds is the one the sub-step starts in. */
+#define EP_PROBE 1e-6
+
 typedef struct held_ctx {
     dp_run *r;
     double t;
@@ -352,7 +358,7 @@ int network_run_located_step(dp_run *r, double t, double h)
         if (s != DP_OK)
             return s;
         /* a moved graph: the assignment renewed on it by a billionth of the step, as at the run's start */
-        if (ep_redrawn(nr) && (s = network_run_net_step_keep(r, t, 1e-9 * left)) != DP_OK)
+        if (ep_redrawn(nr) && (s = network_run_net_step_keep(r, t, EP_PROBE * left)) != DP_OK)
             return s;
         dp_network_step_pattern_save(nr->ws, nr->pattern);
         if ((s = network_run_net_step_keep(r, t, left)) != DP_OK)
@@ -417,7 +423,7 @@ int network_run_located_step(dp_run *r, double t, double h)
         if (network_run_cancelled(r))
             return DP_ECANCEL;
         /* after a yield or unload the assignment is renewed by a billionth of what is left (the graph moved) */
-        if (ep_events && left - at > 0 && (s = network_run_net_step_keep(r, t + at, 1e-9 * (left - at))) != DP_OK)
+        if (ep_events && left - at > 0 && (s = network_run_net_step_keep(r, t + at, EP_PROBE * (left - at))) != DP_OK)
             return s;
         if (ep_events && left - at > 0)
             network_run_element_forces(nr, 1);

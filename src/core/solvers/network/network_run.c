@@ -165,6 +165,7 @@ static void ep_init(struct dp_network_run *nr, dp_network *net, const double *x0
         nr->has_ep = 1;
         nr->ep_p[i] = e->spring.offset;
         nr->ep_F[i] = dp_elastoplastic_return(&e->spring, network_run_rel(e->a, e->b, x0), &nr->ep_p[i], &flow);
+        nr->ep_flow[i] = (signed char)flow;   /* past yield at t = 0: sliding, a yield at t = 0 (network_run_init) */
         nr->ep_graph[i] = &e->spring.graph;
         dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
     }
@@ -529,6 +530,7 @@ static int network_run_init(dp_run *r)
     r->countdown = 1;
     network_run_finalize_summary(r);
     network_run_emit_row(r);     /* the initial state: queued, no block yet */
+    network_run_plastic_events(r, 0);   /* an initial elongation past yield, as one mass writes it */
     return DP_OK;
 }
 
