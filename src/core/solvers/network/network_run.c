@@ -165,7 +165,6 @@ static void ep_init(struct dp_network_run *nr, dp_network *net, const double *x0
         nr->has_ep = 1;
         nr->ep_p[i] = e->spring.offset;
         nr->ep_F[i] = dp_elastoplastic_return(&e->spring, network_run_rel(e->a, e->b, x0), &nr->ep_p[i], &flow);
-        nr->ep_flow[i] = (signed char)flow;   /* past yield at t = 0: sliding, a yield at t = 0 (network_run_init) */
         nr->ep_graph[i] = &e->spring.graph;
         dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
     }
@@ -528,9 +527,12 @@ static int network_run_init(dp_run *r)
     if (r->spec.output.quakes && (s = network_quakes_begin(nr, r->cur.t)) != DP_OK)
         return s;
     r->countdown = 1;
+    for (size_t i = 0; nr->has_ep && i < nr->nel; i++)   /* an initial elongation past yield: sliding */
+        if (nr->ep_graph[i] && nr->ep_p[i] != nr->net->el[i].spring.offset)
+            nr->ep_flow[i] = nr->ep_p[i] > nr->net->el[i].spring.offset ? 1 : -1;
     network_run_finalize_summary(r);
     network_run_emit_row(r);     /* the initial state: queued, no block yet */
-    network_run_plastic_events(r, 0);   /* an initial elongation past yield, as one mass writes it */
+    network_run_plastic_events(r, 0);   /* its yield at t = 0, as one mass writes it */
     return DP_OK;
 }
 
