@@ -297,11 +297,12 @@ static void test_located_events_any_phase_of_the_step(void **state)
 
 /* Events "none" keeps the unlocated step (a yield or unload reported at the end of its step): the one-mass
  * inclusion step and the network's active-set step, separate codes for the same step, agree to rounding;
- * networks do not locate these events, and their meta line says so ("step"). */
+ * the network unlocated too (its meta line "none"; networks locate them by default, test_network_events.c). */
 static const char *network_doc = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],"
     "\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1},\"damper\":{\"law\":\"linear\",\"c\":%.17g}}],"
     "\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":%.17g}]},\"initial\":{\"x\":[0],\"v\":[%.17g]},"
-    "\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":%g,\"theta\":%g},\"output\":{\"every\":1000000}}";
+    "\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":%g,\"theta\":%g,\"events\":\"none\"},"
+    "\"output\":{\"every\":1000000}}";
 
 static run_end run_network(const jcase *k, double dt, double theta)
 {
@@ -313,7 +314,7 @@ static run_end run_network(const jcase *k, double dt, double theta)
     dp_errors_init(&errs);
     int s = dp_spec_parse(doc, strlen(doc), 0, &spec, &errs);
     assert_int_equal(s, DP_OK);
-    assert_string_equal(dp_spec_events_mode(&spec), "step");
+    assert_string_equal(dp_spec_events_mode(&spec), "none");
     dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
     dp_spec_clear(&spec);
     assert_non_null(run);
@@ -388,7 +389,7 @@ static void test_elastic_swing_is_the_linear_spring(void **state)
 
 /* A Jenkins spring beside a Coulomb damper under a slow harmonic load: the mass sticks at reversals while the
  * slider yields and unloads. With events "none" the one-mass inclusion solver and the network's active-set
- * solver (which does not locate these events) are separate codes for the same step; they agree on the whole
+ * solver (told not to locate them either) are separate codes for the same step; they agree on the whole
  * path and on every event. */
 static void test_yielding_beside_sticking(void **state)
 {
@@ -400,7 +401,7 @@ static void test_yielding_beside_sticking(void **state)
     const char *net = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
         "\"elastoplastic\",\"k\":1,\"yield\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5}}],\"forcing\":"
         "[{\"node\":0,\"kind\":\"harmonic\",\"amplitude\":1.6,\"omega\":0.3,\"phase\":0}]},\"initial\":{\"x\":[0],"
-        "\"v\":[0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":30,\"theta\":0.5},"
+        "\"v\":[0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":30,\"theta\":0.5,\"events\":\"none\"},"
         "\"output\":{\"every\":100}}";
     traj a;
     assert_int_equal(traj_run(one, &a), DP_OK);

@@ -89,11 +89,11 @@ const dp_spring_law_info dp_spring_laws[] = {
         .row = { DP_SPRING_GRAPH, "graph", { { NULL } }, "x" },
         .build = spring_user, .locate = 1,
     },
-    [DP_SPRING_ELASTOPLASTIC] = {   /* Höschl 1983 §15; one mass locates its yield and unload (event_location.c),
-                                     * networks report them at the step's end (the graph moves with p) */
+    [DP_SPRING_ELASTOPLASTIC] = {   /* Höschl 1983 §15; yield and unload located by one mass (event_location.c)
+                                     * and by networks (network_events.c: the graph redrawn at each event) */
         .row = { DP_SPRING_ELASTOPLASTIC, "elastoplastic",
                  { SPRING(k, POSITIVE, 1), SPRING(yield, POSITIVE, 1), SPRING(offset, ANY, 0) }, NULL },
-        .build = spring_elastoplastic, .plastic = 1, .locate = 1, .elastic = offsetof(dp_spring, k),
+        .build = spring_elastoplastic, .plastic = 1, .locate = 1, .locate_network = 1, .elastic = offsetof(dp_spring, k),
     },
 };
 static_assert(sizeof dp_spring_laws / sizeof dp_spring_laws[0] == DP_SPRING_LAW_COUNT,

@@ -1153,13 +1153,19 @@ void dp_network_step_relaxation_start(dp_network_step *w, const double *v_start)
 }
 
 /* With relaxation, a held step's free elements keep their pieces (gamma is smooth: no vertex moves) but take
- * their slope and force again at the current linearization, as a whole solve's start does (set_free). */
+ * their slope and force again at the current linearization, as a whole solve's start does (set_free); an
+ * elastoplastic spring's piece keeps its graph vertices, whose z = (y - u) / (h theta) move with h and u. */
 static void refresh_free(dp_network_step *w, double h, const double *u)
 {
     for (size_t i = 0; i < w->ne; i++) {
         elem_state *s = &w->es[i];
-        if (s->st != FREE || w->gamma[i] == NULL)
+        int ep = w->el[i].S && w->el[i].ep_theta > 0;
+        if (s->st != FREE || (!ep && (w->gamma == NULL || w->gamma[i] == NULL)))
             continue;
+        if (ep && s->lo.src == SRC_S)
+            s->lo.z = (s->lo.y - u[i]) / s_beta(&w->el[i], h);
+        if (ep && s->hi.src == SRC_S)
+            s->hi.z = (s->hi.y - u[i]) / s_beta(&w->el[i], h);
         int dir = isfinite(s->lo.z) ? 1 : -1;
         vertex at = isfinite(s->lo.z) ? s->lo : isfinite(s->hi.z) ? s->hi : (vertex){ s->zref, SRC_NONE, 0 }, nx;
         double slope, f;
@@ -1181,8 +1187,7 @@ static int solve_held(dp_network_step *w, double h, const double *rhs, const dou
             w->g0[i] = dp_relaxation_eval(w->gamma[i], arg);
             w->g1[i] = th * dp_relaxation_slope(w->gamma[i], arg);
         }
-        if (w->gamma)
-            refresh_free(w, h, u);
+        refresh_free(w, h, u);
         build_forest(w);
         int s = prepare(w, h, rhs);
         s = s ? s : solve_assignment(w);
@@ -1222,6 +1227,12 @@ int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs
     return DP_OK;
 }
 
+/* A spring graph's vertex is the same where its graph point is (its z moves with h and u). */
+static int same_vertex(const vertex *a, const vertex *b)
+{
+    return a->src == SRC_S ? b->src == SRC_S && a->y == b->y : a->z == b->z;
+}
+
 int dp_network_step_pattern_same(const dp_network_step *w, const void *buf)
 {
     const elem_state *old = buf;
@@ -1229,7 +1240,7 @@ int dp_network_step_pattern_same(const dp_network_step *w, const void *buf)
         const elem_state *a = &w->es[i], *b = &old[i];
         if (a->st != b->st)
             return 0;
-        if (a->st == FIXED ? a->fix.z != b->fix.z : a->lo.z != b->lo.z || a->hi.z != b->hi.z)
+        if (a->st == FIXED ? !same_vertex(&a->fix, &b->fix) : !same_vertex(&a->lo, &b->lo) || !same_vertex(&a->hi, &b->hi))
             return 0;
     }
     return 1;

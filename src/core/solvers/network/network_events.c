@@ -10,13 +10,27 @@
  * with the graph its phase gives it: a sticking element is held on its static interval [-phi1, phi1], so its
  * margin is its force against phi1 and it breaks away onto the kinetic graph (+-phi0); a slipping one is on
  * its kinetic graph, its margin its relative velocity, and where that reaches zero it sticks if the static
- * interval holds it just after, else it reverses (the one-mass rest branch, stick_slip.c). */
+ * interval holds it just after, else it reverses (the one-mass rest branch, stick_slip.c).
+ *
+ * An elastoplastic (Jenkins) spring (Höschl 1983 §15) is located as the one-mass solver locates it
+ * (event_location.c): held elastic, its margin is F_y - |k(u+ - p)| at the held step's end (yield); held
+ * sliding in direction d, it is d z+, the slider's rate (unload). At the root the state is taken there, the
+ * return mapping puts the force on the yield surface (yield) or stops the slider (unload), the graph is
+ * redrawn at the new offset and the assignment renewed by a billionth of a step, as after an impact. A
+ * spring whose damper sticks is held exactly by the held step (its z is pinned), and its yield is reported
+ * at the end of the sub-step. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "solvers/network/network_run.h"
 #include "base/root.h"
+
+/* The part of what is left of a step over which a slider's assignment is renewed once its graph moved: long
+ * enough that a slider still sliding at a crawl moves its elongation past rounding there (a billionth, as
+ * elsewhere, leaves one stopping a ten-thousandth of a step on on the wrong piece by rounding), short enough
+ * that the phase it finds is the one the sub-step starts in. */
+#define EP_PROBE 1e-6
 
 typedef struct held_ctx {
     dp_run *r;
@@ -42,6 +56,26 @@ static void static_graphs(struct dp_network_run *nr, const unsigned char *phase)
         static_graph(nr, k, phase[nr->act_el[k]] == DP_PHASE_STICK);
 }
 
+/* Whether active element k is an elastoplastic spring free in the held assignment (its own margin applies). */
+static int ep_free(const struct dp_network_run *nr, size_t k)
+{
+    return k < nr->nact_el && nr->act[k].ep_theta > 0 && !dp_network_step_fixed(nr->ws, k);
+}
+
+/* An elastoplastic spring's margin at the end of a held step of length s (nr->u and nr->force from it),
+ * in the phase the sub-step started in (ep_flow: 0 elastic, +-1 sliding that way): the elastic one
+ * F_y - |k(u+ - p)| with u+ = u + s (1 - theta) z + s theta z+, the sliding one d z+. */
+static double ep_margin(const struct dp_network_run *nr, size_t k, double s)
+{
+    size_t i = nr->act_el[k];
+    const dp_spring *sp = &nr->net->el[i].spring;
+    double z = nr->force[k].z;
+    int d = nr->ep_flow[i];
+    if (d != 0)
+        return d * z;
+    return sp->yield - fabs(sp->k * (nr->u[k] + s * nr->theta * z - nr->ep_p[i]));
+}
+
 /* The smallest margin among the candidates after a step of length s with the sub-step's starting
  * assignment held (nr->margin gets every element's). */
 static double held_margin(void *vctx, double s)
@@ -54,6 +88,9 @@ static double held_margin(void *vctx, double s)
     if (dp_network_step_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
         return NAN;
     network_run_contacts_margins(nr, s);
+    for (size_t k = 0; nr->has_ep && k < nr->nact_el; k++)
+        if (ep_free(nr, k))
+            nr->margin[k] = fmin(nr->margin[k], ep_margin(nr, k, s));
     double m = INFINITY;
     for (size_t k = 0; k < nr->nact; k++)
         if (c->cand == NULL || c->cand[k])
@@ -189,6 +226,66 @@ static int breaks_away(dp_run *r, double t, double h)
     return 0;
 }
 
+/* The elastoplastic springs whose own margin fails at the located instant at (the held state there, before
+ * it is taken): nr->cand[k] 1 for a yield (it was elastic), 2 for an unload (it was sliding). */
+static size_t ep_events_at(struct dp_network_run *nr, double at)
+{
+    size_t n = 0;
+    for (size_t k = 0; nr->has_ep && k < nr->nact_el; k++) {
+        if (!nr->fails[k] || !ep_free(nr, k))
+            continue;
+        double m = ep_margin(nr, k, at);
+        if (!(m <= nr->margin[k] || m <= 1e-9 * nr->scale[k]))
+            continue;      /* its damper's event, not the spring's */
+        nr->cand[k] = nr->ep_flow[nr->act_el[k]] ? 2 : 1;
+        n++;
+    }
+    return n;
+}
+
+/* The yields and unloads of ep_events_at, the state taken to their instant (the return mapping done): a
+ * yield's force exactly on the yield surface, its offset and graph there; an unload's slider stopped. */
+static void ep_switch(struct dp_network_run *nr)
+{
+    for (size_t k = 0; nr->has_ep && k < nr->nact_el; k++) {
+        if (!nr->cand[k])
+            continue;
+        size_t i = nr->act_el[k];
+        const dp_element *e = &nr->net->el[i];
+        if (nr->cand[k] == 1) {
+            double u = network_run_rel(e->a, e->b, nr->x);
+            int d = nr->ep_flow[i] ? nr->ep_flow[i] : u >= nr->ep_p[i] ? 1 : -1;
+            nr->ep_flow[i] = (signed char)d;
+            nr->ep_F[i] = d * e->spring.yield;
+            nr->ep_p[i] = u - d * e->spring.yield / e->spring.k;
+            dp_elastoplastic_graph(&e->spring, nr->ep_p[i], 1, nr->ep_graph[i]);
+        } else {
+            nr->ep_flow[i] = 0;
+        }
+        nr->cand[k] = 0;
+    }
+}
+
+/* Whether a step's solution turns a sliding slider back (its end rate against its flow): its piece may be
+ * the same at both ends, the slider stopped inside the step all the same. */
+static int ep_turns(const struct dp_network_run *nr)
+{
+    for (size_t k = 0; nr->has_ep && k < nr->nact_el; k++)
+        if (nr->act[k].ep_theta > 0 && nr->ep_flow[nr->act_el[k]] * nr->force[k].z < 0)
+            return 1;
+    return 0;
+}
+
+/* Whether a slider slid in the last (sub-)step: its graph was redrawn at the new offset, and the assignment
+ * the workspace keeps names the old graph's vertex. */
+static int ep_redrawn(const struct dp_network_run *nr)
+{
+    for (size_t k = 0; nr->has_ep && k < nr->nact_el; k++)
+        if (nr->act[k].ep_theta > 0 && nr->ep_flow[nr->act_el[k]] != 0)
+            return 1;
+    return 0;
+}
+
 /* Whether the network has contacts and something other than a closing contact fails at the start of the
  * held step (nr->fails): an element's assignment or a resting contact's release. */
 static int switches_at_once(const struct dp_network_run *nr)
@@ -216,6 +313,7 @@ static int finish_step(dp_run *r, double t, double left)
     network_run_take_velocity(nr, left);
     network_run_element_forces(nr, 1);
     network_run_step_events(r, nr->phase_prev, t + left);
+    network_run_plastic_events(r, t + left);
     network_run_stick_time(r, nr->phase, left);
     if (nr->nc)
         network_run_contacts_mj_events(r, t, left);
@@ -259,11 +357,15 @@ int network_run_located_step(dp_run *r, double t, double h)
         int s = nr->nc ? contacts_at(r, t, left) : DP_OK;
         if (s != DP_OK)
             return s;
+        /* a moved graph: the assignment renewed on it by a billionth of the step, as at the run's start */
+        if (ep_redrawn(nr) && (s = network_run_net_step_keep(r, t, EP_PROBE * left)) != DP_OK)
+            return s;
         dp_network_step_pattern_save(nr->ws, nr->pattern);
         if ((s = network_run_net_step_keep(r, t, left)) != DP_OK)
             return s;
         network_run_element_forces(nr, 1);
-        int same = dp_network_step_pattern_same(nr->ws, nr->pattern) && !network_run_contacts_penetrate(nr, left);
+        int same = dp_network_step_pattern_same(nr->ws, nr->pattern) && !network_run_contacts_penetrate(nr, left) &&
+                   !ep_turns(nr);
         if (same && nr->theta < 1) {      /* keep the step's solution while the held step looks further */
             memcpy(nr->v1_keep, nr->v1, nr->n * sizeof *nr->v1);
             memcpy(nr->force_keep, nr->force, nr->nact * sizeof *nr->force);
@@ -277,6 +379,7 @@ int network_run_located_step(dp_run *r, double t, double h)
             network_run_take_velocity(nr, left);
             network_run_element_forces(nr, 1);
             network_run_step_events(r, nr->phase_prev, t + left);
+            network_run_plastic_events(r, t + left);
             network_run_stick_time(r, nr->phase, left);
             return DP_OK;
         }
@@ -302,13 +405,15 @@ int network_run_located_step(dp_run *r, double t, double h)
         if (nr->has_static && left - at <= 1e-12 * left)
             at = left;
         held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
+        size_t ep_events = ep_events_at(nr, at);
         network_run_take_velocity(nr, at);
+        ep_switch(nr);
         network_run_element_forces(nr, 1);
         /* every element whose assignment fails at this instant (to the root's tolerance) switches here:
          * identical blocks stick together */
         for (size_t j = 0; j < nr->nact; j++) {
-            if (!nr->fails[j])
-                continue;
+            if (!nr->fails[j] || (j < nr->nact_el && nr->act[j].ep_theta > 0 && ep_events))
+                continue;      /* with a yield or unload the renewal below finds every element's piece */
             if (j < nr->nact_el)
                 nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
             else if (nr->ct_on[j - nr->nact_el])
@@ -317,8 +422,14 @@ int network_run_located_step(dp_run *r, double t, double h)
         }
         if (network_run_cancelled(r))
             return DP_ECANCEL;
+        /* after a yield or unload the assignment is renewed by a billionth of what is left (the graph moved) */
+        if (ep_events && left - at > 0 && (s = network_run_net_step_keep(r, t + at, EP_PROBE * (left - at))) != DP_OK)
+            return s;
+        if (ep_events && left - at > 0)
+            network_run_element_forces(nr, 1);
         network_run_stick_time(r, nr->phase_prev, at);
         network_run_step_events(r, nr->phase_prev, t + at);
+        network_run_plastic_events(r, t + at);
         t += at, left -= at;
     }
     return DP_OK;

@@ -527,8 +527,12 @@ static int network_run_init(dp_run *r)
     if (r->spec.output.quakes && (s = network_quakes_begin(nr, r->cur.t)) != DP_OK)
         return s;
     r->countdown = 1;
+    for (size_t i = 0; nr->has_ep && i < nr->nel; i++)   /* an initial elongation past yield: sliding */
+        if (nr->ep_graph[i] && nr->ep_p[i] != nr->net->el[i].spring.offset)
+            nr->ep_flow[i] = nr->ep_p[i] > nr->net->el[i].spring.offset ? 1 : -1;
     network_run_finalize_summary(r);
     network_run_emit_row(r);     /* the initial state: queued, no block yet */
+    network_run_plastic_events(r, 0);   /* its yield at t = 0, as one mass writes it */
     return DP_OK;
 }
 
@@ -619,7 +623,7 @@ int dp_network_locates(const dp_spec *s)
         sticky |= e->has_contact;
         if (!element_locates(e, 1))
             return 0;
-        sticky |= dp_element_can_stick(e);
+        sticky |= dp_element_can_stick(e) || is_ep(e);   /* a slider sticks and slides too */
     }
     return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }
