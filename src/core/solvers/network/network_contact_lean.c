@@ -127,6 +127,17 @@ static void lean_report(const dp_network_step_element *e, const lean_state *s, d
     }
 }
 
+/* network_run_step_poll, its common case written here: the work counted, the run's hook asked when due. */
+static int lean_poll(dp_run *r, struct dp_network_run *nr, unsigned long long units)
+{
+    nr->work += units;
+    if (network_run_cancelled(r))
+        return 1;
+    if (r->stop == NULL || nr->work < r->poll_at)
+        return 0;
+    return network_run_step_poll(r, 0);
+}
+
 /* dp_network_step_solve for the one element: v1 and the force; DP_ECANCEL when the poll said stop, 1 when
  * the general solve must decide. */
 static int lean_step_solve(dp_run *r, double h, double rhs)
@@ -143,7 +154,7 @@ static int lean_step_solve(dp_run *r, double h, double rhs)
         if (!lean_solve(e, &s, h, rhs, W, &vs, &rhs_eff))
             return 1;
         /* the solve's work as polled_stop counts it: W's band and the element, R's factor */
-        if (network_run_step_poll(r, 2 + !s.fixed))
+        if (lean_poll(r, nr, 2 + !s.fixed))
             return DP_ECANCEL;
         int changed = lean_update(e, &s, h, rhs_eff, W, vs);
         if (changed < 0)
@@ -158,18 +169,39 @@ static int lean_step_solve(dp_run *r, double h, double rhs)
     return 1;
 }
 
-/* Moreau-Jean's arming (network_run_contacts_arm_mj) for the one contact. */
-static void lean_arm(struct dp_network_run *nr, double h)
+/* The run's constants, read once per block: the linear parts, the contact's law, the element's direction. */
+typedef struct lean_consts {
+    double M, C, K, k, c, theta, distance, restitution, belt;
+    int has_damper;
+    int up;             /* the element is [ground, 0] (u = x), else [0, ground] (u = -x) */
+} lean_consts;
+
+static void lean_consts_of(const struct dp_network_run *nr, lean_consts *k)
 {
     const dp_element *e = &nr->net->el[0];
+    *k = (lean_consts){ .M = nr->M[0], .C = nr->C[0], .K = nr->K[0], .k = nr->k[0], .c = nr->c[0],
+                        .theta = nr->theta, .distance = e->contact.distance,
+                        .restitution = e->contact.restitution, .has_damper = e->has_damper,
+                        .belt = e->has_damper ? e->damper.belt_velocity : 0, .up = e->b == 0 };
+}
+
+/* network_run_rel for the element: x_b - x_a with the ground at 0, operation for operation. */
+static inline double lean_rel(const lean_consts *k, double x)
+{
+    return k->up ? x - 0 : 0 - x;
+}
+
+/* Moreau-Jean's arming (network_run_contacts_arm_mj) for the one contact. */
+static void lean_arm(struct dp_network_run *nr, const lean_consts *k, double h)
+{
     dp_network_step_element *a = &nr->act[0];
-    double g = network_run_rel(e->a, e->b, nr->x) - e->contact.distance, gd = network_run_rel(e->a, e->b, nr->v);
+    double g = lean_rel(k, nr->x[0]) - k->distance, gd = lean_rel(k, nr->v[0]);
     if (fabs(gd) < DBL_MIN)
         gd = 0;
     int was = nr->ct_on[0], on = g + 0.5 * h * gd <= 0;
     int changed = (a->A != NULL) != on;
     a->A = on ? &nr->cone : NULL;
-    a->vb = on ? -e->contact.restitution * gd : 0;
+    a->vb = on ? -k->restitution * gd : 0;
     nr->ct_on[0] = (unsigned char)on;
     nr->ct_pre[0] = was ? 0 : gd;
     if (changed)
@@ -177,34 +209,33 @@ static void lean_arm(struct dp_network_run *nr, double h)
 }
 
 /* The right side of the step (network_run_step_rhs for one node); the elongation into u. */
-static double lean_rhs(struct dp_network_run *nr, double t, double h)
+static double lean_rhs(struct dp_network_run *nr, const lean_consts *k, double t, double h)
 {
-    double th = nr->theta, x = nr->x[0], v = nr->v[0];
+    double th = k->theta, x = nr->x[0], v = nr->v[0];
     if (h != nr->h_W)
         network_run_build_W(nr, h);
-    double rhs = nr->M[0] * v, tmp = nr->C[0] * v;
+    double rhs = k->M * v, tmp = k->C * v;
     rhs -= h * (1 - th) * tmp;
     double xs = x + h * th * (1 - th) * v;
-    tmp = nr->K[0] * xs;
+    tmp = k->K * xs;
     rhs -= h * tmp;
     for (size_t i = 0; i < nr->net->nforce; i++)
         rhs += h * dp_forcing_eval(&nr->net->force[i].f, t + th * h);
-    const dp_element *e = &nr->net->el[0];
-    double g = e->has_damper ? h * nr->c[0] * e->damper.belt_velocity : 0;
-    if (g != 0 && e->b >= 0)
+    double g = k->has_damper ? h * k->c * k->belt : 0;
+    if (g != 0 && k->up)
         rhs += g;
-    if (g != 0 && e->a >= 0)
+    if (g != 0 && !k->up)
         rhs -= g;
-    nr->u[0] = network_run_rel(nr->act[0].a, nr->act[0].b, nr->x);
+    nr->u[0] = lean_rel(k, x);
     return rhs;
 }
 
 /* One Moreau-Jean step (network_run_net_step), the element's forces after it (network_run_element_forces). */
-static int lean_step(dp_run *r, double t, double h)
+static int lean_step(dp_run *r, const lean_consts *k, double t, double h)
 {
     struct dp_network_run *nr = r->state;
-    lean_arm(nr, h);
-    double rhs = lean_rhs(nr, t, h);
+    lean_arm(nr, k, h);
+    double rhs = lean_rhs(nr, k, t, h);
     int s = lean_step_solve(r, h, rhs);
     if (s == 1) {   /* the general solve decides */
         nr->rhs[0] = rhs;
@@ -213,21 +244,20 @@ static int lean_step(dp_run *r, double t, double h)
     nr->solved = s == DP_OK;
     if (s != DP_OK)
         return s;
-    double th = nr->theta;
-    nr->x[0] += h * ((1 - th) * nr->v[0] + th * nr->v1[0]);
-    nr->v[0] = nr->v1[0];
+    double th = k->theta, v1 = nr->v1[0];
+    double x = nr->x[0] += h * ((1 - th) * nr->v[0] + th * v1);
+    nr->v[0] = v1;
     const dp_network_step_forces *f = &nr->force[0];
-    if (nr->ct_on[0] && nr->ct_pre[0] < 0 && f->lambda < 0) {
+    int on = nr->ct_on[0];
+    if (on && nr->ct_pre[0] < 0 && f->lambda < 0) {
         network_run_impact_event(r, t + h, 0, nr->ct_pre[0], f->z, -h * f->lambda);
         nr->ct_last[0] = nr->ct_before[0] = -INFINITY;
     }
-    const dp_element *e = &nr->net->el[0];
-    double u = network_run_rel(e->a, e->b, nr->x), z = network_run_rel(e->a, e->b, nr->v);
-    double vb = e->has_damper ? e->damper.belt_velocity : 0;
-    nr->Fs[0] = nr->k[0] != 0 ? nr->k[0] * u : 0;
-    nr->Fd[0] = nr->c[0] != 0 ? nr->c[0] * (z - vb) : 0;
+    double u = lean_rel(k, x), z = lean_rel(k, v1);
+    nr->Fs[0] = k->k != 0 ? k->k * u : 0;
+    nr->Fd[0] = k->c != 0 ? k->c * (z - k->belt) : 0;
     nr->phase[0] = DP_PHASE_NONE;
-    nr->Fn[0] = nr->ct_on[0] ? f->lambda : 0;
+    nr->Fn[0] = on ? f->lambda : 0;
     return DP_OK;
 }
 
@@ -238,6 +268,8 @@ static int lean_advance(dp_run *r)
     if (network_run_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
     network_run_flush(r);
+    lean_consts k;
+    lean_consts_of(nr, &k);
     while (r->out_n < r->out_cap && !dp_row_queue_waiting(&nr->queue) && nr->slots.used < nr->slots.cap && !r->finished) {
         nr->work += nr->n + nr->nel;
         if (nr->yield) {
@@ -249,14 +281,15 @@ static int lean_advance(dp_run *r)
         double h = dp_run_step_length(r), t = r->cur.t;
         nr->impacts_step = 0;
         nr->phase_prev[0] = nr->phase[0];
-        int s = lean_step(r, t, h);
+        int s = lean_step(r, &k, t, h);
         if (s != DP_OK && network_run_cancelled(r))
             return r->status;
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
         r->n++;
         r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
-        if (!network_run_state_finite(nr))
+        /* network_run_state_finite for the one node and element */
+        if (!(fabs(nr->x[0]) < 1e300 && fabs(nr->v[0]) < 1e300) || !isfinite(nr->Fs[0]) || !isfinite(nr->Fd[0]))
             return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
         r->sum.steps = r->n;
         if (r->n >= r->nsteps) {
