@@ -240,7 +240,7 @@ int dp_network_is_one_mass(const dp_spec *s)
 }
 
 /* One node and one element between it and the ground, a rigid contact (Newton restitution) with at most a
- * linear spring and a linear damper that cannot stick, stepped by Moreau-Jean's rule (events not located):
+ * linear spring and a linear damper that cannot stick, stepped by Moreau-Jean's rule (events "none"):
  * the bouncing ball, stepped by solvers/network/network_contact_lean.c, the general network step written out
  * for one node (the same answers, bit for bit). */
 int dp_network_is_one_node_contact(const dp_spec *s)
@@ -256,5 +256,6 @@ int dp_network_is_one_node_contact(const dp_spec *s)
         return 0;
     if (e->has_damper && (!dp_damper_linear(&e->damper) || e->damper.relaxation.kind != DP_RELAX_NONE))
         return 0;
-    return !dp_element_can_stick(e) && !dp_network_locates(s);
+    /* events "none": Moreau-Jean's rule (with "locate" a contact's impact is located inside its step) */
+    return !dp_element_can_stick(e) && s->solver.events == DP_EVENTS_NONE;
 }

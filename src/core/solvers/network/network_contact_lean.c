@@ -1,6 +1,6 @@
 /* src/core/solvers/network/network_contact_lean.c - a network of one node whose one element is a rigid
  * contact (Newton restitution) with at most a linear spring and a linear damper beside it: the bouncing ball.
- * Stepped with Moreau-Jean's rule without located events ("events": "none" or "step"), so that its step is
+ * Stepped with Moreau-Jean's rule without located events ("events": "none"), so that its step is
  * the general network step (network_stepping.c, network_contact.c, network/network_step.c) written out for
  * n = 1: the same floating-point operations in the same order, so the same answers bit for bit, without the
  * band matrices, the forest and the active-set bookkeeping that cost a general step some 250 ns for one node.
