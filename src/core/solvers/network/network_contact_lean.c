@@ -153,7 +153,9 @@ static int lean_step_solve(dp_run *r, double h, double rhs)
         iters++;
         if (!lean_solve(e, &s, h, rhs, W, &vs, &rhs_eff))
             return 1;
-        /* the solve's work as polled_stop counts it: W's band and the element, R's factor */
+        /* the solve's work as polled_stop counts it: W's band and the element, and R's factor at every free
+         * solve (the general workspace counts it only when it factors anew, so the stop hook may be asked a
+         * few steps apart from there; what is computed and recorded is the same) */
         if (lean_poll(r, nr, 2 + !s.fixed))
             return DP_ECANCEL;
         int changed = lean_update(e, &s, h, rhs_eff, W, vs);
