@@ -93,6 +93,8 @@ if [ "$dashpot_ok" = 1 ]; then
 fi
 echo
 
+# The ball is one node with one contact: it runs the lean run type (solvers/network/network_contact_lean.c,
+# the general step written out for one node, bit for bit); the chain runs the general network step.
 # dashpot's cost per step from two run lengths (the difference cancels start-up and parsing), output off
 # but for the summary; best of three. Siconos: its step calls only, best of three runs.
 dp_best() { # document: the fastest of three runs, in ns

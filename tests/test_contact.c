@@ -22,6 +22,7 @@
 #include "dashpot/json.h"
 #include "dashpot/run.h"
 #include "rows.h"
+#include "solvers/run_types.h"
 
 #define G 9.81
 
@@ -744,9 +745,135 @@ static void test_random_contact_networks(void **state)
     }
 }
 
+/* ---- the bouncing ball's lean step (network_contact_lean.c) against the general network step ---- */
+
+/* A random one-node contact document: the element [ground, 0] or [0, ground], a rigid contact of random
+ * distance and restitution, maybe a linear spring and a linear damper (maybe on a belt), a constant and
+ * maybe a harmonic force, a random start outside the stop or on it, dt, theta, events "none", every step
+ * written. */
+static void one_node_contact_doc(char *d, size_t cap)
+{
+    static const double es[] = { 0, 0.3, 0.5, 0.9, 1 }, dts[] = { 1e-3, 0.01, 0.05 };
+    int flip = rnd() < 0.5, len = 0;
+    double dist = 2 * rnd() - 1, u0 = dist + (rnd() < 0.2 ? 0 : 2 * rnd()), x0 = flip ? -u0 : u0;
+    len += snprintf(d + len, cap - (size_t)len, "{\"model\":{\"masses\":[%.6g],\"elements\":[{\"between\":%s,"
+                    "\"contact\":{\"distance\":%.17g,\"restitution\":%g}", 0.2 + 2 * rnd(),
+                    flip ? "[0,\"ground\"]" : "[\"ground\",0]", dist, rnd() < 0.8 ? es[(int)(5 * rnd())] : rnd());
+    if (rnd() < 0.5)
+        len += snprintf(d + len, cap - (size_t)len, ",\"spring\":{\"law\":\"linear\",\"k\":%.6g}",
+                        rnd() < 0.2 ? 0 : 20 * rnd());
+    if (rnd() < 0.5)
+        len += snprintf(d + len, cap - (size_t)len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g%s}", 2 * rnd(),
+                        rnd() < 0.3 ? ",\"belt_velocity\":0.5" : "");
+    len += snprintf(d + len, cap - (size_t)len, "}],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":%.6g}",
+                    20 * rnd() - 14);
+    if (rnd() < 0.4)
+        len += snprintf(d + len, cap - (size_t)len, ",{\"node\":0,\"kind\":\"harmonic\",\"amplitude\":%.6g,"
+                        "\"omega\":%.6g}", 10 * rnd(), 20 * rnd());
+    snprintf(d + len, cap - (size_t)len, "]},\"initial\":{\"x\":[%.17g],\"v\":[%.6g]},\"solver\":{\"kind\":"
+             "\"stick-slip\",\"dt\":%g,\"t_end\":%.6g,\"theta\":%g,\"events\":\"none\"},\"output\":{\"every\":1}}",
+             x0, rnd() < 0.2 ? 0 : 10 * rnd() - 5, dts[(int)(3 * rnd())], 1 + 2 * rnd(),
+             rnd() < 0.5 ? 0.5 : rnd() < 0.5 ? 1 : 0.5 + 0.5 * rnd());
+}
+
+/* Appends n bytes to a growing buffer. */
+typedef struct bytes {
+    unsigned char *p;
+    size_t n, cap;
+    unsigned long long impacts;   /* the run's */
+} bytes;
+
+static void put(bytes *b, const void *src, size_t n)
+{
+    if (b->n + n > b->cap) {
+        b->cap = 2 * (b->n + n);
+        b->p = realloc(b->p, b->cap);
+        assert_non_null(b->p);
+    }
+    memcpy(b->p + b->n, src, n);
+    b->n += n;
+}
+
+/* Runs the document through its own run type (which must be the lean one) or, `general`, through the
+ * general network type after their common init, in blocks of `cap` records; every record's numbers and the
+ * summary as bytes. */
+static void run_bytes(const char *json, int general, size_t cap, bytes *out)
+{
+    dp_spec spec;
+    dp_errors errs;
+    int s;
+    dp_spec_init(&spec);
+    dp_errors_init(&errs);
+    s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
+    if (s != DP_OK)
+        fprintf(stderr, "%s\n%s: %s\n", json, errs.n ? errs.item[0].pointer : "", errs.n ? errs.item[0].message : "");
+    assert_int_equal(s, DP_OK);
+    dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
+    dp_spec_clear(&spec);
+    if (run == NULL)
+        fprintf(stderr, "%s: %s\n", errs.item[0].pointer, errs.item[0].message);
+    assert_non_null(run);
+    assert_ptr_equal(run->type, &dp_run_network_contact_lean);
+    if (general)
+        run->type = &dp_run_network;
+    size_t width = dp_run_columns(run)->width, n;
+    dp_record *buf = malloc(cap * sizeof *buf);
+    assert_non_null(buf);
+    do {
+        s = dp_run_next(run, buf, cap, &n);
+        for (size_t i = 0; i < n; i++) {
+            const dp_record *r = &buf[i];
+            put(out, &r->type, sizeof r->type);
+            if (r->type == DP_RECORD_ROW) {
+                put(out, &r->u.row.t, sizeof(double));
+                put(out, r->u.row.val, width * sizeof(double));
+            } else if (r->type == DP_RECORD_EVENT) {
+                const dp_event *e = &r->u.event;
+                double num[5] = { e->t, e->x, e->v, e->v_after, e->impulse };
+                put(out, &e->kind, sizeof e->kind);
+                put(out, &e->element, sizeof e->element);
+                put(out, num, sizeof num);
+            }
+        }
+    } while (s == DP_MORE);
+    assert_int_equal(s, DP_DONE);
+    const dp_summary *sum = dp_run_summary(run);
+    unsigned long long counts[5] = { sum->steps, sum->samples, sum->events, sum->iterations, sum->impacts };
+    put(out, counts, sizeof counts);
+    out->impacts = sum->impacts;
+    put(out, &sum->stick_time, sizeof(double));
+    put(out, &sum->final_row.t, sizeof(double));
+    put(out, sum->final_row.val, width * sizeof(double));
+    free(buf);
+    dp_run_free(run);
+}
+
+/* The lean step is the general step for one node: every record of 200 random documents the same bytes. */
+static void test_lean_ball_bit_for_bit(void **state)
+{
+    (void)state;
+    static char doc[4096];
+    unsigned long long impacts = 0, bouncing = 0;
+    for (int k = 0; k < 200; k++) {
+        one_node_contact_doc(doc, sizeof doc);
+        bytes lean = { 0 }, gen = { 0 };
+        run_bytes(doc, 0, 64, &lean);
+        run_bytes(doc, 1, 64, &gen);
+        if (lean.n != gen.n || memcmp(lean.p, gen.p, lean.n) != 0)
+            fprintf(stderr, "case %d differs: %s\n", k, doc);
+        assert_int_equal(lean.n, gen.n);
+        assert_memory_equal(lean.p, gen.p, lean.n);
+        impacts += gen.impacts, bouncing += gen.impacts > 0;
+        free(lean.p), free(gen.p);
+    }
+    /* the documents do bounce: the comparison covers impacts, not only flights */
+    assert_true(impacts > 200 && bouncing > 80);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lean_ball_bit_for_bit),
         cmocka_unit_test(test_ball_e09),
         cmocka_unit_test(test_ball_e05),
         cmocka_unit_test(test_ball_e0),

@@ -238,3 +238,24 @@ int dp_network_is_one_mass(const dp_spec *s)
      * a block whose quakes are catalogued (network_quakes.c) */
     return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring) && !s->output.quakes;
 }
+
+/* One node and one element between it and the ground, a rigid contact (Newton restitution) with at most a
+ * linear spring and a linear damper that cannot stick, stepped by Moreau-Jean's rule (events "none"):
+ * the bouncing ball, stepped by solvers/network/network_contact_lean.c, the general network step written out
+ * for one node (the same answers, bit for bit). */
+int dp_network_is_one_node_contact(const dp_spec *s)
+{
+    const dp_network *n = s->net;
+    if (n == NULL || n->n != 1 || n->nel != 1 || s->solver.kind != DP_SOLVER_STICK_SLIP || s->output.quakes)
+        return 0;
+    const dp_element *e = &n->el[0];
+    int ends = (e->a == DP_GROUND && e->b == 0) || (e->a == 0 && e->b == DP_GROUND);
+    if (!ends || !e->has_contact || e->contact.compliance != 0)
+        return 0;
+    if (e->has_spring && (!dp_spring_linear(&e->spring) || dp_spring_plastic(&e->spring)))
+        return 0;
+    if (e->has_damper && (!dp_damper_linear(&e->damper) || e->damper.relaxation.kind != DP_RELAX_NONE))
+        return 0;
+    /* events "none": Moreau-Jean's rule (with "locate" a contact's impact is located inside its step) */
+    return !dp_element_can_stick(e) && s->solver.events == DP_EVENTS_NONE;
+}

@@ -18,6 +18,9 @@ void dp_quakes_check(const dp_spec *s, dp_errors *e);
 
 /* Whether a network document is one mass on one element [ground, 0] with a solver the one-mass run steps. */
 int dp_network_is_one_mass(const dp_spec *s);
+/* One node, one element: a rigid contact with at most a linear spring and damper, events "none"
+ * (Moreau-Jean): stepped by network_contact_lean.c, bit for bit the general network step. */
+int dp_network_is_one_node_contact(const dp_spec *s);
 
 /* The model families a spec may hold beside the one-mass model (rules/spec.c): which one it is, and the
  * length of its initial state x0v, v0v. */

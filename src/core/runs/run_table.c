@@ -5,6 +5,7 @@
  *
  * Adding a solver kind: its file in solvers/ defining a dp_run_type, its rules in rules/, one row here. */
 #include "runs/run_table.h"
+#include "rules/rules.h"
 #include "solvers/run_types.h"
 
 static int is_lcs(const dp_spec *s) { return s->lcs != NULL; }
@@ -28,6 +29,7 @@ static const struct run_row {
     { is_lcs, &dp_run_lcs },
     { is_right_hand, &dp_run_right_hand },
     { dp_network_is_one_mass, &dp_run_network_one_mass }, /* one mass on one element: the one-mass step */
+    { dp_network_is_one_node_contact, &dp_run_network_contact_lean }, /* the bouncing ball: the lean step */
     { is_regularized_network, &dp_run_network_regularized },
     { is_newmark_network, &dp_run_network_newmark },
     { is_network, &dp_run_network },
