@@ -199,12 +199,12 @@ function carlsonLanger(n, l, sigma, alpha, nu, dt, tEnd) {
 PRESETS.push({
   id: 'carlson-langer', group: 'Networks of masses', label: 'Carlson\u2013Langer chain of 100 blocks: quakes', kind: 'simulate',
   note: 'The nondimensional Carlson\u2013Langer chain: \u2113 = 3, \u03c3 = 0.01, \u03b1 = 2.5, plate speed \u03bd = 0.01, ' +
-    'T = 2000. Friction (1 \u2212 \u03c3)/(1 + 2\u03b1|v|/(1 \u2212 \u03c3)), static threshold 1: generalized Coulomb ' +
+    'T = 800. Friction (1 \u2212 \u03c3)/(1 + 2\u03b1|v|/(1 \u2212 \u03c3)), static threshold 1: generalized Coulomb ' +
     '\u03c6\u2080 = 0.99, \u03c6\u2081 = 1 with the rational relaxation a = 0.99, b = 0.198. The run writes its quake ' +
     'catalogue (output.quakes): every connected slip episode, its size, hypocentre and moment; the ' +
     'Gutenberg\u2013Richter plot is log\u2081\u2080 count against the magnitude \u03bc = ln(moment), with a fitted slope ' +
     '(small events on a line, the chain-wide ones as a bump on the right).',
-  spec: carlsonLanger(100, 3, 0.01, 2.5, 0.01, 0.05, 2000),
+  spec: carlsonLanger(100, 3, 0.01, 2.5, 0.01, 0.05, 800),
 });
 
 // The linear analysis of the 3-mass chain (docs/modes.md): its modes (the Coulomb element left out) and the

@@ -107,10 +107,11 @@ static int initial_error(int s, const dp_lcp_result *res, dp_errors *e)
 }
 
 /* The check below runs while the document is read, before the run has a stop hook or a wall limit (in the
- * daemon, on a connection thread): it may do CHECK_POLLS of Lemke's polls of work (each ~2^21 multiply-adds,
- * ~0.1 s in all). A problem that needs more is left undecided here, and the run's first step, under its stop
- * hook, decides it: Murty's 250-component matrix as D took 9.8 s to reach the pivot limit in this check. */
-#define CHECK_POLLS 100
+ * daemon, on a connection thread): it may do CHECK_POLLS of Lemke's polls of work (each ~2^21 multiply-adds
+ * or their worth, ~50 ms in all). A problem that needs more is left undecided here, and the run's first step,
+ * under its stop hook, decides it: Murty's 250-component matrix as D took 9.8 s to reach the pivot limit in
+ * this check. */
+#define CHECK_POLLS 50
 
 static int check_budget(void *ctx)
 {
