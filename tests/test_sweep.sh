@@ -4,7 +4,9 @@
 # shards (--shard i/N) and threads whose run lines, sorted by index, are the whole sweep's byte for byte, the
 # daemon's lines equal to the CLI's, the three formats by Accept, bad documents by pointer (422, CLI exit 2),
 # a bad value failing its run alone, and the simulate rules for the whole sweep: --max-wall ends it with an
-# error line, the step budget (--max-steps x 100) too, and a client's hang-up frees the run.
+# error line, the step budget (--max-steps x 100) too, and a client's hang-up frees the run. Parallel runs on a
+# --threads 2 daemon: the --threads 1 daemon's and the CLI's lines, in less wall time, /healthz answering
+# meanwhile, and --max-wall, a hang-up and SIGTERM each ending the sweep with every solver slot given back.
 # Env BUILD (default build). Prints "N passed, M failed"; exit 1 on any failure.
 source "$(dirname "$0")/lib/daemon.bash"
 
@@ -78,7 +80,7 @@ check "http: Accept application/json gives one document {meta, runs, summary} wi
 import json
 d = json.load(open('$T/http.json'))
 lines = [json.loads(l) for l in open('$T/whole.runs')]
-assert d['meta']['runs'] == 12 and d['runs'] == lines and d['summary']['completed'] == 12
+assert d['meta']['runs'] == 12 and sorted(d['runs'], key=lambda x: x['index']) == lines and d['summary']['completed'] == 12
 "
 hcurl -H 'Accept: text/event-stream' -X POST --data-binary @"$T/grid.json" "$U" >"$T/http.sse"
 check "http: Accept text/event-stream gives meta, 12 run and a summary event" bash -c \
@@ -92,6 +94,7 @@ hcurl -X POST --data-binary @"$T/badrun.json" "$U" >"$T/badrun.ndjson"
 check "http: a value that breaks the base fails its run alone, by the base's pointer" python3 -c "
 import json
 l = [json.loads(x) for x in open('$T/badrun.ndjson')]
+l[1:4] = sorted(l[1:4], key=lambda x: x['index'])
 assert [x.get('status') for x in l[1:4]] == [None, 422, None] and l[2]['errors'][0]['pointer'] == '/model/spring/k'
 assert l[-1]['completed'] == 2 and l[-1]['failed'] == 1
 "
@@ -120,4 +123,83 @@ hcurl -X POST --data-binary @"$T/budget.json" "$URL_budget/v1/sweep" >"$T/budget
 check "http: the sweep's step budget (--max-steps x 100) ends it after 100 runs with a 422 line" bash -c \
     "[ \"\$(grep -c '\"type\":\"run\"' '$T/budget.ndjson')\" = 100 ] && tail -1 '$T/budget.ndjson' | grep -q '\"type\":\"error\",\"status\":422'"
 stop_daemon budget
+# Parallel runs: a sweep takes the free solver slots, one executor thread each. 8 runs of ~0.3 s each on a
+# --threads 2 daemon against a --threads 1 one: the same lines (sorted by index; each run is the lone
+# computation), in well under the sequential wall time (a coarse check that two runs computed at once, with
+# both slots seen taken meanwhile), /healthz answering meanwhile; then the stop rules with every slot back.
+cat >"$T/par.json" <<'JSON'
+{"base": {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.1},
+                    "forcing": {"kind": "harmonic", "amplitude": 1, "omega": 2}},
+          "solver": {"dt": 0.001, "t_end": PAR_T_END}},
+ "vary": [{"pointer": "/model/forcing/omega", "values": [0.5, 0.8, 1.1, 1.4, 1.7, 2.0, 2.3, 2.6]}],
+ "record": {"after": 100, "features": ["amplitude", "period", "stick_fraction"]}}
+JSON
+sed -i "s/PAR_T_END/${PAR_T_END:-3000}/" "$T/par.json"
+"$BIN" sweep "$T/par.json" >"$T/par_cli.ndjson"
+runs "$T/par_cli.ndjson" >"$T/par_cli.runs"
+# busy URL: the gauge dashpot_workers_busy of URL's /metrics.
+busy() { curl -s --max-time 5 "$1/metrics" | awk '$1 == "dashpot_workers_busy" { print $2 }'; }
+start_daemon one --threads 1 || finish
+start_daemon two --threads 2 || finish
+# The wall times of one sweep on each daemon, in turns, up to 3 times while the machine is busy (it is shared):
+# a sweep whose runs went one after another never comes under 0.8 x.
+ratio=
+for attempt in 1 2 3; do
+    t0=$(date +%s.%N)
+    hcurl -X POST --data-binary @"$T/par.json" "$URL_one/v1/sweep" >"$T/par_one.ndjson"
+    t1=$(date +%s.%N)
+    hcurl -X POST --data-binary @"$T/par.json" "$URL_two/v1/sweep" >"$T/par_two.ndjson"
+    t2=$(date +%s.%N)
+    ratio=$(awk -v a="$t0" -v b="$t1" -v c="$t2" 'BEGIN { printf "%.2f", (c - b) / (b - a) }')
+    echo "    sweep of 8 runs: --threads 1 $(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }') s, --threads 2 $(awk -v b="$t1" -v c="$t2" 'BEGIN { print c - b }') s: ratio $ratio"
+    awk -v r="$ratio" 'BEGIN { exit !(r < 0.8) }' && break
+done
+check "parallel: wall time under 0.8 x the --threads 1 daemon's (ratio $ratio)" awk -v r="$ratio" 'BEGIN { exit !(r < 0.8) }'
+# Once more, watching /metrics and /healthz meanwhile.
+hcurl -X POST --data-binary @"$T/par.json" "$URL_two/v1/sweep" >"$T/par_two.ndjson" &
+cpid=$!
+max_busy=0 max_health=0
+while kill -0 $cpid 2>/dev/null; do
+    b=$(busy "$URL_two"); [ "${b:-0}" -gt "$max_busy" ] && max_busy=$b
+    h=$(curl -s -o /dev/null --max-time 5 -w '%{time_total}' "$URL_two/healthz")
+    max_health=$(awk -v a="$max_health" -v b="${h:-9}" 'BEGIN { print (b > a ? b : a) }')
+    sleep 0.1
+done
+wait $cpid
+echo "    /healthz answered in at most $max_health s; dashpot_workers_busy reached $max_busy"
+runs "$T/par_one.ndjson" >"$T/par_one.runs"
+runs "$T/par_two.ndjson" >"$T/par_two.runs"
+check "parallel: 8 run lines, the --threads 2 daemon's (sorted by index) the --threads 1 daemon's byte for byte" \
+    bash -c "[ \$(wc -l <'$T/par_two.runs') = 8 ] && cmp -s '$T/par_one.runs' '$T/par_two.runs'"
+check "parallel: ...and the CLI's" cmp -s "$T/par_cli.runs" "$T/par_two.runs"
+check "parallel: the same summary (8 completed, the same steps)" \
+    bash -c "[ \"\$(tail -1 '$T/par_one.ndjson')\" = \"\$(tail -1 '$T/par_two.ndjson')\" ] && tail -1 '$T/par_two.ndjson' | grep -q '\"completed\":8'"
+check "parallel: both solver slots were taken during the sweep (dashpot_workers_busy 2)" [ "$max_busy" = 2 ]
+check "parallel: /healthz answered within 0.5 s throughout" awk -v h="$max_health" 'BEGIN { exit !(h < 0.5) }'
+check "parallel: every slot back once the summary is read" [ "$(busy "$URL_two")" = 0 ]
+hcurl --max-time 0.3 -X POST --data-binary @"$T/long.json" "$URL_two/v1/sweep" >/dev/null
+sleep 0.3
+check "parallel: a client's hang-up mid-sweep frees every slot (nothing in flight, workers_busy 0)" bash -c \
+    "curl -s --max-time 5 '$URL_two/metrics' | grep -q '^dashpot_runs_in_flight 0' && [ \"\$(curl -s --max-time 5 '$URL_two/metrics' | awk '\$1 == \"dashpot_workers_busy\" { print \$2 }')\" = 0 ]"
+stop_daemon one
+stop_daemon two
+check "parallel: both daemons exit 0" [ "$RC_one $RC_two" = "0 0" ]
+start_daemon pwall --threads 2 --max-wall 0.5 || finish
+hcurl -X POST --data-binary @"$T/long.json" "$URL_pwall/v1/sweep" >"$T/pwall.ndjson"
+check "parallel: --max-wall ends the sweep with its error line (503)" bash -c \
+    "tail -1 '$T/pwall.ndjson' | grep -q '\"type\":\"error\",\"status\":503' && tail -1 '$T/pwall.ndjson' | grep -q 'wall-time limit'"
+check "parallel: ...and every slot is back when the error line is read (workers_busy 0)" [ "$(busy "$URL_pwall")" = 0 ]
+stop_daemon pwall
+start_daemon term --threads 2 --shutdown-grace 1 || finish
+hcurl -X POST --data-binary @"$T/long.json" "$URL_term/v1/sweep" >"$T/term.ndjson" &
+cpid=$!
+sleep 0.5
+t0=$(date +%s.%N)
+stop_daemon term 10
+t1=$(date +%s.%N)
+wait $cpid
+check "parallel: SIGTERM mid-sweep exits 0 within the grace period (1 s) and a little" \
+    python3 -c "assert '$RC_term' == '0' and $t1 - $t0 < ${VALGRIND:+8 + }2.5, ('$RC_term', $t1 - $t0)"
+check "parallel: ...the sweep ending with its error line (shutting down)" bash -c \
+    "tail -1 '$T/term.ndjson' | grep -q '\"type\":\"error\",\"status\":503' && tail -1 '$T/term.ndjson' | grep -q 'shutting down'"
 finish
