@@ -189,7 +189,37 @@ hcurl -X POST --data-binary @"$T/long.json" "$URL_pwall/v1/sweep" >"$T/pwall.ndj
 check "parallel: --max-wall ends the sweep with its error line (503)" bash -c \
     "tail -1 '$T/pwall.ndjson' | grep -q '\"type\":\"error\",\"status\":503' && tail -1 '$T/pwall.ndjson' | grep -q 'wall-time limit'"
 check "parallel: ...and every slot is back when the error line is read (workers_busy 0)" [ "$(busy "$URL_pwall")" = 0 ]
+# A client that stops reading: the executors fill the socket and the queue, then wait for room, looking at the
+# clock; --max-wall still ends them and gives every slot back while the connection stays open.
+sed 's/"t_end": PAR_T_END/"t_end": 1100/; s/"dt": 0.001/"dt": 0.05/' >"$T/big.json" <<'JSON'
+{"base": {"model": {"mass": 1, "spring": {"law": "linear", "k": 1}, "damper": {"law": "coulomb", "phi0": 0.1},
+                    "forcing": {"kind": "harmonic", "amplitude": 1, "omega": 2}},
+          "solver": {"dt": 0.001, "t_end": PAR_T_END}},
+ "vary": [{"pointer": "/model/forcing/omega", "from": 2, "to": 2.5, "count": 400}],
+ "record": {"after": 100, "features": ["amplitude"], "section": {"period": 1, "count": 1000}}}
+JSON
 stop_daemon pwall
+start_daemon stall --threads 2 --max-wall 3 || finish
+check "parallel: a client that stops reading: both slots taken, then all back after --max-wall, connection still open" \
+    python3 - "$PORT_stall" "$T/big.json" <<'PY'
+import re, socket, sys, time, urllib.request
+port, body = int(sys.argv[1]), open(sys.argv[2], "rb").read()
+def metric(name):
+    text = urllib.request.urlopen("http://127.0.0.1:%d/metrics" % port, timeout=5).read().decode()
+    return int(re.search(r"^%s (\d+)" % name, text, re.M).group(1))
+s = socket.socket()
+s.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, 1 << 16)
+s.connect(("127.0.0.1", port))
+s.sendall(b"POST /v1/sweep HTTP/1.1\r\nHost: x\r\nContent-Length: %d\r\n\r\n" % len(body) + body)
+time.sleep(1)
+early = metric("dashpot_workers_busy")
+time.sleep(3)
+late, flight = metric("dashpot_workers_busy"), metric("dashpot_runs_in_flight")
+s.close()
+print("    busy after 1 s: %d, after 4 s: %d (in flight %d)" % (early, late, flight))
+assert early == 2 and late == 0 and flight == 1
+PY
+stop_daemon stall
 start_daemon term --threads 2 --shutdown-grace 1 || finish
 hcurl -X POST --data-binary @"$T/long.json" "$URL_term/v1/sweep" >"$T/term.ndjson" &
 cpid=$!

@@ -5,8 +5,8 @@
  * run's bit for bit). Once the meta line is out, the request takes its solver slot (slots.c: it may park) and
  * then as many more as are free at that moment, up to one per run (slot_try_extra: never waits, never takes
  * one a parked request waits for); each slot drives one executor of runs k, k + n, k + 2n, ... (n executors,
- * as the CLI's --threads) on a thread the sweep starts and joins itself. So workers_busy counts every thread
- * computing, and one connection thread stays free for /healthz. The executors append their finished lines to
+ * as the CLI's --threads) on a thread the sweep starts and joins itself, and is given back as its executor
+ * ends. So workers_busy counts every thread computing, and one connection thread stays free for /healthz. The executors append their finished lines to
  * a queue that holds at most ~QUEUE_BYTES (a producer waits for room: back-pressure, memory independent of
  * the sweep's length); MHD's content reader drains it, waiting at most a SLICE for a line before it lets its
  * thread serve its other connections, as simulate.c does. Lines come in the order runs finish, not by index.
@@ -18,8 +18,9 @@
  * no slot still held. A spent step budget (--max-steps times DP_SWEEP_STEP_FACTOR for the whole sweep) lets
  * the runs begun finish and begins no more, then is the error line too; a stop is never a silent cut. A run
  * that fails is its own line and the sweep goes on. A bad document is a 422 before the first byte, by pointer.
- * Whatever the order of events, the free callback sets the stop word, joins every executor (each has given
- * its extra slot back by then) and gives the request's slot back before anything is freed.
+ * Whatever the order of events, the free callback sets the stop word and joins every executor (each has
+ * given its slot back by then) before anything is freed. A client that stops reading makes the executors wait
+ * for room in the queue, looking at the clock every slice: --max-wall still ends them and frees their slots.
  *
  * Formats (Accept): application/x-ndjson (the default: meta, run lines, summary), text/event-stream (the same
  * objects as events "meta", "run", "summary", "error"), application/json (one document
@@ -134,26 +135,49 @@ static void stop_all(sweep_stream *st, int why)
     pthread_mutex_unlock(&st->lock);
 }
 
-/* The executors' dp_stop hook: the stop word, the end of the grace period, --max-wall (the hang-up is the
- * reader's to see: the socket belongs to MHD's thread). 1 to stop. */
+/* A reason to stop the executors have to see for themselves: the end of the grace period, --max-wall (the
+ * hang-up is the reader's to see: the socket belongs to MHD's thread). */
+static int own_reason(const sweep_stream *st)
+{
+    return atomic_load_explicit(&st->s->abort_streams, memory_order_relaxed) ? STOP_SHUTDOWN :
+           now_seconds() > st->deadline ? STOP_DEADLINE : STOP_NONE;
+}
+
+/* The executors' dp_stop hook: the stop word, or a reason of their own, which sets it. 1 to stop. */
 static int sweep_stop(void *ctx)
 {
     sweep_stream *st = ctx;
     if (atomic_load_explicit(&st->stop, memory_order_relaxed) != STOP_NONE)
         return 1;
-    int why = atomic_load_explicit(&st->s->abort_streams, memory_order_relaxed) ? STOP_SHUTDOWN :
-              now_seconds() > st->deadline ? STOP_DEADLINE : STOP_NONE;
+    int why = own_reason(st);
     if (why != STOP_NONE)
         stop_all(st, why);
     return why != STOP_NONE;
 }
 
-/* Queues a finished line, waiting while the queue is full; DP_ECANCEL once the sweep stops. */
+/* Waits (st->lock held) on cv until a SLICE from now at most. */
+static void wait_slice(pthread_cond_t *cv, pthread_mutex_t *lock)
+{
+    struct timespec until;
+    clock_gettime(CLOCK_MONOTONIC, &until);
+    until.tv_nsec += (long)(SLICE * 1e9);
+    if (until.tv_nsec >= 1000000000L)
+        until.tv_sec++, until.tv_nsec -= 1000000000L;
+    pthread_cond_timedwait(cv, lock, &until);
+}
+
+/* Queues a finished line, waiting while the queue is full; DP_ECANCEL once the sweep stops. The wait looks at
+ * the clock every slice, so that a client that stops reading still has its sweep end at --max-wall. */
 static int deliver(sweep_stream *st, const dp_buf *line)
 {
     pthread_mutex_lock(&st->lock);
-    while (st->queue.len > QUEUE_BYTES && atomic_load(&st->stop) == STOP_NONE)
-        pthread_cond_wait(&st->room, &st->lock);
+    while (st->queue.len > QUEUE_BYTES && atomic_load(&st->stop) == STOP_NONE) {
+        int why = own_reason(st), none = STOP_NONE;
+        if (why != STOP_NONE && atomic_compare_exchange_strong(&st->stop, &none, why))
+            pthread_cond_broadcast(&st->room), pthread_cond_broadcast(&st->more);
+        else if (why == STOP_NONE)
+            wait_slice(&st->room, &st->lock);
+    }
     size_t len = st->queue.len;
     int s = atomic_load(&st->stop) != STOP_NONE ? DP_ECANCEL : dp_buf_append(&st->queue, line->data, line->len);
     s = s ? s : dp_buf_append(&st->queue, "\n", 1);
@@ -193,8 +217,10 @@ static void *executor_main(void *arg)
     if (s == DP_ENOMEM)
         why = dp_strerror(s);
     dp_buf_free(&line);
-    if (e->extra)
-        slot_give_extra(st->s); /* before it says it ended: the reader closes the stream with every slot back */
+    if (e->extra)               /* its slot back before it says it ended: the reader closes the stream */
+        slot_give_extra(st->s); /* with every slot back */
+    else
+        slot_give(st->r);       /* the request's own (slots.c's lock guards it: the reader takes none now) */
     ended(st, s, why);
     if (s == DP_ENOMEM)
         stop_all(st, STOP_FAILED);
@@ -243,14 +269,8 @@ static void sweep_start(sweep_stream *st)
 static size_t take_lines(sweep_stream *st)
 {
     pthread_mutex_lock(&st->lock);
-    if (st->queue.len == 0 && st->running > 0) {
-        struct timespec until;
-        clock_gettime(CLOCK_MONOTONIC, &until);
-        until.tv_nsec += (long)(SLICE * 1e9);
-        if (until.tv_nsec >= 1000000000L)
-            until.tv_sec++, until.tv_nsec -= 1000000000L;
-        pthread_cond_timedwait(&st->more, &st->lock, &until);
-    }
+    if (st->queue.len == 0 && st->running > 0)
+        wait_slice(&st->more, &st->lock);
     dp_buf full = st->queue;
     st->queue = st->batch;
     st->batch = full;
@@ -392,12 +412,12 @@ static sweep_stream *sweep_new(struct MHD_Connection *c, request *r, dp_sweep_do
         return NULL;
     }
     *st = (sweep_stream){ .r = r, .s = r->srv, .conn = c, .doc = doc, .format = format, .status = DP_DONE };
-    pthread_condattr_t monotonic; /* the reader's waits are timed on the clock now_seconds reads */
+    pthread_condattr_t monotonic; /* the waits are timed on the clock now_seconds reads */
     pthread_condattr_init(&monotonic);
     pthread_condattr_setclock(&monotonic, CLOCK_MONOTONIC);
     pthread_mutex_init(&st->lock, NULL);
     pthread_cond_init(&st->more, &monotonic);
-    pthread_cond_init(&st->room, NULL);
+    pthread_cond_init(&st->room, &monotonic);
     pthread_condattr_destroy(&monotonic);
     watch_init(&st->w, r, c);
     st->deadline = st->w.deadline;
