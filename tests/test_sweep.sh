@@ -11,7 +11,19 @@
 source "$(dirname "$0")/lib/daemon.bash"
 
 BIN=$BUILD/dashpot
+[ ${#VALGRIND[@]} -gt 0 ] && CURL_TIME=${CURL_TIME:-300} # the whole sweeps take minutes there
 T=$SCRATCH
+
+# settles URL NAME VALUE: whether the metric NAME of URL's /metrics reads VALUE within 1 s (10 s under valgrind).
+settles() {
+    local i n=10
+    [ ${#VALGRIND[@]} -gt 0 ] && n=100
+    for i in $(seq $n); do
+        curl -s --max-time 5 "$1/metrics" | grep -q "^$2 $3\$" && return 0
+        sleep 0.1
+    done
+    return 1
+}
 
 # runs FILE: the run lines of FILE sorted by index.
 runs() {
@@ -106,9 +118,7 @@ cat >"$T/long.json" <<'JSON'
  "vary": [{"pointer": "/initial/x", "from": 1, "to": 100, "count": 100}]}
 JSON
 hcurl --max-time 0.2 -X POST --data-binary @"$T/long.json" "$U" >/dev/null
-sleep 0.3
-check "http: a client's hang-up ends its sweep at once (nothing left in flight)" bash -c \
-    "curl -s --max-time 5 '$URL_sweep/metrics' | grep -q '^dashpot_runs_in_flight 0'"
+check "http: a client's hang-up ends its sweep at once (nothing left in flight)" settles "$URL_sweep" dashpot_runs_in_flight 0
 stop_daemon sweep
 start_daemon limits --max-wall 0.5 || finish
 hcurl -X POST --data-binary @"$T/long.json" "$URL_limits/v1/sweep" >"$T/wall.ndjson"
@@ -134,7 +144,11 @@ cat >"$T/par.json" <<'JSON'
  "vary": [{"pointer": "/model/forcing/omega", "values": [0.5, 0.8, 1.1, 1.4, 1.7, 2.0, 2.3, 2.6]}],
  "record": {"after": 100, "features": ["amplitude", "period", "stick_fraction"]}}
 JSON
-sed -i "s/PAR_T_END/${PAR_T_END:-3000}/" "$T/par.json"
+# Under valgrind (DASHPOT_VALGRIND=1, which runs one thread at a time, ~30 x slower) the runs are 20 x shorter
+# and the timing checks are skipped: there it looks for leaks and memory errors on every path.
+SLOW= attempts="1 2 3" t_end=3000
+[ ${#VALGRIND[@]} -gt 0 ] && SLOW=1 attempts=1 t_end=150
+sed -i "s/PAR_T_END/${PAR_T_END:-$t_end}/" "$T/par.json"
 "$BIN" sweep "$T/par.json" >"$T/par_cli.ndjson"
 runs "$T/par_cli.ndjson" >"$T/par_cli.runs"
 # busy URL: the gauge dashpot_workers_busy of URL's /metrics.
@@ -143,8 +157,8 @@ start_daemon one --threads 1 || finish
 start_daemon two --threads 2 || finish
 # The wall times of one sweep on each daemon, in turns, up to 3 times while the machine is busy (it is shared):
 # a sweep whose runs went one after another never comes under 0.8 x.
-ratio=
-for attempt in 1 2 3; do
+ratio=0
+for attempt in $attempts; do
     t0=$(date +%s.%N)
     hcurl -X POST --data-binary @"$T/par.json" "$URL_one/v1/sweep" >"$T/par_one.ndjson"
     t1=$(date +%s.%N)
@@ -154,19 +168,31 @@ for attempt in 1 2 3; do
     echo "    sweep of 8 runs: --threads 1 $(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }') s, --threads 2 $(awk -v b="$t1" -v c="$t2" 'BEGIN { print c - b }') s: ratio $ratio"
     awk -v r="$ratio" 'BEGIN { exit !(r < 0.8) }' && break
 done
-check "parallel: wall time under 0.8 x the --threads 1 daemon's (ratio $ratio)" awk -v r="$ratio" 'BEGIN { exit !(r < 0.8) }'
-# Once more, watching /metrics and /healthz meanwhile.
-hcurl -X POST --data-binary @"$T/par.json" "$URL_two/v1/sweep" >"$T/par_two.ndjson" &
+# The machine may be shared: with more runnable threads than cores, wall time says little, and a ratio not under
+# 0.8 is then not held against the sweep (the check below on threads is what shows the runs parallel there).
+load=$(awk '{ print $1 }' /proc/loadavg)
+if [ -z "$SLOW" ] && awk -v l="$load" -v n="$(nproc)" -v r="$ratio" 'BEGIN { exit !(l < n || r < 0.8) }'; then
+    check "parallel: wall time under 0.8 x the --threads 1 daemon's (ratio $ratio)" awk -v r="$ratio" 'BEGIN { exit !(r < 0.8) }'
+else
+    echo "    (wall time not checked: load average $load on $(nproc) cores)"
+fi
+# Once more on a fresh daemon, watching /metrics, /healthz and the CPU time of each of its threads meanwhile: two
+# threads each computing a share of the runs (in one thread, as before, the other threads had none).
+start_daemon fresh --threads 2 || finish
+hcurl -X POST --data-binary @"$T/par.json" "$URL_fresh/v1/sweep" >"$T/par_two.ndjson" &
 cpid=$!
-max_busy=0 max_health=0
+max_busy=0 max_health=0 max_computing=0
 while kill -0 $cpid 2>/dev/null; do
-    b=$(busy "$URL_two"); [ "${b:-0}" -gt "$max_busy" ] && max_busy=$b
-    h=$(curl -s -o /dev/null --max-time 5 -w '%{time_total}' "$URL_two/healthz")
+    b=$(busy "$URL_fresh"); [ "${b:-0}" -gt "$max_busy" ] && max_busy=$b
+    h=$(curl -s -o /dev/null --max-time 5 -w '%{time_total}' "$URL_fresh/healthz")
     max_health=$(awk -v a="$max_health" -v b="${h:-9}" 'BEGIN { print (b > a ? b : a) }')
+    c=$(cat /proc/"$PID_fresh"/task/*/stat 2>/dev/null | awk '{ sub(/.*\) /, ""); if ($12 + $13 >= 5) n++ } END { print n + 0 }')
+    [ "$c" -gt "$max_computing" ] && max_computing=$c
     sleep 0.1
 done
 wait $cpid
-echo "    /healthz answered in at most $max_health s; dashpot_workers_busy reached $max_busy"
+echo "    /healthz answered in at most $max_health s; dashpot_workers_busy reached $max_busy; threads with 50 ms of CPU or more: $max_computing"
+check "parallel: two threads computed the sweep's runs (each 50 ms of CPU or more at one moment)" [ "$max_computing" -ge 2 ]
 runs "$T/par_one.ndjson" >"$T/par_one.runs"
 runs "$T/par_two.ndjson" >"$T/par_two.runs"
 check "parallel: 8 run lines, the --threads 2 daemon's (sorted by index) the --threads 1 daemon's byte for byte" \
@@ -175,15 +201,15 @@ check "parallel: ...and the CLI's" cmp -s "$T/par_cli.runs" "$T/par_two.runs"
 check "parallel: the same summary (8 completed, the same steps)" \
     bash -c "[ \"\$(tail -1 '$T/par_one.ndjson')\" = \"\$(tail -1 '$T/par_two.ndjson')\" ] && tail -1 '$T/par_two.ndjson' | grep -q '\"completed\":8'"
 check "parallel: both solver slots were taken during the sweep (dashpot_workers_busy 2)" [ "$max_busy" = 2 ]
-check "parallel: /healthz answered within 0.5 s throughout" awk -v h="$max_health" 'BEGIN { exit !(h < 0.5) }'
-check "parallel: every slot back once the summary is read" [ "$(busy "$URL_two")" = 0 ]
+[ -n "$SLOW" ] || check "parallel: /healthz answered within 0.5 s throughout" awk -v h="$max_health" 'BEGIN { exit !(h < 0.5) }'
+check "parallel: every slot back once the summary is read" [ "$(busy "$URL_fresh")" = 0 ]
+stop_daemon fresh
 hcurl --max-time 0.3 -X POST --data-binary @"$T/long.json" "$URL_two/v1/sweep" >/dev/null
-sleep 0.3
-check "parallel: a client's hang-up mid-sweep frees every slot (nothing in flight, workers_busy 0)" bash -c \
-    "curl -s --max-time 5 '$URL_two/metrics' | grep -q '^dashpot_runs_in_flight 0' && [ \"\$(curl -s --max-time 5 '$URL_two/metrics' | awk '\$1 == \"dashpot_workers_busy\" { print \$2 }')\" = 0 ]"
+all_free() { settles "$1" dashpot_runs_in_flight 0 && settles "$1" dashpot_workers_busy 0; }
+check "parallel: a client's hang-up mid-sweep frees every slot (nothing in flight, workers_busy 0)" all_free "$URL_two"
 stop_daemon one
 stop_daemon two
-check "parallel: both daemons exit 0" [ "$RC_one $RC_two" = "0 0" ]
+check "parallel: the daemons exit 0" [ "$RC_one $RC_two $RC_fresh" = "0 0 0" ]
 start_daemon pwall --threads 2 --max-wall 0.5 || finish
 hcurl -X POST --data-binary @"$T/long.json" "$URL_pwall/v1/sweep" >"$T/pwall.ndjson"
 check "parallel: --max-wall ends the sweep with its error line (503)" bash -c \
@@ -201,7 +227,7 @@ JSON
 stop_daemon pwall
 start_daemon stall --threads 2 --max-wall 3 || finish
 check "parallel: a client that stops reading: both slots taken, then all back after --max-wall, connection still open" \
-    python3 - "$PORT_stall" "$T/big.json" <<'PY'
+    python3 - "$PORT_stall" "$T/big.json" "$SLOW" <<'PY'
 import re, socket, sys, time, urllib.request
 port, body = int(sys.argv[1]), open(sys.argv[2], "rb").read()
 def metric(name):
@@ -217,7 +243,7 @@ time.sleep(3)
 late, flight = metric("dashpot_workers_busy"), metric("dashpot_runs_in_flight")
 s.close()
 print("    busy after 1 s: %d, after 4 s: %d (in flight %d)" % (early, late, flight))
-assert early == 2 and late == 0 and flight == 1
+assert early == 2 and late == 0 and (flight == 1 or sys.argv[3]), (early, late, flight)
 PY
 stop_daemon stall
 start_daemon term --threads 2 --shutdown-grace 1 || finish
