@@ -227,6 +227,9 @@ void slot_give(request *r);
  * given back with slot_give_extra (from any thread). 0 at shutdown. */
 unsigned slot_try_extra(server *s, unsigned want);
 void slot_give_extra(server *s);
+/* The slot r holds becomes one as slot_try_extra's, given back with slot_give_extra (by the thread that computes
+ * on it, not when r completes). 1, or 0 when r holds none (at shutdown: nothing is counted then). */
+int slot_detach(request *r);
 /* Slots not taken now (0: every worker is computing; /readyz says busy). */
 unsigned slots_free(server *s);
 /* Shutdown: lets every request through from now on and resumes the parked ones. */

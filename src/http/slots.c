@@ -135,3 +135,12 @@ void slot_give_extra(server *s)
     }
     pthread_mutex_unlock(&s->slots_lock);
 }
+
+int slot_detach(request *r)
+{
+    pthread_mutex_lock(&r->srv->slots_lock);
+    int held = r->slot_held;
+    r->slot_held = 0; /* still counted in workers_busy: now the caller's to give back (slot_give_extra) */
+    pthread_mutex_unlock(&r->srv->slots_lock);
+    return held;
+}

@@ -52,7 +52,7 @@ typedef struct executor {
     struct sweep_stream *st;
     dp_sweep_exec *x;
     pthread_t tid;
-    int extra;                   /* computes on a slot of its own (slot_try_extra), given back as it ends */
+    int slot;                    /* computes on a counted slot of its own, given back as it ends */
 } executor;
 
 typedef struct sweep_stream {
@@ -217,29 +217,30 @@ static void *executor_main(void *arg)
     if (s == DP_ENOMEM)
         why = dp_strerror(s);
     dp_buf_free(&line);
-    if (e->extra)               /* its slot back before it says it ended: the reader closes the stream */
+    if (e->slot)                /* its slot back before it says it ended: the reader closes the stream */
         slot_give_extra(st->s); /* with every slot back */
-    else
-        slot_give(st->r);       /* the request's own (slots.c's lock guards it: the reader takes none now) */
     ended(st, s, why);
     if (s == DP_ENOMEM)
         stop_all(st, STOP_FAILED);
     return NULL;
 }
 
-/* The executors, one on the request's slot and one on each extra slot free now; their threads started. A
- * failure is the stop word (STOP_FAILED) with the status, the executors started running down. */
+/* The executors, one on the request's slot and one on each extra slot free now; their threads started. The
+ * request's slot is detached from it (slot_detach), so that whatever happens to the connection each slot is
+ * given back by the thread computing on it as it ends. A failure is the stop word (STOP_FAILED) with the
+ * status, the executors started running down. */
 static void sweep_start(sweep_stream *st)
 {
     const config *cfg = &st->s->cfg;
     size_t runs = dp_sweep_doc_count(st->doc), want = runs > MAX_EXECUTORS ? MAX_EXECUTORS : runs;
     size_t extra = want > 1 ? slot_try_extra(st->s, (unsigned)(want - 1)) : 0, n = 1 + extra, k;
+    int own = slot_detach(st->r);
     st->started = 1;
     st->ex = calloc(n, sizeof *st->ex);
     st->nex = st->ex ? n : 0;
     for (k = 0; st->ex != NULL && k < n; k++) {
         executor *e = &st->ex[k];
-        *e = (executor){ .st = st, .extra = k > 0 };
+        *e = (executor){ .st = st, .slot = k > 0 || own };
         e->x = dp_sweep_exec_new(st->doc, k, n, cfg->max_steps, &st->budget, cfg->max_steps * DP_SWEEP_STEP_FACTOR);
         if (e->x == NULL)
             break;
@@ -253,11 +254,12 @@ static void sweep_start(sweep_stream *st)
     if (st->nexec < n) {         /* the runs of an executor not started would be missing: stop the sweep */
         pthread_mutex_lock(&st->lock);
         st->status = DP_ENOMEM;
-        snprintf(st->why, sizeof st->why, "%s", "cannot start the sweep's threads");
+        snprintf(st->why, sizeof st->why, "%s", "cannot start the sweep's executors");
         st->running -= n - st->nexec;
         pthread_mutex_unlock(&st->lock);
-        for (k = st->nexec > 0 ? st->nexec : 1; k < n; k++)
-            slot_give_extra(st->s);
+        for (k = st->nexec; k < n; k++)
+            if (k > 0 || own)
+                slot_give_extra(st->s);
         stop_all(st, STOP_FAILED);
     }
 }
@@ -296,10 +298,9 @@ static int frame_batch(sweep_stream *st)
     return s;
 }
 
-/* Every executor has ended and every extra slot is back: the summary, or why the sweep stopped. */
+/* Every executor has ended and every slot is back: the summary, or why the sweep stopped. */
 static void sweep_close(sweep_stream *st, int why)
 {
-    slot_give(st->r);
     dp_sweep_totals tot = { 0 };
     for (size_t k = 0; k < st->nexec; k++) {
         const dp_sweep_totals *x = dp_sweep_exec_totals(st->ex[k].x);
@@ -386,7 +387,7 @@ static void sweep_free(void *cls)
     else
         atomic_fetch_add(st->failed ? &m->runs_failed : &m->runs_completed, 1);
     atomic_fetch_sub(&m->runs_in_flight, 1);
-    slot_give(st->r);
+    slot_give(st->r); /* one handed over while parked, the connection closing before it was used */
     for (size_t k = 0; k < st->nex; k++)
         dp_sweep_exec_free(st->ex[k].x);
     free(st->ex);
