@@ -2,8 +2,11 @@
 # bench/sweep.sh - runs per second of one POST /v1/sweep against the same runs sent one POST /v1/simulate at a
 # time (each with "output": {"samples": false, "events": false}, its summary only), on one daemon, and the
 # ratio. The sweep saves a request, a parse of the answer and the samples' encoding per run, and computes the
-# features besides; the lone requests save the sweep's every-step records. Measured and printed, not enforced.
-# Usage: BUILD=build [RUNS=200] bash bench/sweep.sh
+# features besides; the lone requests save the sweep's every-step records. The sweep runs its runs in parallel on
+# every solver slot free (the daemon's --threads, THREADS here, default one per CPU), the lone requests go one
+# after another; so on n idle cores the wall ratio is up to n times the per-CPU one. Measured and printed, not
+# enforced.
+# Usage: BUILD=build [RUNS=200] [THREADS=n] bash bench/sweep.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BUILD:-build}
@@ -11,7 +14,7 @@ runs=${RUNS:-200}
 make -s BUILD="$build" "$build/dashpotd"
 dir=$(mktemp -d)
 log=$dir/daemon.log
-"$build/dashpotd" --port 0 2>"$log" &
+"$build/dashpotd" --port 0 ${THREADS:+--threads "$THREADS"} 2>"$log" &
 pid=$!
 trap 'kill $pid 2>/dev/null; wait $pid 2>/dev/null; rm -rf "$dir"' EXIT
 for _ in $(seq 100); do port=$(grep -o 'listening on http://[^ ]*' "$log" | grep -o '[0-9]*$' || true); [ -n "$port" ] && break; sleep 0.1; done
@@ -43,7 +46,7 @@ for w in omegas:
     doc["output"] = {"samples": False, "events": False}
     post("/v1/simulate", doc)
 lone, lone_cpu = runs / (time.perf_counter() - t), runs / max(cpu() - c, 1e-9)
-print("sweep of %d runs (10^4 steps each): %.0f runs/s wall, %.0f per daemon CPU second" % (runs, sweep, sweep_cpu))
+print("sweep of %d runs (10^4 steps each, in parallel): %.0f runs/s wall, %.0f per daemon CPU second" % (runs, sweep, sweep_cpu))
 print("one simulate request at a time:       %.0f runs/s wall, %.0f per daemon CPU second" % (lone, lone_cpu))
 print("ratio sweep / one at a time: %.2f wall, %.2f CPU" % (sweep / lone, sweep_cpu / lone_cpu))
 PY

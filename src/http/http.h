@@ -222,6 +222,14 @@ int auth_ok(const server *s, struct MHD_Connection *c, const char *url);
 int slot_take(request *r, struct MHD_Connection *c);
 /* Gives r's slot back (to the first parked request, if any); nothing if r holds none. */
 void slot_give(request *r);
+/* Up to `want` more slots for a request that holds one already (a sweep's further executors, sweep.c), taken
+ * only if free now and no request is parked for one: never waits, never parks. How many were taken; each is
+ * given back with slot_give_extra (from any thread). 0 at shutdown. */
+unsigned slot_try_extra(server *s, unsigned want);
+void slot_give_extra(server *s);
+/* The slot r holds becomes one as slot_try_extra's, given back with slot_give_extra (by the thread that computes
+ * on it, not when r completes). 1, or 0 when r holds none (at shutdown: nothing is counted then). */
+int slot_detach(request *r);
 /* Slots not taken now (0: every worker is computing; /readyz says busy). */
 unsigned slots_free(server *s);
 /* Shutdown: lets every request through from now on and resumes the parked ones. */

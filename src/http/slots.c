@@ -99,3 +99,48 @@ void slots_open(server *s)
     s->wait_head = s->wait_tail = NULL;
     pthread_mutex_unlock(&s->slots_lock);
 }
+
+/* ---- extra slots: a sweep's further executors (sweep.c) ----
+ * A sweep holds its slot as any stream does and may take more that are free at that moment, one per further
+ * thread computing its runs, so that workers_busy (and /readyz) still count every thread computing. It never
+ * waits for one and never takes one a parked request waits for; each executor gives its slot back when it
+ * ends, handing it to the first parked request as slot_give does. */
+
+unsigned slot_try_extra(server *s, unsigned want)
+{
+    pthread_mutex_lock(&s->slots_lock);
+    unsigned busy = atomic_load(&s->m.workers_busy), got = 0;
+    /* Free now and wanted by nobody parked; none at shutdown (slots_open: nothing is counted then). */
+    if (!s->slots_open && s->wait_head == NULL && busy < s->cfg.threads)
+        got = s->cfg.threads - busy < want ? s->cfg.threads - busy : want;
+    atomic_fetch_add(&s->m.workers_busy, got);
+    pthread_mutex_unlock(&s->slots_lock);
+    return got;
+}
+
+void slot_give_extra(server *s)
+{
+    pthread_mutex_lock(&s->slots_lock);
+    request *w = s->wait_head;
+    if (w != NULL) { /* as slot_give: the slot passes on to the first parked request, workers_busy stays */
+        s->wait_head = w->wait_next;
+        if (s->wait_head == NULL)
+            s->wait_tail = NULL;
+        w->slot_granted = 1;
+        struct MHD_Connection *c = w->wait_conn;
+        w->wait_conn = NULL;
+        MHD_resume_connection(c);
+    } else {
+        atomic_fetch_sub(&s->m.workers_busy, 1);
+    }
+    pthread_mutex_unlock(&s->slots_lock);
+}
+
+int slot_detach(request *r)
+{
+    pthread_mutex_lock(&r->srv->slots_lock);
+    int held = r->slot_held;
+    r->slot_held = 0; /* still counted in workers_busy: now the caller's to give back (slot_give_extra) */
+    pthread_mutex_unlock(&r->srv->slots_lock);
+    return held;
+}
