@@ -6,6 +6,7 @@ none lost, none duplicated."""
 import math
 import threading
 import time
+import urllib.request
 
 import pytest
 
@@ -55,9 +56,23 @@ def test_two_daemons_and_dask_give_one_daemons_lines(reference):
         b.stop()
 
 
-def _kill_soon(daemon, after, when):
+def _kill_when_busy(daemon, when):
+    """Kills the daemon once it is streaming a part of the sweep (its dashpot_runs_in_flight >= 1): mid-sweep
+    by construction, however fast the sweep runs (its runs now go at once on the daemon's threads)."""
+    def busy():
+        try:
+            with urllib.request.urlopen(daemon.url + "/metrics", timeout=1) as r:
+                for line in r.read().decode().splitlines():
+                    if line.startswith("dashpot_runs_in_flight "):
+                        return float(line.split()[1]) >= 1
+        except OSError:
+            pass
+        return False
+
     def kill():
-        time.sleep(after)
+        deadline = time.monotonic() + 10
+        while not busy() and time.monotonic() < deadline:
+            time.sleep(0.002)
         daemon.proc.kill()
         when.append(time.monotonic())
     t = threading.Thread(target=kill, daemon=True)
@@ -70,7 +85,7 @@ def test_a_daemon_stopped_mid_sweep_loses_nothing(reference, use_dask):
     a, b = LocalDaemon(), LocalDaemon()
     try:
         killed = []
-        killer = _kill_soon(b, 0.3, killed)  # a run takes ~40 ms, the sweep ~1 s: b dies in mid-sweep
+        killer = _kill_when_busy(b, killed)
         if use_dask:
             with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
                                           dashboard_address=None) as cluster, distributed.Client(cluster) as dask:
