@@ -19,6 +19,24 @@
  */
 #include "http.h"
 
+/* A slot given back (slots_lock held): it passes on to the first parked request, whose connection resumes
+ * (workers_busy stays), or it is free again. */
+static void pass_on(server *s)
+{
+    request *w = s->wait_head;
+    if (w == NULL) {
+        atomic_fetch_sub(&s->m.workers_busy, 1);
+        return;
+    }
+    s->wait_head = w->wait_next;
+    if (s->wait_head == NULL)
+        s->wait_tail = NULL;
+    w->slot_granted = 1;
+    struct MHD_Connection *c = w->wait_conn;
+    w->wait_conn = NULL;
+    MHD_resume_connection(c);
+}
+
 int slot_take(request *r, struct MHD_Connection *c)
 {
     server *s = r->srv;
@@ -64,18 +82,7 @@ void slot_give(request *r)
     /* Held, or handed over while parked and never used (its connection closed on resuming): both count. */
     if (r->slot_held || r->slot_granted) {
         r->slot_held = r->slot_granted = 0;
-        request *w = s->wait_head;
-        if (w != NULL) {
-            s->wait_head = w->wait_next;
-            if (s->wait_head == NULL)
-                s->wait_tail = NULL;
-            w->slot_granted = 1; /* the slot passes on: workers_busy stays */
-            struct MHD_Connection *c = w->wait_conn;
-            w->wait_conn = NULL;
-            MHD_resume_connection(c);
-        } else {
-            atomic_fetch_sub(&s->m.workers_busy, 1);
-        }
+        pass_on(s);
     }
     pthread_mutex_unlock(&s->slots_lock);
 }
@@ -121,18 +128,7 @@ unsigned slot_try_extra(server *s, unsigned want)
 void slot_give_extra(server *s)
 {
     pthread_mutex_lock(&s->slots_lock);
-    request *w = s->wait_head;
-    if (w != NULL) { /* as slot_give: the slot passes on to the first parked request, workers_busy stays */
-        s->wait_head = w->wait_next;
-        if (s->wait_head == NULL)
-            s->wait_tail = NULL;
-        w->slot_granted = 1;
-        struct MHD_Connection *c = w->wait_conn;
-        w->wait_conn = NULL;
-        MHD_resume_connection(c);
-    } else {
-        atomic_fetch_sub(&s->m.workers_busy, 1);
-    }
+    pass_on(s);
     pthread_mutex_unlock(&s->slots_lock);
 }
 
