@@ -288,18 +288,10 @@ static int lean_advance(dp_run *r)
             return r->status;
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
-        r->n++;
-        r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
         /* network_run_state_finite for the one node and element */
-        if (!(fabs(nr->x[0]) < 1e300 && fabs(nr->v[0]) < 1e300) || !isfinite(nr->Fs[0]) || !isfinite(nr->Fd[0]))
-            return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
-        r->sum.steps = r->n;
-        if (r->n >= r->nsteps) {
-            r->finished = 1;
-            network_run_finalize_summary(r);
-        }
-        if (--r->countdown <= 0 || r->n >= r->nsteps)
-            network_run_emit_row(r);
+        int finite = fabs(nr->x[0]) < 1e300 && fabs(nr->v[0]) < 1e300 && isfinite(nr->Fs[0]) && isfinite(nr->Fd[0]);
+        if ((s = network_run_step_taken(r, finite)) != DP_OK)
+            return s;
     }
     return DP_OK;
 }

@@ -582,18 +582,25 @@ static int network_run_advance(dp_run *r)
                                DP_NETWORK_MAX_RUN_BYTES / (1024.0 * 1024.0));
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
-        r->n++;
-        r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
-        if (!network_run_state_finite(nr))
-            return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
-        r->sum.steps = r->n;
-        if (r->n >= r->nsteps) {
-            r->finished = 1;
-            network_run_finalize_summary(r);
-        }
-        if (--r->countdown <= 0 || r->n >= r->nsteps)
-            network_run_emit_row(r);
+        if ((s = network_run_step_taken(r, network_run_state_finite(nr))) != DP_OK)
+            return s;
     }
+    return DP_OK;
+}
+
+int network_run_step_taken(dp_run *r, int finite)
+{
+    r->n++;
+    r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
+    if (!finite)
+        return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
+    r->sum.steps = r->n;
+    if (r->n >= r->nsteps) {
+        r->finished = 1;
+        network_run_finalize_summary(r);
+    }
+    if (--r->countdown <= 0 || r->n >= r->nsteps)
+        network_run_emit_row(r);
     return DP_OK;
 }
 

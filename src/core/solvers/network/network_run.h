@@ -107,6 +107,10 @@ int network_run_reserve_rows(dp_run *r);
 void network_run_finalize_summary(dp_run *r);
 /* Every position, velocity and force finite (and not absurdly large). */
 int network_run_state_finite(const struct dp_network_run *nr);
+/* After a step was solved: the step count and t move on, a state that is not `finite` fails the run ("the
+ * solution diverged"), the last step closes the summary, and the row is written when due. DP_OK or the
+ * run's failure status. */
+int network_run_step_taken(dp_run *r, int finite);
 /* x_b - x_a with the ground at 0. */
 static inline double network_run_rel(long a, long b, const double *x)
 {
