@@ -440,25 +440,44 @@ function renderWellposedness(wp, meta) {
 
 // ---- stability ----
 
-async function runStability() {
+// A run of a tab whose answer is computed whole or streamed into its panel (stability, modes, sweep): the
+// panel marked running, `work(ctl, text)` given the abort controller and the editor's text; it returns 'done'
+// when it succeeded (on a problem it shows it and returns nothing). The panel then ends 'done', 'stopped'
+// (aborted) or 'error', and the status line says so unless done.
+async function panelRun(panelId, busy, work) {
   const ctl = new AbortController();
   ui.controller = ctl;
-  const panel = $('panel-stability');
+  const panel = $(panelId);
   const text = editor.text;
   const mine = ++ui.runs;
   panel.dataset.run = mine;
-  let hasMap = false;
-  try { hasMap = !!JSON.parse(text).map; } catch { /* the daemon says where */ }
   showProblem(null);
   panel.dataset.state = 'running';
   setRunning(true);
-  $('status').textContent = hasMap ? 'computing the map\u2026' : 'analysing\u2026';
+  $('status').textContent = busy;
   let state = 'error';
-  const post = (accept) => fetch('v1/stability', { method: 'POST', body: text, signal: ctl.signal,
-    headers: headers(accept) });
   try {
+    state = (await work(ctl, text)) || 'error';
+  } catch (e) {
+    if (e.name === 'AbortError') state = 'stopped';
+    else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
+  } finally {
+    if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
+    if (mine === ui.runs) {
+      panel.dataset.state = state;
+      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
+    }
+  }
+}
+
+function runStability() {
+  let map = false;
+  try { map = !!JSON.parse(editor.text).map; } catch { /* the daemon says where */ }
+  return panelRun('panel-stability', map ? 'computing the map\u2026' : 'analysing\u2026', async (ctl, text) => {
+    const post = (accept) => fetch('v1/stability', { method: 'POST', body: text, signal: ctl.signal,
+      headers: headers(accept) });
     const t0 = performance.now();
-    const [jr, sr] = await Promise.all([post('application/json'), hasMap ? post('image/svg+xml') : null]);
+    const [jr, sr] = await Promise.all([post('application/json'), map ? post('image/svg+xml') : null]);
     if (!jr.ok) { showProblem(await problemOf(jr)); return; }
     const doc = await jr.json();
     const img = $('stab-img');
@@ -473,17 +492,8 @@ async function runStability() {
     $('stab-empty').hidden = true;
     renderStability(doc);
     $('status').textContent = `done in ${((performance.now() - t0) / 1000).toFixed(2)} s`;
-    state = 'done';
-  } catch (e) {
-    if (e.name === 'AbortError') state = 'stopped';
-    else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
-  } finally {
-    if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
-    if (mine === ui.runs) {
-      panel.dataset.state = state;
-      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
-    }
-  }
+    return 'done';
+  });
 }
 
 const VERDICT_CLASS = { 'asymptotically stable': 'ok', unstable: 'no', 'marginally stable': 'mid', 'near boundary': 'mid' };
@@ -517,37 +527,17 @@ function renderStability(d) {
 
 // ---- modes and frequency response (web/modes.js) ----
 
-async function runModesTab() {
-  const ctl = new AbortController();
-  ui.controller = ctl;
-  const panel = $('panel-modes');
-  const text = editor.text;
-  const mine = ++ui.runs;
-  panel.dataset.run = mine;
-  showProblem(null);
-  panel.dataset.state = 'running';
-  setRunning(true);
-  $('status').textContent = 'analysing\u2026';
-  let state = 'error';
-  const post = (route) => fetch(route, { method: 'POST', body: text, signal: ctl.signal, headers: headers('application/json') });
-  try {
+function runModesTab() {
+  return panelRun('panel-modes', 'analysing\u2026', async (ctl, text) => {
+    const post = (route) => fetch(route, { method: 'POST', body: text, signal: ctl.signal, headers: headers('application/json') });
     const t0 = performance.now();
     const { mr, rr } = await runModes(post, text);
     if (!mr.ok) { showProblem(await problemOf(mr)); return; }
     if (rr && !rr.ok) { showProblem(await problemOf(rr)); return; }
     renderModes(await mr.json(), rr ? await rr.json() : null);
     $('status').textContent = `done in ${((performance.now() - t0) / 1000).toFixed(2)} s`;
-    state = 'done';
-  } catch (e) {
-    if (e.name === 'AbortError') state = 'stopped';
-    else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
-  } finally {
-    if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
-    if (mine === ui.runs) {
-      panel.dataset.state = state;
-      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
-    }
-  }
+    return 'done';
+  });
 }
 
 // ---- sweeps (web/sweep.js): POST v1/sweep streamed, drawn as its lines arrive ----
@@ -563,19 +553,8 @@ function openTrajectory(doc, label) {
 }
 const sweepView = new SweepView(openTrajectory);
 
-async function runSweepTab() {
-  const ctl = new AbortController();
-  ui.controller = ctl;
-  const panel = $('panel-sweep');
-  const text = editor.text;
-  const mine = ++ui.runs;
-  panel.dataset.run = mine;
-  showProblem(null);
-  panel.dataset.state = 'running';
-  setRunning(true);
-  $('status').textContent = 'sweeping\u2026';
-  let state = 'error';
-  try {
+function runSweepTab() {
+  return panelRun('panel-sweep', 'sweeping\u2026', async (ctl, text) => {
     const t0 = performance.now();
     const res = await fetch('v1/sweep', { method: 'POST', body: text, signal: ctl.signal, headers: headers('application/x-ndjson') });
     if (!res.ok) { showProblem(await problemOf(res)); return; }
@@ -601,18 +580,9 @@ async function runSweepTab() {
     else {
       $('status').textContent = `${summary.completed} runs` + (summary.failed ? `, ${summary.failed} failed` : '') +
         ` \u00b7 ${((performance.now() - t0) / 1000).toFixed(2)} s`;
-      state = 'done';
+      return 'done';
     }
-  } catch (e) {
-    if (e.name === 'AbortError') state = 'stopped';
-    else showProblem({ title: 'Cannot reach the daemon', detail: String(e.message || e) });
-  } finally {
-    if (ui.controller === ctl) { ui.controller = null; setRunning(false); }
-    if (mine === ui.runs) {
-      panel.dataset.state = state;
-      if (state !== 'done') $('status').textContent = state === 'stopped' ? 'stopped' : 'failed';
-    }
-  }
+  });
 }
 
 // ---- run / stop ----
