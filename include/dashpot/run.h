@@ -28,12 +28,13 @@ typedef struct dp_sample {
 
 typedef enum dp_event_kind {
     DP_EVENT_STICK = 1, DP_EVENT_SLIP = 2, DP_EVENT_YIELD = 3, DP_EVENT_UNLOAD = 4, DP_EVENT_IMPACT = 5,
-    DP_EVENT_LIFTOFF = 6, DP_EVENT_ON = 7, DP_EVENT_OFF = 8
+    DP_EVENT_LIFTOFF = 6, DP_EVENT_ON = 7, DP_EVENT_OFF = 8, DP_EVENT_TOUCH = 9, DP_EVENT_SEPARATE = 10
 } dp_event_kind;
 
 /* A phase change: DP_EVENT_STICK is slip -> stick, DP_EVENT_SLIP is stick -> slip; an elastoplastic
  * spring's DP_EVENT_YIELD (its slider starts sliding) and DP_EVENT_UNLOAD (it stops: elastic again); a
  * contact's DP_EVENT_IMPACT (v the rate before, v_after after, impulse >= 0 pushing the ends apart); Painlevé's
+ * compliant contact's DP_EVENT_TOUCH (its gap closes) and DP_EVENT_SEPARATE (it opens); Painlevé's
  * rod leaving the floor, DP_EVENT_LIFTOFF (x, v: the end's height and upward rate, docs/right-hand.md); a linear
  * complementarity system's mode change (lcs.h), DP_EVENT_ON along the component's graph, DP_EVENT_OFF back
  * (element: the component, mode: the mode entered, x, v: its u and w then). */

@@ -14,7 +14,7 @@ the returned Figure is saved with ``fig.savefig(...)``.
 import numpy as np
 
 _EVENT_COLOURS = {"stick": "tab:blue", "slip": "tab:red", "impact": "tab:purple", "release": "tab:green",
-                  "yield": "tab:orange", "unload": "tab:brown"}
+                  "yield": "tab:orange", "unload": "tab:brown", "touch": "tab:pink", "separate": "tab:olive"}
 _AXIS_LABELS = {"x": "x", "v": "v = x'", "Fs": "F_s", "Fd": "F_d", "Fc": "F_c", "Fn": "F_n (contact)",
                 "u": "u", "w": "w", "q": "q", "qd": "q'", "qdd": "q''", "N": "N"}
 _DEFAULT_PANELS = {"lcs": ("x", "u", "w")}

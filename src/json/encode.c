@@ -135,7 +135,8 @@ static char *put_event_members(char *p, const dp_event *ev, int network)
         return put_mode_change(p, ev);
     p = ev->kind == DP_EVENT_STICK ? PUT(p, "\"kind\":\"stick\"") : ev->kind == DP_EVENT_SLIP ? PUT(p, "\"kind\":\"slip\"")
       : ev->kind == DP_EVENT_YIELD ? PUT(p, "\"kind\":\"yield\"") : ev->kind == DP_EVENT_IMPACT ? PUT(p, "\"kind\":\"impact\"")
-      : ev->kind == DP_EVENT_LIFTOFF ? PUT(p, "\"kind\":\"liftoff\"") : PUT(p, "\"kind\":\"unload\"");
+      : ev->kind == DP_EVENT_LIFTOFF ? PUT(p, "\"kind\":\"liftoff\"") : ev->kind == DP_EVENT_TOUCH ? PUT(p, "\"kind\":\"touch\"")
+      : ev->kind == DP_EVENT_SEPARATE ? PUT(p, "\"kind\":\"separate\"") : PUT(p, "\"kind\":\"unload\"");
     if (network) {   /* the element, when, and its elongation u and rate du at that instant */
         char num[24];
         int len = snprintf(num, sizeof num, "%zu", ev->element);

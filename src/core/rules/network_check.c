@@ -109,9 +109,6 @@ static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
         dp_errors_add(e, p, "a rigid contact makes the velocity jump, which the regularized ODE cannot: give it a "
                       "\"compliance\" (its Yosida approximation, force k max(d - u, 0)), or use the stick-slip "
                       "solver");
-    else if (s->solver.kind == DP_SOLVER_STICK_SLIP && c->compliance > 0 && s->solver.theta != 1)
-        dp_errors_add(e, p, "a compliant contact is a graph spring, stepped by backward Euler: use theta = 1, or "
-                      "the regularized solver (which integrates it to its tolerances)");
 }
 
 static void check_element(const dp_spec *s, size_t i, dp_errors *e)
@@ -139,11 +136,13 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
             dp_errors_add(e, p, "the initial relative velocity %g is outside the damper graph's domain", z);
         }
     }
+    /* a graph of finite slope is theta-stepped (network_smooth.c); one with a vertical piece holds its force
+     * as a multiplier, stepped by backward Euler */
     if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) &&
-        s->solver.theta != 1) {
+        !isfinite(dp_graph_lipschitz(&el->spring.graph)) && s->solver.theta != 1) {
         el_ptr(p, sizeof p, s, i, "/spring");
-        dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler): use "
-                      "theta = 1", dp_spring_law_name(el->spring.law));
+        dp_errors_add(e, p, "theta < 1 needs springs of finite slope (the %s spring has a vertical piece, stepped "
+                      "by backward Euler): use theta = 1", dp_spring_law_name(el->spring.law));
     }
     if (el->has_contact)
         check_contact(s, i, u, e);

@@ -56,10 +56,17 @@ static void static_graphs(struct dp_network_run *nr, const unsigned char *phase)
         static_graph(nr, k, phase[nr->act_el[k]] == DP_PHASE_STICK);
 }
 
+/* Whether active element k is an elastoplastic spring (a graph spring of finite slope is theta-weighted too,
+ * network_smooth.c, but its graph does not move). */
+static int ep_entry(const struct dp_network_run *nr, size_t k)
+{
+    return k < nr->nact_el && nr->act[k].ep_theta > 0 && nr->ep_graph[nr->act_el[k]] != NULL;
+}
+
 /* Whether active element k is an elastoplastic spring free in the held assignment (its own margin applies). */
 static int ep_free(const struct dp_network_run *nr, size_t k)
 {
-    return k < nr->nact_el && nr->act[k].ep_theta > 0 && !dp_network_step_fixed(nr->ws, k);
+    return ep_entry(nr, k) && !dp_network_step_fixed(nr->ws, k);
 }
 
 /* An elastoplastic spring's margin at the end of a held step of length s (nr->u and nr->force from it),
@@ -271,7 +278,7 @@ static void ep_switch(struct dp_network_run *nr)
 static int ep_turns(const struct dp_network_run *nr)
 {
     for (size_t k = 0; nr->has_ep && k < nr->nact_el; k++)
-        if (nr->act[k].ep_theta > 0 && nr->ep_flow[nr->act_el[k]] * nr->force[k].z < 0)
+        if (ep_entry(nr, k) && nr->ep_flow[nr->act_el[k]] * nr->force[k].z < 0)
             return 1;
     return 0;
 }
@@ -281,7 +288,7 @@ static int ep_turns(const struct dp_network_run *nr)
 static int ep_redrawn(const struct dp_network_run *nr)
 {
     for (size_t k = 0; nr->has_ep && k < nr->nact_el; k++)
-        if (nr->act[k].ep_theta > 0 && nr->ep_flow[nr->act_el[k]] != 0)
+        if (ep_entry(nr, k) && nr->ep_flow[nr->act_el[k]] != 0)
             return 1;
     return 0;
 }
@@ -405,15 +412,15 @@ int network_run_located_step(dp_run *r, double t, double h)
         if (nr->has_static && left - at <= 1e-12 * left)
             at = left;
         held_margin(&(held_ctx){ r, t, NULL }, at);  /* the state at the event, assignment held */
-        size_t ep_events = ep_events_at(nr, at);
+        size_t ep_events = ep_events_at(nr, at), kinks = network_run_smooth_kinks_at(nr, at);
         network_run_take_velocity(nr, at);
         ep_switch(nr);
         network_run_element_forces(nr, 1);
         /* every element whose assignment fails at this instant (to the root's tolerance) switches here:
          * identical blocks stick together */
         for (size_t j = 0; j < nr->nact; j++) {
-            if (!nr->fails[j] || (j < nr->nact_el && nr->act[j].ep_theta > 0 && ep_events))
-                continue;      /* with a yield or unload the renewal below finds every element's piece */
+            if (!nr->fails[j] || (ep_entry(nr, j) && ep_events) || network_run_smooth_kink(nr, j))
+                continue;      /* with a yield, unload or a spring's vertex the renewal below finds its piece */
             if (j < nr->nact_el)
                 nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
             else if (nr->ct_on[j - nr->nact_el])
@@ -422,10 +429,12 @@ int network_run_located_step(dp_run *r, double t, double h)
         }
         if (network_run_cancelled(r))
             return DP_ECANCEL;
-        /* after a yield or unload the assignment is renewed by a billionth of what is left (the graph moved) */
-        if (ep_events && left - at > 0 && (s = network_run_net_step_keep(r, t + at, EP_PROBE * (left - at))) != DP_OK)
+        /* after a yield or unload (the graph moved) or at a spring's vertex (the next piece) the assignment is
+         * renewed over a sliver of what is left */
+        int renew = (ep_events || kinks) && left - at > 0;
+        if (renew && (s = network_run_net_step_keep(r, t + at, EP_PROBE * (left - at))) != DP_OK)
             return s;
-        if (ep_events && left - at > 0)
+        if (renew)
             network_run_element_forces(nr, 1);
         network_run_stick_time(r, nr->phase_prev, at);
         network_run_step_events(r, nr->phase_prev, t + at);

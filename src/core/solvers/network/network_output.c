@@ -114,6 +114,7 @@ void network_run_step_events(dp_run *r, const unsigned char *before, double t)
                                                                     : network_run_rel(e->a, e->b, nr->v);
         element_event(r, nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP, t, i, du);
     }
+    network_run_smooth_touch_events(r, t);
     const dp_quake *q;
     size_t nq = network_quakes_step(nr, before, t, &q);
     for (size_t i = 0; i < nq; i++)    /* the quakes this (sub-)step ended */

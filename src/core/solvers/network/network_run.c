@@ -268,6 +268,7 @@ void network_run_free(void *state)
         dp_graph_clear(&nr->static_A[i]);
     dp_nm_free(nr->nm);
     network_run_contacts_free(nr);
+    network_run_smooth_free(nr);
     dp_row_queue_clear(&nr->queue);
     network_quakes_free(nr->quakes);
     void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
@@ -465,6 +466,8 @@ int network_run_setup(dp_run *r)
     if (nr->iws)
         dp_network_step_set_poll(nr->iws, network_run_step_poll, r);
     ep_init(nr, r->spec.net, r->spec.x0v);
+    if ((s = network_run_smooth_setup(nr)) != DP_OK)
+        return s;
     nr->pattern = malloc(dp_network_step_pattern_bytes(nr->ws));
     nr->margin = calloc(nr->nact ? nr->nact : 1, sizeof *nr->margin);
     nr->roots = calloc(nr->nact ? nr->nact : 1, sizeof *nr->roots);
@@ -508,6 +511,8 @@ static int network_run_init(dp_run *r)
         network_run_emit_row(r);
         return DP_OK;
     }
+    network_run_smooth_update(nr);
+    network_run_smooth_touch_start(nr, r->h);
     network_run_build_W(nr, r->h);
     if ((s = check_step_magnitudes(r)) != DP_OK)
         return s;
@@ -610,12 +615,14 @@ static int element_locates(const dp_element *e, int network)
 {
     const dp_spring_law_info *SL = dp_spring_law_info_of(e->spring.law);
     const dp_damper_law_info *DL = dp_damper_law_info_of(e->damper.law);
-    int spring = !e->has_spring || (SL && (network ? SL->locate_network : SL->locate));
+    int spring = !e->has_spring || (SL && (network ? SL->locate_network : SL->locate)) ||
+                 (network && network_run_smooth_graph(&e->spring.graph));   /* its vertices: network_smooth.c */
     return spring && (!e->has_damper || (DL && DL->locate));
 }
 
-/* Location holds an assignment over shorter steps: its pieces must not move with the step's length, so
- * graph springs (vertices at (y - u)/h) are stepped without it; a static threshold is held on the graph of
+/* Location holds an assignment over shorter steps: a spring graph with a vertical piece (a rope) holds its
+ * force as a multiplier at a vertex whose z moves with the step's length, so it is stepped without it; a
+ * graph of finite slope is held on its piece (network_smooth.c); a static threshold is held on the graph of
  * its phase, relaxation iterated in the held step (network_events.c). */
 int dp_network_locates(const dp_spec *s)
 {
@@ -625,9 +632,7 @@ int dp_network_locates(const dp_spec *s)
     int sticky = 0;
     for (size_t i = 0; i < s->net->nel; i++) {
         const dp_element *e = &s->net->el[i];
-        if (e->has_contact && e->contact.compliance > 0)
-            return 0;     /* a compliant contact is a graph spring */
-        sticky |= e->has_contact;
+        sticky |= e->has_contact;   /* a compliant one's touch and separation too (network_smooth.c) */
         if (!element_locates(e, 1))
             return 0;
         sticky |= dp_element_can_stick(e) || is_ep(e);   /* a slider sticks and slides too */

@@ -60,6 +60,12 @@ struct dp_network_run {
     signed char *ep_flow, *ep_flow_prev;
     dp_graph **ep_graph;
     size_t *ep_cols, nep_cols;  /* the written elements with such a spring: the "p" column group */
+    /* spring graphs of finite slope (network_smooth.c), per active element: such a spring, its force at the
+     * state (stepped by the theta-rule when has_smooth: theta < 1), its vertex failing at the located instant;
+     * per contact: a compliant one pressed (its gap closed) */
+    int has_smooth;
+    unsigned char *sm_on, *sm_kink, *sm_pressed;
+    double *sm_F;
     /* the newmark solver (network_run.c, newmark_step.h): its stepper, the elastoplastic elements' ends,
      * stiffness, element index, force and tangent state in its order, the load vector */
     struct dp_nm *nm;
@@ -158,6 +164,23 @@ void network_run_contacts_after_probe(struct dp_network_run *nr);
 double network_run_compliant_force(const dp_contact *c, double u);
 /* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
 void network_run_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse);
+
+/* Spring graphs of finite slope (network_smooth.c): whether a graph is one; flagging the active elements
+ * that are (theta-stepped below theta = 1); their forces at the state after it moved; the step's right side
+ * from their known part; the reported force (theirs at the state, else the step's `stepped`); which of the
+ * failing elements (nr->fails) fail at a vertex of their spring at the located instant `at` (the held state
+ * there), and whether k is one of them; a compliant contact's touch and separation: the state at the run's
+ * start, and the events at t of those that changed. */
+int network_run_smooth_graph(const dp_graph *g);
+int network_run_smooth_setup(struct dp_network_run *nr);
+void network_run_smooth_free(struct dp_network_run *nr);
+void network_run_smooth_update(struct dp_network_run *nr);
+void network_run_smooth_rhs(struct dp_network_run *nr, double h);
+double network_run_smooth_force(const struct dp_network_run *nr, size_t k, double stepped);
+size_t network_run_smooth_kinks_at(struct dp_network_run *nr, double at);
+int network_run_smooth_kink(const struct dp_network_run *nr, size_t k);
+void network_run_smooth_touch_start(struct dp_network_run *nr, double h);
+void network_run_smooth_touch_events(dp_run *r, double t);
 
 /* Yield and unload events at time t of the elastoplastic springs whose slider started or stopped sliding. */
 void network_run_plastic_events(dp_run *r, double t);

@@ -76,7 +76,7 @@ void network_run_element_forces(struct dp_network_run *nr, int stepped)
             }
         } else if (k >= 0 && stepped) {
             const dp_network_step_forces *f = &nr->force[k];
-            fs += f->s, fd += f->a, rest = f->at_rest;
+            fs += network_run_smooth_force(nr, (size_t)k, f->s), fd += f->a, rest = f->at_rest;
         } else if (k >= 0) {
             if (nr->act[k].S) {
                 dp_graph_force(nr->act[k].S, u, &lo, &hi);
@@ -162,11 +162,12 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
     }
     for (size_t k = 0; k < nr->nact; k++)
         nr->u[k] = network_run_rel(nr->act[k].a, nr->act[k].b, nr->x);
+    network_run_smooth_rhs(nr, h);
     if (!nr->has_ep)
         return;
     for (size_t k = 0; k < nr->nact; k++) {
         const dp_network_step_element *e = &nr->act[k];
-        if (e->ep_theta == 0)
+        if (e->ep_theta == 0 || nr->ep_graph[nr->act_el[k]] == NULL || k >= nr->nact_el)
             continue;
         /* u+ = u + h (1-theta) u' + h theta z+; the force's (1-theta) part is known */
         double g = h * (1 - th) * nr->ep_F[nr->act_el[k]];
@@ -186,6 +187,7 @@ void network_run_take_velocity(struct dp_network_run *nr, double h)
         nr->v[i] = nr->v1[i];
     }
     network_run_ep_update(nr);
+    network_run_smooth_update(nr);
 }
 
 /* The exact solution of a step of length h from time t into v1 and the forces; the state is not moved. */

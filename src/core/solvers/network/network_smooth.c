@@ -1,0 +1,176 @@
+/* src/core/solvers/network/network_smooth.c - spring graphs of finite slope on a network: a "graph" spring
+ * whose pieces are all sloped (no vertical piece, no vertical end ray) and a compliant contact, whose graph
+ * is -k max(d - u, 0) (the Yosida approximation of the rigid contact, docs/systems.md §4).
+ *
+ * Such a spring's force is a Lipschitz function of the elongation, so it is stepped as a linear spring is,
+ * by the theta-rule on its force: theta S(u+) + (1 - theta) S(u), u+ = u + h ((1 - theta) u' + theta z+),
+ * the same weighting the elastoplastic spring uses (network_step.h, ep_theta); at theta = 1/2 the
+ * trapezoidal rule. Its vertices (a kink of the graph: a compliant contact's first touch, its separation)
+ * are located inside the step like any other event (network_events.c): the held piece's margin is the
+ * elongation's distance from the piece's ends, and at the root the assignment is renewed over a sliver of
+ * the step (as after a yield), so the rest of the step is taken on the next piece and theta = 1/2 stays
+ * second order through the kink. Graphs with a vertical piece (a rope, a user graph with a jump in u) are
+ * not here: their force is a multiplier at the vertex, stepped by backward Euler (network_check.c).
+ *
+ * A compliant contact's touch (its gap u - d closing to zero) and its separation are events of the contact's
+ * element, written at the instant, as a rigid contact's impact is. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "solvers/network/network_run.h"
+
+int network_run_smooth_graph(const dp_graph *g)
+{
+    return g != NULL && g->n > 0 && isfinite(dp_graph_lipschitz(g));
+}
+
+/* The force of k's spring graph at the current state (single-valued: the graph has no vertical piece). */
+static double start_force(const struct dp_network_run *nr, size_t k)
+{
+    double lo, hi;
+    dp_graph_force(nr->act[k].S, network_run_rel(nr->act[k].a, nr->act[k].b, nr->x), &lo, &hi);
+    return lo;
+}
+
+int network_run_smooth_setup(struct dp_network_run *nr)
+{
+    int any = 0;
+    for (size_t k = 0; k < nr->nact; k++)
+        any |= nr->act[k].S && nr->act[k].ep_theta == 0 && network_run_smooth_graph(nr->act[k].S);
+    if (!any)
+        return DP_OK;
+    size_t na = nr->nact;
+    nr->sm_on = calloc(na, 1);
+    nr->sm_F = calloc(na, sizeof *nr->sm_F);
+    nr->sm_kink = calloc(na, 1);
+    nr->sm_pressed = calloc(nr->nc ? nr->nc : 1, 1);
+    if (!nr->sm_on || !nr->sm_F || !nr->sm_kink || !nr->sm_pressed)
+        return DP_ENOMEM;
+    for (size_t k = 0; k < na; k++) {
+        dp_network_step_element *e = &nr->act[k];
+        if (!e->S || e->ep_theta != 0 || !network_run_smooth_graph(e->S))
+            continue;
+        nr->sm_on[k] = 1;
+        if (nr->theta < 1)   /* at theta = 1 the weighting is backward Euler's, bit for bit */
+            e->ep_theta = nr->theta, nr->has_smooth = 1;
+    }
+    return DP_OK;
+}
+
+void network_run_smooth_free(struct dp_network_run *nr)
+{
+    free(nr->sm_on), free(nr->sm_F), free(nr->sm_kink), free(nr->sm_pressed);
+}
+
+void network_run_smooth_update(struct dp_network_run *nr)
+{
+    for (size_t k = 0; nr->has_smooth && k < nr->nact; k++)
+        if (nr->sm_on[k])
+            nr->sm_F[k] = start_force(nr, k);
+}
+
+double network_run_smooth_force(const struct dp_network_run *nr, size_t k, double stepped)
+{
+    return nr->has_smooth && nr->sm_on[k] ? nr->sm_F[k] : stepped;
+}
+
+/* The step's right side from the forces' known part: -h (1 - theta) S(u) on the element's ends, and the
+ * elongation the graph sees moved by h (1 - theta) u'. */
+void network_run_smooth_rhs(struct dp_network_run *nr, double h)
+{
+    double th = nr->theta;
+    for (size_t k = 0; nr->has_smooth && k < nr->nact; k++) {
+        const dp_network_step_element *e = &nr->act[k];
+        if (!nr->sm_on[k])
+            continue;
+        double g = h * (1 - th) * nr->sm_F[k];
+        nr->u[k] += h * (1 - th) * network_run_rel(e->a, e->b, nr->v);
+        if (e->b >= 0)
+            nr->rhs[e->b] -= g;
+        if (e->a >= 0)
+            nr->rhs[e->a] += g;
+    }
+}
+
+/* The distance, in z, from the held step's end elongation u+ = u_e + s beta z+ to the nearest vertex of k's
+ * spring graph (nr->u and nr->force from a held solve of length s). */
+static double vertex_distance(const struct dp_network_run *nr, size_t k, double s)
+{
+    const dp_network_step_element *e = &nr->act[k];
+    double beta = s * (e->ep_theta > 0 ? e->ep_theta : 1), up = nr->u[k] + beta * nr->force[k].z, d = INFINITY;
+    for (size_t j = 0; j < e->S->n; j++)
+        d = fmin(d, fabs(up - e->S->y[j]));
+    return d / beta;
+}
+
+/* The same from z to the nearest vertex of k's damper graph (INFINITY without one). */
+static double damper_distance(const struct dp_network_run *nr, size_t k)
+{
+    const dp_network_step_element *e = &nr->act[k];
+    double d = INFINITY;
+    for (size_t j = 0; e->A && j < e->A->n; j++)
+        d = fmin(d, fabs(nr->force[k].z - e->vb - e->A->y[j]));
+    return d;
+}
+
+size_t network_run_smooth_kinks_at(struct dp_network_run *nr, double at)
+{
+    size_t n = 0;
+    for (size_t k = 0; nr->sm_on && k < nr->nact; k++) {
+        nr->sm_kink[k] = 0;
+        if (!nr->sm_on[k] || !nr->fails[k] || dp_network_step_fixed(nr->ws, k) || !(at > 0))
+            continue;
+        if (vertex_distance(nr, k, at) > damper_distance(nr, k))
+            continue;      /* its damper's event, not the spring's */
+        nr->sm_kink[k] = 1;
+        n++;
+    }
+    return n;
+}
+
+int network_run_smooth_kink(const struct dp_network_run *nr, size_t k)
+{
+    return nr->sm_kink && nr->sm_kink[k];
+}
+
+/* ---- a compliant contact's touch and separation --------------------------------------------------------- */
+
+/* Pressed: the gap below zero, or at zero and closing; at zero means within the rounding of the positions
+ * and a billionth of what the gap moves in a step h (a located instant's root tolerance). */
+static int pressed(const struct dp_network_run *nr, size_t c, double h)
+{
+    const dp_element *e = &nr->net->el[nr->ct_el[c]];
+    double xs = fabs(e->contact.distance) + (e->a >= 0 ? fabs(nr->x[e->a]) : 0) + (e->b >= 0 ? fabs(nr->x[e->b]) : 0);
+    double g = network_run_rel(e->a, e->b, nr->x) - e->contact.distance, rate = network_run_rel(e->a, e->b, nr->v);
+    double tol = 1e-9 * h * fabs(rate) + 64 * DBL_EPSILON * xs;
+    return g < -tol || (g <= tol && rate < 0);
+}
+
+void network_run_smooth_touch_start(struct dp_network_run *nr, double h)
+{
+    for (size_t c = 0; nr->sm_pressed && c < nr->nc; c++)
+        nr->sm_pressed[c] = nr->net->el[nr->ct_el[c]].contact.compliance > 0 && pressed(nr, c, h);
+}
+
+void network_run_smooth_touch_events(dp_run *r, double t)
+{
+    struct dp_network_run *nr = r->state;
+    for (size_t c = 0; nr->sm_pressed && c < nr->nc; c++) {
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        if (!(e->contact.compliance > 0))
+            continue;
+        int now = pressed(nr, c, r->h);
+        if (now == nr->sm_pressed[c])
+            continue;
+        nr->sm_pressed[c] = (unsigned char)now;
+        r->sum.events++;
+        if (!r->spec.output.events)
+            continue;
+        dp_record rec = { .type = DP_RECORD_EVENT };
+        rec.u.event = (dp_event){ .kind = now ? DP_EVENT_TOUCH : DP_EVENT_SEPARATE, .t = t,
+                                  .x = network_run_rel(e->a, e->b, nr->x), .v = network_run_rel(e->a, e->b, nr->v),
+                                  .element = nr->ct_el[c] };
+        network_run_put(r, &rec);
+    }
+}

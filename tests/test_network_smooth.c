@@ -1,0 +1,259 @@
+/* tests/test_network_smooth.c - spring graphs of finite slope on networks (network_smooth.c): a compliant
+ * contact and a "graph" spring without a vertical piece are stepped by the theta-rule on their force and
+ * their vertices are located inside the step. Checked against a closed form (a ball bouncing on a compliant
+ * floor: free flight and a half turn of a linear oscillator, alternately), against the same network at
+ * dt/64, and by the rules and the meta line; theta = 1/2 stays second order through the touch and the
+ * separation (errors fall by about 4 per halving of dt; with events "none" they wander). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "dashpot/run.h"
+#include "rows.h"
+
+#define G 9.81
+
+static void assert_events_mode(const char *json, const char *mode)
+{
+    dp_spec spec;
+    dp_errors errs;
+    dp_spec_init(&spec);
+    dp_errors_init(&errs);
+    assert_int_equal(dp_spec_parse(json, strlen(json), 0, &spec, &errs), DP_OK);
+    const char *m = dp_spec_events_mode(&spec);
+    assert_non_null(m);
+    if (strcmp(m, mode) != 0)
+        fprintf(stderr, "events_mode %s, expected %s\n", m, mode);
+    assert_string_equal(m, mode);
+    dp_spec_clear(&spec);
+}
+
+/* ---- a ball on a compliant floor: the closed form -------------------------------------------------- */
+
+/* A unit mass dropped from x = 1 at rest onto a floor of compliance k at x = 0 under gravity g: it falls
+ * for t1 = sqrt(2/g), arrives at v1 = sqrt(2 g), then x'' + w^2 x = -g (w^2 = k) for a contact time
+ * Tc = (pi + 2 atan(g / (w v1))) / w, leaves at v1 (the force is elastic) and flies back to x = 1: the
+ * motion is periodic with period 2 t1 + Tc. */
+static double ball_x(double t, double k)
+{
+    double w = sqrt(k), t1 = sqrt(2 / G), v1 = sqrt(2 * G), Tc = (M_PI + 2 * atan(G / (w * v1))) / w;
+    t = fmod(t, 2 * t1 + Tc);
+    if (t <= t1)
+        return 1 - 0.5 * G * t * t;
+    if (t <= t1 + Tc) {
+        double s = t - t1;
+        return G / k * (cos(w * s) - 1) - v1 / w * sin(w * s);
+    }
+    double s = t - t1 - Tc;
+    return v1 * s - 0.5 * G * s * s;
+}
+
+static void ball_doc(char *json, size_t len, double dt, double k, const char *events)
+{
+    snprintf(json, len, "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"contact\":"
+             "{\"distance\":0,\"compliance\":%.17g}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-%g}]},"
+             "\"initial\":{\"x\":[1],\"v\":[0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":1.2,"
+             "\"theta\":0.5,\"events\":\"%s\"},\"output\":{\"every\":%ld}}", k, G, dt, events, lround(0.05 / dt));
+}
+
+/* The largest error of x over the samples (every 0.05) against the closed form. */
+static double ball_error(double dt, double k, const char *events, rows *r)
+{
+    char json[1024];
+    ball_doc(json, sizeof json, dt, k, events);
+    assert_int_equal(rows_collect(json, 128, r), DP_DONE);
+    double worst = 0;
+    for (size_t i = 0; i < r->n; i++) {
+        const double *row = r->d + i * r->width;
+        worst = fmax(worst, fabs(row[1] - ball_x(row[0], k)));
+    }
+    return worst;
+}
+
+static void test_compliant_ball_is_second_order(void **state)
+{
+    (void)state;
+    char json[1024];
+    ball_doc(json, sizeof json, 1e-3, 1e4, "locate");
+    assert_events_mode(json, "locate");
+    for (int stiff = 0; stiff < 2; stiff++) {
+        double k = stiff ? 1e6 : 1e4, e[5], f[5];
+        for (int i = 0; i < 5; i++) {
+            rows r;
+            e[i] = ball_error(1e-3 / (1 << i), k, "locate", &r);
+            free(r.d);
+            f[i] = ball_error(1e-3 / (1 << i), k, "none", &r);
+            free(r.d);
+        }
+        int wandering = 0;
+        for (int i = 0; i + 1 < 5; i++) {
+            fprintf(stderr, "  k %g dt %g: located %.3e ratio %.3f; events none %.3e ratio %.3f\n", k,
+                    1e-3 / (1 << i), e[i], e[i] / e[i + 1], f[i], f[i] / f[i + 1]);
+            /* k = 1e6 at dt = 1e-3: w dt = 1, the first halving is not yet asymptotic */
+            if (!(stiff && i == 0))
+                assert_true(e[i] / e[i + 1] > 3.7 && e[i] / e[i + 1] < 4.3);
+            wandering |= f[i] / f[i + 1] < 3 || f[i] / f[i + 1] > 5;
+        }
+        assert_true(wandering);
+        assert_true(e[4] < (stiff ? 5e-6 : 5e-7));
+    }
+}
+
+/* The touch and the separation are events of the contact's element at the closed form's instants (the
+ * root's tolerance); events "none" writes them at the ends of their steps. */
+static void test_compliant_touch_events(void **state)
+{
+    (void)state;
+    double k = 1e4, w = sqrt(k), t1 = sqrt(2 / G), v1 = sqrt(2 * G), Tc = (M_PI + 2 * atan(G / (w * v1))) / w;
+    double when[2] = { t1, t1 + Tc };    /* the next touch, 3 t1 + Tc, is after t_end */
+    rows r;
+    ball_error(1e-3, k, "locate", &r);
+    assert_int_equal(r.events, 2);
+    for (size_t i = 0; i < 2; i++) {
+        assert_int_equal(r.ev[i].kind, i == 1 ? DP_EVENT_SEPARATE : DP_EVENT_TOUCH);
+        assert_int_equal(r.ev[i].element, 0);
+        /* the touch ends free flight, exact for the trapezoidal rule; the separation carries the contact
+         * phase's error, (w dt)^2 / 12 of the contact time Tc (2.7e-5 here) */
+        double tol = i == 0 ? 1e-12 : 1.2 * w * w * 1e-6 / 12 * Tc;
+        if (fabs(r.ev[i].t - when[i]) > tol)
+            fprintf(stderr, "event %zu at %.17g, closed form %.17g\n", i, r.ev[i].t, when[i]);
+        assert_true(fabs(r.ev[i].t - when[i]) <= tol);
+        assert_true(fabs(r.ev[i].x) <= 1e-12);             /* at the floor */
+        assert_true(i == 1 ? r.ev[i].v > 0 : r.ev[i].v < 0);
+    }
+    free(r.d);
+    ball_error(1e-3, k, "none", &r);
+    assert_int_equal(r.events, 2);
+    for (size_t i = 0; i < 2; i++) {
+        double steps = r.ev[i].t / 1e-3;
+        assert_true(fabs(steps - round(steps)) < 1e-6);   /* a step's end */
+        assert_true(r.ev[i].t >= when[i] && r.ev[i].t < when[i] + 1e-3 + 1e-12);
+    }
+    free(r.d);
+}
+
+/* ---- a chain with a kinked graph spring against itself at dt/64 ------------------------------------- */
+
+/* Two blocks: a stiffening graph spring (slope 1, then 4 past |u| = 0.3) with Coulomb friction on a belt
+ * (phi0 = 1.5, at 0.1) on [ground, 0] (so that element has a damper vertex and spring vertices both), a linear spring between
+ * them, and a compliant stop the second block hits (u of [ground, 1] kept >= -0.6); a harmonic load (3 sin 0.9 t)
+ * on node 1, to t = 10, sampled every 0.5. */
+static void chain_doc(char *json, size_t len, double dt, const char *events)
+{
+    snprintf(json, len, "{\"model\":{\"masses\":[1,1.5],\"elements\":["
+             "{\"between\":[\"ground\",0],\"spring\":{\"law\":\"graph\",\"points\":[[-1,-2.4],[-0.3,-0.3],[0.3,0.3],"
+             "[1,3.1]]},\"damper\":{\"law\":\"coulomb\",\"phi0\":1.5,\"belt_velocity\":0.1}},"
+             "{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":2}},"
+             "{\"between\":[\"ground\",1],\"contact\":{\"distance\":-0.6,\"compliance\":200}}],"
+             "\"forcing\":[{\"node\":1,\"kind\":\"harmonic\",\"amplitude\":3,\"omega\":0.9}]},"
+             "\"initial\":{\"x\":[0.5,-0.2]},\"solver\":{\"dt\":%.17g,\"t_end\":10,\"theta\":0.5,"
+             "\"events\":\"%s\"},\"output\":{\"every\":%ld}}", dt, events, lround(0.5 / dt));
+}
+
+static double chain_error(double dt, const char *events, const rows *ref)
+{
+    char json[2048];
+    chain_doc(json, sizeof json, dt, events);
+    rows r;
+    assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
+    assert_int_equal(r.n, ref->n);
+    double worst = 0;
+    for (size_t i = 0; i < r.n; i++)
+        for (size_t j = 1; j < 5; j++)
+            worst = fmax(worst, fabs(r.d[i * r.width + j] - ref->d[i * ref->width + j]));
+    free(r.d);
+    return worst;
+}
+
+static void test_graph_spring_chain_is_second_order(void **state)
+{
+    (void)state;
+    char json[2048];
+    chain_doc(json, sizeof json, 0.0025 / 64, "locate");
+    assert_events_mode(json, "locate");
+    rows ref;
+    assert_int_equal(rows_collect(json, 128, &ref), DP_DONE);
+    size_t kinds[11] = { 0 };
+    for (size_t i = 0; i < ref.events; i++)
+        kinds[ref.ev[i].kind]++;
+    fprintf(stderr, "  reference: %zu stick, %zu slip, %zu touch, %zu separate\n", kinds[DP_EVENT_STICK],
+            kinds[DP_EVENT_SLIP], kinds[DP_EVENT_TOUCH], kinds[DP_EVENT_SEPARATE]);
+    assert_true(kinds[DP_EVENT_STICK] >= 2 && kinds[DP_EVENT_TOUCH] >= 1 && kinds[DP_EVENT_SEPARATE] >= 1);
+    /* the spring crosses its kinks at 0.3 and -0.3 in the reference */
+    int above = 0, below = 0;
+    for (size_t i = 0; i < ref.n; i++)
+        above |= ref.d[i * ref.width + 1] > 0.35, below |= ref.d[i * ref.width + 1] < -0.35;
+    assert_true(above && below);
+    double e[4], f[4];
+    for (int i = 0; i < 4; i++) {
+        e[i] = chain_error(0.02 / (1 << i), "locate", &ref);
+        f[i] = chain_error(0.02 / (1 << i), "none", &ref);
+    }
+    for (int i = 0; i + 1 < 4; i++) {
+        fprintf(stderr, "  dt %g: located %.3e ratio %.3f; events none %.3e ratio %.3f\n", 0.02 / (1 << i), e[i],
+                e[i] / e[i + 1], f[i], f[i] / f[i + 1]);
+        assert_true(e[i] / e[i + 1] > 3.5 && e[i] / e[i + 1] < 4.5);
+    }
+    assert_true(f[0] / f[3] < 0.5 * e[0] / e[3]);
+    free(ref.d);
+}
+
+/* ---- the rules --------------------------------------------------------------------------------------- */
+
+static int parse_run(const char *json, char *pointer, size_t len)
+{
+    dp_spec spec;
+    dp_errors errs;
+    dp_spec_init(&spec);
+    dp_errors_init(&errs);
+    int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
+    if (s == DP_OK) {
+        dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
+        dp_run_free(run);
+    }
+    if (errs.n)
+        snprintf(pointer, len, "%s", errs.item[0].pointer);
+    dp_spec_clear(&spec);
+    return s;
+}
+
+/* theta = 1/2 is accepted for a compliant contact and a sloped graph spring; a graph with a vertical piece
+ * (its force a multiplier) still needs theta = 1, named at its spring. */
+static void test_theta_rule(void **state)
+{
+    (void)state;
+    char json[1024], ptr[DP_POINTER_MAX] = "";
+    const char *springs[3] = { "[[-1,-2],[0,0],[1,1]]", "[[-1,-2],[0,0],[0,1],[1,2]]", NULL };
+    for (int i = 0; springs[i]; i++) {
+        snprintf(json, sizeof json, "{\"model\":{\"masses\":[1,1],\"elements\":[{\"between\":[\"ground\",0],"
+                 "\"spring\":{\"law\":\"graph\",\"points\":%s}},{\"between\":[0,1],\"spring\":{\"law\":\"linear\","
+                 "\"k\":1},\"contact\":{\"distance\":-1,\"compliance\":10}}]},\"initial\":{\"x\":[0.5,0]},"
+                 "\"solver\":{\"dt\":0.01,\"t_end\":1,\"theta\":0.5}}", springs[i]);
+        ptr[0] = 0;
+        int s = parse_run(json, ptr, sizeof ptr);
+        if (i == 0) {
+            assert_int_equal(s, DP_OK);
+            assert_events_mode(json, "locate");
+        } else {
+            assert_int_not_equal(s, DP_OK);
+            assert_string_equal(ptr, "/model/elements/0/spring");
+        }
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_compliant_ball_is_second_order),
+        cmocka_unit_test(test_compliant_touch_events),
+        cmocka_unit_test(test_graph_spring_chain_is_second_order),
+        cmocka_unit_test(test_theta_rule),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
