@@ -597,6 +597,10 @@ int network_run_step_taken(dp_run *r, int finite)
 {
     r->n++;
     r->cur.t = r->n < r->nsteps ? (double)r->n * r->h : r->spec.solver.t_end;
+    size_t sm = finite ? 0 : network_run_smooth_overflow(network_run_of(r));
+    if (sm)
+        return dp_run_fail(r, DP_ENONFINITE, "element %zu's spring force overflows at t = %.17g: its graph's "
+                           "slope times the elongation passes the largest double", sm - 1, r->cur.t);
     if (!finite)
         return dp_run_fail(r, DP_ENONFINITE, "the solution diverged at t = %.17g", r->cur.t);
     r->sum.steps = r->n;

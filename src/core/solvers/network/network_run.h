@@ -177,6 +177,8 @@ void network_run_smooth_free(struct dp_network_run *nr);
 void network_run_smooth_update(struct dp_network_run *nr);
 void network_run_smooth_rhs(struct dp_network_run *nr, double h);
 double network_run_smooth_force(const struct dp_network_run *nr, size_t k, double stepped);
+/* 1 + the element whose sloped spring's force at the state is not finite, else 0. */
+size_t network_run_smooth_overflow(const struct dp_network_run *nr);
 size_t network_run_smooth_kinks_at(struct dp_network_run *nr, double at);
 int network_run_smooth_kink(const struct dp_network_run *nr, size_t k);
 void network_run_smooth_touch_start(struct dp_network_run *nr, double h);

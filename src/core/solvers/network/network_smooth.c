@@ -70,6 +70,14 @@ void network_run_smooth_update(struct dp_network_run *nr)
             nr->sm_F[k] = start_force(nr, k);
 }
 
+size_t network_run_smooth_overflow(const struct dp_network_run *nr)
+{
+    for (size_t k = 0; nr->sm_on && k < nr->nact; k++)
+        if (nr->sm_on[k] && !isfinite(start_force(nr, k)))
+            return nr->act_el[k] + 1;
+    return 0;
+}
+
 double network_run_smooth_force(const struct dp_network_run *nr, size_t k, double stepped)
 {
     return nr->has_smooth && nr->sm_on[k] ? nr->sm_F[k] : stepped;
