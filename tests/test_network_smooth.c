@@ -138,6 +138,57 @@ static void test_compliant_touch_events(void **state)
     free(r.d);
 }
 
+/* ---- one node on a bilinear spring: the closed form -------------------------------------------------- */
+
+/* A unit mass on the graph spring F = u (u >= 0), 2u (u < 0), from x = 1 at rest: a quarter turn at w = 1 to
+ * x = 0 at speed 1, half a turn at w = sqrt 2 below (amplitude 1/sqrt 2), a quarter turn back to x = 1: the
+ * period is pi + pi / sqrt 2. (A one-node network of such a spring below theta = 1 steps on the network
+ * solver, network_check.c, whose theta-rule is the one-mass solver's missing half.) */
+static double bilinear_x(double t)
+{
+    double r2 = sqrt(2.0), T = M_PI + M_PI / r2;
+    t = fmod(t, T);
+    if (t <= M_PI / 2)
+        return cos(t);
+    if (t <= M_PI / 2 + M_PI / r2)
+        return -sin(r2 * (t - M_PI / 2)) / r2;
+    return -cos(t - M_PI / r2);      /* cos of the phase past the lower half turn, from -pi/2 */
+}
+
+static double bilinear_error(double dt, const char *events)
+{
+    char json[1024];
+    snprintf(json, sizeof json, "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":"
+             "{\"law\":\"graph\",\"points\":[[-1,-2],[0,0],[1,1]]}}]},\"initial\":{\"x\":[1],\"v\":[0]},"
+             "\"solver\":{\"dt\":%.17g,\"t_end\":10,\"theta\":0.5,\"events\":\"%s\"},\"output\":{\"every\":%ld}}",
+             dt, events, lround(0.5 / dt));
+    if (strcmp(events, "locate") == 0)
+        assert_events_mode(json, "locate");
+    rows r;
+    assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
+    double worst = 0;
+    for (size_t i = 0; i < r.n; i++)
+        worst = fmax(worst, fabs(r.d[i * r.width + 1] - bilinear_x(r.d[i * r.width])));
+    free(r.d);
+    return worst;
+}
+
+static void test_bilinear_node_is_second_order(void **state)
+{
+    (void)state;
+    double e[4], f[4];
+    for (int i = 0; i < 4; i++) {
+        e[i] = bilinear_error(0.02 / (1 << i), "locate");
+        f[i] = bilinear_error(0.02 / (1 << i), "none");
+    }
+    for (int i = 0; i + 1 < 4; i++) {
+        fprintf(stderr, "  dt %g: located %.3e ratio %.3f; events none %.3e ratio %.3f\n", 0.02 / (1 << i), e[i],
+                e[i] / e[i + 1], f[i], f[i] / f[i + 1]);
+        assert_true(e[i] / e[i + 1] > 3.8 && e[i] / e[i + 1] < 4.2);
+    }
+    assert_true(e[0] < 1e-3);
+}
+
 /* ---- a chain with a kinked graph spring against itself at dt/64 ------------------------------------- */
 
 /* Two blocks: a stiffening graph spring (slope 1, then 4 past |u| = 0.3) with Coulomb friction on a belt
@@ -252,6 +303,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_compliant_ball_is_second_order),
         cmocka_unit_test(test_compliant_touch_events),
+        cmocka_unit_test(test_bilinear_node_is_second_order),
         cmocka_unit_test(test_graph_spring_chain_is_second_order),
         cmocka_unit_test(test_theta_rule),
     };

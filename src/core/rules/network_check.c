@@ -234,8 +234,11 @@ int dp_network_is_one_mass(const dp_spec *s)
     if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
         return 0;
     /* a plastic (elastoplastic) spring steps on the network solver, which writes its "p" columns; so does
-     * a block whose quakes are catalogued (network_quakes.c) */
-    return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring) && !s->output.quakes;
+     * a block whose quakes are catalogued (network_quakes.c), and a graph spring below theta = 1, which
+     * the network theta-steps (network_smooth.c) where the one-mass solver takes backward Euler only */
+    int graph_theta = n->el[0].has_spring && !dp_spring_linear(&n->el[0].spring) && s->solver.theta != 1;
+    return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring) && !s->output.quakes &&
+           !graph_theta;
 }
 
 /* One node and one element between it and the ground, a rigid contact (Newton restitution) with at most a

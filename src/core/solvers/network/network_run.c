@@ -640,6 +640,7 @@ int dp_network_locates(const dp_spec *s)
         if (!element_locates(e, 1))
             return 0;
         sticky |= dp_element_can_stick(e) || is_ep(e);   /* a slider sticks and slides too */
+        sticky |= e->has_spring && !dp_spring_linear(&e->spring);   /* a sloped graph's kinks (the others: above) */
     }
     return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }
