@@ -160,6 +160,10 @@ static void test_default_theta(void **state)
         { "{'model': {'masses': [1, 1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'linear',"
           " 'k': 1}}, {'between': [0, 1], 'damper': {'law': 'coulomb', 'phi0': 1}}]},"
           " 'initial': {'x': [0, 0], 'v': [0, 0]}}", 0.5 },
+        /* a network theta-steps a graph spring of finite slope and a compliant contact (network_smooth.c) */
+        { "{'model': {'masses': [1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'graph',"
+          " 'points': [[-1, -2], [0, 0], [1, 1]]}}, {'between': ['ground', 0], 'contact': {'distance': -1,"
+          " 'compliance': 100}}]}, 'initial': {'x': [0], 'v': [0]}}", 0.5 },
     };
     for (size_t i = 0; i < sizeof rows / sizeof *rows; i++) {
         dp_spec s;

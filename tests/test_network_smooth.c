@@ -19,6 +19,8 @@
 
 #define G 9.81
 
+static int parse_run(const char *json, char *pointer, size_t len);
+
 static void assert_events_mode(const char *json, const char *mode)
 {
     dp_spec spec;
@@ -189,6 +191,34 @@ static void test_bilinear_node_is_second_order(void **state)
     assert_true(e[0] < 1e-3);
 }
 
+/* The same spring as a one-mass document at theta = 1/2 is the one-node network it is (the one-mass solver
+ * takes backward Euler only): the same rows, bit for bit. A graph with a vertical piece is still refused at
+ * /solver/theta. */
+static void test_one_mass_document_is_the_network(void **state)
+{
+    (void)state;
+    const char *net = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
+                      "\"graph\",\"points\":[[-1,-2],[0,0],[1,1]]},\"damper\":{\"law\":\"coulomb\",\"phi0\":0.2}}]},"
+                      "\"initial\":{\"x\":[1],\"v\":[0]},\"solver\":{\"dt\":0.01,\"t_end\":5,\"theta\":0.5}}";
+    const char *one = "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"graph\",\"points\":[[-1,-2],[0,0],[1,1]]},"
+                      "\"damper\":{\"law\":\"coulomb\",\"phi0\":0.2}},\"initial\":{\"x\":1,\"v\":0},"
+                      "\"solver\":{\"dt\":0.01,\"t_end\":5,\"theta\":0.5}}";
+    rows a, b;
+    assert_int_equal(rows_collect(net, 128, &a), DP_DONE);
+    assert_int_equal(rows_collect(one, 128, &b), DP_DONE);
+    assert_int_equal(a.n, 501);
+    assert_int_equal(a.n, b.n);
+    assert_int_equal(a.width, b.width);
+    assert_memory_equal(a.d, b.d, a.n * a.width * sizeof *a.d);
+    assert_int_equal(a.events, b.events);
+    free(a.d), free(b.d);
+    char ptr[DP_POINTER_MAX] = "";
+    assert_int_not_equal(parse_run("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"rope\",\"k\":1,\"length\":2},"
+                                   "\"damper\":{\"law\":\"none\"}},\"initial\":{\"x\":1,\"v\":0},\"solver\":{\"dt\":0.01,"
+                                   "\"t_end\":1,\"theta\":0.5}}", ptr, sizeof ptr), DP_OK);
+    assert_string_equal(ptr, "/solver/theta");
+}
+
 /* ---- a chain with a kinked graph spring against itself at dt/64 ------------------------------------- */
 
 /* Two blocks: a stiffening graph spring (slope 1, then 4 past |u| = 0.3) with Coulomb friction on a belt
@@ -304,6 +334,7 @@ int main(void)
         cmocka_unit_test(test_compliant_ball_is_second_order),
         cmocka_unit_test(test_compliant_touch_events),
         cmocka_unit_test(test_bilinear_node_is_second_order),
+        cmocka_unit_test(test_one_mass_document_is_the_network),
         cmocka_unit_test(test_graph_spring_chain_is_second_order),
         cmocka_unit_test(test_theta_rule),
     };

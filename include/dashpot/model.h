@@ -196,6 +196,9 @@ const dp_damper_law_info *dp_damper_law_info_of(dp_damper_law law);
 double dp_spring_stiffness(const dp_spring *s);
 int dp_spring_linear(const dp_spring *s);
 int dp_spring_plastic(const dp_spring *s);
+/* Whether the spring is a user graph of finite slope (no vertical piece, no vertical end ray): its force is
+ * a Lipschitz function of the elongation, which a network theta-steps (a rope is not: its end ray is). */
+int dp_spring_sloped_graph(const dp_spring *s);
 /* The damper's viscous c (0 without a viscous part), its kinetic threshold (0 without one), its static
  * threshold (the kinetic one when it has none); whether it is linear, whether its stick-slip step has the
  * closed form. */

@@ -191,7 +191,9 @@ static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 }
 
 /* A one-mass document with a contact is the network it is: one node of its mass, one element [ground, 0]
- * with its spring, damper and contact, its forcing on node 0 (the laws are moved, not copied). */
+ * with its spring, damper and contact, its forcing on node 0 (the laws are moved, not copied). So is one
+ * whose graph spring of finite slope is stepped below theta = 1 (sloped_below_one): the network solver
+ * theta-steps it and locates its kinks (network_smooth.c), the one-mass solver takes backward Euler only. */
 static int one_mass_as_network(dp_spec *s)
 {
     dp_network *net = calloc(1, sizeof *net);
@@ -207,7 +209,7 @@ static int one_mass_as_network(dp_spec *s)
     if (!net->mass || !net->el || !s->x0v || !s->v0v || (forced && !net->force))
         return DP_ENOMEM;
     net->mass[0] = s->model.mass, s->x0v[0] = s->x0, s->v0v[0] = s->v0;
-    net->el[0] = (dp_element){ .a = DP_GROUND, .b = 0, .has_spring = 1, .has_damper = 1, .has_contact = 1,
+    net->el[0] = (dp_element){ .a = DP_GROUND, .b = 0, .has_spring = 1, .has_damper = 1, .has_contact = s->model.has_contact,
                                .spring = s->model.spring, .damper = s->model.damper, .contact = s->model.contact };
     if (forced)
         net->force[0] = (dp_node_forcing){ .node = 0, .f = s->model.forcing }, net->nforce = 1;
@@ -215,6 +217,13 @@ static int one_mass_as_network(dp_spec *s)
     memset(&s->model.damper, 0, sizeof s->model.damper);
     memset(&s->model.forcing, 0, sizeof s->model.forcing);
     return DP_OK;
+}
+
+static int sloped_below_one(const dp_spec *s)
+{
+    const dp_spring *sp = &s->model.spring;
+    return s->solver.kind == DP_SOLVER_STICK_SLIP && s->solver.variant == DP_VARIANT_EXACT &&
+           s->solver.branch == DP_BRANCH_REST && s->solver.theta != 1 && dp_spring_sloped_graph(sp);
 }
 
 /* The whole document o (an object: body.c); its own keys are not checked again when keys_checked. */
@@ -248,7 +257,8 @@ static void parse_root(ctx *c, const cJSON *o, dp_spec *s, int keys_checked)
         parse_solver(c, v, &p, &s->solver);
     if ((v = jw_member(c, o, NULL, "output", NULL, &p)) != NULL)
         parse_output(c, v, &p, s);
-    if (s->net == NULL && s->model.has_contact && !c->nerr && !c->nomem && one_mass_as_network(s) != DP_OK)
+    int as_network = s->model.has_contact || (!rh && s->lcs == NULL && sloped_below_one(s));
+    if (s->net == NULL && as_network && !c->nerr && !c->nomem && one_mass_as_network(s) != DP_OK)
         c->nomem = 1;
 }
 

@@ -195,6 +195,11 @@ int dp_spring_plastic(const dp_spring *s)
     return L && L->plastic;
 }
 
+int dp_spring_sloped_graph(const dp_spring *s)
+{
+    return s->law == DP_SPRING_GRAPH && s->graph.n > 0 && isfinite(dp_graph_lipschitz(&s->graph));
+}
+
 double dp_damper_viscous(const dp_damper *d)
 {
     return dp_damper_has_viscous(d) ? dp_law_field_value(d, dp_damper_laws[d->law].viscous) : 0;

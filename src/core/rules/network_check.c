@@ -139,7 +139,7 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
     /* a graph of finite slope is theta-stepped (network_smooth.c); one with a vertical piece holds its force
      * as a multiplier, stepped by backward Euler */
     if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) &&
-        !isfinite(dp_graph_lipschitz(&el->spring.graph)) && s->solver.theta != 1) {
+        !dp_spring_sloped_graph(&el->spring) && s->solver.theta != 1) {
         el_ptr(p, sizeof p, s, i, "/spring");
         dp_errors_add(e, p, "theta < 1 needs springs of finite slope (the %s spring has a vertical piece, stepped "
                       "by backward Euler): use theta = 1", dp_spring_law_name(el->spring.law));

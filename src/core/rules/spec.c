@@ -172,14 +172,14 @@ static int one_mass_takes_theta(const dp_spec *s, double th)
     return !isfinite(L) || m->mass + h * th * c + h * h * th * th * k > h * th * L;
 }
 
-/* The same for a network: every spring linear or plastic and no compliant contact (network_check.c). */
+/* The same for a network: every spring linear, plastic or a graph of finite slope, which the network
+ * theta-steps (network_check.c; a compliant contact is such a graph). */
 static int network_takes_theta(const dp_network *net)
 {
     for (size_t i = 0; i < net->nel; i++) {
         const dp_element *el = &net->el[i];
-        if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring))
-            return 0;
-        if (el->has_contact && el->contact.compliance > 0)
+        if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) &&
+            !dp_spring_sloped_graph(&el->spring))
             return 0;
     }
     return 1;
@@ -293,8 +293,9 @@ static void check_exact(const dp_spec *s, dp_errors *e)
     /* a dt past t_end is one step of t_end (dp_spec_steps) */
     double h = fmin(s->solver.dt, s->solver.t_end), th = s->solver.theta;
     if (th != 1 && !dp_spring_linear(&m->spring) && !dp_spring_plastic(&m->spring))
-        dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring (the %s spring is stepped by "
-                      "backward Euler): use theta = 1", dp_spring_law_name(m->spring.law));
+        dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring or a graph spring of finite slope "
+                      "(the %s spring has a vertical piece, stepped by backward Euler): use theta = 1",
+                      dp_spring_law_name(m->spring.law));
     double k = dp_spring_stiffness(&m->spring);
     double c = dp_damper_viscous(&m->damper);
     double W = m->mass + h * th * c + h * h * th * th * k;

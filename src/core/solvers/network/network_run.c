@@ -620,7 +620,7 @@ static int element_locates(const dp_element *e, int network)
     const dp_spring_law_info *SL = dp_spring_law_info_of(e->spring.law);
     const dp_damper_law_info *DL = dp_damper_law_info_of(e->damper.law);
     int spring = !e->has_spring || (SL && (network ? SL->locate_network : SL->locate)) ||
-                 (network && network_run_smooth_graph(&e->spring.graph));   /* its vertices: network_smooth.c */
+                 (network && dp_spring_sloped_graph(&e->spring));   /* its vertices: network_smooth.c */
     return spring && (!e->has_damper || (DL && DL->locate));
 }
 
