@@ -2,6 +2,7 @@
  * summary's final row, and the queue that holds what did not fit the caller's block (it grows, it never
  * drops: one step can change the phase of every element). Shared by the exact stepping and the regularized
  * scheme. */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -101,6 +102,48 @@ void network_run_impact_event(dp_run *r, double t, size_t i, double before, doub
     network_run_put(r, &rec);
 }
 
+/* ---- a compliant contact's touch (its gap u - d closing to zero) and separation: events of the contact's
+ * element, written at the instant (located by network_smooth.c), as a rigid contact's impact is ---- */
+
+/* Pressed: the gap below zero, or at zero and closing; at zero means within the rounding of the positions
+ * and a billionth of what the gap moves in a step h (a located instant's root tolerance). */
+static int pressed(const struct dp_network_run *nr, size_t c, double h)
+{
+    const dp_element *e = &nr->net->el[nr->ct_el[c]];
+    double xs = fabs(e->contact.distance) + (e->a >= 0 ? fabs(nr->x[e->a]) : 0) + (e->b >= 0 ? fabs(nr->x[e->b]) : 0);
+    double g = network_run_rel(e->a, e->b, nr->x) - e->contact.distance, rate = network_run_rel(e->a, e->b, nr->v);
+    double tol = 1e-9 * h * fabs(rate) + 64 * DBL_EPSILON * xs;
+    return g < -tol || (g <= tol && rate < 0);
+}
+
+void network_run_touch_start(struct dp_network_run *nr, double h)
+{
+    for (size_t c = 0; nr->sm_pressed && c < nr->nc; c++)
+        nr->sm_pressed[c] = nr->net->el[nr->ct_el[c]].contact.compliance > 0 && pressed(nr, c, h);
+}
+
+void network_run_touch_events(dp_run *r, double t)
+{
+    struct dp_network_run *nr = r->state;
+    for (size_t c = 0; nr->sm_pressed && c < nr->nc; c++) {
+        const dp_element *e = &nr->net->el[nr->ct_el[c]];
+        if (!(e->contact.compliance > 0))
+            continue;
+        int now = pressed(nr, c, r->h);
+        if (now == nr->sm_pressed[c])
+            continue;
+        nr->sm_pressed[c] = (unsigned char)now;
+        r->sum.events++;
+        if (!r->spec.output.events)
+            continue;
+        dp_record rec = { .type = DP_RECORD_EVENT };
+        rec.u.event = (dp_event){ .kind = now ? DP_EVENT_TOUCH : DP_EVENT_SEPARATE, .t = t,
+                                  .x = network_run_rel(e->a, e->b, nr->x), .v = network_run_rel(e->a, e->b, nr->v),
+                                  .element = nr->ct_el[c] };
+        network_run_put(r, &rec);
+    }
+}
+
 /* Events at time t for the elements whose phase differs from `before`. */
 void network_run_step_events(dp_run *r, const unsigned char *before, double t)
 {
@@ -114,7 +157,7 @@ void network_run_step_events(dp_run *r, const unsigned char *before, double t)
                                                                     : network_run_rel(e->a, e->b, nr->v);
         element_event(r, nr->phase[i] == DP_PHASE_STICK ? DP_EVENT_STICK : DP_EVENT_SLIP, t, i, du);
     }
-    network_run_smooth_touch_events(r, t);
+    network_run_touch_events(r, t);
     const dp_quake *q;
     size_t nq = network_quakes_step(nr, before, t, &q);
     for (size_t i = 0; i < nq; i++)    /* the quakes this (sub-)step ended */

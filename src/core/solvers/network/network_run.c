@@ -512,7 +512,7 @@ static int network_run_init(dp_run *r)
         return DP_OK;
     }
     network_run_smooth_update(nr);
-    network_run_smooth_touch_start(nr, r->h);
+    network_run_touch_start(nr, r->h);
     network_run_build_W(nr, r->h);
     if ((s = check_step_magnitudes(r)) != DP_OK)
         return s;

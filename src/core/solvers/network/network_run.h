@@ -102,6 +102,10 @@ struct dp_network_run {
 void network_run_put(dp_run *r, const dp_record *rec);
 /* A row of the current state at r->cur.t, if samples are wanted; restarts the decimation. */
 void network_run_emit_row(dp_run *r);
+/* A compliant contact's touch and separation (network_output.c): which are pressed at the run's start (h its
+ * step), and the events at t of those that changed since (called by network_run_step_events). */
+void network_run_touch_start(struct dp_network_run *nr, double h);
+void network_run_touch_events(dp_run *r, double t);
 /* Events at time t for the elements whose phase differs from `before`. */
 void network_run_step_events(dp_run *r, const unsigned char *before, double t);
 /* Time spent sticking over a (sub-)step of length h by the elements whose phase is `ph`. */
@@ -169,8 +173,7 @@ void network_run_impact_event(dp_run *r, double t, size_t i, double before, doub
  * that are (theta-stepped below theta = 1); their forces at the state after it moved; the step's right side
  * from their known part; the reported force (theirs at the state, else the step's `stepped`); which of the
  * failing elements (nr->fails) fail at a vertex of their spring at the located instant `at` (the held state
- * there), and whether k is one of them; a compliant contact's touch and separation: the state at the run's
- * start, and the events at t of those that changed. */
+ * there), and whether k is one of them. */
 int network_run_smooth_graph(const dp_graph *g);
 int network_run_smooth_setup(struct dp_network_run *nr);
 void network_run_smooth_free(struct dp_network_run *nr);
@@ -181,8 +184,6 @@ double network_run_smooth_force(const struct dp_network_run *nr, size_t k, doubl
 size_t network_run_smooth_overflow(const struct dp_network_run *nr);
 size_t network_run_smooth_kinks_at(struct dp_network_run *nr, double at);
 int network_run_smooth_kink(const struct dp_network_run *nr, size_t k);
-void network_run_smooth_touch_start(struct dp_network_run *nr, double h);
-void network_run_smooth_touch_events(dp_run *r, double t);
 
 /* Yield and unload events at time t of the elastoplastic springs whose slider started or stopped sliding. */
 void network_run_plastic_events(dp_run *r, double t);

@@ -11,9 +11,7 @@
  * the step (as after a yield), so the rest of the step is taken on the next piece and theta = 1/2 stays
  * second order through the kink. Graphs with a vertical piece (a rope, a user graph with a jump in u) are
  * not here: their force is a multiplier at the vertex, stepped by backward Euler (network_check.c).
- *
- * A compliant contact's touch (its gap u - d closing to zero) and its separation are events of the contact's
- * element, written at the instant, as a rigid contact's impact is. */
+ * A compliant contact's touch and separation are written as events by network_output.c. */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -140,45 +138,4 @@ size_t network_run_smooth_kinks_at(struct dp_network_run *nr, double at)
 int network_run_smooth_kink(const struct dp_network_run *nr, size_t k)
 {
     return nr->sm_kink && nr->sm_kink[k];
-}
-
-/* ---- a compliant contact's touch and separation --------------------------------------------------------- */
-
-/* Pressed: the gap below zero, or at zero and closing; at zero means within the rounding of the positions
- * and a billionth of what the gap moves in a step h (a located instant's root tolerance). */
-static int pressed(const struct dp_network_run *nr, size_t c, double h)
-{
-    const dp_element *e = &nr->net->el[nr->ct_el[c]];
-    double xs = fabs(e->contact.distance) + (e->a >= 0 ? fabs(nr->x[e->a]) : 0) + (e->b >= 0 ? fabs(nr->x[e->b]) : 0);
-    double g = network_run_rel(e->a, e->b, nr->x) - e->contact.distance, rate = network_run_rel(e->a, e->b, nr->v);
-    double tol = 1e-9 * h * fabs(rate) + 64 * DBL_EPSILON * xs;
-    return g < -tol || (g <= tol && rate < 0);
-}
-
-void network_run_smooth_touch_start(struct dp_network_run *nr, double h)
-{
-    for (size_t c = 0; nr->sm_pressed && c < nr->nc; c++)
-        nr->sm_pressed[c] = nr->net->el[nr->ct_el[c]].contact.compliance > 0 && pressed(nr, c, h);
-}
-
-void network_run_smooth_touch_events(dp_run *r, double t)
-{
-    struct dp_network_run *nr = r->state;
-    for (size_t c = 0; nr->sm_pressed && c < nr->nc; c++) {
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        if (!(e->contact.compliance > 0))
-            continue;
-        int now = pressed(nr, c, r->h);
-        if (now == nr->sm_pressed[c])
-            continue;
-        nr->sm_pressed[c] = (unsigned char)now;
-        r->sum.events++;
-        if (!r->spec.output.events)
-            continue;
-        dp_record rec = { .type = DP_RECORD_EVENT };
-        rec.u.event = (dp_event){ .kind = now ? DP_EVENT_TOUCH : DP_EVENT_SEPARATE, .t = t,
-                                  .x = network_run_rel(e->a, e->b, nr->x), .v = network_run_rel(e->a, e->b, nr->v),
-                                  .element = nr->ct_el[c] };
-        network_run_put(r, &rec);
-    }
 }
