@@ -114,6 +114,15 @@ static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
                       "the regularized solver (which integrates it to its tolerances)");
 }
 
+/* Whether element el's rope takes any theta: with events located the stick-slip solver steps it as a linear
+ * spring plus the rigid contact u <= L (network_contact.c). That holds whenever theta < 1 passes the other
+ * elements' rules, which refuse every law location does not hold (graph springs, compliant contacts). */
+static int rope_takes_theta(const dp_spec *s, const dp_element *el)
+{
+    return el->has_spring && el->spring.law == DP_SPRING_ROPE && s->solver.kind == DP_SOLVER_STICK_SLIP &&
+           s->solver.events == DP_EVENTS_LOCATE;
+}
+
 static void check_element(const dp_spec *s, size_t i, dp_errors *e)
 {
     const dp_element *el = &s->net->el[i];
@@ -140,10 +149,11 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
         }
     }
     if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) &&
-        s->solver.theta != 1) {
+        s->solver.theta != 1 && !rope_takes_theta(s, el)) {
         el_ptr(p, sizeof p, s, i, "/spring");
-        dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler): use "
-                      "theta = 1", dp_spring_law_name(el->spring.law));
+        dp_errors_add(e, p, "theta < 1 needs linear springs (the %s spring is stepped by backward Euler%s): use "
+                      "theta = 1", dp_spring_law_name(el->spring.law),
+                      el->spring.law == DP_SPRING_ROPE ? " without located events" : "");
     }
     if (el->has_contact)
         check_contact(s, i, u, e);
@@ -235,7 +245,10 @@ int dp_network_is_one_mass(const dp_spec *s)
     if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
         return 0;
     /* a plastic (elastoplastic) spring steps on the network solver, which writes its "p" columns; so does
-     * a block whose quakes are catalogued (network_quakes.c) */
+     * a block whose quakes are catalogued (network_quakes.c), and a rope with events located (its going taut
+     * located, network_contact.c) */
+    if (rope_takes_theta(s, &n->el[0]))
+        return 0;
     return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring) && !s->output.quakes;
 }
 
