@@ -247,7 +247,8 @@ static void test_pair_bounces_to_rest(void **state)
     (void)state;
     static char doc[1024];
     const double m0 = 1, m1 = 2, speed = 1, e = 0.5;
-    double t1 = (-speed + sqrt(speed * speed + 2 * G * 0.5)) / G, v1 = speed + G * t1, t_inf = t1 + 2 * e * v1 / (G * (1 - e));
+    double t1 = (-speed + sqrt(speed * speed + 2 * G * 0.5)) / G, v1 = speed + G * t1;
+    double t_inf = t1 + 2 * e * v1 / (G * (1 - e));
     pair_doc(doc, sizeof doc, e, G, 1e-3, 2, 0.5);
     rows o;
     run_doc(doc, &o);
@@ -295,8 +296,9 @@ static void test_hanging_rests(void **state)
         snprintf(doc, sizeof doc, "{\"model\":{\"masses\":[1,2],\"elements\":[{\"between\":[0,\"ground\"],"
                  "\"spring\":{\"law\":\"rope\",\"k\":1,\"length\":1}},{\"between\":[1,0],\"spring\":{\"law\":\"rope\","
                  "\"k\":3,\"length\":2}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":%.17g},{\"node\":1,"
-                 "\"kind\":\"constant\",\"value\":%.17g}]},\"initial\":{\"x\":[-1,-3],\"v\":[0,0]},\"solver\":{\"kind\":"
-                 "\"stick-slip\",\"dt\":0.01,\"t_end\":5,\"theta\":%s},\"output\":{\"every\":1}}", -G, -2 * G,
+                 "\"kind\":\"constant\",\"value\":%.17g}]},\"initial\":{\"x\":[-1,-3],\"v\":[0,0]},"
+                 "\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":5,\"theta\":%s},\"output\":{\"every\":1}}",
+                 -G, -2 * G,
                  th ? "1" : "0.5");
         run_doc(doc, &o);
         for (size_t i = 0; i < o.n; i++) {
