@@ -451,7 +451,8 @@ int network_run_setup(dp_run *r)
         return s;
     nr->p = bandwidth(nr->net);
     nr->locate = dp_network_locates(&r->spec);
-    nr->ropes_bound = nr->locate && r->spec.solver.kind == DP_SOLVER_STICK_SLIP && !dp_network_is_one_mass(&r->spec);
+    nr->ropes_bound = nr->locate && r->spec.solver.kind == DP_SOLVER_STICK_SLIP &&
+                      !dp_network_is_one_mass(&r->spec);
     if ((s = check_run_bytes(r, nr->p)) != DP_OK)
         return s;
     s = alloc_all(nr);
