@@ -383,7 +383,8 @@ static void test_tethered_block_on_belt(void **state)
 
 /* theta < 1 for a rope with events located; without, it is its graph by backward Euler and needs theta = 1;
  * beside a graph spring (not located) a rope is stepped as before, with events "step", bit for bit as with
- * events "none"; the one-node network with a rope and events "none" stays on the one-mass solver. */
+ * events "none" (a one-node network with a rope and events "none" stays on the one-mass solver, bit for bit:
+ * tests/test_network.c). */
 static void test_rules_and_modes(void **state)
 {
     (void)state;
