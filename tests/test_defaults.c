@@ -154,9 +154,20 @@ static void test_default_theta(void **state)
           " 'solver': {'variant': 'thesis'}}", 1 },
         { "{'model': {'mass': 1, 'spring': {'law': 'linear', 'k': 1}, 'damper': {'law': 'none'}}, 'solver': {'theta': 1}}", 1 },
         { "{'model': {'mass': 1, 'spring': {'law': 'linear', 'k': 1}, 'damper': {'law': 'none'}}, 'solver': {'theta': 0.75}}", 0.75 },
+        /* a network's rope: with events located a linear spring and the contact u <= L, any theta; without,
+         * its graph by backward Euler */
         { "{'model': {'masses': [1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'rope', 'k': 1,"
           " 'length': 1}}, {'between': ['ground', 0], 'spring': {'law': 'linear', 'k': 1}}]},"
-          " 'initial': {'x': [0], 'v': [0]}}", 1 },
+          " 'initial': {'x': [0], 'v': [0]}}", 0.5 },
+        { "{'model': {'masses': [1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'rope', 'k': 1,"
+          " 'length': 1}}, {'between': ['ground', 0], 'spring': {'law': 'linear', 'k': 1}}]},"
+          " 'initial': {'x': [0], 'v': [0]}, 'solver': {'events': 'none'}}", 1 },
+        { "{'model': {'masses': [1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'rope', 'k': 1,"
+          " 'length': 1}}, {'between': ['ground', 0], 'spring': {'law': 'graph', 'points': [[-1, -1], [0, 0],"
+          " [0, 0.5], [1, 1]]}}]}, 'initial': {'x': [0], 'v': [0]}}", 1 },
+        { "{'model': {'masses': [1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'rope', 'k': 1,"
+          " 'length': 1}}, {'between': ['ground', 0], 'spring': {'law': 'graph', 'points': [[-1, -1], [1, 1]]}}]},"
+          " 'initial': {'x': [0], 'v': [0]}}", 0.5 },
         { "{'model': {'masses': [1, 1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'linear',"
           " 'k': 1}}, {'between': [0, 1], 'damper': {'law': 'coulomb', 'phi0': 1}}]},"
           " 'initial': {'x': [0, 0], 'v': [0, 0]}}", 0.5 },

@@ -33,8 +33,10 @@ typedef enum dp_event_kind {
 
 /* A phase change: DP_EVENT_STICK is slip -> stick, DP_EVENT_SLIP is stick -> slip; an elastoplastic
  * spring's DP_EVENT_YIELD (its slider starts sliding) and DP_EVENT_UNLOAD (it stops: elastic again); a
- * contact's DP_EVENT_IMPACT (v the rate before, v_after after, impulse >= 0 pushing the ends apart); Painlevé's
- * compliant contact's DP_EVENT_TOUCH (its gap closes) and DP_EVENT_SEPARATE (it opens); Painlevé's
+ * contact's DP_EVENT_IMPACT (v the rate before, v_after after, impulse >= 0 pushing the ends apart; a rope's,
+ * with events located, its going taut or passing an impulse on: impulse >= 0 its tension's, pulling the ends
+ * together, v and v_after the element's rate u'); a compliant contact's DP_EVENT_TOUCH (its gap closes) and
+ * DP_EVENT_SEPARATE (it opens); Painlevé's
  * rod leaving the floor, DP_EVENT_LIFTOFF (x, v: the end's height and upward rate, docs/right-hand.md); a linear
  * complementarity system's mode change (lcs.h), DP_EVENT_ON along the component's graph, DP_EVENT_OFF back
  * (element: the component, mode: the mode entered, x, v: its u and w then). */

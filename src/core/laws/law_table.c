@@ -83,7 +83,9 @@ const dp_spring_law_info dp_spring_laws[] = {
     },
     [DP_SPRING_ROPE] = {
         .row = { DP_SPRING_ROPE, "rope", { SPRING(k, NONNEG, 1), SPRING(length, ANY, 1) }, NULL },
-        .build = spring_rope, .locate = 1, .x_max = offsetof(dp_spring, length), .elastic = offsetof(dp_spring, k),
+        /* on networks with events located: a linear spring and the contact u <= L (network_contact.c) */
+        .build = spring_rope, .locate = 1, .locate_network = 1, .x_max = offsetof(dp_spring, length),
+        .elastic = offsetof(dp_spring, k),
     },
     [DP_SPRING_GRAPH] = {
         .row = { DP_SPRING_GRAPH, "graph", { { NULL } }, "x" },

@@ -111,6 +111,15 @@ static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
                       "solver");
 }
 
+/* Whether element el's rope takes any theta: with events located the stick-slip solver steps it as a linear
+ * spring plus the rigid contact u <= L (network_contact.c). That holds whenever theta < 1 passes the other
+ * elements' rules, which refuse every law location does not hold (graph springs with a vertical piece). */
+static int rope_takes_theta(const dp_spec *s, const dp_element *el)
+{
+    return el->has_spring && el->spring.law == DP_SPRING_ROPE && s->solver.kind == DP_SOLVER_STICK_SLIP &&
+           s->solver.events == DP_EVENTS_LOCATE;
+}
+
 static void check_element(const dp_spec *s, size_t i, dp_errors *e)
 {
     const dp_element *el = &s->net->el[i];
@@ -139,10 +148,11 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
     /* a graph of finite slope is theta-stepped (network_smooth.c); one with a vertical piece holds its force
      * as a multiplier, stepped by backward Euler */
     if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) &&
-        !dp_spring_sloped_graph(&el->spring) && s->solver.theta != 1) {
+        !dp_spring_sloped_graph(&el->spring) && s->solver.theta != 1 && !rope_takes_theta(s, el)) {
         el_ptr(p, sizeof p, s, i, "/spring");
         dp_errors_add(e, p, "theta < 1 needs springs of finite slope (the %s spring has a vertical piece, stepped "
-                      "by backward Euler): use theta = 1", dp_spring_law_name(el->spring.law));
+                      "by backward Euler%s): use theta = 1", dp_spring_law_name(el->spring.law),
+                      el->spring.law == DP_SPRING_ROPE ? " without located events" : "");
     }
     if (el->has_contact)
         check_contact(s, i, u, e);
@@ -234,8 +244,11 @@ int dp_network_is_one_mass(const dp_spec *s)
     if (n->el[0].a != DP_GROUND || n->el[0].b != 0 || n->nforce > DP_FORCING_MAX_TERMS || n->el[0].has_contact)
         return 0;
     /* a plastic (elastoplastic) spring steps on the network solver, which writes its "p" columns; so does
-     * a block whose quakes are catalogued (network_quakes.c), and a graph spring below theta = 1, which
-     * the network theta-steps (network_smooth.c) where the one-mass solver takes backward Euler only */
+     * a block whose quakes are catalogued (network_quakes.c), a rope with events located (its going taut
+     * located, network_contact.c), and a graph spring below theta = 1, which the network theta-steps
+     * (network_smooth.c) where the one-mass solver takes backward Euler only */
+    if (rope_takes_theta(s, &n->el[0]))
+        return 0;
     int graph_theta = n->el[0].has_spring && !dp_spring_linear(&n->el[0].spring) && s->solver.theta != 1;
     return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring) && !s->output.quakes &&
            !graph_theta;

@@ -172,13 +172,15 @@ static int one_mass_takes_theta(const dp_spec *s, double th)
     return !isfinite(L) || m->mass + h * th * c + h * h * th * th * k > h * th * L;
 }
 
-/* The same for a network: every spring linear, plastic or a graph of finite slope, which the network
- * theta-steps (network_check.c; a compliant contact is such a graph). */
-static int network_takes_theta(const dp_network *net)
+/* The same for a network: every spring linear, plastic, a graph of finite slope (which the network
+ * theta-steps, network_smooth.c; a compliant contact is such a graph) or a rope with events located
+ * (network_check.c). */
+static int network_takes_theta(const dp_network *net, int located)
 {
     for (size_t i = 0; i < net->nel; i++) {
         const dp_element *el = &net->el[i];
-        if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) &&
+        int rope = located && el->has_spring && el->spring.law == DP_SPRING_ROPE;
+        if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) && !rope &&
             !dp_spring_sloped_graph(&el->spring))
             return 0;
     }
@@ -192,7 +194,7 @@ double dp_spec_default_theta(const dp_spec *s)
     if (s->lcs)
         return 0.5;
     if (s->net)
-        return network_takes_theta(s->net) ? 0.5 : 1;
+        return network_takes_theta(s->net, s->solver.events == DP_EVENTS_LOCATE) ? 0.5 : 1;
     return one_mass_takes_theta(s, 0.5) ? 0.5 : 1;
 }
 

@@ -19,6 +19,15 @@
  *
  * A compliant contact is a spring graph, force -k max(d - u, 0) (the Yosida approximation of the rigid one):
  * one more element with that graph, or a force in the regularized scheme (network_regularized.c).
+ *
+ * A rope (Babováková 2012, Fig. 1: force k u while slack, any extra tension at u = L) is, with events located,
+ * a linear spring k in W (theta-weighted like any linear spring) plus the rigid constraint u <= L with
+ * restitution 0: the contact between its ends swapped at distance -L, whose gap is L - u. So its going taut
+ * is located as a root of that gap and is a plastic impact (the rope stops lengthening, its impulse written as
+ * the element's impact event), it rests taut armed at zero rate until its multiplier would change sign (then
+ * it goes slack), and a taut rope is a touching contact of the impact problem: it passes on its share of
+ * another contact's impulse. Its tension k u - lambda is the element's Fs; it has no Fn. Without located
+ * events it stays its graph, stepped by backward Euler (network_stepping.c).
  */
 #include <float.h>
 #include <math.h>
@@ -54,7 +63,8 @@ static int compliance_graph(dp_graph *g, const dp_contact *c)
 }
 
 /* A contact's place in the order of shadows(): rigid ones by their ends, then by falling distance (then
- * index); compliant ones last. */
+ * index); compliant ones last. A rope's constraint is a rigid contact of its swapped ends: two ropes between
+ * the same ends, the shorter binds. */
 typedef struct contact_key {
     int rigid;
     long a, b;
@@ -86,8 +96,8 @@ static int shadows(struct dp_network_run *nr)
     if (key == NULL)
         return DP_ENOMEM;
     for (size_t c = 0; c < nr->nc; c++) {
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        key[c] = (contact_key){ e->contact.compliance == 0, e->a, e->b, e->contact.distance, c };
+        const network_bound *b = &nr->ct[c];
+        key[c] = (contact_key){ b->law.compliance == 0, b->a, b->b, b->law.distance, c };
     }
     qsort(key, nr->nc, sizeof *key, by_ends);
     for (size_t k = 1; k < nr->nc; k++)
@@ -97,16 +107,37 @@ static int shadows(struct dp_network_run *nr)
     return DP_OK;
 }
 
+int network_run_rope_bound(const struct dp_network_run *nr, const dp_element *e)
+{
+    return nr->ropes_bound && e->has_spring && e->spring.law == DP_SPRING_ROPE;
+}
+
+/* Element i's constraints: its contact, then a bound rope's u <= L (its ends swapped, distance -L, plastic). */
+static size_t element_bounds(const struct dp_network_run *nr, size_t i, network_bound *out)
+{
+    const dp_element *e = &nr->net->el[i];
+    size_t m = 0;
+    if (e->has_contact)
+        out[m++] = (network_bound){ .a = e->a, .b = e->b, .law = e->contact };
+    if (network_run_rope_bound(nr, e))
+        out[m++] = (network_bound){ .a = e->b, .b = e->a, .law = { .distance = -e->spring.length }, .rope = 1 };
+    return m;
+}
+
 int network_run_contacts_setup(struct dp_network_run *nr)
 {
     const dp_network *net = nr->net;
-    size_t m = 0;
-    for (size_t i = 0; i < nr->nel; i++)
-        m += net->el[i].has_contact;
+    size_t m = 0, ropes = 0;
+    network_bound two[2];
+    for (size_t i = 0; i < nr->nel; i++) {
+        m += element_bounds(nr, i, two);
+        ropes += network_run_rope_bound(nr, &net->el[i]);
+    }
     nr->nact_el = nr->nact;
     if (m == 0)
         return DP_OK;
-    nr->nc = m;
+    nr->nc = m, nr->nrope = ropes;
+    nr->ct = calloc(m, sizeof *nr->ct);
     nr->ct_el = calloc(m, sizeof *nr->ct_el);
     nr->ct_soft = calloc(m, sizeof *nr->ct_soft);
     nr->ct_on = calloc(m, 1);
@@ -116,31 +147,34 @@ int network_run_contacts_setup(struct dp_network_run *nr)
     nr->ct_shadow = calloc(m, 1);
     nr->ct_pre = calloc(m, sizeof *nr->ct_pre);
     nr->ct_touch = calloc(m, 1);
-    nr->Fn = calloc(nr->nel, sizeof *nr->Fn);
+    /* the contacts' forces, a row's Fn columns: none for ropes alone (their tension is Fs) */
+    nr->Fn = m > ropes ? calloc(nr->nel, sizeof *nr->Fn) : NULL;
     nr->imp = calloc(m, sizeof *nr->imp);
     nr->iforce = calloc(m, sizeof *nr->iforce);
     nr->iv = calloc(2 * nr->n, sizeof *nr->iv);
     if (!nr->ct_before || !nr->ct_kicked || !nr->ct_shadow)
         return DP_ENOMEM;
-    if (!nr->ct_el || !nr->ct_soft || !nr->ct_on || !nr->ct_last || !nr->ct_pre || !nr->ct_touch || !nr->Fn || !nr->imp ||
+    if (!nr->ct || !nr->ct_el || !nr->ct_soft || !nr->ct_on || !nr->ct_last || !nr->ct_pre || !nr->ct_touch ||
+        (m > ropes && !nr->Fn) || !nr->imp ||
         !nr->iforce || !nr->iv || cone_graph(&nr->cone) != DP_OK)
         return DP_ENOMEM;
     size_t c = 0;
     for (size_t i = 0; i < nr->nel; i++) {
-        const dp_element *e = &net->el[i];
-        if (!e->has_contact)
-            continue;
-        nr->ct_el[c] = i, nr->ct_last[c] = nr->ct_before[c] = -INFINITY;
-        dp_network_step_element *a = &nr->act[nr->nact];
-        *a = (dp_network_step_element){ .a = e->a, .b = e->b };
-        if (e->contact.compliance > 0) {
-            if (compliance_graph(&nr->ct_soft[c], &e->contact) != DP_OK)
-                return DP_ENOMEM;
-            a->S = &nr->ct_soft[c];
+        size_t k = element_bounds(nr, i, two);
+        for (size_t j = 0; j < k; j++, c++) {
+            nr->ct[c] = two[j];
+            const network_bound *b = &nr->ct[c];
+            nr->ct_el[c] = i, nr->ct_last[c] = nr->ct_before[c] = -INFINITY;
+            dp_network_step_element *a = &nr->act[nr->nact];
+            *a = (dp_network_step_element){ .a = b->a, .b = b->b };
+            if (b->law.compliance > 0) {
+                if (compliance_graph(&nr->ct_soft[c], &b->law) != DP_OK)
+                    return DP_ENOMEM;
+                a->S = &nr->ct_soft[c];
+            }
+            nr->imp[c] = (dp_network_step_element){ .a = b->a, .b = b->b };
+            nr->act_el[nr->nact++] = i;
         }
-        nr->imp[c] = (dp_network_step_element){ .a = e->a, .b = e->b };
-        nr->act_el[nr->nact++] = i;
-        c++;
     }
     if (shadows(nr) != DP_OK)
         return DP_ENOMEM;
@@ -158,7 +192,7 @@ void network_run_contacts_free(struct dp_network_run *nr)
         dp_graph_clear(&nr->ct_soft[c]);
     dp_graph_clear(&nr->cone);
     dp_network_step_free(nr->iws);
-    void *p[] = { nr->ct_before, nr->ct_kicked, nr->ct_shadow, nr->ct_el, nr->ct_soft, nr->ct_on, nr->ct_last, nr->ct_pre, nr->ct_touch, nr->Fn, nr->imp, nr->iforce, nr->iv };
+    void *p[] = { nr->ct, nr->ct_before, nr->ct_kicked, nr->ct_shadow, nr->ct_el, nr->ct_soft, nr->ct_on, nr->ct_last, nr->ct_pre, nr->ct_touch, nr->Fn, nr->imp, nr->iforce, nr->iv };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
 }
@@ -170,22 +204,44 @@ double network_run_compliant_force(const dp_contact *c, double u)
 
 static int rigid(const struct dp_network_run *nr, size_t c)
 {
-    return nr->net->el[nr->ct_el[c]].contact.compliance == 0;
+    return nr->ct[c].law.compliance == 0;
+}
+
+/* Contact c's rate: the relative velocity of its ends in its own order (a rope's: -u'). */
+static double rate(const struct dp_network_run *nr, size_t c, const double *v)
+{
+    return network_run_rel(nr->ct[c].a, nr->ct[c].b, v);
+}
+
+/* A bound rope's spring part k u (0, not the -0 of 0 times a negative elongation, as network_stepping.c). */
+static double spring_force(const struct dp_network_run *nr, size_t i)
+{
+    const dp_element *e = &nr->net->el[i];
+    return nr->k[i] != 0 ? nr->k[i] * network_run_rel(e->a, e->b, nr->x) : 0;
+}
+
+/* Contact c's impact event, in its element's terms: a rope's rates are the element's u' (its own are -u'),
+ * its impulse (>= 0) the tension's, pulling the ends together. */
+static void bound_event(dp_run *r, double t, size_t c, double before, double after, double impulse)
+{
+    struct dp_network_run *nr = r->state;
+    if (nr->ct[c].rope)
+        before = 0.0 - before, after = 0.0 - after;   /* 0 - x: never a -0 */
+    network_run_impact_event(r, t, nr->ct_el[c], before, after, impulse);
 }
 
 /* Contact c's gap u - d, its rate, and how close to zero a gap counts as touching: the rounding of the
  * positions and a billionth of what the gap moves in a step. */
 static double gap(const struct dp_network_run *nr, size_t c, const double *x)
 {
-    const dp_element *e = &nr->net->el[nr->ct_el[c]];
-    return network_run_rel(e->a, e->b, x) - e->contact.distance;
+    return rate(nr, c, x) - nr->ct[c].law.distance;
 }
 
 static double touch_tol(const struct dp_network_run *nr, size_t c, double h)
 {
-    const dp_element *e = &nr->net->el[nr->ct_el[c]];
-    double xs = fabs(e->contact.distance) + (e->a >= 0 ? fabs(nr->x[e->a]) : 0) + (e->b >= 0 ? fabs(nr->x[e->b]) : 0);
-    return 1e-9 * h * fabs(network_run_rel(e->a, e->b, nr->v)) + 64 * DBL_EPSILON * xs;
+    const network_bound *b = &nr->ct[c];
+    double xs = fabs(b->law.distance) + (b->a >= 0 ? fabs(nr->x[b->a]) : 0) + (b->b >= 0 ? fabs(nr->x[b->b]) : 0);
+    return 1e-9 * h * fabs(rate(nr, c, nr->v)) + 64 * DBL_EPSILON * xs;
 }
 
 /* Arms contact c for the coming step with the cone at v_c, or disarms it (a zero law). */
@@ -208,12 +264,11 @@ void network_run_contacts_arm_mj(struct dp_network_run *nr, double h)
     for (size_t c = 0; c < nr->nc; c++) {
         if (!rigid(nr, c))
             continue;
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double g = gap(nr, c, nr->x), gd = network_run_rel(e->a, e->b, nr->v);
+        double g = gap(nr, c, nr->x), gd = rate(nr, c, nr->v);
         if (fabs(gd) < DBL_MIN)
             gd = 0;   /* a resting contact's rate decays by e per step into subnormals: 0, not a slow tail */
         int was = nr->ct_on[c];
-        changed |= arm(nr, c, g + 0.5 * h * gd <= 0, -e->contact.restitution * gd);
+        changed |= arm(nr, c, g + 0.5 * h * gd <= 0, -nr->ct[c].law.restitution * gd);
         nr->ct_pre[c] = was ? 0 : gd;      /* an impact closes a contact; a closed one rests */
     }
     if (changed)
@@ -229,7 +284,7 @@ void network_run_contacts_mj_events(dp_run *r, double t, double h)
         size_t k = nr->nact_el + c;
         if (!(nr->ct_on[c] && nr->ct_pre[c] < 0 && nr->force[k].lambda < 0))
             continue;
-        network_run_impact_event(r, t + h, nr->ct_el[c], nr->ct_pre[c], nr->force[k].z, -h * nr->force[k].lambda);
+        bound_event(r, t + h, c, nr->ct_pre[c], nr->force[k].z, -h * nr->force[k].lambda);
         /* an impact inside the step, not located: its own history starts again, and it may have turned
          * every other contact round (steady_chatter must not take that for the forces' doing) */
         nr->ct_last[c] = nr->ct_before[c] = -INFINITY;
@@ -261,8 +316,7 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
     size_t n = nr->n;
     int any = 0;
     for (size_t c = 0; c < nr->nc; c++) {
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double gd = network_run_rel(e->a, e->b, nr->v), en = e->contact.restitution;
+        double gd = rate(nr, c, nr->v), en = nr->ct[c].law.restitution;
         /* approaching faster than rounding: a touching contact whose rate is within what the touching test
          * leaves to rounding (contacts_instant arms it at rest) takes no impact of its own */
         int approaching = touch[c] && gd < -touch_tol(nr, c, r->h) / r->h;
@@ -288,10 +342,9 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
     for (size_t c = 0; c < nr->nc; c++)
         most = touch[c] ? fmax(most, -nr->iforce[c].lambda) : most;
     for (size_t c = 0; c < nr->nc; c++) {
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double before = network_run_rel(e->a, e->b, nr->v), impulse = -nr->iforce[c].lambda;
+        double before = rate(nr, c, nr->v), impulse = -nr->iforce[c].lambda;
         if (!touch[c] || !(impulse > 1e-12 * most)) {
-            double after = network_run_rel(e->a, e->b, vplus);
+            double after = rate(nr, c, vplus);
             if (fabs(after - before) > 1e-6 * (fabs(before) + fabs(after)))
                 nr->ct_kicked[c] = 1;     /* its rate changed by the others' impulses */
             continue;
@@ -300,7 +353,7 @@ static int impact(dp_run *r, double t, const unsigned char *touch)
         nr->ct_before[c] = nr->ct_last[c];
         nr->ct_last[c] = t;
         nr->ct_kicked[c] = 0;
-        network_run_impact_event(r, t, nr->ct_el[c], before, nr->iforce[c].z, impulse);
+        bound_event(r, t, c, before, nr->iforce[c].z, impulse);
     }
     memcpy(nr->v, vplus, n * sizeof *nr->v);
     return 1;
@@ -323,8 +376,7 @@ int network_run_contacts_instant(dp_run *r, double t, double h)
         return jumped;
     int changed = 0;
     for (size_t c = 0; c < nr->nc; c++) {
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double gd = network_run_rel(e->a, e->b, nr->v);
+        double gd = rate(nr, c, nr->v);
         changed |= arm(nr, c, touch[c] && gd <= touch_tol(nr, c, h) / h, 0);
         nr->ct_pre[c] = 0;    /* armed at rest, or open: closing it later in a step is its impact */
     }
@@ -345,10 +397,9 @@ void network_run_contacts_margins(struct dp_network_run *nr, double s)
             nr->margin[k] = INFINITY;    /* behind another: it never closes first */
             continue;
         }
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double g0 = nr->u[k] - e->contact.distance;
-        double rate = (1 - nr->theta) * network_run_rel(e->a, e->b, nr->v) + nr->theta * network_run_rel(e->a, e->b, nr->v1);
-        nr->margin[k] = g0 + s * rate - fmin(g0, 0);
+        double g0 = nr->u[k] - nr->ct[c].law.distance;
+        double mean = (1 - nr->theta) * rate(nr, c, nr->v) + nr->theta * rate(nr, c, nr->v1);
+        nr->margin[k] = g0 + s * mean - fmin(g0, 0);
     }
 }
 
@@ -375,9 +426,8 @@ size_t network_run_contacts_arm_closing(struct dp_network_run *nr, double h)
     for (size_t c = 0; c < nr->nc; c++) {
         if (nr->ct_on[c] || !rigid(nr, c) || nr->ct_shadow[c] || !(nr->margin[nr->nact_el + c] < 0))
             continue;
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        double gd = network_run_rel(e->a, e->b, nr->v);
-        arm(nr, c, 1, -e->contact.restitution * fmin(gd, 0));
+        double gd = rate(nr, c, nr->v);
+        arm(nr, c, 1, -nr->ct[c].law.restitution * fmin(gd, 0));
         nr->ct_pre[c] = gd;
         m++;
     }
@@ -387,27 +437,34 @@ size_t network_run_contacts_arm_closing(struct dp_network_run *nr, double h)
 
 /* After the run's initial probe (a step of a billionth of dt from the initial state, which says what holds
  * at t = 0): a contact that approaches at t = 0 takes an impact there, so its force before it is 0, not the
- * probe's impulse over its billionth of a step; and no contact counts as armed before the first step, whose
- * closing of it is then an impact (Moreau-Jean's events). */
+ * probe's impulse over its billionth of a step (a rope's tension is then its spring's alone); and no contact
+ * counts as armed before the first step, whose closing of it is then an impact (Moreau-Jean's events). */
 void network_run_contacts_after_probe(struct dp_network_run *nr)
 {
     for (size_t c = 0; c < nr->nc; c++) {
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        if (rigid(nr, c) && network_run_rel(e->a, e->b, nr->v) < 0)
-            nr->Fn[nr->ct_el[c]] = 0;
+        size_t i = nr->ct_el[c];
+        if (rigid(nr, c) && rate(nr, c, nr->v) < 0 && nr->ct[c].rope)
+            nr->Fs[i] = spring_force(nr, i);
+        else if (rigid(nr, c) && rate(nr, c, nr->v) < 0)
+            nr->Fn[i] = 0;
         nr->ct_on[c] = 0;
     }
 }
 
 /* Each contact's force at the current state into Fn (per element): a rigid one's from the last solution
- * (in a Moreau-Jean step with an impact, the impulse over the step), a compliant one's from its gap. */
+ * (in a Moreau-Jean step with an impact, the impulse over the step), a compliant one's from its gap. A rope's
+ * constraint adds its multiplier to the element's Fs (k u, network_stepping.c): the tension k u - lambda. */
 void network_run_contacts_forces(struct dp_network_run *nr, int stepped)
 {
     for (size_t c = 0; c < nr->nc; c++) {
         size_t i = nr->ct_el[c], k = nr->nact_el + c;
-        const dp_contact *ct = &nr->net->el[i].contact;
+        const dp_contact *ct = &nr->ct[c].law;
+        if (nr->ct[c].rope) {
+            nr->Fs[i] = spring_force(nr, i) - (stepped && nr->ct_on[c] ? nr->force[k].lambda : 0);
+            continue;
+        }
         if (ct->compliance > 0)
-            nr->Fn[i] = network_run_compliant_force(ct, network_run_rel(nr->net->el[i].a, nr->net->el[i].b, nr->x));
+            nr->Fn[i] = network_run_compliant_force(ct, rate(nr, c, nr->x));
         else
             nr->Fn[i] = stepped && nr->ct_on[c] ? nr->force[k].lambda : 0;
     }

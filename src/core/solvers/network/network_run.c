@@ -55,7 +55,7 @@ static double band_matrices(const dp_run *r)
     const dp_network *net = r->spec.net;
     int contacts = 0, relaxed = 0;
     for (size_t i = 0; i < net->nel; i++) {
-        contacts |= net->el[i].has_contact;
+        contacts |= net->el[i].has_contact || network_run_rope_bound(r->state, &net->el[i]);
         relaxed |= net->el[i].has_damper && net->el[i].damper.relaxation.kind != DP_RELAX_NONE;
     }
     return 6 + 3 * contacts + relaxed + 2 * (r->spec.solver.kind == DP_SOLVER_NEWMARK);
@@ -100,8 +100,8 @@ static int alloc_all(struct dp_network_run *nr)
 {
     /* arrays over the convex problem's elements hold every element's laws and then every contact */
     size_t n = nr->n, ne = nr->nel ? nr->nel : 1, na = ne, band = n * (nr->p + 1);
-    for (size_t i = 0; i < nr->nel; i++)
-        na += nr->net->el[i].has_contact;
+    for (size_t i = 0; i < nr->nel; i++)   /* a bound rope's u <= L is one more contact */
+        na += nr->net->el[i].has_contact + network_run_rope_bound(nr, &nr->net->el[i]);
     nr->M = calloc(band, sizeof(double));
     nr->K = calloc(band, sizeof(double));
     nr->C = calloc(band, sizeof(double));
@@ -187,8 +187,9 @@ static int setup_laws(struct dp_network_run *nr)
         dp_band_from_dense(net->C, n, p, nr->C);
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
-        int lin_spring = !e->has_spring || dp_spring_linear(&e->spring);
-        nr->k[i] = e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
+        int rope = network_run_rope_bound(nr, e);   /* k in K, u <= L a contact (network_contact.c) */
+        int lin_spring = !e->has_spring || dp_spring_linear(&e->spring) || rope;
+        nr->k[i] = rope ? e->spring.k : e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
         nr->c[i] = e->has_damper ? dp_damper_viscous(&e->damper) : 0;
         int set_damper = e->has_damper && (!dp_damper_linear(&e->damper)
                                            || e->damper.relaxation.kind != DP_RELAX_NONE);
@@ -242,7 +243,7 @@ static int setup_columns(struct dp_network_run *nr, const dp_output_spec *o)
                                                                 .index = nr->ep_cols };
         nr->row_len = nr->cols.width += nr->nep_cols;
     }
-    if (nr->nc) {         /* the contacts' forces (0 for the written elements without one) */
+    if (nr->nc > nr->nrope) {   /* the contacts' forces (0 for the written elements without one) */
         nr->cols.group[nr->cols.ngroups++] = (dp_column_group){ .name = "Fn", .n = ne, .index = nr->cols.element };
         nr->row_len = nr->cols.width += ne;
     }
@@ -450,6 +451,9 @@ int network_run_setup(dp_run *r)
     if (s != DP_OK)
         return s;
     nr->p = bandwidth(nr->net);
+    nr->locate = dp_network_locates(&r->spec);
+    nr->ropes_bound = nr->locate && r->spec.solver.kind == DP_SOLVER_STICK_SLIP &&
+                      !dp_network_is_one_mass(&r->spec);
     if ((s = check_run_bytes(r, nr->p)) != DP_OK)
         return s;
     s = alloc_all(nr);
@@ -481,7 +485,6 @@ int network_run_setup(dp_run *r)
         nr->fixed == NULL || nr->cand == NULL || nr->fails_at == NULL || nr->v1_keep == NULL ||
         nr->force_keep == NULL)
         return DP_ENOMEM;
-    nr->locate = dp_network_locates(&r->spec);
     return check_step_bound(r);
 }
 
@@ -624,10 +627,11 @@ static int element_locates(const dp_element *e, int network)
     return spring && (!e->has_damper || (DL && DL->locate));
 }
 
-/* Location holds an assignment over shorter steps: a spring graph with a vertical piece (a rope) holds its
- * force as a multiplier at a vertex whose z moves with the step's length, so it is stepped without it; a
- * graph of finite slope is held on its piece (network_smooth.c); a static threshold is held on the graph of
- * its phase, relaxation iterated in the held step (network_events.c). */
+/* Location holds an assignment over shorter steps: a spring graph with a vertical piece holds its force as
+ * a multiplier at a vertex whose z moves with the step's length, so it is stepped without it; a graph of
+ * finite slope is held on its piece (network_smooth.c); a static threshold is held on the graph of its
+ * phase, relaxation iterated in the held step (network_events.c); a rope is then a linear spring and the
+ * contact u <= L (network_contact.c), whose going taut is an event. */
 int dp_network_locates(const dp_spec *s)
 {
     if (dp_network_is_one_mass(s))   /* the one-mass solver locates every damper that can stick */
@@ -641,6 +645,7 @@ int dp_network_locates(const dp_spec *s)
             return 0;
         sticky |= dp_element_can_stick(e) || is_ep(e);   /* a slider sticks and slides too */
         sticky |= e->has_spring && !dp_spring_linear(&e->spring);   /* a sloped graph's kinks (the others: above) */
+        sticky |= e->has_spring && e->spring.law == DP_SPRING_ROPE;   /* a rope goes taut */
     }
     return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }

@@ -13,6 +13,15 @@
 
 struct dp_network_regularized;
 
+/* A unilateral constraint of the step (network_contact.c): an element's contact, or a rope's u <= L with events
+ * located, which is the rigid contact between the rope's ends swapped at distance -L with restitution 0 (its gap
+ * L - u). Its gap is x_b - x_a - law.distance in its own order of the ends. */
+typedef struct network_bound {
+    long a, b;
+    dp_contact law;
+    int rope;               /* a rope's: its force is tension, written in Fs; its events the element's rate */
+} network_bound;
+
 struct dp_network_run {
     size_t n, nel, p, nact;
     int relaxed;                /* some element has a relaxation gamma */
@@ -73,8 +82,11 @@ struct dp_network_run {
     double *nm_ek, *nm_F, *nm_P;
     signed char *nm_flow;
     size_t *nm_el, nm_nep;
-    /* unilateral contacts (network_contact.c): act[nact_el..nact) are the contacts, in element order */
-    size_t nact_el, nc;
+    /* unilateral contacts (network_contact.c): act[nact_el..nact) are the contacts, in element order, and with
+     * events located the ropes' constraints u <= L (ropes_bound; nrope of the nc) */
+    size_t nact_el, nc, nrope;
+    int ropes_bound;            /* ropes are a linear spring k plus the constraint u <= L (network_run_rope_bound) */
+    network_bound *ct;          /* per contact: its ends, its law, whether a rope's */
     size_t *ct_el;              /* per contact: its element */
     dp_graph cone;              /* the rigid contacts' cone, shared */
     dp_graph *ct_soft;          /* per contact: a compliant one's spring graph, else empty */
@@ -164,6 +176,9 @@ size_t network_run_contacts_arm_closing(struct dp_network_run *nr, double h);
 int network_run_contacts_chattering(const struct dp_network_run *nr);
 void network_run_contacts_forces(struct dp_network_run *nr, int stepped);
 void network_run_contacts_after_probe(struct dp_network_run *nr);
+/* Whether element e's rope is stepped as a linear spring k plus the rigid constraint u <= L (events located,
+ * the stick-slip solver: network_contact.c); otherwise it is its graph, stepped by backward Euler. */
+int network_run_rope_bound(const struct dp_network_run *nr, const dp_element *e);
 /* A compliant contact's force at elongation u, -k max(d - u, 0) (0 for a rigid one: k = 0). */
 double network_run_compliant_force(const dp_contact *c, double u);
 /* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
