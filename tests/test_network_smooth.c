@@ -192,8 +192,8 @@ static void test_bilinear_node_is_second_order(void **state)
 }
 
 /* The same spring as a one-mass document at theta = 1/2 is the one-node network it is (the one-mass solver
- * takes backward Euler only): the same rows, bit for bit. A graph with a vertical piece is still refused at
- * /solver/theta. */
+ * takes backward Euler only): the same rows, bit for bit; so is a rope with events located. A graph with a
+ * vertical piece, or a rope with events "none", is still refused at /solver/theta. */
 static void test_one_mass_document_is_the_network(void **state)
 {
     (void)state;
@@ -212,10 +212,31 @@ static void test_one_mass_document_is_the_network(void **state)
     assert_memory_equal(a.d, b.d, a.n * a.width * sizeof *a.d);
     assert_int_equal(a.events, b.events);
     free(a.d), free(b.d);
+    /* a rope with events located likewise (a linear spring and the contact u <= L on the network) */
+    const char *rope_net = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":"
+                           "{\"law\":\"rope\",\"k\":1,\"length\":1},\"damper\":{\"law\":\"none\"}}]},\"initial\":"
+                           "{\"x\":[0],\"v\":[2]},\"solver\":{\"dt\":0.01,\"t_end\":3,\"theta\":0.5}}";
+    const char *rope_one = "{\"model\":{\"mass\":1,\"spring\":{\"law\":\"rope\",\"k\":1,\"length\":1},\"damper\":"
+                           "{\"law\":\"none\"}},\"initial\":{\"x\":0,\"v\":2},\"solver\":{\"dt\":0.01,\"t_end\":3,"
+                           "\"theta\":0.5}}";
+    assert_int_equal(rows_collect(rope_net, 128, &a), DP_DONE);
+    assert_int_equal(rows_collect(rope_one, 128, &b), DP_DONE);
+    assert_int_equal(a.n, 301);
+    assert_int_equal(a.n, b.n);
+    assert_int_equal(a.width, b.width);
+    assert_memory_equal(a.d, b.d, a.n * a.width * sizeof *a.d);
+    assert_int_equal(a.events, 1);     /* taut at pi/6, to the trapezoidal rule's phase error */
+    assert_int_equal(b.ev[0].kind, DP_EVENT_IMPACT);
+    assert_true(fabs(b.ev[0].t - M_PI / 6) < 1e-5);
+    free(a.d), free(b.d);
     char ptr[DP_POINTER_MAX] = "";
     assert_int_not_equal(parse_run("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"rope\",\"k\":1,\"length\":2},"
                                    "\"damper\":{\"law\":\"none\"}},\"initial\":{\"x\":1,\"v\":0},\"solver\":{\"dt\":0.01,"
-                                   "\"t_end\":1,\"theta\":0.5}}", ptr, sizeof ptr), DP_OK);
+                                   "\"t_end\":1,\"theta\":0.5,\"events\":\"none\"}}", ptr, sizeof ptr), DP_OK);
+    assert_string_equal(ptr, "/solver/theta");
+    assert_int_not_equal(parse_run("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"graph\",\"points\":[[-1,-1],[0,0],"
+                                   "[0,1],[1,2]]},\"damper\":{\"law\":\"none\"}},\"initial\":{\"x\":1,\"v\":0},\"solver\":"
+                                   "{\"dt\":0.01,\"t_end\":1,\"theta\":0.5}}", ptr, sizeof ptr), DP_OK);
     assert_string_equal(ptr, "/solver/theta");
 }
 

@@ -192,8 +192,10 @@ static void parse_output(ctx *c, const cJSON *o, const at *ptr, dp_spec *s)
 
 /* A one-mass document with a contact is the network it is: one node of its mass, one element [ground, 0]
  * with its spring, damper and contact, its forcing on node 0 (the laws are moved, not copied). So is one
- * whose graph spring of finite slope is stepped below theta = 1 (sloped_below_one): the network solver
- * theta-steps it and locates its kinks (network_smooth.c), the one-mass solver takes backward Euler only. */
+ * whose graph spring of finite slope, or rope with events located, is stepped below theta = 1
+ * (sloped_below_one): the network solver theta-steps the one and locates its kinks (network_smooth.c), and
+ * steps the other as a linear spring and the contact u <= L (network_contact.c); the one-mass solver takes
+ * backward Euler only for both. */
 static int one_mass_as_network(dp_spec *s)
 {
     dp_network *net = calloc(1, sizeof *net);
@@ -222,8 +224,9 @@ static int one_mass_as_network(dp_spec *s)
 static int sloped_below_one(const dp_spec *s)
 {
     const dp_spring *sp = &s->model.spring;
+    int rope = sp->law == DP_SPRING_ROPE && s->solver.events == DP_EVENTS_LOCATE;  /* a spring and a contact */
     return s->solver.kind == DP_SOLVER_STICK_SLIP && s->solver.variant == DP_VARIANT_EXACT &&
-           s->solver.branch == DP_BRANCH_REST && s->solver.theta != 1 && dp_spring_sloped_graph(sp);
+           s->solver.branch == DP_BRANCH_REST && s->solver.theta != 1 && (dp_spring_sloped_graph(sp) || rope);
 }
 
 /* The whole document o (an object: body.c); its own keys are not checked again when keys_checked. */

@@ -295,9 +295,9 @@ static void check_exact(const dp_spec *s, dp_errors *e)
     /* a dt past t_end is one step of t_end (dp_spec_steps) */
     double h = fmin(s->solver.dt, s->solver.t_end), th = s->solver.theta;
     if (th != 1 && !dp_spring_linear(&m->spring) && !dp_spring_plastic(&m->spring))
-        dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring or a graph spring of finite slope "
-                      "(the %s spring has a vertical piece, stepped by backward Euler): use theta = 1",
-                      dp_spring_law_name(m->spring.law));
+        dp_errors_add(e, "/solver/theta", "theta < 1 needs a linear spring, a graph spring of finite slope or a "
+                      "rope with events located (the %s spring has a vertical piece, stepped by backward Euler): "
+                      "use theta = 1", dp_spring_law_name(m->spring.law));
     double k = dp_spring_stiffness(&m->spring);
     double c = dp_damper_viscous(&m->damper);
     double W = m->mass + h * th * c + h * h * th * th * k;
