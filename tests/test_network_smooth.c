@@ -306,6 +306,44 @@ static void test_graph_spring_chain_is_second_order(void **state)
     free(ref.d);
 }
 
+/* ---- no creep -------------------------------------------------------------------------------------------- */
+
+/* A block (node 1) pressed by a compliant contact onto another (node 0) that rings on a compliant floor, held
+ * by Coulomb friction to the ground: both contacts start pressed (allowed for a compliant one), the lower
+ * block oscillates for ever (the trapezoidal rule does not damp it), and the upper one, once stuck, keeps its
+ * position to the last bit while the force through its contact changes every step. */
+static void test_stuck_block_on_compliant_contact_does_not_creep(void **state)
+{
+    (void)state;
+    const char *json = "{\"model\":{\"masses\":[1,1],\"elements\":[{\"between\":[\"ground\",0],\"contact\":"
+                       "{\"distance\":0,\"compliance\":1e4}},{\"between\":[0,1],\"contact\":{\"distance\":0.5,"
+                       "\"compliance\":1e3}},{\"between\":[\"ground\",1],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.3}}],"
+                       "\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-9.81},{\"node\":1,\"kind\":"
+                       "\"constant\",\"value\":-9.81}]},\"initial\":{\"x\":[-0.001962,0.49019],\"v\":[0,0]},"
+                       "\"solver\":{\"dt\":0.001,\"t_end\":20},\"output\":{\"every\":100}}";
+    assert_events_mode(json, "locate");
+    rows r;
+    assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
+    assert_int_equal(r.events, 1);
+    assert_int_equal(r.ev[0].kind, DP_EVENT_STICK);
+    assert_int_equal(r.ev[0].element, 2);
+    size_t after = 0, moved = 0;
+    double held = NAN, fn_lo = INFINITY, fn_hi = -INFINITY;
+    for (size_t i = 0; i < r.n; i++) {
+        const double *row = r.d + i * r.width;   /* t, x0 x1, v0 v1, Fs[3], Fd[3], phase[3], Fn[3] */
+        if (row[0] <= r.ev[0].t)
+            continue;
+        if (after++ == 0)
+            held = row[2];
+        moved += row[2] != held || row[4] != 0;
+        fn_lo = fmin(fn_lo, row[15]), fn_hi = fmax(fn_hi, row[15]);
+    }
+    assert_true(after > 190);
+    assert_int_equal(moved, 0);
+    assert_true(fn_hi - fn_lo > 0.1);    /* the contact's force moves while the block does not */
+    free(r.d);
+}
+
 /* ---- the rules --------------------------------------------------------------------------------------- */
 
 static int parse_run(const char *json, char *pointer, size_t len)
@@ -357,6 +395,7 @@ int main(void)
         cmocka_unit_test(test_bilinear_node_is_second_order),
         cmocka_unit_test(test_one_mass_document_is_the_network),
         cmocka_unit_test(test_graph_spring_chain_is_second_order),
+        cmocka_unit_test(test_stuck_block_on_compliant_contact_does_not_creep),
         cmocka_unit_test(test_theta_rule),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

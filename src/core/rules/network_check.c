@@ -85,7 +85,7 @@ static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
     const dp_element *el = &s->net->el[i];
     const dp_contact *c = &el->contact;
     char p[DP_POINTER_MAX];
-    if (u < c->distance) {
+    if (u < c->distance && c->compliance == 0) {   /* a compliant one may start pressed: a spring compressed */
         if (s->net->one_mass_doc)
             snprintf(p, sizeof p, "/initial/x");
         else
