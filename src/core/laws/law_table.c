@@ -202,6 +202,51 @@ int dp_spring_sloped_graph(const dp_spring *s)
     return s->law == DP_SPRING_GRAPH && s->graph.n > 0 && isfinite(dp_graph_lipschitz(&s->graph));
 }
 
+/* The vertices of a bounded graph's sloped part: [*i0, *i1], the last of the leading vertices at a vertical
+ * left end and the first of the trailing ones at a vertical right end; 0 if the graph is not one. */
+static int bounded_span(const dp_graph *g, size_t *i0, size_t *i1)
+{
+    if (g->n < 2)
+        return 0;
+    int lo = g->left[0] == 0, hi = g->right[0] == 0;
+    size_t a = 0, b = g->n - 1;
+    while (lo && a + 1 < g->n && g->y[a + 1] == g->y[0])
+        a++;
+    while (hi && b > 0 && g->y[b - 1] == g->y[g->n - 1])
+        b--;
+    if (!(lo || hi) || b <= a)
+        return 0;
+    for (size_t j = a; j < b; j++)
+        if (!(g->y[j + 1] > g->y[j]))
+            return 0;      /* a vertical piece inside */
+    *i0 = a, *i1 = b;
+    return 1;
+}
+
+int dp_spring_bounded_graph(const dp_spring *s, double *lo, double *hi)
+{
+    size_t a, b;
+    if (s->law != DP_SPRING_GRAPH || !bounded_span(&s->graph, &a, &b))
+        return 0;
+    *lo = s->graph.left[0] == 0 ? s->graph.y[a] : -INFINITY;
+    *hi = s->graph.right[0] == 0 ? s->graph.y[b] : INFINITY;
+    return 1;
+}
+
+int dp_spring_bounded_part(const dp_spring *s, dp_graph *part)
+{
+    const dp_graph *g = &s->graph;
+    size_t a, b;
+    if (s->law != DP_SPRING_GRAPH || !bounded_span(g, &a, &b))
+        return DP_EINVAL;
+    double left[2] = { g->left[0], g->left[1] }, right[2] = { g->right[0], g->right[1] };
+    if (left[0] == 0)
+        left[0] = g->y[a + 1] - g->y[a], left[1] = g->f[a + 1] - g->f[a];
+    if (right[0] == 0)
+        right[0] = g->y[b] - g->y[b - 1], right[1] = g->f[b] - g->f[b - 1];
+    return dp_graph_init(part, b - a + 1, g->y + a, g->f + a, left, right);
+}
+
 double dp_damper_viscous(const dp_damper *d)
 {
     return dp_damper_has_viscous(d) ? dp_law_field_value(d, dp_damper_laws[d->law].viscous) : 0;
@@ -260,4 +305,10 @@ const char *dp_damper_law_name(dp_damper_law law)
 {
     const dp_damper_law_info *L = dp_damper_law_info_of(law);
     return L ? L->row.name : "?";
+}
+
+int dp_spring_has_stop(const dp_spring *s)
+{
+    double lo, hi;
+    return s->law == DP_SPRING_ROPE || dp_spring_bounded_graph(s, &lo, &hi);
 }

@@ -111,12 +111,13 @@ static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
                       "solver");
 }
 
-/* Whether element el's rope takes any theta: with events located the stick-slip solver steps it as a linear
- * spring plus the rigid contact u <= L (network_contact.c). That holds whenever theta < 1 passes the other
+/* Whether element el's rope (or a graph spring whose domain ends in a stop) takes any theta: with events
+ * located the stick-slip solver steps it as a linear spring (its sloped part) plus the rigid contact u <= L
+ * (and u >= lo for a graph's lower stop; network_contact.c). That holds whenever theta < 1 passes the other
  * elements' rules, which refuse every law location does not hold (graph springs with a vertical piece). */
 static int rope_takes_theta(const dp_spec *s, const dp_element *el)
 {
-    return el->has_spring && el->spring.law == DP_SPRING_ROPE && s->solver.kind == DP_SOLVER_STICK_SLIP &&
+    return el->has_spring && dp_spring_has_stop(&el->spring) && s->solver.kind == DP_SOLVER_STICK_SLIP &&
            s->solver.events == DP_EVENTS_LOCATE;
 }
 
@@ -152,7 +153,7 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
         el_ptr(p, sizeof p, s, i, "/spring");
         dp_errors_add(e, p, "theta < 1 needs springs of finite slope (the %s spring has a vertical piece, stepped "
                       "by backward Euler%s): use theta = 1", dp_spring_law_name(el->spring.law),
-                      el->spring.law == DP_SPRING_ROPE ? " without located events" : "");
+                      dp_spring_has_stop(&el->spring) ? " without located events" : "");
     }
     if (el->has_contact)
         check_contact(s, i, u, e);

@@ -107,20 +107,42 @@ static int shadows(struct dp_network_run *nr)
     return DP_OK;
 }
 
-int network_run_rope_bound(const struct dp_network_run *nr, const dp_element *e)
+size_t network_run_spring_stops(const struct dp_network_run *nr, const dp_element *e)
 {
-    return nr->ropes_bound && e->has_spring && e->spring.law == DP_SPRING_ROPE;
+    double lo, hi;
+    if (!nr->ropes_bound || !e->has_spring)
+        return 0;
+    if (e->spring.law == DP_SPRING_ROPE)
+        return 1;
+    if (!dp_spring_bounded_graph(&e->spring, &lo, &hi))
+        return 0;
+    return (size_t)isfinite(lo) + (size_t)isfinite(hi);
 }
 
-/* Element i's constraints: its contact, then a bound rope's u <= L (its ends swapped, distance -L, plastic). */
+int network_run_rope_bound(const struct dp_network_run *nr, const dp_element *e)
+{
+    return network_run_spring_stops(nr, e) > 0;
+}
+
+/* Element i's constraints: its contact, then a bound rope's u <= L (its ends swapped, distance -L, plastic),
+ * or a bounded graph's u <= hi (likewise) and u >= lo (its own ends, distance lo, plastic). */
 static size_t element_bounds(const struct dp_network_run *nr, size_t i, network_bound *out)
 {
     const dp_element *e = &nr->net->el[i];
     size_t m = 0;
+    double lo = -INFINITY, hi = INFINITY;
     if (e->has_contact)
         out[m++] = (network_bound){ .a = e->a, .b = e->b, .law = e->contact };
-    if (network_run_rope_bound(nr, e))
-        out[m++] = (network_bound){ .a = e->b, .b = e->a, .law = { .distance = -e->spring.length }, .rope = 1 };
+    if (!network_run_rope_bound(nr, e))
+        return m;
+    if (e->spring.law == DP_SPRING_ROPE)
+        hi = e->spring.length;
+    else
+        dp_spring_bounded_graph(&e->spring, &lo, &hi);
+    if (isfinite(hi))
+        out[m++] = (network_bound){ .a = e->b, .b = e->a, .law = { .distance = -hi }, .rope = 1, .swapped = 1 };
+    if (isfinite(lo))
+        out[m++] = (network_bound){ .a = e->a, .b = e->b, .law = { .distance = lo }, .rope = 1 };
     return m;
 }
 
@@ -128,10 +150,10 @@ int network_run_contacts_setup(struct dp_network_run *nr)
 {
     const dp_network *net = nr->net;
     size_t m = 0, ropes = 0;
-    network_bound two[2];
+    network_bound two[3];
     for (size_t i = 0; i < nr->nel; i++) {
         m += element_bounds(nr, i, two);
-        ropes += network_run_rope_bound(nr, &net->el[i]);
+        ropes += network_run_spring_stops(nr, &net->el[i]);
     }
     nr->nact_el = nr->nact;
     if (m == 0)
@@ -213,11 +235,17 @@ static double rate(const struct dp_network_run *nr, size_t c, const double *v)
     return network_run_rel(nr->ct[c].a, nr->ct[c].b, v);
 }
 
-/* A bound rope's spring part k u (0, not the -0 of 0 times a negative elongation, as network_stepping.c). */
+/* A bound rope's spring part k u (0, not the -0 of 0 times a negative elongation, as network_stepping.c); a
+ * bounded graph's, its sloped part at u. */
 static double spring_force(const struct dp_network_run *nr, size_t i)
 {
     const dp_element *e = &nr->net->el[i];
-    return nr->k[i] != 0 ? nr->k[i] * network_run_rel(e->a, e->b, nr->x) : 0;
+    double u = network_run_rel(e->a, e->b, nr->x), lo, hi;
+    if (nr->stop_S && nr->stop_S[i].n) {
+        dp_graph_force(&nr->stop_S[i], u, &lo, &hi);
+        return lo;
+    }
+    return nr->k[i] != 0 ? nr->k[i] * u : 0;
 }
 
 /* Contact c's impact event, in its element's terms: a rope's rates are the element's u' (its own are -u'),
@@ -225,7 +253,7 @@ static double spring_force(const struct dp_network_run *nr, size_t i)
 static void bound_event(dp_run *r, double t, size_t c, double before, double after, double impulse)
 {
     struct dp_network_run *nr = r->state;
-    if (nr->ct[c].rope)
+    if (nr->ct[c].swapped)
         before = 0.0 - before, after = 0.0 - after;   /* 0 - x: never a -0 */
     network_run_impact_event(r, t, nr->ct_el[c], before, after, impulse);
 }
@@ -459,8 +487,10 @@ void network_run_contacts_forces(struct dp_network_run *nr, int stepped)
     for (size_t c = 0; c < nr->nc; c++) {
         size_t i = nr->ct_el[c], k = nr->nact_el + c;
         const dp_contact *ct = &nr->ct[c].law;
-        if (nr->ct[c].rope) {
-            nr->Fs[i] = spring_force(nr, i) - (stepped && nr->ct_on[c] ? nr->force[k].lambda : 0);
+        if (nr->ct[c].rope) {    /* a bounded graph's second stop adds to its first */
+            double lam = stepped && nr->ct_on[c] ? nr->force[k].lambda : 0;
+            double fs = c > 0 && nr->ct_el[c - 1] == i && nr->ct[c - 1].rope ? nr->Fs[i] : spring_force(nr, i);
+            nr->Fs[i] = nr->ct[c].swapped ? fs - lam : fs + lam;
             continue;
         }
         if (ct->compliance > 0)

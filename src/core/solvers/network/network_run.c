@@ -100,8 +100,8 @@ static int alloc_all(struct dp_network_run *nr)
 {
     /* arrays over the convex problem's elements hold every element's laws and then every contact */
     size_t n = nr->n, ne = nr->nel ? nr->nel : 1, na = ne, band = n * (nr->p + 1);
-    for (size_t i = 0; i < nr->nel; i++)   /* a bound rope's u <= L is one more contact */
-        na += nr->net->el[i].has_contact + network_run_rope_bound(nr, &nr->net->el[i]);
+    for (size_t i = 0; i < nr->nel; i++)   /* a bound rope's u <= L is one more contact, a graph's stops one each */
+        na += nr->net->el[i].has_contact + network_run_spring_stops(nr, &nr->net->el[i]);
     nr->M = calloc(band, sizeof(double));
     nr->K = calloc(band, sizeof(double));
     nr->C = calloc(band, sizeof(double));
@@ -170,6 +170,14 @@ static void ep_init(struct dp_network_run *nr, dp_network *net, const double *x0
     }
 }
 
+/* Element i's bounded graph's sloped part into stop_S (allocated for every element on first use). */
+static int stop_part(struct dp_network_run *nr, size_t i)
+{
+    if (nr->stop_S == NULL && (nr->stop_S = calloc(nr->nel, sizeof *nr->stop_S)) == NULL)
+        return DP_ENOMEM;
+    return dp_spring_bounded_part(&nr->net->el[i].spring, &nr->stop_S[i]) == DP_OK ? DP_OK : DP_ENOMEM;
+}
+
 /* The linear parts straight into band storage (a dense n x n copy would not fit a chain of 10^4 blocks);
  * the elements' nonlinear laws into the convex problem's list. */
 static int setup_laws(struct dp_network_run *nr)
@@ -188,6 +196,12 @@ static int setup_laws(struct dp_network_run *nr)
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
         int rope = network_run_rope_bound(nr, e);   /* k in K, u <= L a contact (network_contact.c) */
+        const dp_graph *S = rope ? NULL : &e->spring.graph;
+        if (rope && e->spring.law != DP_SPRING_ROPE) {   /* a bounded graph: its sloped part, its stops contacts */
+            if (stop_part(nr, i) != DP_OK)
+                return DP_ENOMEM;
+            S = &nr->stop_S[i], rope = 0;
+        }
         int lin_spring = !e->has_spring || dp_spring_linear(&e->spring) || rope;
         nr->k[i] = rope ? e->spring.k : e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
         nr->c[i] = e->has_damper ? dp_damper_viscous(&e->damper) : 0;
@@ -211,7 +225,7 @@ static int setup_laws(struct dp_network_run *nr)
         nr->act_of[i] = (long)nr->nact;
         nr->act_el[nr->nact] = i;
         nr->act[nr->nact++] = (dp_network_step_element){ .a = e->a, .b = e->b, .A = set_damper ? &e->damper.graph : NULL,
-                                             .S = lin_spring ? NULL : &e->spring.graph,
+                                             .S = lin_spring ? NULL : S,
                                              .vb = e->has_damper ? e->damper.belt_velocity : 0,
                                              .ep_theta = is_ep(e) ? nr->theta : 0 };
     }
@@ -270,6 +284,9 @@ void network_run_free(void *state)
     dp_nm_free(nr->nm);
     network_run_contacts_free(nr);
     network_run_smooth_free(nr);
+    for (size_t i = 0; nr->stop_S && i < nr->nel; i++)
+        dp_graph_clear(&nr->stop_S[i]);
+    free(nr->stop_S);
     dp_row_queue_clear(&nr->queue);
     network_quakes_free(nr->quakes);
     void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
@@ -623,7 +640,7 @@ static int element_locates(const dp_element *e, int network)
     const dp_spring_law_info *SL = dp_spring_law_info_of(e->spring.law);
     const dp_damper_law_info *DL = dp_damper_law_info_of(e->damper.law);
     int spring = !e->has_spring || (SL && (network ? SL->locate_network : SL->locate)) ||
-                 (network && dp_spring_sloped_graph(&e->spring));   /* its vertices: network_smooth.c */
+                 (network && (dp_spring_sloped_graph(&e->spring) || dp_spring_has_stop(&e->spring)));
     return spring && (!e->has_damper || (DL && DL->locate));
 }
 
@@ -645,7 +662,7 @@ int dp_network_locates(const dp_spec *s)
             return 0;
         sticky |= dp_element_can_stick(e) || is_ep(e);   /* a slider sticks and slides too */
         sticky |= e->has_spring && !dp_spring_linear(&e->spring);   /* a sloped graph's kinks (the others: above) */
-        sticky |= e->has_spring && e->spring.law == DP_SPRING_ROPE;   /* a rope goes taut */
+        sticky |= e->has_spring && dp_spring_has_stop(&e->spring);   /* a rope goes taut, a graph reaches its stop */
     }
     return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }

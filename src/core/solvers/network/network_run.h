@@ -19,7 +19,9 @@ struct dp_network_regularized;
 typedef struct network_bound {
     long a, b;
     dp_contact law;
-    int rope;               /* a rope's: its force is tension, written in Fs; its events the element's rate */
+    int rope;               /* a spring's stop (a rope's, a bounded graph's): its force is the spring's, written
+                               in Fs; its events in the element's terms */
+    int swapped;            /* its ends are the element's swapped (an upper stop u <= hi) */
 } network_bound;
 
 struct dp_network_run {
@@ -85,7 +87,9 @@ struct dp_network_run {
     /* unilateral contacts (network_contact.c): act[nact_el..nact) are the contacts, in element order, and with
      * events located the ropes' constraints u <= L (ropes_bound; nrope of the nc) */
     size_t nact_el, nc, nrope;
-    int ropes_bound;            /* ropes are a linear spring k plus the constraint u <= L (network_run_rope_bound) */
+    int ropes_bound;            /* ropes are a linear spring k plus the constraint u <= L (network_run_rope_bound),
+                                   bounded graphs their sloped part (stop_S) plus their stops */
+    dp_graph *stop_S;           /* per element: a bounded graph's sloped part, else empty (NULL: none) */
     network_bound *ct;          /* per contact: its ends, its law, whether a rope's */
     size_t *ct_el;              /* per contact: its element */
     dp_graph cone;              /* the rigid contacts' cone, shared */
@@ -179,6 +183,9 @@ void network_run_contacts_after_probe(struct dp_network_run *nr);
 /* Whether element e's rope is stepped as a linear spring k plus the rigid constraint u <= L (events located,
  * the stick-slip solver: network_contact.c); otherwise it is its graph, stepped by backward Euler. */
 int network_run_rope_bound(const struct dp_network_run *nr, const dp_element *e);
+/* How many constraints element e's spring adds with events located: a rope's u <= L, a bounded graph's
+ * stops (dp_spring_bounded_graph), 0 otherwise. */
+size_t network_run_spring_stops(const struct dp_network_run *nr, const dp_element *e);
 /* A compliant contact's force at elongation u, -k max(d - u, 0) (0 for a rigid one: k = 0). */
 double network_run_compliant_force(const dp_contact *c, double u);
 /* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
