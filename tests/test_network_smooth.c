@@ -431,6 +431,45 @@ static void test_stuck_block_on_compliant_contact_does_not_creep(void **state)
     free(r.d);
 }
 
+/* Two networks (from random documents) whose backward-Euler graph springs (events "none") end steps held
+ * at a stop: the next step saw the elongation past the stop by rounding, no feasible point, and the run
+ * ended "the implicit step has no solution" (network_stepping.c now puts it back at the stop). */
+static void test_rounding_past_a_stop_is_put_back(void **state)
+{
+    (void)state;
+    static const char *const docs[] = {   /* ' for " */
+        "{'model':{'masses':[0.5,1,1,0.5],'elements':[{'between':['ground',0],'spring':{'law':'graph','points"
+        "':[[-0.403,-0.141],[0.158,1.994],[0.672,2.575]]}},{'between':['ground',1],'spring':{'law':'linear','"
+        "k':0.5}},{'between':['ground',2],'damper':{'law':'linear','c':0.3}},{'between':['ground',3],'spring'"
+        ":{'law':'linear','k':10},'damper':{'law':'coulomb','phi0':0.3,'belt_velocity':0}},{'between':['groun"
+        "d',0],'spring':{'law':'graph','points':[[-1.058,-1.132],[-0.392,1.23],[0.545,4.077]]}},{'between':[0"
+        ",3],'spring':{'law':'graph','points':[[-0.8,-4],[-0.8,-1.5],[0,0],[0.9,1.2],[0.9,5]]}}],'forcing':[{"
+        "'node':2,'kind':'harmonic','amplitude':0.5,'omega':0.7}]},'initial':{'x':[0.242,-0.241,0.122,0.15],'"
+        "v':[-0.915,-0.018,0.99,-0.734]},'solver':{'dt':0.003,'t_end':5,'theta':1,'events':'none'},'output':{"
+        "'every':100}}",
+        "{'model':{'masses':[0.5,2,1,2],'elements':[{'between':['ground',0],'damper':{'law':'coulomb','phi0':"
+        "0.8,'belt_velocity':0.1}},{'between':['ground',1],'damper':{'law':'linear','c':0.3}},{'between':['gr"
+        "ound',2],'spring':{'law':'graph','points':[[-0.838,-1.066],[-0.038,0.009],[0.309,1.808],[0.345,4.39]"
+        "]},'damper':{'law':'coulomb','phi0':0.8,'belt_velocity':0.1}},{'between':['ground',3],'spring':{'law"
+        "':'graph','points':[[-0.883,-0.738],[0.888,1.919]]},'damper':{'law':'linear','c':0.05}},{'between':["
+        "0,1],'contact':{'distance':-0.325,'compliance':1000.0}},{'between':[3,'ground'],'contact':{'distance"
+        "':-1.065,'compliance':10}},{'between':[0,3],'spring':{'law':'rope','k':2,'length':0.8}}],'forcing':["
+        "{'node':0,'kind':'harmonic','amplitude':5,'omega':5}]},'initial':{'x':[0.019,0.234,0.06,-0.278],'v':"
+        "[-0.524,0.724,-0.277,0.15]},'solver':{'dt':0.01,'t_end':5,'theta':1,'events':'none'},'output':{'ever"
+        "y':100}}",
+    };
+    for (size_t i = 0; i < 2; i++) {
+        char *json = strdup(docs[i]);
+        assert_non_null(json);
+        for (char *c = json; *c; c++)
+            *c = *c == '\'' ? '"' : *c;
+        rows r;
+        assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
+        assert_int_equal(r.n, i == 0 ? 18 : 6);
+        free(r.d), free(json);
+    }
+}
+
 /* ---- the rules --------------------------------------------------------------------------------------- */
 
 static int parse_run(const char *json, char *pointer, size_t len)
@@ -485,6 +524,7 @@ int main(void)
         cmocka_unit_test(test_bounded_graph_is_a_rope_and_a_stop),
         cmocka_unit_test(test_bounded_graph_is_second_order),
         cmocka_unit_test(test_stuck_block_on_compliant_contact_does_not_creep),
+        cmocka_unit_test(test_rounding_past_a_stop_is_put_back),
         cmocka_unit_test(test_theta_rule),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -133,6 +133,21 @@ static int static_solve(dp_run *r, double h)
     return DP_ESOLVE;
 }
 
+/* The elongation a spring graph with a vertical end ray (a rope's length, a graph's stop) sees: a step that
+ * ends held at that end puts x there to rounding only (x + h v), and an elongation past the end by that
+ * much leaves the next step no feasible point; it is put back at the end. Further out it is left alone. */
+static double in_domain(const dp_graph *S, double u)
+{
+    if (S == NULL || S->n == 0)
+        return u;
+    double hi = S->y[S->n - 1], lo = S->y[0];
+    if (S->right[0] == 0 && u > hi && u - hi <= 1e-9 * (1 + fabs(hi)))
+        return hi;
+    if (S->left[0] == 0 && u < lo && lo - u <= 1e-9 * (1 + fabs(lo)))
+        return lo;
+    return u;
+}
+
 /* The right side of a step of length h from the current state at time t, W for h, and the elongations the
  * spring graphs see (network_step.h for the problem they define). */
 void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
@@ -161,7 +176,7 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
             nr->rhs[e->a] -= g;
     }
     for (size_t k = 0; k < nr->nact; k++)
-        nr->u[k] = network_run_rel(nr->act[k].a, nr->act[k].b, nr->x);
+        nr->u[k] = in_domain(nr->act[k].S, network_run_rel(nr->act[k].a, nr->act[k].b, nr->x));
     network_run_smooth_rhs(nr, h);
     if (!nr->has_ep)
         return;
