@@ -4,6 +4,7 @@
 #ifndef DASHPOT_TESTS_ROWS_H
 #define DASHPOT_TESTS_ROWS_H
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -88,6 +89,49 @@ static int rows_collect(const char *json, size_t cap, rows *r)
     free(buf);
     dp_run_free(run);
     return s;
+}
+
+/* What the rules say of a document: when its spec parses and a run of it starts, the events_mode its meta
+ * line says (into out) and DP_OK; else the first error's pointer and the failing status. */
+static inline int rows_verdict(const char *json, char *out, size_t cap)
+{
+    dp_spec spec;
+    dp_errors errs;
+    dp_spec_init(&spec);
+    dp_errors_init(&errs);
+    int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
+    if (s == DP_OK) {
+        const char *m = dp_spec_events_mode(&spec);
+        dp_run_free(dp_run_alloc(&spec, 0, &errs, &s));
+        if (s == DP_OK)
+            snprintf(out, cap, "%s", m ? m : "(none)");
+    }
+    if (s != DP_OK)
+        snprintf(out, cap, "%s", errs.n ? errs.item[0].pointer : "(no error)");
+    dp_spec_clear(&spec);
+    return s;
+}
+
+/* The document is accepted and its meta line says events_mode `mode`. */
+static inline void rows_assert_events_mode(const char *json, const char *mode)
+{
+    char got[DP_POINTER_MAX];
+    rows_verdict(json, got, sizeof got);
+    if (strcmp(got, mode) != 0)
+        fprintf(stderr, "events_mode (or error at) %s, expected %s\n", got, mode);
+    assert_string_equal(got, mode);
+}
+
+/* The largest difference of the row numbers j0 <= j < j1 (1 is the first after t) between two runs of the
+ * same samples. */
+static inline double rows_max_difference(const rows *a, const rows *b, size_t j0, size_t j1)
+{
+    assert_int_equal(a->n, b->n);
+    double worst = 0;
+    for (size_t i = 0; i < a->n; i++)
+        for (size_t j = j0; j < j1; j++)
+            worst = fmax(worst, fabs(a->d[i * a->width + j] - b->d[i * b->width + j]));
+    return worst;
 }
 
 #endif

@@ -182,11 +182,7 @@ static double stick_slip_chain_error(double dt, const rows *ref)
 {
     rows r;
     stick_slip_chain(dt, &r);
-    assert_int_equal(r.n, ref->n);
-    double worst = 0;
-    for (size_t i = 0; i < r.n; i++)
-        for (size_t j = 1; j < 5; j++)
-            worst = fmax(worst, fabs(r.d[i * r.width + j] - ref->d[i * ref->width + j]));
+    double worst = rows_max_difference(&r, ref, 1, 5);
     free(r.d);
     return worst;
 }

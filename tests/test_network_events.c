@@ -29,21 +29,6 @@ static void rows_run(const char *json, rows *r)
     assert_int_equal(r->width - 1, 2 * r->nx + 3 * r->ne);
 }
 
-/* The meta line's events_mode of a document. */
-static void assert_events_mode(const char *json, const char *mode)
-{
-    dp_spec spec;
-    dp_errors errs;
-    dp_spec_init(&spec);
-    dp_errors_init(&errs);
-    assert_int_equal(dp_spec_parse(json, strlen(json), 0, &spec, &errs), DP_OK);
-    const char *m = dp_spec_events_mode(&spec);
-    assert_non_null(m);
-    if (strcmp(m, mode) != 0)
-        fprintf(stderr, "events_mode %s, expected %s\n", m, mode);
-    assert_string_equal(m, mode);
-    dp_spec_clear(&spec);
-}
 
 /* ---- a block on a belt: the closed form ---------------------------------------------------------- */
 
@@ -102,7 +87,7 @@ static void belt_run(double dt, const char *events, rows *r)
              a->m, b->m, a->k, a->phi0, a->phi1, a->V, b->k, b->phi0, b->phi1, b->V, a->V, b->V, dt, events,
              lround(0.5 / dt));
     if (strcmp(events, "locate") == 0)
-        assert_events_mode(json, "locate");
+        rows_assert_events_mode(json, "locate");
     rows_run(json, r);
 }
 
@@ -190,7 +175,7 @@ static void assert_no_creep(const char *damper, double lo)
              "{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":1}}]},"
              "\"initial\":{\"x\":[0.1,0.45],\"v\":[0,0]},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":0.5},"
              "\"output\":{\"every\":1}}", damper);
-    assert_events_mode(json, "locate");
+    rows_assert_events_mode(json, "locate");
     rows r;
     rows_run(json, &r);
     double most = 0;
@@ -230,7 +215,7 @@ static void assert_network_follows_one_mass(const char *spring, const char *damp
                  "\"spring\":%s,\"damper\":%s}]%s},\"initial\":{\"x\":[1.5,1.5],"
                  "\"v\":[0.2,0.2]},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":%s},\"output\":{\"every\":10}}",
                  spring, damper, spring, damper, nload, theta);
-        assert_events_mode(net, "locate");
+        rows_assert_events_mode(net, "locate");
         traj a;
         rows b;
         assert_int_equal(traj_run(one, &a), DP_OK);
@@ -286,7 +271,7 @@ static void chain_run(const char *d0, const char *d1, double dt, const char *eve
              "\"initial\":{\"x\":[0.5,-0.2]},\"solver\":{\"dt\":%.17g,\"t_end\":10,\"theta\":0.5,"
              "\"events\":\"%s\"},\"output\":{\"every\":%ld}}", d0, d1, dt, events, lround(0.5 / dt));
     if (strcmp(events, "locate") == 0)
-        assert_events_mode(json, "locate");
+        rows_assert_events_mode(json, "locate");
     rows_run(json, r);
 }
 
@@ -295,11 +280,7 @@ static double chain_error(const char *d0, const char *d1, double dt, const char 
 {
     rows r;
     chain_run(d0, d1, dt, events, &r);
-    assert_int_equal(r.n, ref->n);
-    double worst = 0;
-    for (size_t i = 0; i < r.n; i++)
-        for (size_t j = 1; j < 5; j++)
-            worst = fmax(worst, fabs(r.d[i * r.width + j] - ref->d[i * ref->width + j]));
+    double worst = rows_max_difference(&r, ref, 1, 5);
     free(r.d);
     return worst;
 }
@@ -383,8 +364,8 @@ static void assert_jenkins_follows_one_mass(const char *damper, const char *thet
              "\"spring\":{\"law\":\"elastoplastic\",\"k\":1,\"yield\":1},\"damper\":%s}],\"forcing\":[{\"node\":0,"
              "\"kind\":\"harmonic\",\"amplitude\":1.6,\"omega\":0.3}]},\"initial\":{\"x\":[%g],\"v\":[0]},"
              "\"solver\":{\"dt\":0.01,\"t_end\":30,\"theta\":%s},\"output\":{\"every\":10}}", damper, x0, theta);
-    assert_events_mode(one, "locate");
-    assert_events_mode(net, "locate");
+    rows_assert_events_mode(one, "locate");
+    rows_assert_events_mode(net, "locate");
     traj a;
     rows b;
     assert_int_equal(traj_run(one, &a), DP_OK);
@@ -440,7 +421,7 @@ static void jenkins_chain_run(double dt, const char *events, rows *r)
              "\"forcing\":[{\"node\":2,\"kind\":\"harmonic\",\"amplitude\":1.2,\"omega\":0.9}]},"
              "\"initial\":{\"x\":[0.2,0,-0.1]},\"solver\":{\"dt\":%.17g,\"t_end\":10,\"theta\":0.5,"
              "\"events\":\"%s\"},\"output\":{\"every\":%ld}}", dt, events, lround(0.5 / dt));
-    assert_events_mode(json, events);
+    rows_assert_events_mode(json, events);
     rows_run_ep(json, 2, r);
 }
 
@@ -506,7 +487,7 @@ static void test_jenkins_does_not_creep(void **state)
         "\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5}},{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":1}}]},"
         "\"initial\":{\"x\":[0.1,0.45],\"v\":[0,0]},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":0.5},"
         "\"output\":{\"every\":1}}";
-    assert_events_mode(held, "locate");
+    rows_assert_events_mode(held, "locate");
     rows r;
     rows_run_ep(held, 1, &r);
     double most = 0;
@@ -525,7 +506,7 @@ static void test_jenkins_does_not_creep(void **state)
         "\"spring\":{\"law\":\"elastoplastic\",\"k\":2,\"yield\":0.5}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\","
         "\"value\":0.5}]},\"initial\":{\"x\":[0.25],\"v\":[0]},\"solver\":{\"dt\":0.01,\"t_end\":20,\"theta\":0.5},"
         "\"output\":{\"every\":7}}";
-    assert_events_mode(yielded, "locate");
+    rows_assert_events_mode(yielded, "locate");
     rows_run_ep(yielded, 1, &r);
     for (size_t i = 0; i < r.n; i++) {
         const double *o = r.d + i * r.width;   /* t, x, v, Fs, Fd, phase, p */

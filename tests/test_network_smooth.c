@@ -19,22 +19,7 @@
 
 #define G 9.81
 
-static int parse_run(const char *json, char *pointer, size_t len);
 
-static void assert_events_mode(const char *json, const char *mode)
-{
-    dp_spec spec;
-    dp_errors errs;
-    dp_spec_init(&spec);
-    dp_errors_init(&errs);
-    assert_int_equal(dp_spec_parse(json, strlen(json), 0, &spec, &errs), DP_OK);
-    const char *m = dp_spec_events_mode(&spec);
-    assert_non_null(m);
-    if (strcmp(m, mode) != 0)
-        fprintf(stderr, "events_mode %s, expected %s\n", m, mode);
-    assert_string_equal(m, mode);
-    dp_spec_clear(&spec);
-}
 
 /* ---- a ball on a compliant floor: the closed form -------------------------------------------------- */
 
@@ -83,7 +68,7 @@ static void test_compliant_ball_is_second_order(void **state)
     (void)state;
     char json[1024];
     ball_doc(json, sizeof json, 1e-3, 1e4, "locate");
-    assert_events_mode(json, "locate");
+    rows_assert_events_mode(json, "locate");
     for (int stiff = 0; stiff < 2; stiff++) {
         double k = stiff ? 1e6 : 1e4, e[5], f[5];
         for (int i = 0; i < 5; i++) {
@@ -165,7 +150,7 @@ static double bilinear_error(double dt, const char *events)
              "\"solver\":{\"dt\":%.17g,\"t_end\":10,\"theta\":0.5,\"events\":\"%s\"},\"output\":{\"every\":%ld}}",
              dt, events, lround(0.5 / dt));
     if (strcmp(events, "locate") == 0)
-        assert_events_mode(json, "locate");
+        rows_assert_events_mode(json, "locate");
     rows r;
     assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
     double worst = 0;
@@ -230,11 +215,11 @@ static void test_one_mass_document_is_the_network(void **state)
     assert_true(fabs(b.ev[0].t - M_PI / 6) < 1e-5);
     free(a.d), free(b.d);
     char ptr[DP_POINTER_MAX] = "";
-    assert_int_not_equal(parse_run("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"rope\",\"k\":1,\"length\":2},"
+    assert_int_not_equal(rows_verdict("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"rope\",\"k\":1,\"length\":2},"
                                    "\"damper\":{\"law\":\"none\"}},\"initial\":{\"x\":1,\"v\":0},\"solver\":{\"dt\":0.01,"
                                    "\"t_end\":1,\"theta\":0.5,\"events\":\"none\"}}", ptr, sizeof ptr), DP_OK);
     assert_string_equal(ptr, "/solver/theta");
-    assert_int_not_equal(parse_run("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"graph\",\"points\":[[-1,-1],[0,0],"
+    assert_int_not_equal(rows_verdict("{\"model\":{\"mass\":1,\"spring\":{\"law\":\"graph\",\"points\":[[-1,-1],[0,0],"
                                    "[0,1],[1,2]]},\"damper\":{\"law\":\"none\"}},\"initial\":{\"x\":1,\"v\":0},\"solver\":"
                                    "{\"dt\":0.01,\"t_end\":1,\"theta\":0.5}}", ptr, sizeof ptr), DP_OK);
     assert_string_equal(ptr, "/solver/theta");
@@ -264,11 +249,7 @@ static double chain_error(double dt, const char *events, const rows *ref)
     chain_doc(json, sizeof json, dt, events);
     rows r;
     assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
-    assert_int_equal(r.n, ref->n);
-    double worst = 0;
-    for (size_t i = 0; i < r.n; i++)
-        for (size_t j = 1; j < 5; j++)
-            worst = fmax(worst, fabs(r.d[i * r.width + j] - ref->d[i * ref->width + j]));
+    double worst = rows_max_difference(&r, ref, 1, 5);
     free(r.d);
     return worst;
 }
@@ -278,7 +259,7 @@ static void test_graph_spring_chain_is_second_order(void **state)
     (void)state;
     char json[2048];
     chain_doc(json, sizeof json, 0.0025 / 64, "locate");
-    assert_events_mode(json, "locate");
+    rows_assert_events_mode(json, "locate");
     rows ref;
     assert_int_equal(rows_collect(json, 128, &ref), DP_DONE);
     size_t kinds[11] = { 0 };
@@ -316,7 +297,7 @@ static void stop_run(const char *spring, const char *extra, double v0, double dt
              "%s],\"forcing\":[{\"node\":0,\"kind\":\"harmonic\",\"amplitude\":1.5,\"omega\":1.3}]},\"initial\":"
              "{\"x\":[0],\"v\":[%g]},\"solver\":{\"dt\":%.17g,\"t_end\":6,\"theta\":0.5},\"output\":{\"every\":%ld}}",
              spring, extra, v0, dt, lround(0.25 / dt));
-    assert_events_mode(json, "locate");
+    rows_assert_events_mode(json, "locate");
     assert_int_equal(rows_collect(json, 128, r), DP_DONE);
 }
 
@@ -325,10 +306,7 @@ static void stop_run(const char *spring, const char *extra, double v0, double dt
  * x and v, every event's kind, time and impulse. */
 static void assert_stop_runs_agree(const rows *a, const rows *b)
 {
-    assert_int_equal(a->n, b->n);
-    for (size_t i = 0; i < a->n; i++)
-        for (size_t j = 1; j <= 2; j++)
-            assert_true(fabs(a->d[i * a->width + j] - b->d[i * b->width + j]) < 1e-6);
+    assert_true(rows_max_difference(a, b, 1, 3) < 1e-6);
     assert_int_equal(a->events, b->events);
     for (size_t i = 0; i < a->events; i++) {
         assert_int_equal(a->ev[i].kind, DP_EVENT_IMPACT);
@@ -379,11 +357,7 @@ static void test_bounded_graph_is_second_order(void **state)
     for (int k = 0; k < 4; k++) {
         rows r;
         stop_run(g, "", 2, 0.025 / (1 << k), &r);
-        assert_int_equal(r.n, ref.n);
-        e[k] = 0;
-        for (size_t i = 0; i < r.n; i++)
-            for (size_t j = 1; j <= 2; j++)
-                e[k] = fmax(e[k], fabs(r.d[i * r.width + j] - ref.d[i * ref.width + j]));
+        e[k] = rows_max_difference(&r, &ref, 1, 3);
         free(r.d);
     }
     for (int k = 0; k + 1 < 4; k++) {
@@ -408,7 +382,7 @@ static void test_stuck_block_on_compliant_contact_does_not_creep(void **state)
                        "\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-9.81},{\"node\":1,\"kind\":"
                        "\"constant\",\"value\":-9.81}]},\"initial\":{\"x\":[-0.001962,0.49019],\"v\":[0,0]},"
                        "\"solver\":{\"dt\":0.001,\"t_end\":20},\"output\":{\"every\":100}}";
-    assert_events_mode(json, "locate");
+    rows_assert_events_mode(json, "locate");
     rows r;
     assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
     assert_int_equal(r.events, 1);
@@ -472,22 +446,6 @@ static void test_rounding_past_a_stop_is_put_back(void **state)
 
 /* ---- the rules --------------------------------------------------------------------------------------- */
 
-static int parse_run(const char *json, char *pointer, size_t len)
-{
-    dp_spec spec;
-    dp_errors errs;
-    dp_spec_init(&spec);
-    dp_errors_init(&errs);
-    int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
-    if (s == DP_OK) {
-        dp_run *run = dp_run_alloc(&spec, 0, &errs, &s);
-        dp_run_free(run);
-    }
-    if (errs.n)
-        snprintf(pointer, len, "%s", errs.item[0].pointer);
-    dp_spec_clear(&spec);
-    return s;
-}
 
 /* theta = 1/2 is accepted for a compliant contact and a sloped graph spring; a graph with a vertical piece
  * (its force a multiplier) still needs theta = 1, named at its spring. */
@@ -502,10 +460,10 @@ static void test_theta_rule(void **state)
                  "\"k\":1},\"contact\":{\"distance\":-1,\"compliance\":10}}]},\"initial\":{\"x\":[0.5,0]},"
                  "\"solver\":{\"dt\":0.01,\"t_end\":1,\"theta\":0.5}}", springs[i]);
         ptr[0] = 0;
-        int s = parse_run(json, ptr, sizeof ptr);
+        int s = rows_verdict(json, ptr, sizeof ptr);
         if (i == 0) {
             assert_int_equal(s, DP_OK);
-            assert_events_mode(json, "locate");
+            rows_assert_events_mode(json, "locate");
         } else {
             assert_int_not_equal(s, DP_OK);
             assert_string_equal(ptr, "/model/elements/0/spring");

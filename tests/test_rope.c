@@ -47,22 +47,6 @@ static size_t impacts_of(const rows *o, size_t el, dp_event *ev, size_t cap)
     return n;
 }
 
-/* The events_mode a document's meta line says, or the first error's pointer when the rules refuse it. */
-static void mode_or_error(const char *json, char *out, size_t cap)
-{
-    dp_spec spec;
-    dp_errors errs;
-    dp_spec_init(&spec);
-    dp_errors_init(&errs);
-    int s = dp_spec_parse(json, strlen(json), 0, &spec, &errs);
-    if (s == DP_OK) {
-        const char *m = dp_spec_events_mode(&spec);
-        snprintf(out, cap, "%s", m ? m : "(none)");
-    } else {
-        snprintf(out, cap, "%s", errs.n ? errs.item[0].pointer : "(no error)");
-    }
-    dp_spec_clear(&spec);
-}
 
 /* ---- a mass thrown out on a rope ---------------------------------------------------------------------- */
 
@@ -255,8 +239,8 @@ static void pair_impact(double e, double theta)
     dp_event rope[4], ledge[4];
     assert_int_equal(impacts_of(&o, 1, ledge, 4), 1);
     assert_int_equal(impacts_of(&o, 0, rope, 4), 1);          /* the rope took its share */
-    char mode[64];
-    mode_or_error(doc, mode, sizeof mode);
+    char mode[DP_POINTER_MAX];
+    rows_verdict(doc, mode, sizeof mode);
     assert_string_equal(mode, "locate");
     assert_true(fabs(ledge[0].t - 0.5) <= 1e-12 && rope[0].t == ledge[0].t);
     assert_true(fabs(ledge[0].impulse - (m0 + m1) * (1 + e) * speed) <= 1e-12);
@@ -389,28 +373,28 @@ static void test_rules_and_modes(void **state)
 {
     (void)state;
     static char doc[1024];
-    char got[256];
+    char got[DP_POINTER_MAX];
     const char *fmt = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
                       "\"rope\",\"k\":1,\"length\":1}}%s]},\"initial\":{\"x\":[0],\"v\":[2]},\"solver\":{\"dt\":0.01,"
                       "\"t_end\":3,\"theta\":%s,\"events\":\"%s\"}}";
     const char *graph = ",{\"between\":[\"ground\",0],\"spring\":{\"law\":\"graph\",\"points\":[[-1,-1],[0,0],[0,0.5],[1,2]]}}";
     snprintf(doc, sizeof doc, fmt, "", "0.5", "locate");
-    mode_or_error(doc, got, sizeof got);
+    rows_verdict(doc, got, sizeof got);
     assert_string_equal(got, "locate");
     snprintf(doc, sizeof doc, fmt, "", "1", "locate");
-    mode_or_error(doc, got, sizeof got);
+    rows_verdict(doc, got, sizeof got);
     assert_string_equal(got, "locate");
     snprintf(doc, sizeof doc, fmt, "", "0.5", "none");
-    mode_or_error(doc, got, sizeof got);
+    rows_verdict(doc, got, sizeof got);
     assert_string_equal(got, "/model/elements/0/spring");
     snprintf(doc, sizeof doc, fmt, "", "1", "none");
-    mode_or_error(doc, got, sizeof got);
+    rows_verdict(doc, got, sizeof got);
     assert_string_equal(got, "none");
     snprintf(doc, sizeof doc, fmt, graph, "0.5", "locate");
-    mode_or_error(doc, got, sizeof got);
+    rows_verdict(doc, got, sizeof got);
     assert_string_equal(got, "/model/elements/1/spring");   /* the graph spring's rule, not the rope's */
     snprintf(doc, sizeof doc, fmt, graph, "1", "locate");
-    mode_or_error(doc, got, sizeof got);
+    rows_verdict(doc, got, sizeof got);
     assert_string_equal(got, "step");
     rows a, b;
     run_doc(doc, &a);
