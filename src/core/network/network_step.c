@@ -58,6 +58,13 @@ struct dp_network_step {
     unsigned char *fac_st;
     double *fac_slope;
     elem_state *es;
+    /* The elements whose state may differ from the pattern buffer last saved or restored (`synced`): a held
+     * solve of event location changes a few (the fixed ones' multipliers, a switch), and restoring those
+     * alone keeps a restore proportional to them instead of to the network. `all_dirty`: any may differ. */
+    const void *synced;
+    unsigned char *dirty;
+    size_t *dirty_list, ndirty;
+    int all_dirty;
     long *parent;         /* union-find over nodes and the ground (index n), with potentials */
     double *pot;
     long *kidx;           /* reduced unknown of each node's tree, -1 when the tree holds the ground */
@@ -88,6 +95,9 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     w->R = calloc(band, sizeof *w->R);
     w->R_cap = band;
     w->es = calloc(m, sizeof *w->es);
+    w->dirty = calloc(m, 1);
+    w->dirty_list = calloc(m, sizeof *w->dirty_list);
+    w->all_dirty = 1;
     w->parent = calloc(n + 1, sizeof *w->parent);
     w->pot = calloc(n + 1, sizeof *w->pot);
     w->kidx = calloc(n + 1, sizeof *w->kidx);
@@ -108,7 +118,7 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     w->gshift = calloc(m, sizeof *w->gshift);
     w->fac_st = calloc(m, 1);
     w->fac_slope = calloc(m, sizeof *w->fac_slope);
-    if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
+    if (!w->dirty || !w->dirty_list || !w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
         !w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
         !w->y || !w->vs || !w->d || !w->res || !w->res_err || !w->head || !w->next_edge || !w->deg || !w->queue) {
         dp_network_step_free(w);
@@ -121,11 +131,31 @@ void dp_network_step_free(dp_network_step *w)
 {
     if (w == NULL)
         return;
-    free(w->W), free(w->H), free(w->R), free(w->es), free(w->parent), free(w->pot), free(w->kidx);
+    free(w->W), free(w->H), free(w->R), free(w->es), free(w->dirty), free(w->dirty_list), free(w->parent), free(w->pot), free(w->kidx);
     free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->res_err), free(w->head);
     free(w->next_edge), free(w->deg), free(w->queue);
     free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->fac_st), free(w->fac_slope);
     free(w);
+}
+
+/* Element i's state is about to change: remembered for the next pattern save or restore. Past a quarter of
+ * the elements a whole copy is as cheap, and the list stops. */
+static void touch(dp_network_step *w, size_t i)
+{
+    if (w->all_dirty || w->dirty[i])
+        return;
+    if (w->ndirty >= w->ne / 4 + 1) {
+        w->all_dirty = 1;
+        return;
+    }
+    w->dirty[i] = 1;
+    w->dirty_list[w->ndirty++] = i;
+}
+
+/* Every element's state may change (a whole solve's start assignment). */
+static void touch_all(dp_network_step *w)
+{
+    w->all_dirty = 1;
 }
 
 void dp_network_step_set_poll(dp_network_step *w, dp_network_step_poll_fn poll, void *ctx)
@@ -270,6 +300,7 @@ static int set_free(dp_network_step *w, size_t i, double u, double h, const vert
     vertex nx;
     if (!sigma_piece(w, i, u, h, at, dir, &slope, &f, &nx))
         return 0;
+    touch(w, i);
     s->st = FREE;
     s->zref = at->z, s->lam0 = f, s->slope = slope;
     if (dir > 0)
@@ -571,6 +602,7 @@ static void multipliers(dp_network_step *w, double h)
         w->next_edge[2 * k] = w->head[a], w->head[a] = (long)(2 * k);
         w->next_edge[2 * k + 1] = w->head[b], w->head[b] = (long)(2 * k + 1);
         w->deg[a]++, w->deg[b]++;
+        touch(w, k);
         w->es[k].lam = NAN;
     }
     for (size_t i = 0; i < n; i++) {   /* residuals on the forest's nodes only: no other is read */
@@ -706,6 +738,7 @@ static int start_inside_piece(dp_network_step *w, size_t i, double z)
  * some z lies outside its graph's domain otherwise. */
 static int assign_start(dp_network_step *w, double h, const double *u, const double *v)
 {
+    touch_all(w);
     forest_reset(w);
     for (size_t i = 0; i < w->ne; i++) {
         const dp_network_step_element *e = &w->el[i];
@@ -961,6 +994,7 @@ static void follow(dp_network_step *w, size_t i, double h, const double *u, doub
         double lo, hi;
         sigma_interval(w, i, u[i], h, &at, &lo, &hi);
         if (lo < hi || !set_free(w, i, u[i], h, &at, dir)) {
+            touch(w, i);
             s->st = FIXED, s->fix = at;
             return;
         }
@@ -1071,6 +1105,7 @@ static int solve_pl(dp_network_step *w, double h, const double *rhs, const doubl
         for (size_t i = 0; i < n; i++)
             v[i] += t * w->d[i];
         elem_state *b = &w->es[which];
+        touch(w, (size_t)which);
         b->st = FIXED;
         b->fix = side > 0 ? b->hi : b->lo;
     }
@@ -1134,14 +1169,35 @@ size_t dp_network_step_pattern_bytes(const dp_network_step *w)
     return (w->ne ? w->ne : 1) * sizeof *w->es;
 }
 
-void dp_network_step_pattern_save(const dp_network_step *w, void *buf)
+/* After a save or restore the state and the buffer agree: nothing is dirty, `buf` is the one synced. */
+static void synced(dp_network_step *w, const void *buf)
 {
-    memcpy(buf, w->es, w->ne * sizeof *w->es);
+    for (size_t k = 0; k < w->ndirty; k++)
+        w->dirty[w->dirty_list[k]] = 0;
+    w->ndirty = 0, w->all_dirty = 0, w->synced = buf;
+}
+
+/* Both copy only the elements that may differ (all of them unless buf is the buffer last synced). */
+void dp_network_step_pattern_save(dp_network_step *w, void *buf)
+{
+    elem_state *to = buf;
+    if (buf != w->synced || w->all_dirty)
+        memcpy(to, w->es, w->ne * sizeof *w->es);
+    else
+        for (size_t k = 0; k < w->ndirty; k++)
+            to[w->dirty_list[k]] = w->es[w->dirty_list[k]];
+    synced(w, buf);
 }
 
 void dp_network_step_pattern_restore(dp_network_step *w, const void *buf)
 {
-    memcpy(w->es, buf, w->ne * sizeof *w->es);
+    const elem_state *from = buf;
+    if (buf != w->synced || w->all_dirty)
+        memcpy(w->es, from, w->ne * sizeof *w->es);
+    else
+        for (size_t k = 0; k < w->ndirty; k++)
+            w->es[w->dirty_list[k]] = from[w->dirty_list[k]];
+    synced(w, buf);
 }
 
 void dp_network_step_relaxation_start(dp_network_step *w, const double *v_start)
@@ -1169,6 +1225,7 @@ static void refresh_free(dp_network_step *w, double h, const double *u)
         int dir = isfinite(s->lo.z) ? 1 : -1;
         vertex at = isfinite(s->lo.z) ? s->lo : isfinite(s->hi.z) ? s->hi : (vertex){ s->zref, SRC_NONE, 0 }, nx;
         double slope, f;
+        touch(w, i);
         if (sigma_piece(w, i, u[i], h, &at, dir, &slope, &f, &nx))
             s->zref = at.z, s->lam0 = f, s->slope = slope;
     }
@@ -1252,6 +1309,7 @@ void dp_network_step_fix_end(dp_network_step *w, size_t i, const double *v)
     if (s->st == FIXED)
         return;
     double z = rel_velocity(&w->el[i], v);
+    touch(w, i);
     s->fix = fabs(z - s->lo.z) <= fabs(s->hi.z - z) ? s->lo : s->hi;
     s->st = FIXED;
 }
