@@ -50,6 +50,8 @@ struct dp_network_step {
     size_t n, p, ne;
     const dp_network_step_element *el;
     double *W, *H;        /* band storage n x (p+1) */
+    const double *Hm;     /* the step's matrix W + h sum_free slope b b^T: H, or W itself when no free
+                             element adds to it (Coulomb elements, flat pieces) */
     double *R;            /* reduced band storage, capacity n x (p+1) grown on demand */
     size_t R_cap, nr, pr;
     size_t R_max;         /* the most doubles R may grow to (0: no bound) */
@@ -92,6 +94,7 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     size_t band = n * (p + 1), m = ne ? ne : 1;
     w->W = calloc(band, sizeof *w->W);
     w->H = calloc(band, sizeof *w->H);
+    w->Hm = w->H;
     w->R = calloc(band, sizeof *w->R);
     w->R_cap = band;
     w->es = calloc(m, sizeof *w->es);
@@ -406,10 +409,23 @@ static void effective_rhs(dp_network_step *w, double h, const double *rhs)
     }
 }
 
-/* H = W + h sum_free slope b b^T. */
+/* Whether some free element's piece adds h slope b b^T to W. */
+static int slopes_add(const dp_network_step *w, double h)
+{
+    for (size_t i = 0; i < w->ne; i++)
+        if (w->es[i].st == FREE && h * w->es[i].slope != 0)
+            return 1;
+    return 0;
+}
+
+/* H = W + h sum_free slope b b^T; Hm is W itself when that sum is empty (no copy of the band). */
 static void assemble_H(dp_network_step *w, double h)
 {
     size_t p1 = w->p + 1;
+    w->Hm = w->W;
+    if (!slopes_add(w, h))
+        return;
+    w->Hm = w->H;
     memcpy(w->H, w->W, w->n * p1 * sizeof *w->H);
     for (size_t i = 0; i < w->ne; i++) {
         const elem_state *s = &w->es[i];
@@ -519,7 +535,7 @@ static int factor_reduced(dp_network_step *w)
     for (size_t i = 0; i < n; i++)
         for (size_t d = 1; d < p1 && i + d < n; d++) {
             long ki = w->kidx[i], kj = w->kidx[i + d];
-            if (w->H[i * p1 + d] != 0 && ki >= 0 && kj >= 0 && (size_t)labs(ki - kj) > pr)
+            if (w->Hm[i * p1 + d] != 0 && ki >= 0 && kj >= 0 && (size_t)labs(ki - kj) > pr)
                 pr = (size_t)labs(ki - kj);
         }
     w->pr = pr;
@@ -533,10 +549,10 @@ static int factor_reduced(dp_network_step *w)
         long ki = w->kidx[i];
         if (ki < 0)
             continue;
-        w->R[(size_t)ki * q] += w->H[i * p1];
+        w->R[(size_t)ki * q] += w->Hm[i * p1];
         for (size_t d = 1; d < p1 && i + d < n; d++) {
             long kj = w->kidx[i + d];
-            double h = w->H[i * p1 + d];
+            double h = w->Hm[i * p1 + d];
             if (kj < 0 || h == 0)
                 continue;
             if (kj == ki)
@@ -556,7 +572,7 @@ static int factor_reduced(dp_network_step *w)
 /* y = H x for the symmetric band H. */
 static void band_mul(const dp_network_step *w, const double *x, double *y)
 {
-    dp_band_symv(w->H, w->n, w->p, x, y);
+    dp_band_symv(w->Hm, w->n, w->p, x, y);
 }
 
 /* The minimizer of the current assignment into vs: v = T y + c with R y = T^T (rhs_eff - H c). */
@@ -608,7 +624,7 @@ static void multipliers(dp_network_step *w, double h)
     for (size_t i = 0; i < n; i++) {   /* residuals on the forest's nodes only: no other is read */
         if (w->deg[i] == 0)
             continue;
-        double Hv = band_row(w->H, n, w->p, w->vs, i);
+        double Hv = band_row(w->Hm, n, w->p, w->vs, i);
         w->res_err[i] = 8 * DBL_EPSILON * (fabs(w->rhs_eff[i]) + fabs(Hv));   /* eps times its two terms */
         w->res[i] = w->rhs_eff[i] - Hv;
         if (w->deg[i] == 1)
@@ -917,6 +933,8 @@ static void share_parallel(dp_network_step *w, dp_network_step_forces *f)
     for (size_t i = 0; i < w->ne; i++) {
         double sign_i, lo, hi;
         long j;
+        if (f[i].z != w->el[i].vb)   /* parallel_at_rest's first test, without the call: most elements */
+            continue;
         if (!parallel_at_rest(w, i, &f[i]) || (j = parallel_partner(w, i, &sign_i)) < 0)
             continue;
         /* the group: j and every free element at rest parallel to it (in j's orientation) */
