@@ -67,6 +67,9 @@ struct dp_network_step {
     unsigned char *dirty;
     size_t *dirty_list, ndirty;
     int all_dirty;
+    /* parent, pot, kidx, c and nr hold build_forest's result for the current fixed elements (no element
+     * fixed, freed or moved since): a held solve of event location then reuses them */
+    int forest_ok;
     long *parent;         /* union-find over nodes and the ground (index n), with potentials */
     double *pot;
     long *kidx;           /* reduced unknown of each node's tree, -1 when the tree holds the ground */
@@ -141,9 +144,9 @@ void dp_network_step_free(dp_network_step *w)
     free(w);
 }
 
-/* Element i's state is about to change: remembered for the next pattern save or restore. Past a quarter of
- * the elements a whole copy is as cheap, and the list stops. */
-static void touch(dp_network_step *w, size_t i)
+/* Element i's values (a multiplier, a piece's force) are about to change: remembered for the next pattern
+ * save or restore. Past a quarter of the elements a whole copy is as cheap, and the list stops. */
+static void touch_values(dp_network_step *w, size_t i)
 {
     if (w->all_dirty || w->dirty[i])
         return;
@@ -155,10 +158,18 @@ static void touch(dp_network_step *w, size_t i)
     w->dirty_list[w->ndirty++] = i;
 }
 
+/* Element i is about to be fixed, freed or moved to another piece: the forest of the fixed ones with it. */
+static void touch(dp_network_step *w, size_t i)
+{
+    touch_values(w, i);
+    w->forest_ok = 0;
+}
+
 /* Every element's state may change (a whole solve's start assignment). */
 static void touch_all(dp_network_step *w)
 {
     w->all_dirty = 1;
+    w->forest_ok = 0;
 }
 
 void dp_network_step_set_poll(dp_network_step *w, dp_network_step_poll_fn poll, void *ctx)
@@ -366,6 +377,7 @@ static void build_forest(dp_network_step *w)
         if (w->es[i].st == FIXED)
             join(w, &w->el[i], w->es[i].fix.z);
     index_forest(w);
+    w->forest_ok = 1;
 }
 
 /* The map node -> reduced unknown of the forest just joined. */
@@ -618,7 +630,7 @@ static void multipliers(dp_network_step *w, double h)
         w->next_edge[2 * k] = w->head[a], w->head[a] = (long)(2 * k);
         w->next_edge[2 * k + 1] = w->head[b], w->head[b] = (long)(2 * k + 1);
         w->deg[a]++, w->deg[b]++;
-        touch(w, k);
+        touch_values(w, k);
         w->es[k].lam = NAN;
     }
     for (size_t i = 0; i < n; i++) {   /* residuals on the forest's nodes only: no other is read */
@@ -1049,6 +1061,7 @@ static size_t bulk_update(dp_network_step *w, double h, const double *u)
 /* Whether the fixed elements still form a forest (bulk updates may close a cycle). */
 static int fixed_forest(dp_network_step *w)
 {
+    w->forest_ok = 0;   /* joined here, indexed by the caller */
     forest_reset(w);
     for (size_t i = 0; i < w->ne; i++)
         if (w->es[i].st == FIXED && !join(w, &w->el[i], w->es[i].fix.z))
@@ -1207,14 +1220,26 @@ void dp_network_step_pattern_save(dp_network_step *w, void *buf)
     synced(w, buf);
 }
 
+/* Whether restoring `to` over `from` fixes, frees or moves a fixed element (the forest changes). */
+static int moves_fixed(const elem_state *from, const elem_state *to)
+{
+    return from->st != to->st || (to->st == FIXED && memcmp(&from->fix.z, &to->fix.z, sizeof to->fix.z) != 0);
+}
+
 void dp_network_step_pattern_restore(dp_network_step *w, const void *buf)
 {
     const elem_state *from = buf;
-    if (buf != w->synced || w->all_dirty)
+    if (buf != w->synced || w->all_dirty) {
         memcpy(w->es, from, w->ne * sizeof *w->es);
-    else
-        for (size_t k = 0; k < w->ndirty; k++)
-            w->es[w->dirty_list[k]] = from[w->dirty_list[k]];
+        w->forest_ok = 0;
+    } else {
+        for (size_t k = 0; k < w->ndirty; k++) {
+            size_t i = w->dirty_list[k];
+            if (moves_fixed(&w->es[i], &from[i]))
+                w->forest_ok = 0;
+            w->es[i] = from[i];
+        }
+    }
     synced(w, buf);
 }
 
@@ -1243,7 +1268,7 @@ static void refresh_free(dp_network_step *w, double h, const double *u)
         int dir = isfinite(s->lo.z) ? 1 : -1;
         vertex at = isfinite(s->lo.z) ? s->lo : isfinite(s->hi.z) ? s->hi : (vertex){ s->zref, SRC_NONE, 0 }, nx;
         double slope, f;
-        touch(w, i);
+        touch_values(w, i);   /* the same piece: its vertices, hence the forest, stay */
         if (sigma_piece(w, i, u[i], h, &at, dir, &slope, &f, &nx))
             s->zref = at.z, s->lam0 = f, s->slope = slope;
     }
@@ -1263,7 +1288,8 @@ static int solve_held(dp_network_step *w, double h, const double *rhs, const dou
             w->g1[i] = th * dp_relaxation_slope(w->gamma[i], arg);
         }
         refresh_free(w, h, u);
-        build_forest(w);
+        if (!w->forest_ok)   /* held: the fixed elements are those of the last held solve, unless restored */
+            build_forest(w);
         int s = prepare(w, h, rhs);
         s = s ? s : solve_assignment(w);
         if (s != DP_OK || w->gamma == NULL)
