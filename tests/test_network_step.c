@@ -241,9 +241,10 @@ static void held_case_make(held_case *c, size_t n)
 
 /* Event location's held solves after pattern restores give, bit for bit, what a fresh workspace gives on the
  * restored pattern: a restore copies back only the elements changed since the save (network_step.c,
- * touch), and the fixed forest of the last held solve is reused until an element is fixed, freed or moved.
- * Between restores the held pattern is changed as event location changes it (fix_end, slip) and held
- * solves overwrite the multipliers. */
+ * touch), the fixed forest of the last held solve is reused until an element is fixed, freed or moved, and
+ * a held solve of the same length, right side and W is replayed from memory. Between restores the held
+ * pattern is changed as event location changes it (fix_end, slip), held solves overwrite the multipliers,
+ * W changes, and lengths come back. */
 static void test_held_solves_after_restore(void **state)
 {
     (void)state;
@@ -261,10 +262,15 @@ static void test_held_solves_after_restore(void **state)
         void *buf = malloc(dp_network_step_pattern_bytes(w)), *copy = malloc(dp_network_step_pattern_bytes(w));
         assert_true(buf && copy);
         dp_network_step_pattern_save(w, buf);
-        for (int op = 0; op < 12; op++) {
-            double r = urand(), hh = c.h * (0.05 + urand());
+        double lengths[3] = { c.h, c.h / 2, c.h / 3 };
+        for (int op = 0; op < 16; op++) {
+            double r = urand(), hh = urand() < 0.6 ? lengths[op % 3] : c.h * (0.05 + urand());
             size_t k = (size_t)(urand() * (double)c.ne);
-            if (r < 0.3) {
+            if (r < 0.05) {   /* W changes (the caller says so) */
+                c.W[2 * (k % c.n)] += 0.25 * urand();
+                memcpy(dp_network_step_W(w), c.W, 2 * c.n * sizeof *c.W);
+                dp_network_step_W_changed(w);
+            } else if (r < 0.3) {
                 if (dp_network_step_fixed(w, k))
                     dp_network_step_slip(w, k, hh, c.u, urand() < 0.5 ? -1 : 1);
                 else
@@ -279,16 +285,20 @@ static void test_held_solves_after_restore(void **state)
                 memcpy(copy, buf, dp_network_step_pattern_bytes(w));
                 dp_network_step_pattern_restore(fresh, copy);
                 int sb = dp_network_step_solve_frozen(fresh, hh, c.rhs, c.u, vb, fb, mb);
-                dp_network_step_free(fresh);
                 assert_int_equal(sa, sb);
-                if (sa != DP_OK)
+                if (sa != DP_OK) {
+                    dp_network_step_free(fresh);
                     continue;
+                }
                 assert_memory_equal(va, vb, c.n * sizeof *va);
                 assert_memory_equal(ma, mb, c.ne * sizeof *ma);
                 for (size_t e = 0; e < c.ne; e++) {
                     assert_memory_equal(&fa[e].lambda, &fb[e].lambda, sizeof fa[e].lambda);
                     assert_int_equal(fa[e].at_rest, fb[e].at_rest);
+                    assert_int_equal(dp_network_step_violation(w, e, hh, c.u),   /* the multipliers kept */
+                                     dp_network_step_violation(fresh, e, hh, c.u));
                 }
+                dp_network_step_free(fresh);
                 compared++;
             }
         }

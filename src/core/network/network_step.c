@@ -27,6 +27,7 @@
 #include "network/network_step.h"
 
 enum { FREE = 0, FIXED = 1 };
+enum { HELD_MEMO = 4 };   /* held solves remembered: a root search's two ends and the last evaluations */
 enum { SRC_NONE = 0, SRC_A = 1, SRC_S = 2 };
 
 /* A vertex of Sigma_e in z, remembered with the graph vertex it comes from so that the force interval is
@@ -36,6 +37,17 @@ typedef struct vertex {
     int src;
     double y;
 } vertex;
+
+/* A held solve remembered (dp_network_step_solve_frozen): its inputs beside the assignment, and what it gave. */
+typedef struct held_memo {
+    int used, status;
+    unsigned long long stamp;
+    double h;
+    double *rhs, *u, *W;             /* n, ne, n (p+1): W is rebuilt for every length (the caller's) */
+    double *v, *margin;              /* n, ne */
+    double *lam, *lam_err;           /* ne: the fixed elements' multipliers it left */
+    dp_network_step_forces *f;       /* ne */
+} held_memo;
 
 typedef struct elem_state {
     int st;
@@ -70,6 +82,14 @@ struct dp_network_step {
     /* parent, pot, kidx, c and nr hold build_forest's result for the current fixed elements (no element
      * fixed, freed or moved since): a held solve of event location then reuses them */
     int forest_ok;
+    /* Event location evaluates a held step at the same length more than once (a root search's ends, then
+     * the root again to take the state there): with the assignment the buffer `memo_for` holds and the same
+     * elements (memo_el), the same h, W, rhs and u give the same bits, so the answer is copied. */
+    held_memo memo[HELD_MEMO];
+    dp_network_step_element *memo_el;
+    const void *memo_for;
+    unsigned long long memo_clock;
+    int memo_el_ok, memo_el_ep;
     long *parent;         /* union-find over nodes and the ground (index n), with potentials */
     double *pot;
     long *kidx;           /* reduced unknown of each node's tree, -1 when the tree holds the ground */
@@ -133,10 +153,13 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     return w;
 }
 
+static void memo_free(dp_network_step *w);
+
 void dp_network_step_free(dp_network_step *w)
 {
     if (w == NULL)
         return;
+    memo_free(w);
     free(w->W), free(w->H), free(w->R), free(w->es), free(w->dirty), free(w->dirty_list), free(w->parent), free(w->pot), free(w->kidx);
     free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->res_err), free(w->head);
     free(w->next_edge), free(w->deg), free(w->queue);
@@ -172,8 +195,16 @@ static void touch_all(dp_network_step *w)
     w->forest_ok = 0;
 }
 
+/* Nothing remembered holds any more (the poll, the limit, the relaxation or the buffer changed). */
+static void memo_forget(dp_network_step *w)
+{
+    for (int k = 0; k < HELD_MEMO; k++)
+        w->memo[k].used = 0;
+}
+
 void dp_network_step_set_poll(dp_network_step *w, dp_network_step_poll_fn poll, void *ctx)
 {
+    memo_forget(w);
     w->poll = poll;
     w->poll_ctx = ctx;
 }
@@ -197,6 +228,7 @@ static int polled_stop(dp_network_step *w)
 
 void dp_network_step_limit(dp_network_step *w, size_t max_doubles)
 {
+    memo_forget(w);
     w->R_max = max_doubles;
 }
 
@@ -207,6 +239,7 @@ size_t dp_network_step_reduced_need(const dp_network_step *w)
 
 void dp_network_step_relaxation(dp_network_step *w, const dp_relaxation *const *gamma, double theta)
 {
+    memo_forget(w);
     w->gamma = gamma;
     w->theta = theta;
 }
@@ -1211,6 +1244,7 @@ static void synced(dp_network_step *w, const void *buf)
 /* Both copy only the elements that may differ (all of them unless buf is the buffer last synced). */
 void dp_network_step_pattern_save(dp_network_step *w, void *buf)
 {
+    memo_forget(w);   /* the buffer's assignment changes */
     elem_state *to = buf;
     if (buf != w->synced || w->all_dirty)
         memcpy(to, w->es, w->ne * sizeof *w->es);
@@ -1303,12 +1337,118 @@ static int solve_held(dp_network_step *w, double h, const double *rhs, const dou
     return DP_ESOLVE;
 }
 
+/* ---- held solves remembered ------------------------------------------------------------------------- */
+
+static void memo_free(dp_network_step *w)
+{
+    for (int k = 0; k < HELD_MEMO; k++) {
+        held_memo *m = &w->memo[k];
+        free(m->rhs), free(m->u), free(m->W), free(m->v), free(m->margin), free(m->lam), free(m->lam_err), free(m->f);
+    }
+    free(w->memo_el);
+}
+
+/* Whether a held solve now may be remembered or replayed: the assignment is exactly the buffer's (nothing
+ * changed since the restore), the elements are those remembered with, and nothing outside rhs, u and h
+ * enters it (no relaxation, whose linearization is the caller's start velocity; no elastoplastic spring,
+ * whose graph is redrawn in place). */
+static int memo_applies(dp_network_step *w)
+{
+    if (w->gamma != NULL || w->synced == NULL || w->ndirty != 0 || w->all_dirty || w->ne == 0)
+        return 0;
+    if (w->memo_for != w->synced)
+        memo_forget(w), w->memo_for = w->synced;
+    size_t bytes = w->ne * sizeof *w->el;
+    if (!w->memo_el_ok || memcmp(w->memo_el, w->el, bytes) != 0) {
+        memo_forget(w);
+        if (w->memo_el == NULL && (w->memo_el = malloc(bytes)) == NULL)
+            return 0;
+        memcpy(w->memo_el, w->el, bytes);
+        w->memo_el_ok = 1, w->memo_el_ep = 0;
+        for (size_t i = 0; i < w->ne; i++)
+            w->memo_el_ep |= w->el[i].S != NULL && w->el[i].ep_theta > 0;
+    }
+    return !w->memo_el_ep;
+}
+
+static held_memo *memo_find(dp_network_step *w, double h, const double *rhs, const double *u)
+{
+    for (int k = 0; k < HELD_MEMO; k++) {
+        held_memo *m = &w->memo[k];
+        if (m->used && memcmp(&m->h, &h, sizeof h) == 0 && memcmp(m->rhs, rhs, w->n * sizeof *rhs) == 0 &&
+            memcmp(m->u, u, w->ne * sizeof *u) == 0 && memcmp(m->W, w->W, w->n * (w->p + 1) * sizeof *w->W) == 0) {
+            m->stamp = ++w->memo_clock;
+            return m;
+        }
+    }
+    return NULL;
+}
+
+/* Remembers the solve just done (the least recently used entry goes); nothing when memory runs short. */
+static void memo_keep(dp_network_step *w, int status, double h, const double *rhs, const double *u,
+                      const double *v, const dp_network_step_forces *f, const double *margin)
+{
+    held_memo *m = &w->memo[0];
+    for (int k = 1; k < HELD_MEMO; k++)
+        if (!w->memo[k].used ? m->used : w->memo[k].stamp < m->stamp && m->used)
+            m = &w->memo[k];
+    size_t n = w->n, ne = w->ne;
+    if (m->rhs == NULL) {
+        m->rhs = malloc(n * sizeof *m->rhs), m->v = malloc(n * sizeof *m->v);
+        m->W = malloc(n * (w->p + 1) * sizeof *m->W);
+        m->u = malloc(ne * sizeof *m->u), m->margin = malloc(ne * sizeof *m->margin);
+        m->lam = malloc(ne * sizeof *m->lam), m->lam_err = malloc(ne * sizeof *m->lam_err);
+        m->f = malloc(ne * sizeof *m->f);
+    }
+    m->used = 0;
+    if (!m->rhs || !m->W || !m->v || !m->u || !m->margin || !m->lam || !m->lam_err || !m->f)
+        return;
+    m->status = status, m->h = h, m->stamp = ++w->memo_clock;
+    memcpy(m->rhs, rhs, n * sizeof *rhs);
+    memcpy(m->u, u, ne * sizeof *u);
+    memcpy(m->W, w->W, n * (w->p + 1) * sizeof *w->W);
+    if (status == DP_OK) {
+        memcpy(m->v, v, n * sizeof *v);
+        memcpy(m->f, f, ne * sizeof *f);
+        memcpy(m->margin, margin, ne * sizeof *margin);
+        for (size_t i = 0; i < ne; i++)
+            m->lam[i] = w->es[i].lam, m->lam_err[i] = w->es[i].lam_err;
+    }
+    m->used = 1;
+}
+
+/* The remembered solve's answer, and its multipliers back in the fixed elements, as the solve left them. */
+static int memo_replay(dp_network_step *w, const held_memo *m, double *v, dp_network_step_forces *f, double *margin)
+{
+    if (m->status != DP_OK)
+        return m->status;
+    if (polled_stop(w))
+        return DP_ECANCEL;
+    memcpy(v, m->v, w->n * sizeof *v);
+    memcpy(w->vs, m->v, w->n * sizeof *v);
+    memcpy(f, m->f, w->ne * sizeof *f);
+    memcpy(margin, m->margin, w->ne * sizeof *margin);
+    for (size_t i = 0; i < w->ne; i++)
+        if (w->es[i].st == FIXED) {
+            touch_values(w, i);
+            w->es[i].lam = m->lam[i], w->es[i].lam_err = m->lam_err[i];
+        }
+    return DP_OK;
+}
+
 int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs, const double *u, double *v, dp_network_step_forces *f,
                         double *margin)
 {
+    int keep = memo_applies(w);
+    const held_memo *m = keep ? memo_find(w, h, rhs, u) : NULL;
+    if (m != NULL)
+        return memo_replay(w, m, v, f, margin);
     int s = solve_held(w, h, rhs, u);
-    if (s != DP_OK)
+    if (s != DP_OK) {
+        if (keep)
+            memo_keep(w, s, h, rhs, u, NULL, NULL, NULL);
         return s;
+    }
     if (polled_stop(w))
         return DP_ECANCEL;
     memcpy(v, w->vs, w->n * sizeof *v);
@@ -1325,6 +1465,8 @@ int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs
         }
     }
     report(w, h, u, v, f);
+    if (keep)
+        memo_keep(w, DP_OK, h, rhs, u, v, f, margin);
     return DP_OK;
 }
 
