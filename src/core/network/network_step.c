@@ -1310,7 +1310,7 @@ static void refresh_free(dp_network_step *w, double h, const double *u)
 
 /* The held assignment's linear solve; with relaxation Newton-Josephy's iterations on gamma from the start
  * velocity (dp_network_step_relaxation_start), as dp_network_step_solve, the assignment held throughout. */
-static int solve_held(dp_network_step *w, double h, const double *rhs, const double *u)
+static int solve_held(dp_network_step *w, double h, const double *rhs, const double *u, int refresh)
 {
     double th = w->theta;
     for (int it = 0; it < 100; it++) {
@@ -1321,7 +1321,8 @@ static int solve_held(dp_network_step *w, double h, const double *rhs, const dou
             w->g0[i] = dp_relaxation_eval(w->gamma[i], arg);
             w->g1[i] = th * dp_relaxation_slope(w->gamma[i], arg);
         }
-        refresh_free(w, h, u);
+        if (refresh)   /* not when neither relaxation nor an elastoplastic spring is there to refresh */
+            refresh_free(w, h, u);
         if (!w->forest_ok)   /* held: the fixed elements are those of the last held solve, unless restored */
             build_forest(w);
         int s = prepare(w, h, rhs);
@@ -1443,7 +1444,7 @@ int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs
     const held_memo *m = keep ? memo_find(w, h, rhs, u) : NULL;
     if (m != NULL)
         return memo_replay(w, m, v, f, margin);
-    int s = solve_held(w, h, rhs, u);
+    int s = solve_held(w, h, rhs, u, !keep);
     if (s != DP_OK) {
         if (keep)
             memo_keep(w, s, h, rhs, u, NULL, NULL, NULL);
