@@ -1446,7 +1446,7 @@ int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs
         return memo_replay(w, m, v, f, margin);
     int s = solve_held(w, h, rhs, u, !keep);
     if (s != DP_OK) {
-        if (keep)
+        if (keep && s == DP_ESOLVE)   /* not a stop, nor a lack of memory: those are not the inputs' */
             memo_keep(w, s, h, rhs, u, NULL, NULL, NULL);
         return s;
     }
