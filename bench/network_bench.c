@@ -16,6 +16,8 @@
  *                          per Coulomb element, native doubles): max |dx|, |dv|, |dF|, the rounding verdict.
  *   mode=time              output off ("samples": false): ns per step and per block-step (best of reps), the
  *                          phase changes per step (the summary's `events`), peak RSS.
+ *   mode=doc               prints the case's document with every sample and event on, for `dashpot simulate`:
+ *                          a change meant to keep the answers is checked on it bit for bit.
  *   mode=single            the same one-mass problem (n is ignored: m kg phi0 vb xamp) as the one-mass
  *                          model and as a one-node network: ns per step of each, the ratio, and whether both
  *                          end in the same state (they must, to the bit).
@@ -128,11 +130,13 @@ static void add(text *t, const char *fmt, ...)
     }
 }
 
+/* samples: 0 none, 1 every step's sample, 2 those and the events. */
 static void solver_and_output(text *t, const params *p, int samples)
 {
     add(t, "\"solver\":{\"kind\":\"stick-slip\",\"dt\":%.17g,\"t_end\":%.17g,\"theta\":%.17g,\"events\":\"%s\"},"
-           "\"output\":{\"every\":1,\"samples\":%s,\"events\":false}}",
-        p->dt, (double)p->steps * p->dt, p->theta, p->locate == 1 ? "locate" : "none", samples ? "true" : "false");
+           "\"output\":{\"every\":1,\"samples\":%s,\"events\":%s}}",
+        p->dt, (double)p->steps * p->dt, p->theta, p->locate == 1 ? "locate" : "none", samples ? "true" : "false",
+        samples > 1 ? "true" : "false");
 }
 
 /* The chain as a network document (mode=single: one node, one element). */
@@ -438,6 +442,13 @@ int main(int argc, char **argv)
         return time_steps(&p);
     if (strcmp(p.mode, "single") == 0)
         return single(&p);
+    if (strcmp(p.mode, "doc") == 0) {
+        text t = { 0 };
+        chain_text(&t, &p, 2);
+        int bad = t.bad || fwrite(t.s, 1, t.len, stdout) != t.len;
+        free(t.s);
+        return bad;
+    }
     fprintf(stderr, "network_bench: unknown mode '%s'\n", p.mode);
     return 2;
 }

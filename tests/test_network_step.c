@@ -206,6 +206,111 @@ static void test_coulomb_step_against_brute_force(void **state)
     assert_true(stuck > 1000);   /* the sample exercises sticking, not only slip */
 }
 
+/* A chain of n blocks as event location steps it (tridiagonal W, Coulomb on every block against the ground
+ * and between neighbours) with a random right side; `w` is a fresh workspace with W filled in. */
+typedef struct held_case {
+    size_t n, ne;
+    double W[2 * 12], rhs[12], u[23], h;
+    dp_graph g[23];
+    dp_network_step_element el[23];
+} held_case;
+
+static dp_network_step *held_workspace(const held_case *c)
+{
+    dp_network_step *w = dp_network_step_alloc(c->n, 1, c->ne, c->el);
+    assert_non_null(w);
+    memcpy(dp_network_step_W(w), c->W, 2 * c->n * sizeof *c->W);
+    dp_network_step_W_changed(w);
+    return w;
+}
+
+static void held_case_make(held_case *c, size_t n)
+{
+    memset(c, 0, sizeof *c);
+    c->n = n, c->ne = 2 * n - 1, c->h = 0.01 + urand();
+    for (size_t i = 0; i < n; i++) {
+        c->W[2 * i] = 1.5 + urand(), c->W[2 * i + 1] = i + 1 < n ? -0.5 * urand() : 0;
+        c->rhs[i] = 2 * (urand() - 0.5);
+    }
+    for (size_t e = 0; e < c->ne; e++) {
+        coulomb_graph(&c->g[e], 0.05 + 0.5 * urand());
+        long a = e < n ? -1 : (long)(e - n), b = e < n ? (long)e : (long)(e - n + 1);
+        c->el[e] = (dp_network_step_element){ .a = a, .b = b, .A = &c->g[e], .vb = urand() < 0.5 ? 0 : urand() - 0.5 };
+    }
+}
+
+/* Event location's held solves after pattern restores give, bit for bit, what a fresh workspace gives on the
+ * restored pattern: a restore copies back only the elements changed since the save (network_step.c,
+ * touch), the fixed forest of the last held solve is reused until an element is fixed, freed or moved, and
+ * a held solve of the same length, right side and W is replayed from memory. Between restores the held
+ * pattern is changed as event location changes it (fix_end, slip), held solves overwrite the multipliers,
+ * W changes, and lengths come back. */
+static void test_held_solves_after_restore(void **state)
+{
+    (void)state;
+    size_t compared = 0, switched = 0;
+    for (int trial = 0; trial < 600; trial++) {
+        held_case c;
+        held_case_make(&c, 2 + (size_t)trial % 11);
+        dp_network_step *w = held_workspace(&c);
+        double guess[12], v[12], v1[12], va[12], vb[12], ma[23], mb[23];
+        dp_network_step_forces f[23], fa[23], fb[23];
+        for (size_t i = 0; i < c.n; i++)
+            guess[i] = urand() < 0.5 ? 0 : urand() - 0.5;
+        unsigned long long it = 0;
+        assert_int_equal(dp_network_step_solve(w, c.h, c.rhs, c.u, guess, v, f, &it), DP_OK);
+        void *buf = malloc(dp_network_step_pattern_bytes(w)), *copy = malloc(dp_network_step_pattern_bytes(w));
+        assert_true(buf && copy);
+        dp_network_step_pattern_save(w, buf);
+        double lengths[3] = { c.h, c.h / 2, c.h / 3 };
+        for (int op = 0; op < 16; op++) {
+            double r = urand(), hh = urand() < 0.6 ? lengths[op % 3] : c.h * (0.05 + urand());
+            size_t k = (size_t)(urand() * (double)c.ne);
+            if (r < 0.05) {   /* W changes (the caller says so) */
+                c.W[2 * (k % c.n)] += 0.25 * urand();
+                memcpy(dp_network_step_W(w), c.W, 2 * c.n * sizeof *c.W);
+                dp_network_step_W_changed(w);
+            } else if (r < 0.3) {
+                if (dp_network_step_fixed(w, k))
+                    dp_network_step_slip(w, k, hh, c.u, urand() < 0.5 ? -1 : 1);
+                else
+                    dp_network_step_fix_end(w, k, v);
+                switched++;
+            } else if (r < 0.55) {
+                (void)dp_network_step_solve_frozen(w, hh, c.rhs, c.u, v1, f, ma);
+            } else {
+                dp_network_step_pattern_restore(w, buf);
+                int sa = dp_network_step_solve_frozen(w, hh, c.rhs, c.u, va, fa, ma);
+                dp_network_step *fresh = held_workspace(&c);
+                memcpy(copy, buf, dp_network_step_pattern_bytes(w));
+                dp_network_step_pattern_restore(fresh, copy);
+                int sb = dp_network_step_solve_frozen(fresh, hh, c.rhs, c.u, vb, fb, mb);
+                assert_int_equal(sa, sb);
+                if (sa != DP_OK) {
+                    dp_network_step_free(fresh);
+                    continue;
+                }
+                assert_memory_equal(va, vb, c.n * sizeof *va);
+                assert_memory_equal(ma, mb, c.ne * sizeof *ma);
+                for (size_t e = 0; e < c.ne; e++) {
+                    assert_memory_equal(&fa[e].lambda, &fb[e].lambda, sizeof fa[e].lambda);
+                    assert_int_equal(fa[e].at_rest, fb[e].at_rest);
+                    assert_int_equal(dp_network_step_violation(w, e, hh, c.u),   /* the multipliers kept */
+                                     dp_network_step_violation(fresh, e, hh, c.u));
+                }
+                dp_network_step_free(fresh);
+                compared++;
+            }
+        }
+        free(buf), free(copy);
+        dp_network_step_free(w);
+        for (size_t e = 0; e < c.ne; e++)
+            dp_graph_clear(&c.g[e]);
+    }
+    assert_true(compared > 2000);   /* the sample compares held solves after many restores */
+    assert_true(switched > 1500);   /* and changes the held pattern between them */
+}
+
 /* The long factorization asked for polls (network_step.c's polled_cholesky, past 2^22 multiply-adds) gives
  * GSL's answer to rounding: a band W of 600 nodes and half-bandwidth 100 with one Coulomb element, solved
  * without a poll (GSL's factor) and with one that never stops (ours, polled during the factorization);
@@ -256,6 +361,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coulomb_step_against_brute_force),
         cmocka_unit_test(test_polled_factorization),
+        cmocka_unit_test(test_held_solves_after_restore),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -27,6 +27,7 @@
 #include "network/network_step.h"
 
 enum { FREE = 0, FIXED = 1 };
+enum { HELD_MEMO = 4 };   /* held solves remembered: a root search's two ends and the last evaluations */
 enum { SRC_NONE = 0, SRC_A = 1, SRC_S = 2 };
 
 /* A vertex of Sigma_e in z, remembered with the graph vertex it comes from so that the force interval is
@@ -36,6 +37,17 @@ typedef struct vertex {
     int src;
     double y;
 } vertex;
+
+/* A held solve remembered (dp_network_step_solve_frozen): its inputs beside the assignment, and what it gave. */
+typedef struct held_memo {
+    int used, status;
+    unsigned long long stamp;
+    double h;
+    double *rhs, *u, *W;             /* n, ne, n (p+1): W is rebuilt for every length (the caller's) */
+    double *v, *margin;              /* n, ne */
+    double *lam, *lam_err;           /* ne: the fixed elements' multipliers it left */
+    dp_network_step_forces *f;       /* ne */
+} held_memo;
 
 typedef struct elem_state {
     int st;
@@ -50,6 +62,8 @@ struct dp_network_step {
     size_t n, p, ne;
     const dp_network_step_element *el;
     double *W, *H;        /* band storage n x (p+1) */
+    const double *Hm;     /* the step's matrix W + h sum_free slope b b^T: H, or W itself when no free
+                             element adds to it (Coulomb elements, flat pieces) */
     double *R;            /* reduced band storage, capacity n x (p+1) grown on demand */
     size_t R_cap, nr, pr;
     size_t R_max;         /* the most doubles R may grow to (0: no bound) */
@@ -58,6 +72,24 @@ struct dp_network_step {
     unsigned char *fac_st;
     double *fac_slope;
     elem_state *es;
+    /* The elements whose state may differ from the pattern buffer last saved or restored (`synced`): a held
+     * solve of event location changes a few (the fixed ones' multipliers, a switch), and restoring those
+     * alone keeps a restore proportional to them instead of to the network. `all_dirty`: any may differ. */
+    const void *synced;
+    unsigned char *dirty;
+    size_t *dirty_list, ndirty;
+    int all_dirty;
+    /* parent, pot, kidx, c and nr hold build_forest's result for the current fixed elements (no element
+     * fixed, freed or moved since): a held solve of event location then reuses them */
+    int forest_ok;
+    /* Event location evaluates a held step at the same length more than once (a root search's ends, then
+     * the root again to take the state there): with the assignment the buffer `memo_for` holds and the same
+     * elements (memo_el), the same h, W, rhs and u give the same bits, so the answer is copied. */
+    held_memo memo[HELD_MEMO];
+    dp_network_step_element *memo_el;
+    const void *memo_for;
+    unsigned long long memo_clock;
+    int memo_el_ok, memo_el_ep;
     long *parent;         /* union-find over nodes and the ground (index n), with potentials */
     double *pot;
     long *kidx;           /* reduced unknown of each node's tree, -1 when the tree holds the ground */
@@ -85,9 +117,13 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     size_t band = n * (p + 1), m = ne ? ne : 1;
     w->W = calloc(band, sizeof *w->W);
     w->H = calloc(band, sizeof *w->H);
+    w->Hm = w->H;
     w->R = calloc(band, sizeof *w->R);
     w->R_cap = band;
     w->es = calloc(m, sizeof *w->es);
+    w->dirty = calloc(m, 1);
+    w->dirty_list = calloc(m, sizeof *w->dirty_list);
+    w->all_dirty = 1;
     w->parent = calloc(n + 1, sizeof *w->parent);
     w->pot = calloc(n + 1, sizeof *w->pot);
     w->kidx = calloc(n + 1, sizeof *w->kidx);
@@ -108,7 +144,7 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     w->gshift = calloc(m, sizeof *w->gshift);
     w->fac_st = calloc(m, 1);
     w->fac_slope = calloc(m, sizeof *w->fac_slope);
-    if (!w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
+    if (!w->dirty || !w->dirty_list || !w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
         !w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
         !w->y || !w->vs || !w->d || !w->res || !w->res_err || !w->head || !w->next_edge || !w->deg || !w->queue) {
         dp_network_step_free(w);
@@ -117,19 +153,58 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     return w;
 }
 
+static void memo_free(dp_network_step *w);
+
 void dp_network_step_free(dp_network_step *w)
 {
     if (w == NULL)
         return;
-    free(w->W), free(w->H), free(w->R), free(w->es), free(w->parent), free(w->pot), free(w->kidx);
+    memo_free(w);
+    free(w->W), free(w->H), free(w->R), free(w->es), free(w->dirty), free(w->dirty_list), free(w->parent), free(w->pot), free(w->kidx);
     free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->res_err), free(w->head);
     free(w->next_edge), free(w->deg), free(w->queue);
     free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->fac_st), free(w->fac_slope);
     free(w);
 }
 
+/* Element i's values (a multiplier, a piece's force) are about to change: remembered for the next pattern
+ * save or restore. Past a quarter of the elements a whole copy is as cheap, and the list stops. */
+static void touch_values(dp_network_step *w, size_t i)
+{
+    if (w->all_dirty || w->dirty[i])
+        return;
+    if (w->ndirty >= w->ne / 4 + 1) {
+        w->all_dirty = 1;
+        return;
+    }
+    w->dirty[i] = 1;
+    w->dirty_list[w->ndirty++] = i;
+}
+
+/* Element i is about to be fixed, freed or moved to another piece: the forest of the fixed ones with it. */
+static void touch(dp_network_step *w, size_t i)
+{
+    touch_values(w, i);
+    w->forest_ok = 0;
+}
+
+/* Every element's state may change (a whole solve's start assignment). */
+static void touch_all(dp_network_step *w)
+{
+    w->all_dirty = 1;
+    w->forest_ok = 0;
+}
+
+/* Nothing remembered holds any more (the poll, the limit, the relaxation or the buffer changed). */
+static void memo_forget(dp_network_step *w)
+{
+    for (int k = 0; k < HELD_MEMO; k++)
+        w->memo[k].used = 0;
+}
+
 void dp_network_step_set_poll(dp_network_step *w, dp_network_step_poll_fn poll, void *ctx)
 {
+    memo_forget(w);
     w->poll = poll;
     w->poll_ctx = ctx;
 }
@@ -153,6 +228,7 @@ static int polled_stop(dp_network_step *w)
 
 void dp_network_step_limit(dp_network_step *w, size_t max_doubles)
 {
+    memo_forget(w);
     w->R_max = max_doubles;
 }
 
@@ -163,6 +239,7 @@ size_t dp_network_step_reduced_need(const dp_network_step *w)
 
 void dp_network_step_relaxation(dp_network_step *w, const dp_relaxation *const *gamma, double theta)
 {
+    memo_forget(w);
     w->gamma = gamma;
     w->theta = theta;
 }
@@ -270,6 +347,7 @@ static int set_free(dp_network_step *w, size_t i, double u, double h, const vert
     vertex nx;
     if (!sigma_piece(w, i, u, h, at, dir, &slope, &f, &nx))
         return 0;
+    touch(w, i);
     s->st = FREE;
     s->zref = at->z, s->lam0 = f, s->slope = slope;
     if (dir > 0)
@@ -332,6 +410,7 @@ static void build_forest(dp_network_step *w)
         if (w->es[i].st == FIXED)
             join(w, &w->el[i], w->es[i].fix.z);
     index_forest(w);
+    w->forest_ok = 1;
 }
 
 /* The map node -> reduced unknown of the forest just joined. */
@@ -375,10 +454,23 @@ static void effective_rhs(dp_network_step *w, double h, const double *rhs)
     }
 }
 
-/* H = W + h sum_free slope b b^T. */
+/* Whether some free element's piece adds h slope b b^T to W. */
+static int slopes_add(const dp_network_step *w, double h)
+{
+    for (size_t i = 0; i < w->ne; i++)
+        if (w->es[i].st == FREE && h * w->es[i].slope != 0)
+            return 1;
+    return 0;
+}
+
+/* H = W + h sum_free slope b b^T; Hm is W itself when that sum is empty (no copy of the band). */
 static void assemble_H(dp_network_step *w, double h)
 {
     size_t p1 = w->p + 1;
+    w->Hm = w->W;
+    if (!slopes_add(w, h))
+        return;
+    w->Hm = w->H;
     memcpy(w->H, w->W, w->n * p1 * sizeof *w->H);
     for (size_t i = 0; i < w->ne; i++) {
         const elem_state *s = &w->es[i];
@@ -488,7 +580,7 @@ static int factor_reduced(dp_network_step *w)
     for (size_t i = 0; i < n; i++)
         for (size_t d = 1; d < p1 && i + d < n; d++) {
             long ki = w->kidx[i], kj = w->kidx[i + d];
-            if (w->H[i * p1 + d] != 0 && ki >= 0 && kj >= 0 && (size_t)labs(ki - kj) > pr)
+            if (w->Hm[i * p1 + d] != 0 && ki >= 0 && kj >= 0 && (size_t)labs(ki - kj) > pr)
                 pr = (size_t)labs(ki - kj);
         }
     w->pr = pr;
@@ -502,10 +594,10 @@ static int factor_reduced(dp_network_step *w)
         long ki = w->kidx[i];
         if (ki < 0)
             continue;
-        w->R[(size_t)ki * q] += w->H[i * p1];
+        w->R[(size_t)ki * q] += w->Hm[i * p1];
         for (size_t d = 1; d < p1 && i + d < n; d++) {
             long kj = w->kidx[i + d];
-            double h = w->H[i * p1 + d];
+            double h = w->Hm[i * p1 + d];
             if (kj < 0 || h == 0)
                 continue;
             if (kj == ki)
@@ -525,7 +617,7 @@ static int factor_reduced(dp_network_step *w)
 /* y = H x for the symmetric band H. */
 static void band_mul(const dp_network_step *w, const double *x, double *y)
 {
-    dp_band_symv(w->H, w->n, w->p, x, y);
+    dp_band_symv(w->Hm, w->n, w->p, x, y);
 }
 
 /* The minimizer of the current assignment into vs: v = T y + c with R y = T^T (rhs_eff - H c). */
@@ -571,12 +663,13 @@ static void multipliers(dp_network_step *w, double h)
         w->next_edge[2 * k] = w->head[a], w->head[a] = (long)(2 * k);
         w->next_edge[2 * k + 1] = w->head[b], w->head[b] = (long)(2 * k + 1);
         w->deg[a]++, w->deg[b]++;
+        touch_values(w, k);
         w->es[k].lam = NAN;
     }
     for (size_t i = 0; i < n; i++) {   /* residuals on the forest's nodes only: no other is read */
         if (w->deg[i] == 0)
             continue;
-        double Hv = band_row(w->H, n, w->p, w->vs, i);
+        double Hv = band_row(w->Hm, n, w->p, w->vs, i);
         w->res_err[i] = 8 * DBL_EPSILON * (fabs(w->rhs_eff[i]) + fabs(Hv));   /* eps times its two terms */
         w->res[i] = w->rhs_eff[i] - Hv;
         if (w->deg[i] == 1)
@@ -706,6 +799,7 @@ static int start_inside_piece(dp_network_step *w, size_t i, double z)
  * some z lies outside its graph's domain otherwise. */
 static int assign_start(dp_network_step *w, double h, const double *u, const double *v)
 {
+    touch_all(w);
     forest_reset(w);
     for (size_t i = 0; i < w->ne; i++) {
         const dp_network_step_element *e = &w->el[i];
@@ -884,6 +978,8 @@ static void share_parallel(dp_network_step *w, dp_network_step_forces *f)
     for (size_t i = 0; i < w->ne; i++) {
         double sign_i, lo, hi;
         long j;
+        if (f[i].z != w->el[i].vb)   /* parallel_at_rest's first test, without the call: most elements */
+            continue;
         if (!parallel_at_rest(w, i, &f[i]) || (j = parallel_partner(w, i, &sign_i)) < 0)
             continue;
         /* the group: j and every free element at rest parallel to it (in j's orientation) */
@@ -961,6 +1057,7 @@ static void follow(dp_network_step *w, size_t i, double h, const double *u, doub
         double lo, hi;
         sigma_interval(w, i, u[i], h, &at, &lo, &hi);
         if (lo < hi || !set_free(w, i, u[i], h, &at, dir)) {
+            touch(w, i);
             s->st = FIXED, s->fix = at;
             return;
         }
@@ -997,6 +1094,7 @@ static size_t bulk_update(dp_network_step *w, double h, const double *u)
 /* Whether the fixed elements still form a forest (bulk updates may close a cycle). */
 static int fixed_forest(dp_network_step *w)
 {
+    w->forest_ok = 0;   /* joined here, indexed by the caller */
     forest_reset(w);
     for (size_t i = 0; i < w->ne; i++)
         if (w->es[i].st == FIXED && !join(w, &w->el[i], w->es[i].fix.z))
@@ -1071,6 +1169,7 @@ static int solve_pl(dp_network_step *w, double h, const double *rhs, const doubl
         for (size_t i = 0; i < n; i++)
             v[i] += t * w->d[i];
         elem_state *b = &w->es[which];
+        touch(w, (size_t)which);
         b->st = FIXED;
         b->fix = side > 0 ? b->hi : b->lo;
     }
@@ -1134,14 +1233,48 @@ size_t dp_network_step_pattern_bytes(const dp_network_step *w)
     return (w->ne ? w->ne : 1) * sizeof *w->es;
 }
 
-void dp_network_step_pattern_save(const dp_network_step *w, void *buf)
+/* After a save or restore the state and the buffer agree: nothing is dirty, `buf` is the one synced. */
+static void synced(dp_network_step *w, const void *buf)
 {
-    memcpy(buf, w->es, w->ne * sizeof *w->es);
+    for (size_t k = 0; k < w->ndirty; k++)
+        w->dirty[w->dirty_list[k]] = 0;
+    w->ndirty = 0, w->all_dirty = 0, w->synced = buf;
+}
+
+/* Both copy only the elements that may differ (all of them unless buf is the buffer last synced). */
+void dp_network_step_pattern_save(dp_network_step *w, void *buf)
+{
+    memo_forget(w);   /* the buffer's assignment changes */
+    elem_state *to = buf;
+    if (buf != w->synced || w->all_dirty)
+        memcpy(to, w->es, w->ne * sizeof *w->es);
+    else
+        for (size_t k = 0; k < w->ndirty; k++)
+            to[w->dirty_list[k]] = w->es[w->dirty_list[k]];
+    synced(w, buf);
+}
+
+/* Whether restoring `to` over `from` fixes, frees or moves a fixed element (the forest changes). */
+static int moves_fixed(const elem_state *from, const elem_state *to)
+{
+    return from->st != to->st || (to->st == FIXED && memcmp(&from->fix.z, &to->fix.z, sizeof to->fix.z) != 0);
 }
 
 void dp_network_step_pattern_restore(dp_network_step *w, const void *buf)
 {
-    memcpy(w->es, buf, w->ne * sizeof *w->es);
+    const elem_state *from = buf;
+    if (buf != w->synced || w->all_dirty) {
+        memcpy(w->es, from, w->ne * sizeof *w->es);
+        w->forest_ok = 0;
+    } else {
+        for (size_t k = 0; k < w->ndirty; k++) {
+            size_t i = w->dirty_list[k];
+            if (moves_fixed(&w->es[i], &from[i]))
+                w->forest_ok = 0;
+            w->es[i] = from[i];
+        }
+    }
+    synced(w, buf);
 }
 
 void dp_network_step_relaxation_start(dp_network_step *w, const double *v_start)
@@ -1169,6 +1302,7 @@ static void refresh_free(dp_network_step *w, double h, const double *u)
         int dir = isfinite(s->lo.z) ? 1 : -1;
         vertex at = isfinite(s->lo.z) ? s->lo : isfinite(s->hi.z) ? s->hi : (vertex){ s->zref, SRC_NONE, 0 }, nx;
         double slope, f;
+        touch_values(w, i);   /* the same piece: its vertices, hence the forest, stay */
         if (sigma_piece(w, i, u[i], h, &at, dir, &slope, &f, &nx))
             s->zref = at.z, s->lam0 = f, s->slope = slope;
     }
@@ -1176,7 +1310,7 @@ static void refresh_free(dp_network_step *w, double h, const double *u)
 
 /* The held assignment's linear solve; with relaxation Newton-Josephy's iterations on gamma from the start
  * velocity (dp_network_step_relaxation_start), as dp_network_step_solve, the assignment held throughout. */
-static int solve_held(dp_network_step *w, double h, const double *rhs, const double *u)
+static int solve_held(dp_network_step *w, double h, const double *rhs, const double *u, int refresh)
 {
     double th = w->theta;
     for (int it = 0; it < 100; it++) {
@@ -1187,8 +1321,10 @@ static int solve_held(dp_network_step *w, double h, const double *rhs, const dou
             w->g0[i] = dp_relaxation_eval(w->gamma[i], arg);
             w->g1[i] = th * dp_relaxation_slope(w->gamma[i], arg);
         }
-        refresh_free(w, h, u);
-        build_forest(w);
+        if (refresh)   /* not when neither relaxation nor an elastoplastic spring is there to refresh */
+            refresh_free(w, h, u);
+        if (!w->forest_ok)   /* held: the fixed elements are those of the last held solve, unless restored */
+            build_forest(w);
         int s = prepare(w, h, rhs);
         s = s ? s : solve_assignment(w);
         if (s != DP_OK || w->gamma == NULL)
@@ -1202,12 +1338,118 @@ static int solve_held(dp_network_step *w, double h, const double *rhs, const dou
     return DP_ESOLVE;
 }
 
+/* ---- held solves remembered ------------------------------------------------------------------------- */
+
+static void memo_free(dp_network_step *w)
+{
+    for (int k = 0; k < HELD_MEMO; k++) {
+        held_memo *m = &w->memo[k];
+        free(m->rhs), free(m->u), free(m->W), free(m->v), free(m->margin), free(m->lam), free(m->lam_err), free(m->f);
+    }
+    free(w->memo_el);
+}
+
+/* Whether a held solve now may be remembered or replayed: the assignment is exactly the buffer's (nothing
+ * changed since the restore), the elements are those remembered with, and nothing outside rhs, u and h
+ * enters it (no relaxation, whose linearization is the caller's start velocity; no elastoplastic spring,
+ * whose graph is redrawn in place). */
+static int memo_applies(dp_network_step *w)
+{
+    if (w->gamma != NULL || w->synced == NULL || w->ndirty != 0 || w->all_dirty || w->ne == 0)
+        return 0;
+    if (w->memo_for != w->synced)
+        memo_forget(w), w->memo_for = w->synced;
+    size_t bytes = w->ne * sizeof *w->el;
+    if (!w->memo_el_ok || memcmp(w->memo_el, w->el, bytes) != 0) {
+        memo_forget(w);
+        if (w->memo_el == NULL && (w->memo_el = malloc(bytes)) == NULL)
+            return 0;
+        memcpy(w->memo_el, w->el, bytes);
+        w->memo_el_ok = 1, w->memo_el_ep = 0;
+        for (size_t i = 0; i < w->ne; i++)
+            w->memo_el_ep |= w->el[i].S != NULL && w->el[i].ep_theta > 0;
+    }
+    return !w->memo_el_ep;
+}
+
+static held_memo *memo_find(dp_network_step *w, double h, const double *rhs, const double *u)
+{
+    for (int k = 0; k < HELD_MEMO; k++) {
+        held_memo *m = &w->memo[k];
+        if (m->used && memcmp(&m->h, &h, sizeof h) == 0 && memcmp(m->rhs, rhs, w->n * sizeof *rhs) == 0 &&
+            memcmp(m->u, u, w->ne * sizeof *u) == 0 && memcmp(m->W, w->W, w->n * (w->p + 1) * sizeof *w->W) == 0) {
+            m->stamp = ++w->memo_clock;
+            return m;
+        }
+    }
+    return NULL;
+}
+
+/* Remembers the solve just done (the least recently used entry goes); nothing when memory runs short. */
+static void memo_keep(dp_network_step *w, int status, double h, const double *rhs, const double *u,
+                      const double *v, const dp_network_step_forces *f, const double *margin)
+{
+    held_memo *m = &w->memo[0];
+    for (int k = 1; k < HELD_MEMO; k++)
+        if (!w->memo[k].used ? m->used : w->memo[k].stamp < m->stamp && m->used)
+            m = &w->memo[k];
+    size_t n = w->n, ne = w->ne;
+    if (m->rhs == NULL) {
+        m->rhs = malloc(n * sizeof *m->rhs), m->v = malloc(n * sizeof *m->v);
+        m->W = malloc(n * (w->p + 1) * sizeof *m->W);
+        m->u = malloc(ne * sizeof *m->u), m->margin = malloc(ne * sizeof *m->margin);
+        m->lam = malloc(ne * sizeof *m->lam), m->lam_err = malloc(ne * sizeof *m->lam_err);
+        m->f = malloc(ne * sizeof *m->f);
+    }
+    m->used = 0;
+    if (!m->rhs || !m->W || !m->v || !m->u || !m->margin || !m->lam || !m->lam_err || !m->f)
+        return;
+    m->status = status, m->h = h, m->stamp = ++w->memo_clock;
+    memcpy(m->rhs, rhs, n * sizeof *rhs);
+    memcpy(m->u, u, ne * sizeof *u);
+    memcpy(m->W, w->W, n * (w->p + 1) * sizeof *w->W);
+    if (status == DP_OK) {
+        memcpy(m->v, v, n * sizeof *v);
+        memcpy(m->f, f, ne * sizeof *f);
+        memcpy(m->margin, margin, ne * sizeof *margin);
+        for (size_t i = 0; i < ne; i++)
+            m->lam[i] = w->es[i].lam, m->lam_err[i] = w->es[i].lam_err;
+    }
+    m->used = 1;
+}
+
+/* The remembered solve's answer, and its multipliers back in the fixed elements, as the solve left them. */
+static int memo_replay(dp_network_step *w, const held_memo *m, double *v, dp_network_step_forces *f, double *margin)
+{
+    if (m->status != DP_OK)
+        return m->status;
+    if (polled_stop(w))
+        return DP_ECANCEL;
+    memcpy(v, m->v, w->n * sizeof *v);
+    memcpy(w->vs, m->v, w->n * sizeof *v);
+    memcpy(f, m->f, w->ne * sizeof *f);
+    memcpy(margin, m->margin, w->ne * sizeof *margin);
+    for (size_t i = 0; i < w->ne; i++)
+        if (w->es[i].st == FIXED) {
+            touch_values(w, i);
+            w->es[i].lam = m->lam[i], w->es[i].lam_err = m->lam_err[i];
+        }
+    return DP_OK;
+}
+
 int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs, const double *u, double *v, dp_network_step_forces *f,
                         double *margin)
 {
-    int s = solve_held(w, h, rhs, u);
-    if (s != DP_OK)
+    int keep = memo_applies(w);
+    const held_memo *m = keep ? memo_find(w, h, rhs, u) : NULL;
+    if (m != NULL)
+        return memo_replay(w, m, v, f, margin);
+    int s = solve_held(w, h, rhs, u, !keep);
+    if (s != DP_OK) {
+        if (keep && s == DP_ESOLVE)   /* not a stop, nor a lack of memory: those are not the inputs' */
+            memo_keep(w, s, h, rhs, u, NULL, NULL, NULL);
         return s;
+    }
     if (polled_stop(w))
         return DP_ECANCEL;
     memcpy(v, w->vs, w->n * sizeof *v);
@@ -1224,6 +1466,8 @@ int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs
         }
     }
     report(w, h, u, v, f);
+    if (keep)
+        memo_keep(w, DP_OK, h, rhs, u, v, f, margin);
     return DP_OK;
 }
 
@@ -1252,6 +1496,7 @@ void dp_network_step_fix_end(dp_network_step *w, size_t i, const double *v)
     if (s->st == FIXED)
         return;
     double z = rel_velocity(&w->el[i], v);
+    touch(w, i);
     s->fix = fabs(z - s->lo.z) <= fabs(s->hi.z - z) ? s->lo : s->hi;
     s->st = FIXED;
 }

@@ -74,9 +74,11 @@ int dp_network_step_solve(dp_network_step *w, double h, const double *rhs, const
 
 /* ---- for event location (network_run.c): the assignment kept fixed over a shorter step ---- */
 
-/* Bytes of the current assignment (which elements are fixed where, which piece the others are on). */
+/* Bytes of the current assignment (which elements are fixed where, which piece the others are on). A buffer
+ * is written by pattern_save only: the workspace remembers the one it last saved to or restored from and
+ * what changed since, and copies only that to or from it again (a held solve changes a few elements). */
 size_t dp_network_step_pattern_bytes(const dp_network_step *w);
-void dp_network_step_pattern_save(const dp_network_step *w, void *buf);
+void dp_network_step_pattern_save(dp_network_step *w, void *buf);
 void dp_network_step_pattern_restore(dp_network_step *w, const void *buf);
 
 /* Solves a step of length h with the current assignment held (no vertex met, no release): v and f as

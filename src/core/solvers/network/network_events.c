@@ -136,7 +136,8 @@ static double earliest_event(dp_run *r, double t, double h, unsigned char *fails
     for (size_t k = 0; k < m; k++)
         fixed[k] = (unsigned char)dp_network_step_fixed(nr->ws, k);
     for (int pass = 0; pass < 2; pass++) {   /* free elements over h, fixed ones over h / theta */
-        if (!(held_margin(&c, pass ? h / th : h) == held_margin(&c, pass ? h / th : h)))
+        double g = held_margin(&c, pass ? h / th : h);   /* once: each evaluation is a held solve */
+        if (!(g == g))
             return h;
         for (size_t k = 0; k < m; k++) {
             if (fixed[k] != pass || !(nr->margin[k] < 0))
