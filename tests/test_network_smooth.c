@@ -115,6 +115,20 @@ static void test_compliant_touch_events(void **state)
         assert_true(i == 1 ? r.ev[i].v > 0 : r.ev[i].v < 0);
     }
     free(r.d);
+    /* theta = 1 (backward Euler: the instants first order) locates them too, at the floor */
+    char json[1024];
+    ball_doc(json, sizeof json, 1e-3, k, "locate");
+    char *th = strstr(json, "\"theta\":0.5");
+    assert_non_null(th);
+    memcpy(th, "\"theta\":1  ", 11);
+    assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
+    assert_int_equal(r.events, 2);
+    for (size_t i = 0; i < 2; i++) {
+        double steps = r.ev[i].t / 1e-3;
+        assert_true(fabs(r.ev[i].x) <= 1e-12 && fabs(steps - round(steps)) > 1e-3);
+        assert_true(fabs(r.ev[i].t - when[i]) < 2e-3);
+    }
+    free(r.d);
     ball_error(1e-3, k, "none", &r);
     assert_int_equal(r.events, 2);
     for (size_t i = 0; i < 2; i++) {

@@ -1286,13 +1286,14 @@ void dp_network_step_relaxation_start(dp_network_step *w, const double *v_start)
 }
 
 /* With relaxation, a held step's free elements keep their pieces (gamma is smooth: no vertex moves) but take
- * their slope and force again at the current linearization, as a whole solve's start does (set_free); an
- * elastoplastic spring's piece keeps its graph vertices, whose z = (y - u) / (h theta) move with h and u. */
+ * their slope and force again at the current linearization, as a whole solve's start does (set_free); a
+ * spring graph's piece (an elastoplastic spring, a graph of finite slope, a compliant contact) keeps its
+ * graph vertices, whose z = (y - u) / beta (beta = h, or h theta when theta-weighted) move with h and u. */
 static void refresh_free(dp_network_step *w, double h, const double *u)
 {
     for (size_t i = 0; i < w->ne; i++) {
         elem_state *s = &w->es[i];
-        int ep = w->el[i].S && w->el[i].ep_theta > 0;
+        int ep = w->el[i].S != NULL;   /* a spring graph: its vertices' z move with h and u */
         if (s->st != FREE || (!ep && (w->gamma == NULL || w->gamma[i] == NULL)))
             continue;
         if (ep && s->lo.src == SRC_S)
@@ -1321,7 +1322,7 @@ static int solve_held(dp_network_step *w, double h, const double *rhs, const dou
             w->g0[i] = dp_relaxation_eval(w->gamma[i], arg);
             w->g1[i] = th * dp_relaxation_slope(w->gamma[i], arg);
         }
-        if (refresh)   /* not when neither relaxation nor an elastoplastic spring is there to refresh */
+        if (refresh)   /* not when neither relaxation nor a spring graph is there to refresh */
             refresh_free(w, h, u);
         if (!w->forest_ok)   /* held: the fixed elements are those of the last held solve, unless restored */
             build_forest(w);
@@ -1351,8 +1352,8 @@ static void memo_free(dp_network_step *w)
 
 /* Whether a held solve now may be remembered or replayed: the assignment is exactly the buffer's (nothing
  * changed since the restore), the elements are those remembered with, and nothing outside rhs, u and h
- * enters it (no relaxation, whose linearization is the caller's start velocity; no elastoplastic spring,
- * whose graph is redrawn in place). */
+ * enters it (no relaxation, whose linearization is the caller's start velocity; no spring graph, whose
+ * vertices' z move with h and u, and an elastoplastic one's graph is redrawn in place). */
 static int memo_applies(dp_network_step *w)
 {
     if (w->gamma != NULL || w->synced == NULL || w->ndirty != 0 || w->all_dirty || w->ne == 0)
@@ -1367,7 +1368,7 @@ static int memo_applies(dp_network_step *w)
         memcpy(w->memo_el, w->el, bytes);
         w->memo_el_ok = 1, w->memo_el_ep = 0;
         for (size_t i = 0; i < w->ne; i++)
-            w->memo_el_ep |= w->el[i].S != NULL && w->el[i].ep_theta > 0;
+            w->memo_el_ep |= w->el[i].S != NULL;   /* a spring graph's vertices move with h and u (refresh_free) */
     }
     return !w->memo_el_ep;
 }
