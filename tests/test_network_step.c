@@ -2,8 +2,9 @@
  * on random small networks of Coulomb elements (between the ground and a mass, between two masses, on
  * belts), every stick/slip pattern is tried as a linear system and the one that satisfies its own sign and
  * interval conditions is the minimizer; the active-set solution must be it, to rounding, with the sticking
- * elements exactly at their belt speed. Then graph laws (a rope, a multi-vertex damper) against a fine
- * scan of the convex objective. */
+ * elements exactly at their belt speed. Then a rope beside a Coulomb damper on a belt from a start past the
+ * rope's length (the end of the step's domain is the rope's, not the damper's vertex), against bisection of
+ * the scalar inclusion and in the two documents where it was found. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,8 +17,11 @@
 #include <gsl/gsl_linalg.h>
 
 #include "dashpot/model.h"
+#include "dashpot/graph.h"
 #include "dashpot/status.h"
+#include "laws/law_table.h"
 #include "network/network_step.h"
+#include "rows.h"
 
 #define NMAX 4
 #define EMAX 5
@@ -355,6 +359,178 @@ static void test_polled_factorization(void **state)
     dp_graph_clear(&d.graph);
 }
 
+/* ---- a rope beside a Coulomb damper on a belt, started past the rope's length ------------------------- */
+
+/* One mass W on an element [ground, 0] with a rope S (k, L; Babováková 2012, Fig. 1) at elongation u and a
+ * Coulomb damper A (phi) on a belt vb, and optionally a stop in A (a vertical end at z - vb = ystop): the
+ * step's inclusion r - W v in h (A(v - vb) + S(u + h v)). */
+typedef struct rope_belt {
+    double W, r, h, u, k, L, phi, vb, ystop;
+    int stop;
+} rope_belt;
+
+/* The graphs: A is Coulomb, or Coulomb with its right ray turned up at ystop > 0 (a stop). */
+static void rope_belt_graphs(const rope_belt *c, dp_graph *A, dp_graph *S)
+{
+    assert_int_equal(dp_rope_graph(S, c->k, c->L), DP_OK);
+    if (!c->stop) {
+        coulomb_graph(A, c->phi);
+        return;
+    }
+    double y[3] = { 0, 0, c->ystop }, f[3] = { -c->phi, c->phi, c->phi };
+    double flat[2] = { 1, 0 }, up[2] = { 0, 1 };
+    assert_int_equal(dp_graph_init(A, 3, y, f, flat, up), DP_OK);
+}
+
+/* The force interval of W v - r + h Sigma(v), empty (both ends infinite) outside the domain. */
+static void rope_belt_residual(const rope_belt *c, const dp_graph *A, const dp_graph *S, double v, double *lo,
+                               double *hi)
+{
+    double al, ah, sl, sh;
+    dp_graph_force(A, v - c->vb, &al, &ah);
+    dp_graph_force(S, c->u + c->h * v, &sl, &sh);
+    *lo = c->W * v - c->r + c->h * (al + sl);
+    *hi = c->W * v - c->r + c->h * (ah + sh);
+}
+
+/* The minimizer by bisection on the monotone residual: v* where its interval holds 0. */
+static double rope_belt_reference(const rope_belt *c, const dp_graph *A, const dp_graph *S)
+{
+    double a = -1e3, b = 1e3, lo, hi;
+    for (int it = 0; it < 400 && a < b; it++) {
+        double m = 0.5 * (a + b);
+        if (m == a || m == b)
+            break;
+        rope_belt_residual(c, A, S, m, &lo, &hi);
+        if (hi < 0)
+            a = m;
+        else if (lo > 0)
+            b = m;
+        else
+            return m;
+    }
+    rope_belt_residual(c, A, S, b, &lo, &hi);
+    return lo <= 0 ? b : a;
+}
+
+/* Solves the step from the guess; checks v against the reference and the balance W v - r + h lambda = 0. */
+static void rope_belt_check(const rope_belt *c, double guess, double tol)
+{
+    dp_graph A, S;
+    rope_belt_graphs(c, &A, &S);
+    dp_network_step_element el[1] = { { .a = -1, .b = 0, .A = &A, .S = &S, .vb = c->vb } };
+    dp_network_step *w = dp_network_step_alloc(1, 0, 1, el);
+    assert_non_null(w);
+    dp_network_step_W(w)[0] = c->W;
+    dp_network_step_W_changed(w);
+    double u[1] = { c->u }, r[1] = { c->r }, g[1] = { guess }, v[1];
+    dp_network_step_forces f[1];
+    unsigned long long it = 0;
+    assert_int_equal(dp_network_step_solve(w, c->h, r, u, g, v, f, &it), DP_OK);
+    double ref = rope_belt_reference(c, &A, &S);
+    assert_true(fabs(v[0] - ref) <= tol * (1 + fabs(ref)));
+    assert_true(fabs(c->W * v[0] - c->r + c->h * f[0].lambda) <= 1e-12 * (1 + fabs(c->r) + c->h * fabs(f[0].lambda)));
+    assert_true(c->u + c->h * v[0] <= c->L * (1 + 1e-15));   /* the rope no longer than its length */
+    dp_network_step_free(w);
+    dp_graph_clear(&A), dp_graph_clear(&S);
+}
+
+/* The steps on which the primal method cycled, reduced to the element and its node: the rope exactly taut
+ * (u = L, so the domain ends at z = 0) and the guess beyond that end. The start was fixed at the damper's
+ * vertex z = vb > 0, outside the rope's domain: released down onto a piece reaching back to z = 0, walked up
+ * and fixed there again at once. Fixed at the rope's end, the rope stays taut and carries the load:
+ * v = 0, lambda = r/h, the damper slipping backwards (-phi). */
+static void test_taut_rope_on_belt_reproducers(void **state)
+{
+    (void)state;
+    const rope_belt cases[2] = {
+        { .W = 1, .r = 0.70177073049416816, .h = 0.003, .u = 2, .k = 1, .L = 2, .phi = 0.1, .vb = 0.1 },
+        { .W = 1, .r = 0.94824024679648944, .h = 0.01, .u = 0.8, .k = 1, .L = 0.8, .phi = 0.3, .vb = 0.1 },
+    };
+    const double guess[2] = { 0.6985587609826075, 0.94370666557327398 };
+    for (int k = 0; k < 2; k++) {
+        const rope_belt *c = &cases[k];
+        dp_graph A, S;
+        rope_belt_graphs(c, &A, &S);
+        dp_network_step_element el[1] = { { .a = -1, .b = 0, .A = &A, .S = &S, .vb = c->vb } };
+        dp_network_step *w = dp_network_step_alloc(1, 0, 1, el);
+        assert_non_null(w);
+        dp_network_step_W(w)[0] = c->W;
+        dp_network_step_W_changed(w);
+        double u[1] = { c->u }, r[1] = { c->r }, g[1] = { guess[k] }, v[1];
+        dp_network_step_forces f[1];
+        unsigned long long it = 0;
+        assert_int_equal(dp_network_step_solve(w, c->h, r, u, g, v, f, &it), DP_OK);
+        assert_true(v[0] == 0);
+        assert_true(fabs(f[0].lambda - c->r / c->h) <= 1e-12 * c->r / c->h);
+        assert_true(f[0].a == -c->phi);
+        assert_true(fabs(f[0].s - (c->r / c->h + c->phi)) <= 1e-12 * c->r / c->h);
+        assert_true(it <= 4);
+        dp_network_step_free(w);
+        dp_graph_clear(&A), dp_graph_clear(&S);
+        rope_belt_check(c, guess[k], 1e-12);
+    }
+}
+
+/* Random such steps against bisection: the rope slack or nearly taut, the guess often past its end, the
+ * load pulling or pushing, the belt either way; with a stop in the damper as well, either end the tighter. */
+static void test_rope_on_belt_against_bisection(void **state)
+{
+    (void)state;
+    size_t past = 0;
+    for (int trial = 0; trial < 4000; trial++) {
+        rope_belt c = { .W = 0.2 + 2 * urand(), .h = 0.001 + 0.05 * urand(), .k = 0.1 + 3 * urand(),
+                        .L = 0.2 + 2 * urand(), .phi = 0.02 + urand(), .vb = urand() - 0.5 };
+        c.r = 4 * (urand() - 0.5);
+        c.u = c.L - (urand() < 0.5 ? 0 : 0.05 * urand());
+        c.stop = urand() < 0.3;
+        c.ystop = 0.01 + 0.5 * urand();
+        double guess = 3 * (urand() - 0.5);
+        past += c.u + c.h * guess > c.L;
+        rope_belt_check(&c, guess, 1e-9);
+    }
+    assert_true(past > 1000);   /* the sample starts past the rope's end often */
+}
+
+/* The two documents the cycle was found in (events "none", theta = 1) run to their end. */
+static void test_rope_on_belt_documents(void **state)
+{
+    (void)state;
+    static const char *docs[2] = {
+        "{\"model\": {\"masses\": [1, 1, 0.5], \"elements\": ["
+        "{\"between\": [\"ground\", 0], \"damper\": {\"law\": \"linear\", \"c\": 0.05}},"
+        "{\"between\": [\"ground\", 1], \"spring\": {\"law\": \"rope\", \"k\": 1, \"length\": 2},"
+        " \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.1, \"belt_velocity\": 0.1}},"
+        "{\"between\": [\"ground\", 2],"
+        " \"spring\": {\"law\": \"graph\", \"points\": [[1.069, -1.772], [1.331, 0.966]]},"
+        " \"damper\": {\"law\": \"linear\", \"c\": 0.3}}],"
+        " \"forcing\": [{\"node\": 1, \"kind\": \"harmonic\", \"amplitude\": 2, \"omega\": 0.7}]},"
+        " \"initial\": {\"x\": [-0.054, 0.156, 0.201], \"v\": [-0.728, 0.502, 0.151]},"
+        " \"solver\": {\"dt\": 0.003, \"t_end\": 5, \"theta\": 1, \"events\": \"none\"}, \"output\": {\"every\": 50}}",
+        "{\"model\": {\"masses\": [1, 2, 1], \"elements\": ["
+        "{\"between\": [\"ground\", 0], \"spring\": {\"law\": \"rope\", \"k\": 1, \"length\": 0.8},"
+        " \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.3, \"belt_velocity\": 0.1}},"
+        "{\"between\": [\"ground\", 1], \"spring\": {\"law\": \"graph\", \"points\": [[-1.05, -0.505], [-0.923, 1.619],"
+        " [0.589, 1.829], [1.447, 3.784]]}, \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.1, \"belt_velocity\": 0}},"
+        "{\"between\": [\"ground\", 2], \"spring\": {\"law\": \"graph\", \"points\": [[0.21, 0.406], [0.599, 2.139],"
+        " [1.251, 3.681]]}, \"damper\": {\"law\": \"coulomb\", \"phi0\": 0.8, \"belt_velocity\": -0.2}},"
+        "{\"between\": [0, 1], \"contact\": {\"distance\": -1.433, \"restitution\": 1}},"
+        "{\"between\": [1, 0], \"contact\": {\"distance\": -0.606, \"compliance\": 100000.0}},"
+        "{\"between\": [1, \"ground\"], \"contact\": {\"distance\": -0.367, \"compliance\": 10}}],"
+        " \"forcing\": [{\"node\": 0, \"kind\": \"harmonic\", \"amplitude\": 5, \"omega\": 2}]},"
+        " \"initial\": {\"x\": [-0.203, -0.035, 0.2], \"v\": [-0.043, 0.152, 0.769]},"
+        " \"solver\": {\"dt\": 0.01, \"t_end\": 5, \"theta\": 1, \"events\": \"none\"}, \"output\": {\"every\": 50}}",
+    };
+    for (int k = 0; k < 2; k++) {
+        rows o;
+        assert_int_equal(rows_collect(docs[k], 64, &o), DP_DONE);
+        assert_true(o.n > 10 && fabs(o.d[(o.n - 1) * o.width] - 5) < 1e-9);   /* it reached t_end */
+        for (size_t i = 0; i < o.n * o.width; i++)
+            assert_false(isnan(o.d[i]));
+        free(o.d), free(o.quakes);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -362,6 +538,9 @@ int main(void)
         cmocka_unit_test(test_coulomb_step_against_brute_force),
         cmocka_unit_test(test_polled_factorization),
         cmocka_unit_test(test_held_solves_after_restore),
+        cmocka_unit_test(test_taut_rope_on_belt_reproducers),
+        cmocka_unit_test(test_rope_on_belt_against_bisection),
+        cmocka_unit_test(test_rope_on_belt_documents),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

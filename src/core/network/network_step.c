@@ -711,20 +711,31 @@ static int inside(const elem_state *s, double lo, double hi)
     return lam >= lo - tol && lam <= hi + tol;
 }
 
-/* The end of A's domain nearest z, for a z outside it (a vertical end ray of the damper graph); 0 when the
- * domain is not A's to end (a spring graph's). */
-static int domain_end(const dp_network_step_element *e, double z, vertex *at)
+/* The end of Sigma_e's domain on side dir (+1: z lies above it, -1: below), for a z outside it: the nearer
+ * of A's vertical end ray at y + v_b and S's at (y - u)/beta (a rope's length, Babováková 2012), since the
+ * domain is where both graphs are defined. Where both end it at the same z, A's vertex (read exactly in A).
+ * 0 when neither ends it on that side or the other graph is not defined at that end (an empty domain). */
+static int domain_end(const dp_network_step *w, size_t i, double u, double h, int dir, vertex *at)
 {
-    const dp_graph *A = e->A;
-    if (A == NULL)
+    const dp_network_step_element *e = &w->el[i];
+    const dp_graph *A = e->A, *S = e->S;
+    int found = 0;
+    if (A && (dir > 0 ? A->right[0] : A->left[0]) == 0) {
+        size_t k = dir > 0 ? A->n - 1 : 0;
+        *at = (vertex){ A->y[k] + e->vb, SRC_A, A->y[k] };
+        found = 1;
+    }
+    if (S && (dir > 0 ? S->right[0] : S->left[0]) == 0) {
+        size_t k = dir > 0 ? S->n - 1 : 0;
+        double z = (S->y[k] - u) / s_beta(e, h);
+        if (!found || (dir > 0 ? z < at->z : z > at->z))
+            *at = (vertex){ z, SRC_S, S->y[k] }, found = 1;
+    }
+    double lo, hi;
+    if (!found)
         return 0;
-    double y = z - e->vb, lo, hi;
-    size_t k = y < A->y[0] ? 0 : A->n - 1;
-    dp_graph_force(A, A->y[k], &lo, &hi);
-    if (!(lo < hi))
-        return 0;
-    *at = (vertex){ A->y[k] + e->vb, SRC_A, A->y[k] };
-    return 1;
+    sigma_interval(w, i, u, h, at, &lo, &hi);
+    return !(lo == hi && !isfinite(lo));
 }
 
 /* First index k with y[k] >= x (n if none), as the graph's own search (laws/graph.c). */
@@ -813,9 +824,9 @@ static int assign_start(dp_network_step *w, double h, const double *u, const dou
             at.src = SRC_S, at.y = u[i] + s_beta(e, h) * z;
         sigma_interval(w, i, u[i], h, &at, &lo, &hi);
         if (lo == hi && !isfinite(lo)) {
-            /* outside the domain (a contact approaching at the start): fixed at the domain's end, where the
+            /* outside the domain (a contact approaching, a rope pulled past its length): fixed at its end, where the
              * first solve puts it; v is then infeasible until the walk reaches a minimizer */
-            if (!domain_end(e, z, &at) || !join(w, e, at.z))
+            if (!domain_end(w, i, u[i], h, lo > 0 ? 1 : -1, &at) || !join(w, e, at.z))
                 return 0;
             w->es[i].st = FIXED, w->es[i].fix = at;
             continue;
