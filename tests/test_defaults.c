@@ -164,7 +164,10 @@ static void test_default_theta(void **state)
           " 'initial': {'x': [0], 'v': [0]}, 'solver': {'events': 'none'}}", 1 },
         { "{'model': {'masses': [1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'rope', 'k': 1,"
           " 'length': 1}}, {'between': ['ground', 0], 'spring': {'law': 'graph', 'points': [[-1, -1], [0, 0],"
-          " [0, 0.5], [1, 1]]}}]}, 'initial': {'x': [0], 'v': [0]}}", 1 },
+          " [0, 0.5], [1, 1]]}}]}, 'initial': {'x': [0], 'v': [0]}}", 0.5 },
+        { "{'model': {'masses': [1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'rope', 'k': 1,"
+          " 'length': 1}}, {'between': ['ground', 0], 'spring': {'law': 'graph', 'points': [[-1, -1], [0, 0],"
+          " [0, 0.5], [1, 1]]}}]}, 'initial': {'x': [0], 'v': [0]}, 'solver': {'events': 'none'}}", 1 },
         { "{'model': {'masses': [1], 'elements': [{'between': ['ground', 0], 'spring': {'law': 'rope', 'k': 1,"
           " 'length': 1}}, {'between': ['ground', 0], 'spring': {'law': 'graph', 'points': [[-1, -1], [1, 1]]}}]},"
           " 'initial': {'x': [0], 'v': [0]}}", 0.5 },

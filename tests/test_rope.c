@@ -390,21 +390,20 @@ static void test_rules_and_modes(void **state)
     snprintf(doc, sizeof doc, fmt, "", "1", "none");
     rows_verdict(doc, got, sizeof got);
     assert_string_equal(got, "none");
+    /* beside a graph spring with a jump (located too, network_smooth.c's split): any theta with events
+     * located, theta = 1 without, the graph's rule named */
     snprintf(doc, sizeof doc, fmt, graph, "0.5", "locate");
     rows_verdict(doc, got, sizeof got);
-    assert_string_equal(got, "/model/elements/1/spring");   /* the graph spring's rule, not the rope's */
-    snprintf(doc, sizeof doc, fmt, graph, "1", "locate");
+    assert_string_equal(got, "locate");
+    snprintf(doc, sizeof doc, fmt, graph, "0.5", "none");
     rows_verdict(doc, got, sizeof got);
-    assert_string_equal(got, "step");
-    rows a, b;
-    run_doc(doc, &a);
+    assert_string_equal(got, "/model/elements/0/spring");
     snprintf(doc, sizeof doc, fmt, graph, "1", "none");
-    run_doc(doc, &b);
-    assert_int_equal(a.n, b.n);
-    assert_int_equal(a.width, b.width);
-    assert_memory_equal(a.d, b.d, a.n * a.width * sizeof *a.d);
+    rows_verdict(doc, got, sizeof got);
+    assert_string_equal(got, "none");
+    rows a;
+    run_doc(doc, &a);
     free(a.d);
-    free(b.d);
 }
 
 int main(void)

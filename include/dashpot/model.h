@@ -199,16 +199,19 @@ int dp_spring_plastic(const dp_spring *s);
 /* Whether the spring is a user graph of finite slope (no vertical piece, no vertical end ray): its force is
  * a Lipschitz function of the elongation, which a network theta-steps (a rope is not: its end ray is). */
 int dp_spring_sloped_graph(const dp_spring *s);
-/* Whether the spring is a user graph whose domain ends in a stop (a vertical end ray: u <= hi, or u >= lo)
- * and whose force is sloped inside it (no other vertical piece): *lo, *hi its ends (-/+INFINITY where its
- * ray is not vertical). Such a spring is, on a network with events located, its sloped part and one or two
- * rigid constraints, as a rope is (network_contact.c). dp_spring_bounded_part builds the sloped part into
- * part (empty on entry): the vertices from lo to hi, a vertical end's ray replaced by its last piece's
- * continuation. DP_OK, DP_EINVAL (not such a spring) or DP_ENOMEM. */
+/* Whether the spring is a user graph with a vertical piece that a network splits (network_run.c): its stops
+ * (a vertical end ray: u <= hi, or u >= lo; *lo, *hi -/+INFINITY where its ray is not vertical), its jumps
+ * inside them (a vertical piece of height J at y: a preload), and its sloped part, the graph with those
+ * vertical pieces taken out (continuous, every piece of finite slope). On a network with events located the
+ * sloped part is theta-stepped, each stop a rigid constraint as a rope's length is (network_contact.c), each
+ * jump a step graph of its own. dp_spring_graph_jumps writes the jumps' y and J (arrays of the graph's
+ * vertex count, or NULL to count them) and returns how many; dp_spring_bounded_part builds the sloped part
+ * into part (empty on entry): DP_OK, DP_EINVAL (not such a spring) or DP_ENOMEM. */
 int dp_spring_bounded_graph(const dp_spring *s, double *lo, double *hi);
+size_t dp_spring_graph_jumps(const dp_spring *s, double *y, double *J);
 int dp_spring_bounded_part(const dp_spring *s, dp_graph *part);
-/* A rope or a bounded graph: a spring whose domain ends in a stop, located on a network as one or two rigid
- * constraints beside its sloped part. */
+/* A rope or a split graph (dp_spring_bounded_graph): a spring with a vertical piece that a network with
+ * events located steps as its parts. */
 int dp_spring_has_stop(const dp_spring *s);
 /* The damper's viscous c (0 without a viscous part), its kinetic threshold (0 without one), its static
  * threshold (the kinetic one when it has none); whether it is linear, whether its stick-slip step has the

@@ -11,6 +11,7 @@
  */
 #include <assert.h>
 #include <math.h>
+#include <stdlib.h>
 #include <stddef.h>
 
 #include "dashpot/model.h"
@@ -202,23 +203,25 @@ int dp_spring_sloped_graph(const dp_spring *s)
     return s->law == DP_SPRING_GRAPH && s->graph.n > 0 && isfinite(dp_graph_lipschitz(&s->graph));
 }
 
-/* The vertices of a bounded graph's sloped part: [*i0, *i1], the last of the leading vertices at a vertical
- * left end and the first of the trailing ones at a vertical right end; 0 if the graph is not one. */
+/* The vertices of a split graph's sloped part: [*i0, *i1], the last of the leading vertices at a vertical
+ * left end and the first of the trailing ones at a vertical right end; 0 if the graph has no vertical
+ * piece, or nothing but (its domain a point). */
 static int bounded_span(const dp_graph *g, size_t *i0, size_t *i1)
 {
     if (g->n < 2)
         return 0;
-    int lo = g->left[0] == 0, hi = g->right[0] == 0;
+    int lo = g->left[0] == 0, hi = g->right[0] == 0, inside = 0;
     size_t a = 0, b = g->n - 1;
     while (lo && a + 1 < g->n && g->y[a + 1] == g->y[0])
         a++;
     while (hi && b > 0 && g->y[b - 1] == g->y[g->n - 1])
         b--;
-    if (!(lo || hi) || b <= a)
+    if (b <= a)
         return 0;
     for (size_t j = a; j < b; j++)
-        if (!(g->y[j + 1] > g->y[j]))
-            return 0;      /* a vertical piece inside */
+        inside |= !(g->y[j + 1] > g->y[j]);
+    if (!(lo || hi || inside))
+        return 0;
     *i0 = a, *i1 = b;
     return 1;
 }
@@ -233,18 +236,51 @@ int dp_spring_bounded_graph(const dp_spring *s, double *lo, double *hi)
     return 1;
 }
 
+size_t dp_spring_graph_jumps(const dp_spring *s, double *y, double *J)
+{
+    const dp_graph *g = &s->graph;
+    size_t a, b, n = 0;
+    if (s->law != DP_SPRING_GRAPH || !bounded_span(g, &a, &b))
+        return 0;
+    for (size_t j = a; j < b; j++)
+        if (g->y[j + 1] == g->y[j] && g->f[j + 1] > g->f[j]) {
+            if (y)
+                y[n] = g->y[j], J[n] = g->f[j + 1] - g->f[j];
+            n++;
+        }
+    return n;
+}
+
 int dp_spring_bounded_part(const dp_spring *s, dp_graph *part)
 {
     const dp_graph *g = &s->graph;
     size_t a, b;
     if (s->law != DP_SPRING_GRAPH || !bounded_span(g, &a, &b))
         return DP_EINVAL;
+    double *y = malloc((b - a + 1) * sizeof *y), *f = malloc((b - a + 1) * sizeof *f), drop = 0;
+    if (y == NULL || f == NULL) {
+        free(y), free(f);
+        return DP_ENOMEM;
+    }
+    size_t m = 0;
+    for (size_t j = a; j <= b; j++) {
+        if (m > 0 && g->y[j] == y[m - 1]) {   /* a jump inside: its height leaves the sloped part */
+            drop += g->f[j] - g->f[j - 1];
+            continue;
+        }
+        y[m] = g->y[j], f[m] = g->f[j] - drop, m++;
+    }
     double left[2] = { g->left[0], g->left[1] }, right[2] = { g->right[0], g->right[1] };
-    if (left[0] == 0)
-        left[0] = g->y[a + 1] - g->y[a], left[1] = g->f[a + 1] - g->f[a];
-    if (right[0] == 0)
-        right[0] = g->y[b] - g->y[b - 1], right[1] = g->f[b] - g->f[b - 1];
-    return dp_graph_init(part, b - a + 1, g->y + a, g->f + a, left, right);
+    int st = DP_EINVAL;
+    if (m >= 2) {
+        if (left[0] == 0)
+            left[0] = y[1] - y[0], left[1] = f[1] - f[0];
+        if (right[0] == 0)
+            right[0] = y[m - 1] - y[m - 2], right[1] = f[m - 1] - f[m - 2];
+        st = dp_graph_init(part, m, y, f, left, right);
+    }
+    free(y), free(f);
+    return st;
 }
 
 double dp_damper_viscous(const dp_damper *d)

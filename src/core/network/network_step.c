@@ -282,7 +282,7 @@ static double s_beta(const dp_network_step_element *e, double h)
 
 static double s_weight(const dp_network_step_element *e)
 {
-    return e->ep_theta > 0 ? e->ep_theta : 1;
+    return e->ep_theta > 0 && !e->s_whole ? e->ep_theta : 1;
 }
 
 static double arg_S(const dp_network_step_element *e, double u, double h, const vertex *at)

@@ -27,6 +27,8 @@ typedef struct dp_network_step_element {
     double vb;
     double ep_theta;      /* 0: S at u + h z with weight 1 (graph springs); theta > 0: S at u + h theta z,
                              weighted theta (an elastoplastic spring) */
+    int s_whole;          /* S's force with weight 1 even at u + h theta z: a jump of a graph spring (constant
+                             off its vertex, a reaction at it), network_run.c */
 } dp_network_step_element;
 
 /* What the step found for one element. */

@@ -111,10 +111,10 @@ static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
                       "solver");
 }
 
-/* Whether element el's rope (or a graph spring whose domain ends in a stop) takes any theta: with events
- * located the stick-slip solver steps it as a linear spring (its sloped part) plus the rigid contact u <= L
- * (and u >= lo for a graph's lower stop; network_contact.c). That holds whenever theta < 1 passes the other
- * elements' rules, which refuse every law location does not hold (graph springs with a vertical piece). */
+/* Whether element el's rope (or a graph spring with a vertical piece) takes any theta: with events located
+ * the stick-slip solver steps it as its parts, a linear spring (a graph's sloped part, theta-stepped), the
+ * rigid contact u <= L (a graph's stops) and a graph's jumps as step elements of their own (network_run.c,
+ * network_contact.c). That holds whenever theta < 1 passes the other elements' rules. */
 static int rope_takes_theta(const dp_spec *s, const dp_element *el)
 {
     return el->has_spring && dp_spring_has_stop(&el->spring) && s->solver.kind == DP_SOLVER_STICK_SLIP &&

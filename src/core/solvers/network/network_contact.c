@@ -121,7 +121,9 @@ size_t network_run_spring_stops(const struct dp_network_run *nr, const dp_elemen
 
 int network_run_rope_bound(const struct dp_network_run *nr, const dp_element *e)
 {
-    return network_run_spring_stops(nr, e) > 0;
+    double lo, hi;
+    return nr->ropes_bound && e->has_spring &&
+           (e->spring.law == DP_SPRING_ROPE || dp_spring_bounded_graph(&e->spring, &lo, &hi));
 }
 
 /* Element i's constraints: its contact, then a bound rope's u <= L (its ends swapped, distance -L, plastic),
@@ -236,13 +238,16 @@ static double rate(const struct dp_network_run *nr, size_t c, const double *v)
 }
 
 /* A bound rope's spring part k u (0, not the -0 of 0 times a negative elongation, as network_stepping.c); a
- * bounded graph's, its sloped part at u. */
+ * split graph's, its sloped part at u and the jumps below u. */
 static double spring_force(const struct dp_network_run *nr, size_t i)
 {
     const dp_element *e = &nr->net->el[i];
     double u = network_run_rel(e->a, e->b, nr->x), lo, hi;
     if (nr->stop_S && nr->stop_S[i].n) {
         dp_graph_force(&nr->stop_S[i], u, &lo, &hi);
+        for (size_t k = 0; nr->jump && k < nr->nact_el; k++)
+            if (nr->jump[k] && nr->act_el[k] == i && u > nr->act[k].S->y[0])
+                lo += nr->act[k].S->f[1];
         return lo;
     }
     return nr->k[i] != 0 ? nr->k[i] * u : 0;
@@ -489,7 +494,7 @@ void network_run_contacts_forces(struct dp_network_run *nr, int stepped)
         const dp_contact *ct = &nr->ct[c].law;
         if (nr->ct[c].rope) {    /* a bounded graph's second stop adds to its first */
             double lam = stepped && nr->ct_on[c] ? nr->force[k].lambda : 0;
-            double fs = c > 0 && nr->ct_el[c - 1] == i && nr->ct[c - 1].rope ? nr->Fs[i] : spring_force(nr, i);
+            double fs = nr->Fs[i];   /* the spring's part (and the other stop's), element_forces */
             nr->Fs[i] = nr->ct[c].swapped ? fs - lam : fs + lam;
             continue;
         }

@@ -422,7 +422,9 @@ int network_run_located_step(dp_run *r, double t, double h)
         for (size_t j = 0; j < nr->nact; j++) {
             if (!nr->fails[j] || (ep_entry(nr, j) && ep_events) || network_run_smooth_kink(nr, j))
                 continue;      /* with a yield, unload or a spring's vertex the renewal below finds its piece */
-            if (j < nr->nact_el)
+            if (j < nr->nact_el && nr->jump && nr->jump[j])
+                switch_element(r, t + at, left - at, j);   /* a graph's jump: its element's phase is its damper's */
+            else if (j < nr->nact_el)
                 nr->phase[nr->act_el[j]] = switch_element(r, t + at, left - at, j);
             else if (nr->ct_on[j - nr->nact_el])
                 switch_element(r, t + at, left - at, j);    /* a resting contact let go */

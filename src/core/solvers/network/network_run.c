@@ -100,8 +100,15 @@ static int alloc_all(struct dp_network_run *nr)
 {
     /* arrays over the convex problem's elements hold every element's laws and then every contact */
     size_t n = nr->n, ne = nr->nel ? nr->nel : 1, na = ne, band = n * (nr->p + 1);
-    for (size_t i = 0; i < nr->nel; i++)   /* a bound rope's u <= L is one more contact, a graph's stops one each */
-        na += nr->net->el[i].has_contact + network_run_spring_stops(nr, &nr->net->el[i]);
+    for (size_t i = 0; i < nr->nel; i++) {   /* a bound rope's u <= L is one more contact, a graph's stops one
+                                              * each, its jumps an entry each */
+        const dp_element *e = &nr->net->el[i];
+        na += e->has_contact + network_run_spring_stops(nr, e);
+        nr->njump += network_run_rope_bound(nr, e) ? dp_spring_graph_jumps(&e->spring, NULL, NULL) : 0;
+    }
+    na += nr->njump;
+    if (nr->njump && ((nr->jump = calloc(na, 1)) == NULL || (nr->jump_S = calloc(nr->njump, sizeof *nr->jump_S)) == NULL))
+        return DP_ENOMEM;
     nr->M = calloc(band, sizeof(double));
     nr->K = calloc(band, sizeof(double));
     nr->C = calloc(band, sizeof(double));
@@ -170,6 +177,31 @@ static void ep_init(struct dp_network_run *nr, dp_network *net, const double *x0
     }
 }
 
+/* Element i's split graph's jumps, an entry each after its own (network_step.h, s_whole): the step graph 0
+ * below y, [0, J] at y, J above, at the trapezoid's elongation u + h ((1 - theta) u' + theta z) with weight 1
+ * (constant off its vertex, a reaction of the whole step at it). *used counts the jump graphs built. */
+static int jump_entries(struct dp_network_run *nr, size_t i, size_t *used)
+{
+    const dp_element *e = &nr->net->el[i];
+    size_t n = dp_spring_graph_jumps(&e->spring, NULL, NULL);
+    double *y = malloc((n ? n : 1) * sizeof *y), *J = malloc((n ? n : 1) * sizeof *J);
+    int st = y && J ? DP_OK : DP_ENOMEM;
+    if (st == DP_OK)
+        dp_spring_graph_jumps(&e->spring, y, J);
+    for (size_t j = 0; st == DP_OK && j < n; j++) {
+        const double flat[2] = { 1, 0 }, yy[2] = { y[j], y[j] }, ff[2] = { 0, J[j] };
+        dp_graph *g = &nr->jump_S[(*used)++];
+        if ((st = dp_graph_init(g, 2, yy, ff, flat, flat)) != DP_OK)
+            break;
+        nr->jump[nr->nact] = 1;
+        nr->act_el[nr->nact] = i;
+        nr->act[nr->nact++] = (dp_network_step_element){ .a = e->a, .b = e->b, .S = g, .ep_theta = nr->theta,
+                                                         .s_whole = 1 };
+    }
+    free(y), free(J);
+    return st;
+}
+
 /* Element i's bounded graph's sloped part into stop_S (allocated for every element on first use). */
 static int stop_part(struct dp_network_run *nr, size_t i)
 {
@@ -182,6 +214,7 @@ static int stop_part(struct dp_network_run *nr, size_t i)
  * the elements' nonlinear laws into the convex problem's list. */
 static int setup_laws(struct dp_network_run *nr)
 {
+    size_t jumps = 0;
     const dp_network *net = nr->net;
     size_t n = nr->n, p = nr->p;
     if (net->M)
@@ -197,7 +230,8 @@ static int setup_laws(struct dp_network_run *nr)
         const dp_element *e = &nr->net->el[i];
         int rope = network_run_rope_bound(nr, e);   /* k in K, u <= L a contact (network_contact.c) */
         const dp_graph *S = rope ? NULL : &e->spring.graph;
-        if (rope && e->spring.law != DP_SPRING_ROPE) {   /* a bounded graph: its sloped part, its stops contacts */
+        int split = rope && e->spring.law != DP_SPRING_ROPE;
+        if (split) {   /* a split graph: its sloped part here, its jumps entries after, its stops contacts */
             if (stop_part(nr, i) != DP_OK)
                 return DP_ENOMEM;
             S = &nr->stop_S[i], rope = 0;
@@ -228,6 +262,8 @@ static int setup_laws(struct dp_network_run *nr)
                                              .S = lin_spring ? NULL : S,
                                              .vb = e->has_damper ? e->damper.belt_velocity : 0,
                                              .ep_theta = is_ep(e) ? nr->theta : 0 };
+        if (split && jump_entries(nr, i, &jumps) != DP_OK)
+            return DP_ENOMEM;
     }
     return network_run_contacts_setup(nr);
 }
@@ -286,7 +322,9 @@ void network_run_free(void *state)
     network_run_smooth_free(nr);
     for (size_t i = 0; nr->stop_S && i < nr->nel; i++)
         dp_graph_clear(&nr->stop_S[i]);
-    free(nr->stop_S);
+    for (size_t j = 0; nr->jump_S && j < nr->njump; j++)
+        dp_graph_clear(&nr->jump_S[j]);
+    free(nr->stop_S), free(nr->jump_S), free(nr->jump);
     dp_row_queue_clear(&nr->queue);
     network_quakes_free(nr->quakes);
     void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,

@@ -89,7 +89,10 @@ struct dp_network_run {
     size_t nact_el, nc, nrope;
     int ropes_bound;            /* ropes are a linear spring k plus the constraint u <= L (network_run_rope_bound),
                                    bounded graphs their sloped part (stop_S) plus their stops */
-    dp_graph *stop_S;           /* per element: a bounded graph's sloped part, else empty (NULL: none) */
+    dp_graph *stop_S;           /* per element: a split graph's sloped part, else empty (NULL: none) */
+    unsigned char *jump;        /* per active element: a split graph's jump (its own entry), NULL: none */
+    dp_graph *jump_S;           /* the jumps' step graphs (njump): 0 below y, [0, J] at it, J above */
+    size_t njump;
     network_bound *ct;          /* per contact: its ends, its law, whether a rope's */
     size_t *ct_el;              /* per contact: its element */
     dp_graph cone;              /* the rigid contacts' cone, shared */

@@ -9,8 +9,9 @@
  * are located inside the step like any other event (network_events.c): the held piece's margin is the
  * elongation's distance from the piece's ends, and at the root the assignment is renewed over a sliver of
  * the step (as after a yield), so the rest of the step is taken on the next piece and theta = 1/2 stays
- * second order through the kink. Graphs with a vertical piece (a rope, a user graph with a jump in u) are
- * not here: their force is a multiplier at the vertex, stepped by backward Euler (network_check.c).
+ * second order through the kink. Graphs with a vertical piece (a rope, a user graph's stop or jump) are split
+ * by network_run.c, with events located, into such a sloped part, rigid constraints (network_contact.c) and
+ * step elements; without, they are stepped whole by backward Euler (network_check.c).
  * A compliant contact's touch and separation are written as events by network_output.c. */
 #include <float.h>
 #include <math.h>

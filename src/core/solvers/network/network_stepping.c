@@ -92,6 +92,14 @@ void network_run_element_forces(struct dp_network_run *nr, int stepped)
         nr->Fs[i] = fs, nr->Fd[i] = fd;
         nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
     }
+    for (size_t k = 0; nr->jump && k < nr->nact_el; k++) {   /* a split graph's jumps: their own entries */
+        if (!nr->jump[k])
+            continue;
+        size_t i = nr->act_el[k];
+        double u = network_run_rel(nr->act[k].a, nr->act[k].b, nr->x), lo, hi;
+        dp_graph_force(nr->act[k].S, u, &lo, &hi);
+        nr->Fs[i] += stepped ? nr->force[k].s : fmin(fmax(0.0, lo), hi);
+    }
     network_run_contacts_forces(nr, stepped);
 }
 
@@ -178,6 +186,9 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
     for (size_t k = 0; k < nr->nact; k++)
         nr->u[k] = in_domain(nr->act[k].S, network_run_rel(nr->act[k].a, nr->act[k].b, nr->x));
     network_run_smooth_rhs(nr, h);
+    for (size_t k = 0; nr->jump && th < 1 && k < nr->nact_el; k++)   /* a jump sees the trapezoid's u+ */
+        if (nr->jump[k])
+            nr->u[k] += h * (1 - th) * network_run_rel(nr->act[k].a, nr->act[k].b, nr->v);
     if (!nr->has_ep)
         return;
     for (size_t k = 0; k < nr->nact; k++) {
