@@ -81,6 +81,12 @@ static const struct base { const char *name, *doc; } bases[] = {
       "'law':'linear','k':2},'contact':{'distance':-0.5,'compliance':100}}],'forcing':[{'node':1,'kind':'harmo"
       "nic','amplitude':1,'omega':2}]},'initial':{'x':[0.5,0],'v':[0,1]},'solver':{'dt':0.1,'t_end':2,'theta'"
       ":0.5}}" },
+    { "net-split",    /* a graph spring with stops and a jump, split on the network (network_run.c) */
+      "{'model':{'masses':[1,2],'elements':[{'between':['ground',0],'spring':{'law':'graph','points':[[-0.8,-4"
+      "],[-0.8,-1],[0,0],[0,0.5],[0.9,1.4],[0.9,3]]},'damper':{'law':'coulomb','phi0':0.2,'belt_velocity':0."
+      "1}},{'between':[0,1],'spring':{'law':'rope','k':1,'length':1.5}}],'forcing':[{'node':1,'kind':'harmo"
+      "nic','amplitude':2,'omega':1.5}]},'initial':{'x':[0.2,0.5],'v':[1,0]},'solver':{'dt':0.1,'t_end':2,'"
+      "theta':0.5}}" },
     { "piston",
       "{'model':{'kind':'piston-hinge','m1':1,'m2':1,'J_C':0.1,'r':0.5,'alpha':0.3,'f1':0.2,'f2':0.02,'g':9"
       ".81},'initial':{'x':[0,0.8],'v':[0,0]},'solver':{'kind':'right-hand','t_end':1,'dt':0.25,'rtol':1e-0"
