@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/lower_bound.h"
 #include "dashpot/graph.h"
 #include "dashpot/status.h"
 
@@ -94,20 +95,6 @@ int dp_graph_copy(dp_graph *dst, const dp_graph *src)
     return dp_graph_init(dst, src->n, src->y, src->f, src->left, src->right);
 }
 
-/* First index i in [0, n) with a[i] >= x (n if none): the classic lower bound. */
-static size_t lower_bound(const double *a, size_t n, double x)
-{
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (a[mid] < x)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
 /* First index i with a[i] > x (n if none). */
 static size_t upper_bound(const double *a, size_t n, double x)
 {
@@ -155,7 +142,7 @@ static int section(size_t n, const double *a, const double *b, const double left
             *lo = *hi = INFINITY;
         return DP_OK;
     }
-    size_t i = lower_bound(a, n, x);
+    size_t i = dp_lower_bound(a, n, x);
     if (a[i] > x) { /* strictly inside segment (i-1, i), which is not vertical */
         double s = (x - a[i - 1]) / (a[i] - a[i - 1]);
         *lo = *hi = b[i - 1] + s * (b[i] - b[i - 1]);
@@ -250,7 +237,7 @@ void dp_graph_piece(const dp_graph *g, double y, int dir, dp_graph_piece_t *pc)
             pc->next = g->y[j];
         }
     } else {
-        size_t j = lower_bound(g->y, n, y);
+        size_t j = dp_lower_bound(g->y, n, y);
         if (j == 0) {             /* on the left ray (or at its vertex) */
             if (g->left[0] == 0) {
                 pc->blocked = 1;
@@ -275,6 +262,6 @@ void dp_graph_piece(const dp_graph *g, double y, int dir, dp_graph_piece_t *pc)
 
 int dp_graph_has_vertex(const dp_graph *g, double y)
 {
-    size_t j = lower_bound(g->y, g->n, y);
+    size_t j = dp_lower_bound(g->y, g->n, y);
     return j < g->n && g->y[j] == y;
 }

@@ -24,6 +24,7 @@
 
 #include "dashpot/status.h"
 #include "base/band.h"
+#include "base/lower_bound.h"
 #include "network/network_step.h"
 
 enum { FREE = 0, FIXED = 1 };
@@ -738,20 +739,6 @@ static int domain_end(const dp_network_step *w, size_t i, double u, double h, in
     return !(lo == hi && !isfinite(lo));
 }
 
-/* First index k with y[k] >= x (n if none), as the graph's own search (laws/graph.c). */
-static size_t first_at_or_above(const double *y, size_t n, double x)
-{
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (y[mid] < x)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
 /* An element with no law in the step (a contact not armed for it): free on the whole line with no force,
  * sigma_piece's sums for it written out. */
 static int start_lawless(dp_network_step *w, size_t i, double z)
@@ -780,7 +767,7 @@ static int start_inside_piece(dp_network_step *w, size_t i, double z)
     if (A == NULL)
         return isfinite(z) && start_lawless(w, i, z);
     double y = z - e->vb;
-    size_t n = A->n, k = first_at_or_above(A->y, n, y);
+    size_t n = A->n, k = dp_lower_bound(A->y, n, y);
     if (!isfinite(y) || (k < n && A->y[k] == y) || (y < A->y[0] && !(A->left[0] > 0)) ||
         (y > A->y[n - 1] && !(A->right[0] > 0)))
         return 0;
