@@ -413,25 +413,34 @@ static double rope_belt_reference(const rope_belt *c, const dp_graph *A, const d
     return lo <= 0 ? b : a;
 }
 
-/* Solves the step from the guess; checks v against the reference and the balance W v - r + h lambda = 0. */
-static void rope_belt_check(const rope_belt *c, double guess, double tol)
+/* Solves the step from the guess (its graphs in A, S for the caller to clear): v, the forces, the iterations. */
+static void rope_belt_solve(const rope_belt *c, double guess, dp_graph *A, dp_graph *S, double *v,
+                            dp_network_step_forces *f, unsigned long long *it)
 {
-    dp_graph A, S;
-    rope_belt_graphs(c, &A, &S);
-    dp_network_step_element el[1] = { { .a = -1, .b = 0, .A = &A, .S = &S, .vb = c->vb } };
+    rope_belt_graphs(c, A, S);
+    dp_network_step_element el[1] = { { .a = -1, .b = 0, .A = A, .S = S, .vb = c->vb } };
     dp_network_step *w = dp_network_step_alloc(1, 0, 1, el);
     assert_non_null(w);
     dp_network_step_W(w)[0] = c->W;
     dp_network_step_W_changed(w);
-    double u[1] = { c->u }, r[1] = { c->r }, g[1] = { guess }, v[1];
+    double u[1] = { c->u }, r[1] = { c->r }, g[1] = { guess };
+    *it = 0;
+    assert_int_equal(dp_network_step_solve(w, c->h, r, u, g, v, f, it), DP_OK);
+    dp_network_step_free(w);
+}
+
+/* Solves the step from the guess; checks v against the reference and the balance W v - r + h lambda = 0. */
+static void rope_belt_check(const rope_belt *c, double guess, double tol)
+{
+    dp_graph A, S;
+    double v[1];
     dp_network_step_forces f[1];
-    unsigned long long it = 0;
-    assert_int_equal(dp_network_step_solve(w, c->h, r, u, g, v, f, &it), DP_OK);
+    unsigned long long it;
+    rope_belt_solve(c, guess, &A, &S, v, f, &it);
     double ref = rope_belt_reference(c, &A, &S);
     assert_true(fabs(v[0] - ref) <= tol * (1 + fabs(ref)));
     assert_true(fabs(c->W * v[0] - c->r + c->h * f[0].lambda) <= 1e-12 * (1 + fabs(c->r) + c->h * fabs(f[0].lambda)));
     assert_true(c->u + c->h * v[0] <= c->L * (1 + 1e-15));   /* the rope no longer than its length */
-    dp_network_step_free(w);
     dp_graph_clear(&A), dp_graph_clear(&S);
 }
 
@@ -451,22 +460,15 @@ static void test_taut_rope_on_belt_reproducers(void **state)
     for (int k = 0; k < 2; k++) {
         const rope_belt *c = &cases[k];
         dp_graph A, S;
-        rope_belt_graphs(c, &A, &S);
-        dp_network_step_element el[1] = { { .a = -1, .b = 0, .A = &A, .S = &S, .vb = c->vb } };
-        dp_network_step *w = dp_network_step_alloc(1, 0, 1, el);
-        assert_non_null(w);
-        dp_network_step_W(w)[0] = c->W;
-        dp_network_step_W_changed(w);
-        double u[1] = { c->u }, r[1] = { c->r }, g[1] = { guess[k] }, v[1];
+        double v[1];
         dp_network_step_forces f[1];
-        unsigned long long it = 0;
-        assert_int_equal(dp_network_step_solve(w, c->h, r, u, g, v, f, &it), DP_OK);
+        unsigned long long it;
+        rope_belt_solve(c, guess[k], &A, &S, v, f, &it);
         assert_true(v[0] == 0);
         assert_true(fabs(f[0].lambda - c->r / c->h) <= 1e-12 * c->r / c->h);
         assert_true(f[0].a == -c->phi);
         assert_true(fabs(f[0].s - (c->r / c->h + c->phi)) <= 1e-12 * c->r / c->h);
         assert_true(it <= 4);
-        dp_network_step_free(w);
         dp_graph_clear(&A), dp_graph_clear(&S);
         rope_belt_check(c, guess[k], 1e-12);
     }
