@@ -239,6 +239,23 @@ static void test_one_mass_document_is_the_network(void **state)
     assert_string_equal(ptr, "/solver/theta");
 }
 
+/* An element with a rope and a compliant contact: its contact's touch and separation are written once each
+ * (the rope's constraint on the same element was taken for a second compliant contact: four events). */
+static void test_compliant_contact_beside_a_rope(void **state)
+{
+    (void)state;
+    const char *json = "{\"model\":{\"masses\":[1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
+                       "\"rope\",\"k\":1,\"length\":2},\"contact\":{\"distance\":0,\"compliance\":1e4}}],\"forcing\":"
+                       "[{\"node\":0,\"kind\":\"constant\",\"value\":-9.81}]},\"initial\":{\"x\":[1],\"v\":[0]},"
+                       "\"solver\":{\"dt\":0.001,\"t_end\":0.6},\"output\":{\"every\":1000}}";
+    rows r;
+    assert_int_equal(rows_collect(json, 128, &r), DP_DONE);
+    assert_int_equal(r.events, 2);
+    assert_int_equal(r.ev[0].kind, DP_EVENT_TOUCH);
+    assert_int_equal(r.ev[1].kind, DP_EVENT_SEPARATE);
+    free(r.d);
+}
+
 /* ---- a chain with a kinked graph spring against itself at dt/64 ------------------------------------- */
 
 /* Two blocks: a stiffening graph spring (slope 1, then 4 past |u| = 0.3) with Coulomb friction on a belt
@@ -564,6 +581,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_compliant_ball_is_second_order),
         cmocka_unit_test(test_compliant_touch_events),
+        cmocka_unit_test(test_compliant_contact_beside_a_rope),
         cmocka_unit_test(test_bilinear_node_is_second_order),
         cmocka_unit_test(test_one_mass_document_is_the_network),
         cmocka_unit_test(test_graph_spring_chain_is_second_order),

@@ -212,7 +212,7 @@ size_t dp_spring_graph_jumps(const dp_spring *s, double *y, double *J);
 int dp_spring_bounded_part(const dp_spring *s, dp_graph *part);
 /* A rope or a split graph (dp_spring_bounded_graph): a spring with a vertical piece that a network with
  * events located steps as its parts. */
-int dp_spring_has_stop(const dp_spring *s);
+int dp_spring_is_split(const dp_spring *s);
 /* The damper's viscous c (0 without a viscous part), its kinetic threshold (0 without one), its static
  * threshold (the kinetic one when it has none); whether it is linear, whether its stick-slip step has the
  * closed form. */

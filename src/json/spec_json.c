@@ -224,7 +224,7 @@ static int one_mass_as_network(dp_spec *s)
 static int sloped_below_one(const dp_spec *s)
 {
     const dp_spring *sp = &s->model.spring;
-    int rope = dp_spring_has_stop(sp) && s->solver.events == DP_EVENTS_LOCATE;   /* a spring and a contact */
+    int rope = dp_spring_is_split(sp) && s->solver.events == DP_EVENTS_LOCATE;   /* a spring and a contact */
     return s->solver.kind == DP_SOLVER_STICK_SLIP && s->solver.variant == DP_VARIANT_EXACT &&
            s->solver.branch == DP_BRANCH_REST && s->solver.theta != 1 && (dp_spring_sloped_graph(sp) || rope);
 }

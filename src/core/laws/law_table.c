@@ -343,7 +343,7 @@ const char *dp_damper_law_name(dp_damper_law law)
     return L ? L->row.name : "?";
 }
 
-int dp_spring_has_stop(const dp_spring *s)
+int dp_spring_is_split(const dp_spring *s)
 {
     double lo, hi;
     return s->law == DP_SPRING_ROPE || dp_spring_bounded_graph(s, &lo, &hi);

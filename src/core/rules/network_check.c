@@ -115,9 +115,9 @@ static void check_contact(const dp_spec *s, size_t i, double u, dp_errors *e)
  * the stick-slip solver steps it as its parts, a linear spring (a graph's sloped part, theta-stepped), the
  * rigid contact u <= L (a graph's stops) and a graph's jumps as step elements of their own (network_run.c,
  * network_contact.c). That holds whenever theta < 1 passes the other elements' rules. */
-static int rope_takes_theta(const dp_spec *s, const dp_element *el)
+static int split_takes_theta(const dp_spec *s, const dp_element *el)
 {
-    return el->has_spring && dp_spring_has_stop(&el->spring) && s->solver.kind == DP_SOLVER_STICK_SLIP &&
+    return el->has_spring && dp_spring_is_split(&el->spring) && s->solver.kind == DP_SOLVER_STICK_SLIP &&
            s->solver.events == DP_EVENTS_LOCATE;
 }
 
@@ -149,11 +149,11 @@ static void check_element(const dp_spec *s, size_t i, dp_errors *e)
     /* a graph of finite slope is theta-stepped (network_smooth.c); one with a vertical piece holds its force
      * as a multiplier, stepped by backward Euler */
     if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) &&
-        !dp_spring_sloped_graph(&el->spring) && s->solver.theta != 1 && !rope_takes_theta(s, el)) {
+        !dp_spring_sloped_graph(&el->spring) && s->solver.theta != 1 && !split_takes_theta(s, el)) {
         el_ptr(p, sizeof p, s, i, "/spring");
         dp_errors_add(e, p, "theta < 1 needs springs of finite slope (the %s spring has a vertical piece, stepped "
                       "by backward Euler%s): use theta = 1", dp_spring_law_name(el->spring.law),
-                      dp_spring_has_stop(&el->spring) ? " without located events" : "");
+                      dp_spring_is_split(&el->spring) ? " without located events" : "");
     }
     if (el->has_contact)
         check_contact(s, i, u, e);
@@ -248,7 +248,7 @@ int dp_network_is_one_mass(const dp_spec *s)
      * a block whose quakes are catalogued (network_quakes.c), a rope with events located (its going taut
      * located, network_contact.c), and a graph spring below theta = 1, which the network theta-steps
      * (network_smooth.c) where the one-mass solver takes backward Euler only */
-    if (rope_takes_theta(s, &n->el[0]))
+    if (split_takes_theta(s, &n->el[0]))
         return 0;
     int graph_theta = n->el[0].has_spring && !dp_spring_linear(&n->el[0].spring) && s->solver.theta != 1;
     return s->solver.kind == DP_SOLVER_STICK_SLIP && !dp_spring_plastic(&n->el[0].spring) && !s->output.quakes &&

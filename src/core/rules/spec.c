@@ -179,7 +179,7 @@ static int network_takes_theta(const dp_network *net, int located)
 {
     for (size_t i = 0; i < net->nel; i++) {
         const dp_element *el = &net->el[i];
-        int rope = located && el->has_spring && dp_spring_has_stop(&el->spring);
+        int rope = located && el->has_spring && dp_spring_is_split(&el->spring);
         if (el->has_spring && !dp_spring_linear(&el->spring) && !dp_spring_plastic(&el->spring) && !rope &&
             !dp_spring_sloped_graph(&el->spring))
             return 0;

@@ -119,7 +119,7 @@ size_t network_run_spring_stops(const struct dp_network_run *nr, const dp_elemen
     return (size_t)isfinite(lo) + (size_t)isfinite(hi);
 }
 
-int network_run_rope_bound(const struct dp_network_run *nr, const dp_element *e)
+int network_run_spring_split(const struct dp_network_run *nr, const dp_element *e)
 {
     double lo, hi;
     return nr->ropes_bound && e->has_spring &&
@@ -135,7 +135,7 @@ static size_t element_bounds(const struct dp_network_run *nr, size_t i, network_
     double lo = -INFINITY, hi = INFINITY;
     if (e->has_contact)
         out[m++] = (network_bound){ .a = e->a, .b = e->b, .law = e->contact };
-    if (!network_run_rope_bound(nr, e))
+    if (!network_run_spring_split(nr, e))
         return m;
     if (e->spring.law == DP_SPRING_ROPE)
         hi = e->spring.length;
@@ -267,14 +267,12 @@ static void bound_event(dp_run *r, double t, size_t c, double before, double aft
  * positions and a billionth of what the gap moves in a step. */
 static double gap(const struct dp_network_run *nr, size_t c, const double *x)
 {
-    return rate(nr, c, x) - nr->ct[c].law.distance;
+    return network_run_bound_gap(&nr->ct[c], x);
 }
 
 static double touch_tol(const struct dp_network_run *nr, size_t c, double h)
 {
-    const network_bound *b = &nr->ct[c];
-    double xs = fabs(b->law.distance) + (b->a >= 0 ? fabs(nr->x[b->a]) : 0) + (b->b >= 0 ? fabs(nr->x[b->b]) : 0);
-    return 1e-9 * h * fabs(rate(nr, c, nr->v)) + 64 * DBL_EPSILON * xs;
+    return network_run_touch_tol(&nr->ct[c], nr->x, nr->v, h);
 }
 
 /* Arms contact c for the coming step with the cone at v_c, or disarms it (a zero law). */

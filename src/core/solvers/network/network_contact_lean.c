@@ -272,14 +272,8 @@ static int lean_advance(dp_run *r)
     network_run_flush(r);
     lean_consts k;
     lean_consts_of(nr, &k);
-    while (r->out_n < r->out_cap && !dp_row_queue_waiting(&nr->queue) && nr->slots.used < nr->slots.cap && !r->finished) {
-        nr->work += nr->n + nr->nel;
-        if (nr->yield) {
-            nr->yield = 0;
-            return DP_OK;
-        }
-        if (dp_run_stopped(r, nr->work))
-            return r->status;
+    int due;
+    while (network_run_step_due(r, &due)) {
         double h = dp_run_step_length(r), t = r->cur.t;
         nr->impacts_step = 0;
         nr->phase_prev[0] = nr->phase[0];
@@ -293,7 +287,7 @@ static int lean_advance(dp_run *r)
         if ((s = network_run_step_taken(r, finite)) != DP_OK)
             return s;
     }
-    return DP_OK;
+    return due;
 }
 
 /* The network run's own set-up, initial probe and first row (network_run.c). */

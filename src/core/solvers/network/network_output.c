@@ -105,29 +105,33 @@ void network_run_impact_event(dp_run *r, double t, size_t i, double before, doub
 /* ---- a compliant contact's touch (its gap u - d closing to zero) and separation: events of the contact's
  * element, written at the instant (located by network_smooth.c), as a rigid contact's impact is ---- */
 
-/* Pressed: the gap below zero, or at zero and closing; at zero means within the rounding of the positions
- * and a billionth of what the gap moves in a step h (a located instant's root tolerance). */
+/* Whether constraint c is a compliant contact (not a rigid one, nor a rope's or a graph's stop). */
+static int compliant(const struct dp_network_run *nr, size_t c)
+{
+    return !nr->ct[c].rope && nr->ct[c].law.compliance > 0;
+}
+
+/* Pressed: the gap below zero, or at zero and closing; at zero within the touching tolerance (the rounding of
+ * the positions and a billionth of what the gap moves in a step h: a located instant's root tolerance). */
 static int pressed(const struct dp_network_run *nr, size_t c, double h)
 {
-    const dp_element *e = &nr->net->el[nr->ct_el[c]];
-    double xs = fabs(e->contact.distance) + (e->a >= 0 ? fabs(nr->x[e->a]) : 0) + (e->b >= 0 ? fabs(nr->x[e->b]) : 0);
-    double g = network_run_rel(e->a, e->b, nr->x) - e->contact.distance, rate = network_run_rel(e->a, e->b, nr->v);
-    double tol = 1e-9 * h * fabs(rate) + 64 * DBL_EPSILON * xs;
-    return g < -tol || (g <= tol && rate < 0);
+    const network_bound *b = &nr->ct[c];
+    double g = network_run_bound_gap(b, nr->x), tol = network_run_touch_tol(b, nr->x, nr->v, h);
+    return g < -tol || (g <= tol && network_run_rel(b->a, b->b, nr->v) < 0);
 }
 
 void network_run_touch_start(struct dp_network_run *nr, double h)
 {
     for (size_t c = 0; nr->sm_pressed && c < nr->nc; c++)
-        nr->sm_pressed[c] = nr->net->el[nr->ct_el[c]].contact.compliance > 0 && pressed(nr, c, h);
+        nr->sm_pressed[c] = compliant(nr, c) && pressed(nr, c, h);
 }
 
 void network_run_touch_events(dp_run *r, double t)
 {
     struct dp_network_run *nr = r->state;
     for (size_t c = 0; nr->sm_pressed && c < nr->nc; c++) {
-        const dp_element *e = &nr->net->el[nr->ct_el[c]];
-        if (!(e->contact.compliance > 0))
+        const network_bound *b = &nr->ct[c];
+        if (!compliant(nr, c))
             continue;
         int now = pressed(nr, c, r->h);
         if (now == nr->sm_pressed[c])
@@ -138,7 +142,7 @@ void network_run_touch_events(dp_run *r, double t)
             continue;
         dp_record rec = { .type = DP_RECORD_EVENT };
         rec.u.event = (dp_event){ .kind = now ? DP_EVENT_TOUCH : DP_EVENT_SEPARATE, .t = t,
-                                  .x = network_run_rel(e->a, e->b, nr->x), .v = network_run_rel(e->a, e->b, nr->v),
+                                  .x = network_run_rel(b->a, b->b, nr->x), .v = network_run_rel(b->a, b->b, nr->v),
                                   .element = nr->ct_el[c] };
         network_run_put(r, &rec);
     }

@@ -55,7 +55,7 @@ static double band_matrices(const dp_run *r)
     const dp_network *net = r->spec.net;
     int contacts = 0, relaxed = 0;
     for (size_t i = 0; i < net->nel; i++) {
-        contacts |= net->el[i].has_contact || network_run_rope_bound(r->state, &net->el[i]);
+        contacts |= net->el[i].has_contact || network_run_spring_split(r->state, &net->el[i]);
         relaxed |= net->el[i].has_damper && net->el[i].damper.relaxation.kind != DP_RELAX_NONE;
     }
     return 6 + 3 * contacts + relaxed + 2 * (r->spec.solver.kind == DP_SOLVER_NEWMARK);
@@ -104,7 +104,7 @@ static int alloc_all(struct dp_network_run *nr)
                                               * each, its jumps an entry each */
         const dp_element *e = &nr->net->el[i];
         na += e->has_contact + network_run_spring_stops(nr, e);
-        nr->njump += network_run_rope_bound(nr, e) ? dp_spring_graph_jumps(&e->spring, NULL, NULL) : 0;
+        nr->njump += network_run_spring_split(nr, e) ? dp_spring_graph_jumps(&e->spring, NULL, NULL) : 0;
     }
     na += nr->njump;
     if (nr->njump && ((nr->jump = calloc(na, 1)) == NULL || (nr->jump_S = calloc(nr->njump, sizeof *nr->jump_S)) == NULL))
@@ -228,7 +228,7 @@ static int setup_laws(struct dp_network_run *nr)
         dp_band_from_dense(net->C, n, p, nr->C);
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
-        int rope = network_run_rope_bound(nr, e);   /* k in K, u <= L a contact (network_contact.c) */
+        int rope = network_run_spring_split(nr, e);   /* k in K, u <= L a contact (network_contact.c) */
         const dp_graph *S = rope ? NULL : &e->spring.graph;
         int split = rope && e->spring.law != DP_SPRING_ROPE;
         if (split) {   /* a split graph: its sloped part here, its jumps entries after, its stops contacts */
@@ -607,16 +607,8 @@ static int network_run_advance(dp_run *r)
     if (network_run_reserve_rows(r) != DP_OK)
         return DP_ENOMEM;
     network_run_flush(r);
-    while (r->out_n < r->out_cap && !dp_row_queue_waiting(&nr->queue) && nr->slots.used < nr->slots.cap && !r->finished) {
-        /* a step costs at least a unit per node and element, its solves their band entries (polled inside it,
-         * network_run_step_poll): 10^4 blocks poll every step or so, one mass every 4096 steps */
-        nr->work += nr->n + nr->nel;
-        if (nr->yield) {
-            nr->yield = 0;
-            return DP_OK;
-        }
-        if (dp_run_stopped(r, nr->work))
-            return r->status;
+    int due;
+    while (network_run_step_due(r, &due)) {
         double h = dp_run_step_length(r), t = r->cur.t;
         int s;
         nr->impacts_step = 0;
@@ -648,7 +640,7 @@ static int network_run_advance(dp_run *r)
         if ((s = network_run_step_taken(r, network_run_state_finite(nr))) != DP_OK)
             return s;
     }
-    return DP_OK;
+    return due;
 }
 
 int network_run_step_taken(dp_run *r, int finite)
@@ -678,7 +670,7 @@ static int element_locates(const dp_element *e, int network)
     const dp_spring_law_info *SL = dp_spring_law_info_of(e->spring.law);
     const dp_damper_law_info *DL = dp_damper_law_info_of(e->damper.law);
     int spring = !e->has_spring || (SL && (network ? SL->locate_network : SL->locate)) ||
-                 (network && (dp_spring_sloped_graph(&e->spring) || dp_spring_has_stop(&e->spring)));
+                 (network && (dp_spring_sloped_graph(&e->spring) || dp_spring_is_split(&e->spring)));
     return spring && (!e->has_damper || (DL && DL->locate));
 }
 
@@ -699,8 +691,8 @@ int dp_network_locates(const dp_spec *s)
         if (!element_locates(e, 1))
             return 0;
         sticky |= dp_element_can_stick(e) || is_ep(e);   /* a slider sticks and slides too */
-        sticky |= e->has_spring && !dp_spring_linear(&e->spring);   /* a sloped graph's kinks (the others: above) */
-        sticky |= e->has_spring && dp_spring_has_stop(&e->spring);   /* a rope goes taut, a graph reaches its stop */
+        /* a graph's kinks, stops and jumps, a rope going taut */
+        sticky |= e->has_spring && !dp_spring_linear(&e->spring);
     }
     return sticky && s->solver.events == DP_EVENTS_LOCATE;
 }

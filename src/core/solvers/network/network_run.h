@@ -4,6 +4,9 @@
 #ifndef DASHPOT_CORE_NETWORK_RUN_H
 #define DASHPOT_CORE_NETWORK_RUN_H
 
+#include <float.h>
+#include <math.h>
+
 #include "network/network_step.h"
 #include "record/row_queue.h"
 #include "record/sink.h"
@@ -87,8 +90,9 @@ struct dp_network_run {
     /* unilateral contacts (network_contact.c): act[nact_el..nact) are the contacts, in element order, and with
      * events located the ropes' constraints u <= L (ropes_bound; nrope of the nc) */
     size_t nact_el, nc, nrope;
-    int ropes_bound;            /* ropes are a linear spring k plus the constraint u <= L (network_run_rope_bound),
-                                   bounded graphs their sloped part (stop_S) plus their stops */
+    int ropes_bound;            /* springs with a vertical piece are stepped as their parts
+                                   (network_run_spring_split): a rope's linear spring k and u <= L, a graph's
+                                   sloped part (stop_S), stops and jumps */
     dp_graph *stop_S;           /* per element: a split graph's sloped part, else empty (NULL: none) */
     unsigned char *jump;        /* per active element: a split graph's jump (its own entry), NULL: none */
     dp_graph *jump_S;           /* the jumps' step graphs (njump): 0 below y, [0, J] at it, J above */
@@ -146,6 +150,19 @@ static inline double network_run_rel(long a, long b, const double *x)
     return (b >= 0 ? x[b] : 0) - (a >= 0 ? x[a] : 0);
 }
 
+/* Constraint b's gap x_b - x_a - d in its own order of the ends, and how close to zero a gap counts as
+ * touching: the rounding of the positions and a billionth of what the gap moves in a step h. */
+static inline double network_run_bound_gap(const network_bound *b, const double *x)
+{
+    return network_run_rel(b->a, b->b, x) - b->law.distance;
+}
+
+static inline double network_run_touch_tol(const network_bound *b, const double *x, const double *v, double h)
+{
+    double xs = fabs(b->law.distance) + (b->a >= 0 ? fabs(x[b->a]) : 0) + (b->b >= 0 ? fabs(x[b->b]) : 0);
+    return 1e-9 * h * fabs(network_run_rel(b->a, b->b, v)) + 64 * DBL_EPSILON * xs;
+}
+
 /* The stop hook polled inside a step: set on the step's workspaces (network_run_setup), it counts their work
  * and asks the run's hook every DP_RUN_POLL_WORK units; 1 when the run was stopped (r->status DP_ECANCEL).
  * A yield asked for inside a step sets nr->yield and is honoured between steps. */
@@ -153,6 +170,30 @@ int network_run_step_poll(void *run, unsigned long long units);
 static inline int network_run_cancelled(const dp_run *r)
 {
     return r->status == DP_ECANCEL;
+}
+
+/* Before each step of an advance (the general and the lean contact run types): room in the caller's block,
+ * the run's queue and the row slots, and the run not finished; then the step's work counted (at least a unit
+ * per node and element, its solves' band entries polled inside it: 10^4 blocks poll every step or so, one
+ * mass every 4096 steps), a yield asked for inside the last step honoured, the stop hook asked. 1: take the
+ * step; 0: the advance returns *status. */
+static inline int network_run_step_due(dp_run *r, int *status)
+{
+    struct dp_network_run *nr = r->state;
+    *status = DP_OK;
+    if (!(r->out_n < r->out_cap && !dp_row_queue_waiting(&nr->queue) && nr->slots.used < nr->slots.cap &&
+          !r->finished))
+        return 0;
+    nr->work += nr->n + nr->nel;
+    if (nr->yield) {
+        nr->yield = 0;
+        return 0;
+    }
+    if (dp_run_stopped(r, nr->work)) {
+        *status = r->status;
+        return 0;
+    }
+    return 1;
 }
 
 /* The stepping pieces located events are made of (network_stepping.c): the right side of a step of length h
@@ -183,9 +224,11 @@ size_t network_run_contacts_arm_closing(struct dp_network_run *nr, double h);
 int network_run_contacts_chattering(const struct dp_network_run *nr);
 void network_run_contacts_forces(struct dp_network_run *nr, int stepped);
 void network_run_contacts_after_probe(struct dp_network_run *nr);
-/* Whether element e's rope is stepped as a linear spring k plus the rigid constraint u <= L (events located,
- * the stick-slip solver: network_contact.c); otherwise it is its graph, stepped by backward Euler. */
-int network_run_rope_bound(const struct dp_network_run *nr, const dp_element *e);
+/* Whether element e's spring is stepped as its parts (events located, the stick-slip solver): a rope as a
+ * linear spring k plus the rigid constraint u <= L, a graph with a vertical piece as its sloped part, rigid
+ * constraints at its stops and an entry per jump (network_contact.c, network_run.c); otherwise it is its
+ * graph, stepped by backward Euler. */
+int network_run_spring_split(const struct dp_network_run *nr, const dp_element *e);
 /* How many constraints element e's spring adds with events located: a rope's u <= L, a bounded graph's
  * stops (dp_spring_bounded_graph), 0 otherwise. */
 size_t network_run_spring_stops(const struct dp_network_run *nr, const dp_element *e);
@@ -194,16 +237,14 @@ double network_run_compliant_force(const dp_contact *c, double u);
 /* An impact of element i's contact at t: relative velocity before and after, the impulse (>= 0). */
 void network_run_impact_event(dp_run *r, double t, size_t i, double before, double after, double impulse);
 
-/* Spring graphs of finite slope (network_smooth.c): whether a graph is one; flagging the active elements
- * that are (theta-stepped below theta = 1); their forces at the state after it moved; the step's right side
- * from their known part; the reported force (theirs at the state, else the step's `stepped`); which of the
+/* Spring graphs of finite slope (network_smooth.c): flagging the active elements
+ * that are (theta-stepped below theta = 1); their forces at the state after it moved (the step's right side
+ * takes their known part, network_stepping.c); the reported force (theirs at the state, else the step's `stepped`); which of the
  * failing elements (nr->fails) fail at a vertex of their spring at the located instant `at` (the held state
  * there), and whether k is one of them. */
-int network_run_smooth_graph(const dp_graph *g);
 int network_run_smooth_setup(struct dp_network_run *nr);
 void network_run_smooth_free(struct dp_network_run *nr);
 void network_run_smooth_update(struct dp_network_run *nr);
-void network_run_smooth_rhs(struct dp_network_run *nr, double h);
 double network_run_smooth_force(const struct dp_network_run *nr, size_t k, double stepped);
 /* 1 + the element whose sloped spring's force at the state is not finite, else 0. */
 size_t network_run_smooth_overflow(const struct dp_network_run *nr);

@@ -19,7 +19,8 @@
 
 #include "solvers/network/network_run.h"
 
-int network_run_smooth_graph(const dp_graph *g)
+/* Whether a spring graph has finite slope everywhere (no vertical piece, no vertical end ray). */
+static int sloped(const dp_graph *g)
 {
     return g != NULL && g->n > 0 && isfinite(dp_graph_lipschitz(g));
 }
@@ -34,22 +35,19 @@ static double start_force(const struct dp_network_run *nr, size_t k)
 
 int network_run_smooth_setup(struct dp_network_run *nr)
 {
-    int any = 0;
-    for (size_t k = 0; k < nr->nact; k++)
-        any |= nr->act[k].S && nr->act[k].ep_theta == 0 && network_run_smooth_graph(nr->act[k].S);
-    if (!any)
-        return DP_OK;
     size_t na = nr->nact;
-    nr->sm_on = calloc(na, 1);
-    nr->sm_F = calloc(na, sizeof *nr->sm_F);
-    nr->sm_kink = calloc(na, 1);
-    nr->sm_pressed = calloc(nr->nc ? nr->nc : 1, 1);
-    if (!nr->sm_on || !nr->sm_F || !nr->sm_kink || !nr->sm_pressed)
-        return DP_ENOMEM;
     for (size_t k = 0; k < na; k++) {
         dp_network_step_element *e = &nr->act[k];
-        if (!e->S || e->ep_theta != 0 || !network_run_smooth_graph(e->S))
+        if (e->ep_theta != 0 || !sloped(e->S))
             continue;
+        if (nr->sm_on == NULL) {   /* the first such spring: the arrays for all */
+            nr->sm_on = calloc(na, 1);
+            nr->sm_F = calloc(na, sizeof *nr->sm_F);
+            nr->sm_kink = calloc(na, 1);
+            nr->sm_pressed = calloc(nr->nc ? nr->nc : 1, 1);
+            if (!nr->sm_on || !nr->sm_F || !nr->sm_kink || !nr->sm_pressed)
+                return DP_ENOMEM;
+        }
         nr->sm_on[k] = 1;
         if (nr->theta < 1)   /* at theta = 1 the weighting is backward Euler's, bit for bit */
             e->ep_theta = nr->theta, nr->has_smooth = 1;
@@ -80,24 +78,6 @@ size_t network_run_smooth_overflow(const struct dp_network_run *nr)
 double network_run_smooth_force(const struct dp_network_run *nr, size_t k, double stepped)
 {
     return nr->has_smooth && nr->sm_on[k] ? nr->sm_F[k] : stepped;
-}
-
-/* The step's right side from the forces' known part: -h (1 - theta) S(u) on the element's ends, and the
- * elongation the graph sees moved by h (1 - theta) u'. */
-void network_run_smooth_rhs(struct dp_network_run *nr, double h)
-{
-    double th = nr->theta;
-    for (size_t k = 0; nr->has_smooth && k < nr->nact; k++) {
-        const dp_network_step_element *e = &nr->act[k];
-        if (!nr->sm_on[k])
-            continue;
-        double g = h * (1 - th) * nr->sm_F[k];
-        nr->u[k] += h * (1 - th) * network_run_rel(e->a, e->b, nr->v);
-        if (e->b >= 0)
-            nr->rhs[e->b] -= g;
-        if (e->a >= 0)
-            nr->rhs[e->a] += g;
-    }
 }
 
 /* The distance, in z, from the held step's end elongation u+ = u_e + s beta z+ to the nearest vertex of k's

@@ -156,6 +156,14 @@ static double in_domain(const dp_graph *S, double u)
     return u;
 }
 
+/* A theta-weighted spring's force at the step's start: an elastoplastic one's return mapping, else a graph
+ * of finite slope's (network_smooth.c). */
+static double start_force(const struct dp_network_run *nr, size_t k)
+{
+    size_t i = nr->act_el[k];
+    return k < nr->nact_el && nr->ep_graph[i] ? nr->ep_F[i] : nr->sm_F[k];
+}
+
 /* The right side of a step of length h from the current state at time t, W for h, and the elongations the
  * spring graphs see (network_step.h for the problem they define). */
 void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
@@ -185,19 +193,19 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
     }
     for (size_t k = 0; k < nr->nact; k++)
         nr->u[k] = in_domain(nr->act[k].S, network_run_rel(nr->act[k].a, nr->act[k].b, nr->x));
-    network_run_smooth_rhs(nr, h);
-    for (size_t k = 0; nr->jump && th < 1 && k < nr->nact_el; k++)   /* a jump sees the trapezoid's u+ */
-        if (nr->jump[k])
-            nr->u[k] += h * (1 - th) * network_run_rel(nr->act[k].a, nr->act[k].b, nr->v);
-    if (!nr->has_ep)
+    if (!nr->has_ep && !nr->has_smooth && !nr->jump)
         return;
+    /* theta-weighted spring graphs (elastoplastic, of finite slope, a split graph's jumps): S at
+     * u+ = u + h (1-theta) u' + h theta z+, and, but for a jump (its force whole at u+), the force's
+     * (1-theta) part known */
     for (size_t k = 0; k < nr->nact; k++) {
         const dp_network_step_element *e = &nr->act[k];
-        if (e->ep_theta == 0 || nr->ep_graph[nr->act_el[k]] == NULL || k >= nr->nact_el)
+        if (e->ep_theta == 0)
             continue;
-        /* u+ = u + h (1-theta) u' + h theta z+; the force's (1-theta) part is known */
-        double g = h * (1 - th) * nr->ep_F[nr->act_el[k]];
         nr->u[k] += h * (1 - th) * network_run_rel(e->a, e->b, nr->v);
+        if (e->s_whole)
+            continue;
+        double g = h * (1 - th) * start_force(nr, k);
         if (e->b >= 0)
             nr->rhs[e->b] -= g;
         if (e->a >= 0)
