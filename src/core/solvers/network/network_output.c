@@ -152,8 +152,9 @@ void network_run_touch_events(dp_run *r, double t)
 void network_run_step_events(dp_run *r, const unsigned char *before, double t)
 {
     struct dp_network_run *nr = r->state;
-    for (size_t i = 0; i < nr->nel; i++) {
-        if (nr->phase[i] == before[i] || nr->phase[i] == DP_PHASE_NONE)
+    const unsigned char *phase = nr->phase;
+    for (size_t i = 0, nel = nr->nel; i < nel; i++) {
+        if (phase[i] == before[i] || phase[i] == DP_PHASE_NONE)
             continue;
         const dp_element *e = &nr->net->el[i];
         /* a stick holds the belt's speed exactly; the state carries its rounding */

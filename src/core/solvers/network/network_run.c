@@ -327,7 +327,7 @@ void network_run_free(void *state)
     free(nr->stop_S), free(nr->jump_S), free(nr->jump);
     dp_row_queue_clear(&nr->queue);
     network_quakes_free(nr->quakes);
-    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->Mv, nr->Cv, nr->Mv_at, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->slots.data, nr->final_row, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
@@ -536,6 +536,12 @@ int network_run_setup(dp_run *r)
     nr->fixed = calloc(na, 1), nr->cand = calloc(na, 1), nr->fails_at = calloc(na, 1);
     nr->v1_keep = calloc(nr->n, sizeof *nr->v1_keep);
     nr->force_keep = calloc(na, sizeof *nr->force_keep);
+    if (nr->locate) {   /* the held solves' shared products (network_stepping.c) */
+        nr->Mv = calloc(nr->n, sizeof *nr->Mv), nr->Cv = calloc(nr->n, sizeof *nr->Cv);
+        nr->Mv_at = calloc(nr->n, sizeof *nr->Mv_at);
+        if (nr->Mv == NULL || nr->Cv == NULL || nr->Mv_at == NULL)
+            return DP_ENOMEM;
+    }
     if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL || nr->fails == NULL || nr->scale == NULL ||
         nr->fixed == NULL || nr->cand == NULL || nr->fails_at == NULL || nr->v1_keep == NULL ||
         nr->force_keep == NULL)

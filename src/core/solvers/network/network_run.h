@@ -47,6 +47,9 @@ struct dp_network_run {
     double *scale;              /* per active element: the size of its margin over a step */
     unsigned char *fixed, *cand, *fails_at;   /* per active element: location's scratch */
     double *v1_keep;            /* n: a step's solution kept while location looks further */
+    double *Mv, *Cv, *Mv_at;    /* n each, located runs: M v and C v for the velocity Mv_at, which every held
+                                 * solve from one sub-step's start shares (Mv == NULL: not kept) */
+    int Mv_valid;
     dp_network_step_forces *force_keep;   /* per active element, likewise */
     struct dp_network_regularized *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
     int one_mass;               /* stepped by the one-mass solver (network_one_mass.c) */

@@ -55,42 +55,70 @@ void network_run_build_W(struct dp_network_run *nr, double h)
 
 /* ---- the state's forces and rows ------------------------------------------------------------------- */
 
+/* Element i's forces and phase from the step's solution or (not stepped) the initial state. Kept out of the
+ * loop below, which runs for every element after every step: its common case reads a handful of arrays the
+ * loop holds in locals (a store of a phase byte may alias anything, so fields read through nr are read again
+ * after each one). */
+static int element_forces_set(struct dp_network_run *nr, size_t i, long k, int stepped, double u, double z,
+                                        double vb, double *fs, double *fd)
+{
+    double lo, hi;
+    int rest = z == vb;
+    if (k >= 0 && nr->ep_graph[i]) {   /* the return mapping's force, not the step's weighted one */
+        *fs = nr->ep_F[i];
+        if (stepped && nr->act[k].A)   /* without a damper the split's rounding is not a force */
+            *fd += nr->force[k].a, rest = nr->force[k].at_rest;
+        else if (nr->act[k].A) {
+            dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
+            *fd += fmin(fmax(0.0, lo), hi);
+        }
+    } else if (k >= 0 && stepped) {
+        const dp_network_step_forces *f = &nr->force[k];
+        *fs += network_run_smooth_force(nr, (size_t)k, f->s), *fd += f->a, rest = f->at_rest;
+    } else if (k >= 0) {
+        if (nr->act[k].S) {
+            dp_graph_force(nr->act[k].S, u, &lo, &hi);
+            *fs += fmin(fmax(0.0, lo), hi);
+        }
+        if (nr->act[k].A) {
+            dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
+            *fd += fmin(fmax(0.0, lo), hi);
+        }
+    }
+    const dp_element *e = &nr->net->el[i];
+    if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
+        *fd -= dp_relaxation_eval(&e->damper.relaxation, z - vb);
+    return rest;
+}
+
 /* Each element's forces and phase at the current state; `stepped`: after a step (forces from its
  * solution), else the initial state (set-valued forces taken closest to zero). */
 void network_run_element_forces(struct dp_network_run *nr, int stepped)
 {
-    for (size_t i = 0; i < nr->nel; i++) {
-        const dp_element *e = &nr->net->el[i];
-        double u = network_run_rel(e->a, e->b, nr->x), z = network_run_rel(e->a, e->b, nr->v), vb = e->has_damper ? e->damper.belt_velocity : 0;
+    const dp_element *el = nr->net->el;
+    const double *x = nr->x, *v = nr->v, *kk = nr->k, *cc = nr->c;
+    const long *act_of = nr->act_of;
+    const unsigned char *can_stick = nr->can_stick;
+    const dp_network_step_forces *force = nr->force;
+    double *Fs = nr->Fs, *Fd = nr->Fd;
+    unsigned char *phase = nr->phase;
+    /* the plain case (no elastoplastic, sloped, relaxed spring anywhere) is the loop's own */
+    int plain = !nr->has_ep && !nr->has_smooth && !nr->relaxed;
+    for (size_t i = 0, nel = nr->nel; i < nel; i++) {
+        const dp_element *e = &el[i];
+        double u = network_run_rel(e->a, e->b, x), z = network_run_rel(e->a, e->b, v), vb = e->has_damper ? e->damper.belt_velocity : 0;
         /* no linear part: 0, not the -0 of 0 * (a negative elongation) */
-        double fs = nr->k[i] != 0 ? nr->k[i] * u : 0, fd = nr->c[i] != 0 ? nr->c[i] * (z - vb) : 0, lo, hi;
-        long k = nr->act_of[i];
-        int rest = z == vb;
-        if (k >= 0 && nr->ep_graph[i]) {   /* the return mapping's force, not the step's weighted one */
-            fs = nr->ep_F[i];
-            if (stepped && nr->act[k].A)   /* without a damper the split's rounding is not a force */
-                fd += nr->force[k].a, rest = nr->force[k].at_rest;
-            else if (nr->act[k].A) {
-                dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
-                fd += fmin(fmax(0.0, lo), hi);
-            }
-        } else if (k >= 0 && stepped) {
-            const dp_network_step_forces *f = &nr->force[k];
-            fs += network_run_smooth_force(nr, (size_t)k, f->s), fd += f->a, rest = f->at_rest;
-        } else if (k >= 0) {
-            if (nr->act[k].S) {
-                dp_graph_force(nr->act[k].S, u, &lo, &hi);
-                fs += fmin(fmax(0.0, lo), hi);
-            }
-            if (nr->act[k].A) {
-                dp_graph_force(nr->act[k].A, z - vb, &lo, &hi);
-                fd += fmin(fmax(0.0, lo), hi);
-            }
-        }
-        if (e->has_damper && e->damper.relaxation.kind != DP_RELAX_NONE)
-            fd -= dp_relaxation_eval(&e->damper.relaxation, z - vb);
-        nr->Fs[i] = fs, nr->Fd[i] = fd;
-        nr->phase[i] = !nr->can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
+        double fs = kk[i] != 0 ? kk[i] * u : 0, fd = cc[i] != 0 ? cc[i] * (z - vb) : 0;
+        long k = act_of[i];
+        int rest;
+        if (plain && k >= 0 && stepped)
+            fs += force[k].s, fd += force[k].a, rest = force[k].at_rest;
+        else if (plain && k < 0)
+            rest = z == vb;
+        else
+            rest = element_forces_set(nr, i, k, stepped, u, z, vb, &fs, &fd);
+        Fs[i] = fs, Fd[i] = fd;
+        phase[i] = !can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
     }
     for (size_t k = 0; nr->jump && k < nr->nact_el; k++) {   /* a split graph's jumps: their own entries */
         if (!nr->jump[k])
@@ -164,6 +192,27 @@ static double start_force(const struct dp_network_run *nr, size_t k)
     return k < nr->nact_el && nr->ep_graph[i] ? nr->ep_F[i] : nr->sm_F[k];
 }
 
+/* M v into rhs and C v into tmp. A located step solves from one state many times (its held solves), so
+ * the products are kept with the velocity they were formed for and copied while it is the same to the
+ * bit; copies of the same numbers, so the same right side. */
+static void band_products_Mv_Cv(struct dp_network_run *nr)
+{
+    size_t n = nr->n, bytes = n * sizeof(double);
+    if (nr->Mv && nr->Mv_valid && memcmp(nr->Mv_at, nr->v, bytes) == 0) {
+        memcpy(nr->rhs, nr->Mv, bytes);
+        memcpy(nr->tmp, nr->Cv, bytes);
+        return;
+    }
+    dp_band_symv(nr->M, n, nr->p, nr->v, nr->rhs);
+    dp_band_symv(nr->C, n, nr->p, nr->v, nr->tmp);
+    if (nr->Mv) {
+        memcpy(nr->Mv, nr->rhs, bytes);
+        memcpy(nr->Cv, nr->tmp, bytes);
+        memcpy(nr->Mv_at, nr->v, bytes);
+        nr->Mv_valid = 1;
+    }
+}
+
 /* The right side of a step of length h from the current state at time t, W for h, and the elongations the
  * spring graphs see (network_step.h for the problem they define). */
 void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
@@ -172,8 +221,7 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
     double th = nr->theta;
     if (h != nr->h_W)
         network_run_build_W(nr, h);
-    dp_band_symv(nr->M, n, p, nr->v, nr->rhs);
-    dp_band_symv(nr->C, n, p, nr->v, nr->tmp);
+    band_products_Mv_Cv(nr);
     for (size_t i = 0; i < n; i++) {
         nr->rhs[i] -= h * (1 - th) * nr->tmp[i];
         nr->v1[i] = nr->x[i] + h * th * (1 - th) * nr->v[i];
@@ -216,9 +264,11 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
 /* x+ = x + h ((1-theta) v + theta v+), v = v+. */
 void network_run_take_velocity(struct dp_network_run *nr, double h)
 {
-    for (size_t i = 0; i < nr->n; i++) {
-        nr->x[i] += h * ((1 - nr->theta) * nr->v[i] + nr->theta * nr->v1[i]);
-        nr->v[i] = nr->v1[i];
+    double *x = nr->x, *v = nr->v, th = nr->theta;
+    const double *v1 = nr->v1;
+    for (size_t i = 0, n = nr->n; i < n; i++) {
+        x[i] += h * ((1 - th) * v[i] + th * v1[i]);
+        v[i] = v1[i];
     }
     network_run_ep_update(nr);
     network_run_smooth_update(nr);
