@@ -239,6 +239,7 @@ static int setup_laws(struct dp_network_run *nr)
         int lin_spring = !e->has_spring || dp_spring_linear(&e->spring) || rope;
         nr->k[i] = rope ? e->spring.k : e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
         nr->c[i] = e->has_damper ? dp_damper_viscous(&e->damper) : 0;
+        nr->belt_viscous |= e->has_damper && nr->c[i] != 0 && e->damper.belt_velocity != 0;
         int set_damper = e->has_damper && (!dp_damper_linear(&e->damper)
                                            || e->damper.relaxation.kind != DP_RELAX_NONE);
         nr->can_stick[i] = (unsigned char)dp_element_can_stick(e);

@@ -222,25 +222,28 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
     if (h != nr->h_W)
         network_run_build_W(nr, h);
     band_products_Mv_Cv(nr);
+    double *rhs = nr->rhs, *tmp = nr->tmp, *v1 = nr->v1, *u = nr->u;
+    const double *x = nr->x, *v = nr->v;
     for (size_t i = 0; i < n; i++) {
-        nr->rhs[i] -= h * (1 - th) * nr->tmp[i];
-        nr->v1[i] = nr->x[i] + h * th * (1 - th) * nr->v[i];
+        rhs[i] -= h * (1 - th) * tmp[i];
+        v1[i] = x[i] + h * th * (1 - th) * v[i];
     }
-    dp_band_symv(nr->K, n, p, nr->v1, nr->tmp);
+    dp_band_symv(nr->K, n, p, v1, tmp);
     for (size_t i = 0; i < n; i++)
-        nr->rhs[i] -= h * nr->tmp[i];
+        rhs[i] -= h * tmp[i];
     for (size_t i = 0; i < nr->net->nforce; i++)
-        nr->rhs[nr->net->force[i].node] += h * dp_forcing_eval(&nr->net->force[i].f, t + th * h);
-    for (size_t i = 0; i < nr->nel; i++) {
+        rhs[nr->net->force[i].node] += h * dp_forcing_eval(&nr->net->force[i].f, t + th * h);
+    for (size_t i = 0; nr->belt_viscous && i < nr->nel; i++) {   /* without one every term below is +-0 */
         const dp_element *e = &nr->net->el[i];
         double g = e->has_damper ? h * nr->c[i] * e->damper.belt_velocity : 0;
         if (g != 0 && e->b >= 0)
-            nr->rhs[e->b] += g;
+            rhs[e->b] += g;
         if (g != 0 && e->a >= 0)
-            nr->rhs[e->a] -= g;
+            rhs[e->a] -= g;
     }
-    for (size_t k = 0; k < nr->nact; k++)
-        nr->u[k] = in_domain(nr->act[k].S, network_run_rel(nr->act[k].a, nr->act[k].b, nr->x));
+    const dp_network_step_element *act = nr->act;
+    for (size_t k = 0, na = nr->nact; k < na; k++)
+        u[k] = in_domain(act[k].S, network_run_rel(act[k].a, act[k].b, x));
     if (!nr->has_ep && !nr->has_smooth && !nr->jump)
         return;
     /* theta-weighted spring graphs (elastoplastic, of finite slope, a split graph's jumps): S at
