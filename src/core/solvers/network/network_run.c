@@ -121,6 +121,7 @@ static int alloc_all(struct dp_network_run *nr)
     nr->broke = calloc(na, 1);
     nr->k = calloc(ne, sizeof(double));
     nr->c = calloc(ne, sizeof(double));
+    nr->vb = calloc(ne, sizeof(double));
     nr->x = calloc(n, sizeof(double));
     nr->v = calloc(n, sizeof(double));
     nr->v1 = calloc(n, sizeof(double));
@@ -143,7 +144,7 @@ static int alloc_all(struct dp_network_run *nr)
     nr->ep_cols = calloc(ne, sizeof *nr->ep_cols);
     if (!nr->ep_p || !nr->ep_F || !nr->ep_flow || !nr->ep_flow_prev || !nr->ep_graph || !nr->ep_cols)
         return DP_ENOMEM;
-    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->act_el && nr->gamma && nr->static_A && nr->held && nr->broke && nr->k && nr->c && nr->x && nr->v && nr->v1 &&
+    return nr->M && nr->K && nr->C && nr->act && nr->act_of && nr->act_el && nr->gamma && nr->static_A && nr->held && nr->broke && nr->k && nr->c && nr->vb && nr->x && nr->v && nr->v1 &&
            nr->rhs && nr->tmp && nr->u && nr->force && nr->Fs && nr->Fd && nr->phase && nr->phase_prev && nr->can_stick &&
            nr->all_nodes && nr->all_elements ? DP_OK : DP_ENOMEM;
 }
@@ -239,6 +240,7 @@ static int setup_laws(struct dp_network_run *nr)
         int lin_spring = !e->has_spring || dp_spring_linear(&e->spring) || rope;
         nr->k[i] = rope ? e->spring.k : e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
         nr->c[i] = e->has_damper ? dp_damper_viscous(&e->damper) : 0;
+        nr->vb[i] = e->has_damper ? e->damper.belt_velocity : 0;
         nr->belt_viscous |= e->has_damper && nr->c[i] != 0 && e->damper.belt_velocity != 0;
         int set_damper = e->has_damper && (!dp_damper_linear(&e->damper)
                                            || e->damper.relaxation.kind != DP_RELAX_NONE);
@@ -328,7 +330,7 @@ void network_run_free(void *state)
     free(nr->stop_S), free(nr->jump_S), free(nr->jump);
     dp_row_queue_clear(&nr->queue);
     network_quakes_free(nr->quakes);
-    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->Mv, nr->Cv, nr->Mv_at, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->x, nr->v, nr->v1, nr->rhs,
+    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->Mv, nr->Cv, nr->Mv_at, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->vb, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->slots.data, nr->final_row, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)

@@ -50,6 +50,8 @@ struct dp_network_run {
     double *Mv, *Cv, *Mv_at;    /* n each, located runs: M v and C v for the velocity Mv_at, which every held
                                  * solve from one sub-step's start shares (Mv == NULL: not kept) */
     int Mv_valid;
+    double *vb;                 /* nel: each element's belt velocity (0 without a damper), beside the element
+                                 * structs whose damper it would otherwise read a cache line further on */
     int belt_viscous;           /* some element's viscous damper rides a moving belt (a term of each right side) */
     dp_network_step_forces *force_keep;   /* per active element, likewise */
     struct dp_network_regularized *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */

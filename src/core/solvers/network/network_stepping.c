@@ -96,7 +96,7 @@ static int element_forces_set(struct dp_network_run *nr, size_t i, long k, int s
 void network_run_element_forces(struct dp_network_run *nr, int stepped)
 {
     const dp_element *el = nr->net->el;
-    const double *x = nr->x, *v = nr->v, *kk = nr->k, *cc = nr->c;
+    const double *x = nr->x, *v = nr->v, *kk = nr->k, *cc = nr->c, *vbs = nr->vb;
     const long *act_of = nr->act_of;
     const unsigned char *can_stick = nr->can_stick;
     const dp_network_step_forces *force = nr->force;
@@ -106,7 +106,7 @@ void network_run_element_forces(struct dp_network_run *nr, int stepped)
     int plain = !nr->has_ep && !nr->has_smooth && !nr->relaxed;
     for (size_t i = 0, nel = nr->nel; i < nel; i++) {
         const dp_element *e = &el[i];
-        double u = network_run_rel(e->a, e->b, x), z = network_run_rel(e->a, e->b, v), vb = e->has_damper ? e->damper.belt_velocity : 0;
+        double u = network_run_rel(e->a, e->b, x), z = network_run_rel(e->a, e->b, v), vb = vbs[i];
         /* no linear part: 0, not the -0 of 0 * (a negative elongation) */
         double fs = kk[i] != 0 ? kk[i] * u : 0, fd = cc[i] != 0 ? cc[i] * (z - vb) : 0;
         long k = act_of[i];
