@@ -37,10 +37,24 @@ typedef struct chain_contact {
     double lo, zref, fz, lam, lam_err;
 } chain_contact;
 
+/* An element with a linear part, for its forces (network_run_element_forces): the others' are +0 throughout. */
+typedef struct chain_element {
+    size_t i;
+    long a, b;
+    double k, c, vb;
+} chain_element;
+
 struct network_chain {
-    size_t n, nc;
+    size_t n, nc, nlin;
     chain_contact *ct;  /* per contact, in the step's element order */
+    chain_element *lin; /* the elements with a spring or a damper of nonzero coefficient */
     long *kidx;         /* per node: its reduced unknown, -1 when held to the ground */
+    unsigned char *down;   /* per node: a free [node, ground] contact's h (lam0 - slope zref) = +0 added */
+    unsigned char *held, *fac_held;   /* per node: held to the ground now / in R's factor */
+    int factored;       /* R holds the factor for fac_held of W = fac_W built for step fac_h (prepare's reuse) */
+    double fac_h;
+    const double *fac_W;
+    size_t fac_pr;
     double *c, *res, *rhs_eff, *vs, *y, *R;
 };
 
@@ -76,16 +90,20 @@ static int chain_start(const dp_network_step_element *e, chain_contact *k, doubl
  * node its own unknown at potential +0. Returns the number of unknowns. */
 static size_t chain_forest(struct network_chain *ch)
 {
-    for (size_t i = 0; i < ch->n; i++)
-        ch->kidx[i] = 0;
+    memset(ch->held, 0, ch->n);
+    memset(ch->down, 0, ch->n);
     for (size_t c = 0; c < ch->nc; c++) {
         const chain_contact *k = &ch->ct[c];
-        if (!k->fixed)
+        if (!k->fixed) {
+            ch->down[k->node] = !k->up;
             continue;
+        }
         double pot = k->up ? (k->fz + 0) - 0 : (0 - 0) - k->fz;
-        ch->kidx[k->node] = -1;
+        ch->held[k->node] = 1;
         ch->c[k->node] = (0 + pot) - 0;
     }
+    for (size_t i = 0; i < ch->n; i++)
+        ch->kidx[i] = ch->held[i] ? -1 : 0;
     size_t nr = 0;
     for (size_t i = 0; i < ch->n; i++)
         if (ch->kidx[i] == 0)
@@ -93,20 +111,13 @@ static size_t chain_forest(struct network_chain *ch)
     return nr;
 }
 
-/* effective_rhs: a free contact's h (lam0 - slope zref) (both +0 on its pieces) added at its node. */
-static void chain_rhs_eff(struct network_chain *ch, double h, const double *rhs)
+/* effective_rhs: a free contact's g = h (lam0 - slope zref), which is h (0 - 0 zref) = +0 on its pieces
+ * (zref finite, h > 0), taken from its node's entry ([ground, node]: x - +0 = x, -0 kept) or added to it
+ * ([node, ground]: x + +0, which turns -0 into +0). */
+static void chain_rhs_eff(struct network_chain *ch, const double *rhs)
 {
-    memcpy(ch->rhs_eff, rhs, ch->n * sizeof *rhs);
-    for (size_t c = 0; c < ch->nc; c++) {
-        const chain_contact *k = &ch->ct[c];
-        if (k->fixed)
-            continue;
-        double g = h * (0 - 0 * k->zref);
-        if (k->up)
-            ch->rhs_eff[k->node] -= g;
-        else
-            ch->rhs_eff[k->node] += g;
-    }
+    for (size_t i = 0; i < ch->n; i++)
+        ch->rhs_eff[i] = ch->down[i] ? rhs[i] + 0.0 : rhs[i];
 }
 
 /* factor_reduced: R = W on the free nodes, factored by base/band.c (GSL's band Cholesky; at half-bandwidth 0
@@ -114,6 +125,11 @@ static void chain_rhs_eff(struct network_chain *ch, double h, const double *rhs)
 static int chain_factor(struct network_chain *ch, const double *W, size_t p, size_t nr, size_t *pr)
 {
     size_t n = ch->n, p1 = p + 1;
+    if (ch->factored && memcmp(ch->held, ch->fac_held, n) == 0) {   /* the structure factored: R as it is */
+        *pr = ch->fac_pr;
+        return 1;
+    }
+    ch->factored = 0;
     *pr = 0;
     for (size_t i = 0; p == 1 && i + 1 < n; i++)
         if (W[i * p1 + 1] != 0 && ch->kidx[i] >= 0 && ch->kidx[i + 1] >= 0)
@@ -135,13 +151,15 @@ static int chain_factor(struct network_chain *ch, const double *W, size_t p, siz
             continue;
         ch->R[(size_t)ki * q + 1] += a;   /* kj = ki + 1: free neighbours are consecutive unknowns */
     }
-    if (*pr == 1)
-        return dp_band_cholesky(ch->R, nr, 1) == DP_OK;
-    for (size_t k = 0; k < nr; k++) {
+    if (*pr == 1 && dp_band_cholesky(ch->R, nr, 1) != DP_OK)
+        return 0;
+    for (size_t k = 0; *pr == 0 && k < nr; k++) {
         if (!(ch->R[k] > 0))
             return 0;
         ch->R[k] = sqrt(ch->R[k]);
     }
+    ch->factored = 1, ch->fac_pr = *pr;
+    memcpy(ch->fac_held, ch->held, n);
     return 1;
 }
 
@@ -255,7 +273,9 @@ static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
     for (int it = 0; it < 12; it++) {
         iters++;
         nr_ = chain_forest(ch);
-        chain_rhs_eff(ch, h, nr->rhs);
+        chain_rhs_eff(ch, nr->rhs);
+        if (h != ch->fac_h || W != ch->fac_W)   /* W rebuilt for another step length */
+            ch->factored = 0, ch->fac_h = h, ch->fac_W = W;
         if (!chain_factor(ch, W, p, nr_, &pr))
             return 1;
         chain_solve_assignment(ch, W, p, nr_, pr);
@@ -278,11 +298,58 @@ static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
 
 /* ---- the run ------------------------------------------------------------------------------------------ */
 
+/* Moreau-Jean's arming (network_run_contacts_arm_mj) for the chain's contacts, none behind another. */
+static void chain_arm(struct dp_network_run *nr, const struct network_chain *ch, double h)
+{
+    int changed = 0;
+    for (size_t c = 0; c < ch->nc; c++) {
+        const chain_contact *k = &ch->ct[c];
+        double g = chain_rel(k, nr->x) - nr->ct[c].law.distance, gd = chain_rel(k, nr->v);
+        if (fabs(gd) < DBL_MIN)
+            gd = 0;
+        int was = nr->ct_on[c], on = g + 0.5 * h * gd <= 0;
+        dp_network_step_element *a = &nr->act[c];
+        changed |= (a->A != NULL) != on;
+        a->A = on ? &nr->cone : NULL;
+        a->vb = on ? -nr->ct[c].law.restitution * gd : 0;
+        nr->ct_on[c] = (unsigned char)on;
+        nr->ct_pre[c] = was ? 0 : gd;
+    }
+    if (changed)   /* the general workspace's factor cache, for a step it takes over */
+        dp_network_step_W_changed(nr->ws);
+}
+
+/* network_run_element_forces after a step for the chain's elements: the linear parts' forces (the others'
+ * stay +0, no phase: none can stick), the contacts' multipliers (network_run_contacts_forces). */
+static void chain_forces(struct dp_network_run *nr, const struct network_chain *ch)
+{
+    for (size_t j = 0; j < ch->nlin; j++) {
+        const chain_element *e = &ch->lin[j];
+        double u = network_run_rel(e->a, e->b, nr->x), z = network_run_rel(e->a, e->b, nr->v);
+        nr->Fs[e->i] = e->k != 0 ? e->k * u : 0;
+        nr->Fd[e->i] = e->c != 0 ? e->c * (z - e->vb) : 0;
+    }
+    for (size_t c = 0; c < ch->nc; c++)
+        nr->Fn[nr->ct_el[c]] = nr->ct_on[c] ? nr->force[c].lambda : 0;
+}
+
+/* network_run_state_finite: the elements without a linear part have forces +0. */
+static int chain_finite(const struct dp_network_run *nr, const struct network_chain *ch)
+{
+    for (size_t i = 0; i < nr->n; i++)
+        if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
+            return 0;
+    for (size_t j = 0; j < ch->nlin; j++)
+        if (!isfinite(nr->Fs[ch->lin[j].i]) || !isfinite(nr->Fd[ch->lin[j].i]))
+            return 0;
+    return 1;
+}
+
 /* One Moreau-Jean step (network_run_net_step) and the elements' forces after it. */
 static int chain_step(dp_run *r, struct network_chain *ch, double t, double h)
 {
     struct dp_network_run *nr = r->state;
-    network_run_contacts_arm_mj(nr, h);
+    chain_arm(nr, ch, h);
     network_run_step_rhs(nr, t, h);
     int s = chain_step_solve(r, ch, h);
     if (s == 1)   /* the general solve decides */
@@ -292,7 +359,7 @@ static int chain_step(dp_run *r, struct network_chain *ch, double t, double h)
         return s;
     network_run_take_velocity(nr, h);
     network_run_contacts_mj_events(r, t, h);
-    network_run_element_forces(nr, 1);
+    chain_forces(nr, ch);
     return DP_OK;
 }
 
@@ -316,7 +383,7 @@ static int chain_advance(dp_run *r)
             return r->status;
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
-        if ((s = network_run_step_taken(r, network_run_state_finite(nr))) != DP_OK)
+        if ((s = network_run_step_taken(r, chain_finite(nr, ch))) != DP_OK)
             return s;
     }
     return due;
@@ -326,7 +393,8 @@ static void chain_release(struct network_chain *ch)
 {
     if (ch == NULL)
         return;
-    void *p[] = { ch->ct, ch->kidx, ch->c, ch->res, ch->rhs_eff, ch->vs, ch->y, ch->R };
+    void *p[] = { ch->ct, ch->lin, ch->kidx, ch->down, ch->held, ch->fac_held, ch->c, ch->res, ch->rhs_eff, ch->vs,
+                  ch->y, ch->R };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
     free(ch);
@@ -358,8 +426,17 @@ static int chain_setup(struct dp_network_run *nr)
     for (size_t i = 0; i < sizeof d / sizeof *d; i++)
         *d[i] = calloc(n + 1, sizeof(double));
     ch->R = calloc(2 * n, sizeof *ch->R);
-    if (!ch->ct || !ch->kidx || !ch->c || !ch->res || !ch->rhs_eff || !ch->vs || !ch->y || !ch->R)
+    ch->lin = calloc(nr->nel ? nr->nel : 1, sizeof *ch->lin);
+    ch->down = calloc(n, 1), ch->held = calloc(n, 1), ch->fac_held = calloc(n, 1);
+    if (!ch->ct || !ch->kidx || !ch->c || !ch->res || !ch->rhs_eff || !ch->vs || !ch->y || !ch->R || !ch->lin ||
+        !ch->down || !ch->held || !ch->fac_held)
         return DP_ENOMEM;
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        if (nr->k[i] != 0 || nr->c[i] != 0)
+            ch->lin[ch->nlin++] = (chain_element){ .i = i, .a = e->a, .b = e->b, .k = nr->k[i], .c = nr->c[i],
+                                                   .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+    }
     unsigned char *seen = calloc(n, 1);
     if (seen == NULL)
         return DP_ENOMEM;
