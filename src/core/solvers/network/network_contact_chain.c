@@ -320,33 +320,34 @@ static void chain_arm(struct dp_network_run *nr, const struct network_chain *ch,
 }
 
 /* network_run_element_forces after a step for the chain's elements: the linear parts' forces (the others'
- * stay +0, no phase: none can stick), the contacts' multipliers (network_run_contacts_forces). */
-static void chain_forces(struct dp_network_run *nr, const struct network_chain *ch)
+ * stay +0, no phase: none can stick), the contacts' multipliers (network_run_contacts_forces). Returns
+ * whether those forces are finite (network_run_state_finite's second half). */
+static int chain_forces(struct dp_network_run *nr, const struct network_chain *ch)
 {
+    int finite = 1;
     for (size_t j = 0; j < ch->nlin; j++) {
         const chain_element *e = &ch->lin[j];
         double u = network_run_rel(e->a, e->b, nr->x), z = network_run_rel(e->a, e->b, nr->v);
-        nr->Fs[e->i] = e->k != 0 ? e->k * u : 0;
-        nr->Fd[e->i] = e->c != 0 ? e->c * (z - e->vb) : 0;
+        double fs = e->k != 0 ? e->k * u : 0, fd = e->c != 0 ? e->c * (z - e->vb) : 0;
+        nr->Fs[e->i] = fs, nr->Fd[e->i] = fd;
+        finite &= isfinite(fs) && isfinite(fd);
     }
     for (size_t c = 0; c < ch->nc; c++)
         nr->Fn[nr->ct_el[c]] = nr->ct_on[c] ? nr->force[c].lambda : 0;
+    return finite;
 }
 
-/* network_run_state_finite: the elements without a linear part have forces +0. */
-static int chain_finite(const struct dp_network_run *nr, const struct network_chain *ch)
+/* network_run_state_finite: the positions and velocities, and the forces' check (`forces`). */
+static int chain_finite(const struct dp_network_run *nr, int forces)
 {
-    for (size_t i = 0; i < nr->n; i++)
+    for (size_t i = 0; forces && i < nr->n; i++)
         if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
             return 0;
-    for (size_t j = 0; j < ch->nlin; j++)
-        if (!isfinite(nr->Fs[ch->lin[j].i]) || !isfinite(nr->Fd[ch->lin[j].i]))
-            return 0;
-    return 1;
+    return forces;
 }
 
-/* One Moreau-Jean step (network_run_net_step) and the elements' forces after it. */
-static int chain_step(dp_run *r, struct network_chain *ch, double t, double h)
+/* One Moreau-Jean step (network_run_net_step) and the elements' forces after it; *finite: the state's. */
+static int chain_step(dp_run *r, struct network_chain *ch, double t, double h, int *finite)
 {
     struct dp_network_run *nr = r->state;
     chain_arm(nr, ch, h);
@@ -359,7 +360,7 @@ static int chain_step(dp_run *r, struct network_chain *ch, double t, double h)
         return s;
     network_run_take_velocity(nr, h);
     network_run_contacts_mj_events(r, t, h);
-    chain_forces(nr, ch);
+    *finite = chain_finite(nr, chain_forces(nr, ch));
     return DP_OK;
 }
 
@@ -378,12 +379,12 @@ static int chain_advance(dp_run *r)
         double h = dp_run_step_length(r), t = r->cur.t;
         nr->impacts_step = 0;
         memcpy(nr->phase_prev, nr->phase, nr->nel);
-        int s = chain_step(r, ch, t, h);
+        int finite = 0, s = chain_step(r, ch, t, h, &finite);
         if (s != DP_OK && network_run_cancelled(r))
             return r->status;
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
-        if ((s = network_run_step_taken(r, chain_finite(nr, ch))) != DP_OK)
+        if ((s = network_run_step_taken(r, finite)) != DP_OK)
             return s;
     }
     return due;
