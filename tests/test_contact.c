@@ -822,8 +822,10 @@ static void run_type_bytes(const char *json, const dp_run_type *lean, int genera
         fprintf(stderr, "%s: %s\n", errs.item[0].pointer, errs.item[0].message);
     assert_non_null(run);
     assert_ptr_equal(run->type, lean);
+    dp_run_type gen = dp_run_network;
+    gen.free = lean->free;   /* the state the lean type's init made, its workspace with it */
     if (general)
-        run->type = &dp_run_network;
+        run->type = &gen;
     size_t width = dp_run_columns(run)->width, n;
     dp_record *buf = malloc(cap * sizeof *buf);
     assert_non_null(buf);
