@@ -797,7 +797,15 @@ static void put(bytes *b, const void *src, size_t n)
 /* Runs the document through its own run type (which must be the lean one) or, `general`, through the
  * general network type after their common init, in blocks of `cap` records; every record's numbers and the
  * summary as bytes. */
+static void run_type_bytes(const char *json, const dp_run_type *lean, int general, size_t cap, bytes *out);
+
 static void run_bytes(const char *json, int general, size_t cap, bytes *out)
+{
+    run_type_bytes(json, &dp_run_network_contact_lean, general, cap, out);
+}
+
+/* run_bytes for the lean type `lean`. */
+static void run_type_bytes(const char *json, const dp_run_type *lean, int general, size_t cap, bytes *out)
 {
     dp_spec spec;
     dp_errors errs;
@@ -813,9 +821,11 @@ static void run_bytes(const char *json, int general, size_t cap, bytes *out)
     if (run == NULL)
         fprintf(stderr, "%s: %s\n", errs.item[0].pointer, errs.item[0].message);
     assert_non_null(run);
-    assert_ptr_equal(run->type, &dp_run_network_contact_lean);
+    assert_ptr_equal(run->type, lean);
+    dp_run_type gen = dp_run_network;
+    gen.free = lean->free;   /* the state the lean type's init made, its workspace with it */
     if (general)
-        run->type = &dp_run_network;
+        run->type = &gen;
     size_t width = dp_run_columns(run)->width, n;
     dp_record *buf = malloc(cap * sizeof *buf);
     assert_non_null(buf);
@@ -870,10 +880,121 @@ static void test_lean_ball_bit_for_bit(void **state)
     assert_true(impacts > 200 && bouncing > 80);
 }
 
+/* ---- stop chains' lean step (network_contact_chain.c) against the general network step ---- */
+
+/* Appends to a document being written. */
+static void add(char *d, size_t cap, int *len, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    *len += vsnprintf(d + *len, cap - (size_t)*len, fmt, ap);
+    va_end(ap);
+    assert_true((size_t)*len < cap);
+}
+
+/* A random stop chain: n = 2..40 blocks (their labels maybe shuffled, which the run's ordering undoes), maybe
+ * a ground spring and a ground damper each, neighbour springs and dampers (some missing or of zero
+ * stiffness: a diagonal or split W), a rigid contact from the ground on most blocks ([ground, i] or
+ * [i, ground]) of random distance and restitution 0..1, a constant and maybe a harmonic load, starts on the
+ * stops, a hair off them and well off them, random dt and theta, events "none", every step written. */
+static void contact_chain_doc(char *d, size_t cap)
+{
+    static const double dts[] = { 1e-3, 0.01, 0.05 };
+    size_t n = 2 + (size_t)(39 * rnd()), lab[40];
+    for (size_t i = 0; i < n; i++)
+        lab[i] = i;
+    for (size_t i = n - 1; rnd() < 0.3 && i > 0; i--) {   /* a shuffled numbering */
+        size_t j = (size_t)((double)(i + 1) * rnd()), t = lab[i];
+        lab[i] = lab[j], lab[j] = t;
+    }
+    int len = 0, first = 1;
+    double kg = rnd() < 0.2 ? 0 : 5 * rnd(), kc = rnd() < 0.2 ? 0 : 20 * rnd(), cg = rnd() < 0.5 ? 0 : rnd();
+    double x0[40], dist[40];
+    add(d, cap, &len, "{\"model\":{\"masses\":[");
+    for (size_t i = 0; i < n; i++)
+        add(d, cap, &len, "%s%.6g", i ? "," : "", 0.2 + 2 * rnd());
+    add(d, cap, &len, "],\"elements\":[");
+    for (size_t i = 0; i < n; i++) {
+        dist[i] = 2 * rnd() - 1;
+        double r = rnd();
+        x0[i] = r < 0.2 ? dist[i] : r < 0.3 ? dist[i] + 1e-6 * rnd() : dist[i] + 2 * rnd();
+        if (kg > 0 || cg > 0) {
+            add(d, cap, &len, "%s{\"between\":[\"ground\",%zu]", first ? "" : ",", lab[i]);
+            if (kg > 0)
+                add(d, cap, &len, ",\"spring\":{\"law\":\"linear\",\"k\":%.6g}", kg);
+            if (cg > 0)
+                add(d, cap, &len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g%s}", cg,
+                    rnd() < 0.3 ? ",\"belt_velocity\":0.5" : "");
+            add(d, cap, &len, "}"), first = 0;
+        }
+        if (i + 1 < n && rnd() < 0.9) {
+            add(d, cap, &len, "%s{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":%.6g}", first ? "" : ",",
+                lab[i], lab[i + 1], rnd() < 0.1 ? 0 : kc);
+            if (rnd() < 0.3)
+                add(d, cap, &len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g}", rnd());
+            add(d, cap, &len, "}"), first = 0;
+        }
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (i > 0 && rnd() < 0.2)
+            continue;
+        int flip = rnd() < 0.3;
+        add(d, cap, &len, "%s{\"between\":", first ? "" : ",");
+        add(d, cap, &len, flip ? "[%zu,\"ground\"]" : "[\"ground\",%zu]", lab[i]);
+        add(d, cap, &len, ",\"contact\":{\"distance\":%.17g,\"restitution\":%g}}", flip ? -dist[i] : dist[i],
+            rnd() < 0.3 ? (double)(int)(2 * rnd()) : rnd());
+        first = 0;
+        if (flip)   /* [i, ground] holds -x_i >= -d_i: a stop from above; starts on its side of it */
+            x0[i] = 2 * dist[i] - x0[i];
+    }
+    add(d, cap, &len, "],\"forcing\":[");
+    for (size_t i = 0; i < n; i++) {
+        add(d, cap, &len, "%s{\"node\":%zu,\"kind\":\"constant\",\"value\":%.6g}", i ? "," : "", lab[i], 20 * rnd() - 14);
+        if (rnd() < 0.3)
+            add(d, cap, &len, ",{\"node\":%zu,\"kind\":\"harmonic\",\"amplitude\":%.6g,\"omega\":%.6g}", lab[i],
+                10 * rnd(), 20 * rnd());
+    }
+    double xs[40], vs[40];
+    for (size_t i = 0; i < n; i++)
+        xs[lab[i]] = x0[i], vs[lab[i]] = rnd() < 0.3 ? 0 : 4 * rnd() - 2;
+    add(d, cap, &len, "]},\"initial\":{\"x\":[");
+    for (size_t i = 0; i < n; i++)
+        add(d, cap, &len, "%s%.17g", i ? "," : "", xs[i]);
+    add(d, cap, &len, "],\"v\":[");
+    for (size_t i = 0; i < n; i++)
+        add(d, cap, &len, "%s%.6g", i ? "," : "", vs[i]);
+    add(d, cap, &len, "]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":%.6g,\"theta\":%g,\"events\":\"none\"},"
+        "\"output\":{\"every\":1}}", dts[(int)(3 * rnd())], 0.5 + 1.5 * rnd(),
+        rnd() < 0.4 ? 0.5 : rnd() < 0.5 ? 1 : 0.5 + 0.5 * rnd());
+}
+
+/* The chain's step is the general step: every record of 120 random stop chains the same bytes. */
+static void test_lean_chain_bit_for_bit(void **state)
+{
+    (void)state;
+    static char doc[65536];
+    unsigned long long impacts = 0, bouncing = 0;
+    for (int k = 0; k < 120; k++) {
+        contact_chain_doc(doc, sizeof doc);
+        bytes lean = { 0 }, gen = { 0 };
+        run_type_bytes(doc, &dp_run_network_contact_chain, 0, 64, &lean);
+        run_type_bytes(doc, &dp_run_network_contact_chain, 1, 64, &gen);
+        if (lean.n != gen.n || memcmp(lean.p, gen.p, lean.n) != 0)
+            fprintf(stderr, "case %d differs: %s\n", k, doc);
+        assert_int_equal(lean.n, gen.n);
+        assert_memory_equal(lean.p, gen.p, lean.n);
+        impacts += gen.impacts, bouncing += gen.impacts > 0;
+        free(lean.p), free(gen.p);
+    }
+    /* the chains do hit their stops: the comparison covers impacts and resting blocks, not only flights */
+    assert_true(impacts > 1000 && bouncing > 80);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lean_ball_bit_for_bit),
+        cmocka_unit_test(test_lean_chain_bit_for_bit),
         cmocka_unit_test(test_ball_e09),
         cmocka_unit_test(test_ball_e05),
         cmocka_unit_test(test_ball_e0),

@@ -275,3 +275,42 @@ int dp_network_is_one_node_contact(const dp_spec *s)
     /* events "none": Moreau-Jean's rule (with "locate" a contact's impact is located inside its step) */
     return !dp_element_can_stick(e) && s->solver.events == DP_EVENTS_NONE;
 }
+
+/* Whether element e's laws are a chain's: at most a linear spring, a linear damper without relaxation, and a
+ * rigid contact from the ground to a node that no other contact holds (seen: the nodes held so far). */
+static int chain_element(const dp_element *e, unsigned char *seen)
+{
+    if (e->has_spring && (!dp_spring_linear(&e->spring) || dp_spring_plastic(&e->spring)))
+        return 0;
+    if (e->has_damper && (!dp_damper_linear(&e->damper) || e->damper.relaxation.kind != DP_RELAX_NONE))
+        return 0;
+    if (dp_element_can_stick(e))
+        return 0;
+    if (!e->has_contact)
+        return 1;
+    long node = e->a == DP_GROUND ? e->b : e->b == DP_GROUND ? e->a : -1;
+    if (node < 0 || e->contact.compliance != 0 || seen[node])
+        return 0;
+    seen[node] = 1;
+    return 1;
+}
+
+/* A network of masses on linear springs and dampers whose only set-valued laws are rigid contacts from the
+ * ground to distinct nodes (a stop chain), stepped by Moreau-Jean's rule (events "none"): stepped by
+ * solvers/network/network_contact_chain.c, the general network step written out (the same answers, bit for
+ * bit), where the run's node ordering leaves W tridiagonal. */
+int dp_network_is_contact_chain(const dp_spec *s)
+{
+    const dp_network *n = s->net;
+    if (n == NULL || n->n == 0 || s->solver.kind != DP_SOLVER_STICK_SLIP || s->output.quakes ||
+        s->solver.events != DP_EVENTS_NONE)
+        return 0;
+    unsigned char *seen = calloc(n->n, 1);
+    int ok = seen != NULL, contacts = 0;
+    for (size_t i = 0; ok && i < n->nel; i++) {
+        ok = chain_element(&n->el[i], seen);
+        contacts += n->el[i].has_contact;
+    }
+    free(seen);
+    return ok && contacts > 0;
+}

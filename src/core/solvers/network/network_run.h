@@ -125,6 +125,8 @@ struct dp_network_run {
      * between them counted as nodes + elements), and a yield asked for inside a step, honoured after it */
     unsigned long long work;
     int yield;
+    /* the stop chain's workspace (network_contact_chain.c), NULL on every other run type */
+    struct network_chain *chain;
 };
 
 /* Queues a record for the caller (its block, else the run's queue, which grows rather than drop). */

@@ -1,0 +1,474 @@
+/* src/core/solvers/network/network_contact_chain.c - a network of masses on linear springs and linear dampers
+ * whose only set-valued laws are rigid contacts (Newton restitution) from the ground to distinct nodes, stepped
+ * by Moreau-Jean's rule without located events ("events": "none"): a stop chain (Moreau 1988, Jean 1999;
+ * Siconos' MoreauJeanOSI). Its step is the general network step (network_stepping.c, network_contact.c,
+ * network/network_step.c) written out for such networks at half-bandwidth at most one after the run's own
+ * node ordering: the same floating-point operations in the same order, so the same answers bit for bit,
+ * without the graphs, the union-find forest, the active-set bookkeeping and the per-element dispatch that
+ * make most of a general step's cost.
+ *
+ * Why it is exact: every contact joins its node to the ground, so the fixed forest is a set of nodes held at
+ * their cones' vertices (each its own tree with the ground), the free nodes are singleton trees numbered in
+ * node order, and the contracted matrix R is W restricted to the free nodes (tridiagonal, or diagonal where no
+ * two free neighbours are coupled). A contact's state is free above its vertex (or on the whole line when it
+ * is not armed), or fixed at the vertex with its multiplier read off its node's residual: the primal-dual
+ * active-set pass of network_step.c from the previous velocity's assignment, with its forest potentials
+ * ((z + 0) - 0, then 0 + pot, then - 0), its rounding tolerance on the multipliers and its +0 and -0 kept.
+ * The lean ball (network_contact_lean.c) is the same pass for one node.
+ *
+ * Anything outside this (a NaN, a pass that does not settle in the general path's twelve updates, a pivot
+ * that is not positive) hands the step to the general solve itself; a network whose ordering leaves a wider
+ * band runs the general advance.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/band.h"
+#include "solvers/network/network_run.h"
+
+/* A contact's state in the step's active-set pass: free on the piece above lo (the whole line when lo is
+ * -inf: not armed), or fixed at the cone's vertex fz with multiplier lam (network_step.c's elem_state). */
+typedef struct chain_contact {
+    size_t node;
+    int up;             /* the contact is [ground, node] (z = v), else [node, ground] (z = -v) */
+    int fixed;
+    double lo, zref, fz, lam, lam_err;
+} chain_contact;
+
+/* An element with a linear part, for its forces (network_run_element_forces): the others' are +0 throughout. */
+typedef struct chain_element {
+    size_t i;
+    long a, b;
+    double k, c, vb;
+} chain_element;
+
+struct network_chain {
+    size_t n, nc, nlin;
+    chain_contact *ct;  /* per contact, in the step's element order */
+    chain_element *lin; /* the elements with a spring or a damper of nonzero coefficient */
+    long *kidx;         /* per node: its reduced unknown, -1 when held to the ground */
+    unsigned char *down;   /* per node: a free [node, ground] contact's h (lam0 - slope zref) = +0 added */
+    unsigned char *held, *fac_held;   /* per node: held to the ground now / in R's factor */
+    int factored;       /* R holds the factor for fac_held of W = fac_W built for step fac_h (prepare's reuse) */
+    double fac_h;
+    const double *fac_W;
+    size_t fac_pr;
+    double *c, *res, *rhs_eff, *vs, *y, *R;
+};
+
+/* ---- the active-set pass ------------------------------------------------------------------------------ */
+
+static double chain_rel(const chain_contact *k, const double *v)
+{
+    return k->up ? v[k->node] - 0 : 0 - v[k->node];
+}
+
+/* The start assignment at the previous velocity (start_inside_piece, start_lawless, assign_start); 0 when z
+ * is not finite (the general path decides). */
+static int chain_start(const dp_network_step_element *e, chain_contact *k, double z)
+{
+    if (!isfinite(z))
+        return 0;
+    k->lam = k->lam_err = 0;
+    if (e->A == NULL) {
+        k->fixed = 0, k->lo = -INFINITY, k->zref = z;
+        return 1;
+    }
+    double y = z - e->vb;
+    if (y > 0)          /* inside the cone's right piece: free above its vertex */
+        k->fixed = 0, k->lo = 0 + e->vb, k->zref = z;
+    else if (y == 0)    /* on the vertex */
+        k->fixed = 1, k->fz = z;
+    else                /* beyond the vertical ray: fixed at the domain's end */
+        k->fixed = 1, k->fz = 0 + e->vb;
+    return 1;
+}
+
+/* fixed_forest and index_forest: a fixed node's potential (join, find, the ground's subtracted), a free
+ * node its own unknown at potential +0. Returns the number of unknowns. */
+static size_t chain_forest(struct network_chain *ch)
+{
+    memset(ch->held, 0, ch->n);
+    memset(ch->down, 0, ch->n);
+    for (size_t c = 0; c < ch->nc; c++) {
+        const chain_contact *k = &ch->ct[c];
+        if (!k->fixed) {
+            ch->down[k->node] = !k->up;
+            continue;
+        }
+        double pot = k->up ? (k->fz + 0) - 0 : (0 - 0) - k->fz;
+        ch->held[k->node] = 1;
+        ch->c[k->node] = (0 + pot) - 0;
+    }
+    for (size_t i = 0; i < ch->n; i++)
+        ch->kidx[i] = ch->held[i] ? -1 : 0;
+    size_t nr = 0;
+    for (size_t i = 0; i < ch->n; i++)
+        if (ch->kidx[i] == 0)
+            ch->kidx[i] = (long)nr++, ch->c[i] = 0;
+    return nr;
+}
+
+/* effective_rhs: a free contact's g = h (lam0 - slope zref), which is h (0 - 0 zref) = +0 on its pieces
+ * (zref finite, h > 0), taken from its node's entry ([ground, node]: x - +0 = x, -0 kept) or added to it
+ * ([node, ground]: x + +0, which turns -0 into +0). */
+static void chain_rhs_eff(struct network_chain *ch, const double *rhs)
+{
+    for (size_t i = 0; i < ch->n; i++)
+        ch->rhs_eff[i] = ch->down[i] ? rhs[i] + 0.0 : rhs[i];
+}
+
+/* factor_reduced: R = W on the free nodes, factored by base/band.c (GSL's band Cholesky; at half-bandwidth 0
+ * GSL's pivots' square roots). *pr its half-bandwidth; 0 when a pivot is not positive. */
+static int chain_factor(struct network_chain *ch, const double *W, size_t p, size_t nr, size_t *pr)
+{
+    size_t n = ch->n, p1 = p + 1;
+    if (ch->factored && memcmp(ch->held, ch->fac_held, n) == 0) {   /* the structure factored: R as it is */
+        *pr = ch->fac_pr;
+        return 1;
+    }
+    ch->factored = 0;
+    *pr = 0;
+    for (size_t i = 0; p == 1 && i + 1 < n; i++)
+        if (W[i * p1 + 1] != 0 && ch->kidx[i] >= 0 && ch->kidx[i + 1] >= 0)
+            *pr = 1;
+    if (nr == 0)
+        return 1;
+    size_t q = *pr + 1;
+    memset(ch->R, 0, nr * q * sizeof *ch->R);
+    for (size_t i = 0; i < n; i++) {
+        long ki = ch->kidx[i];
+        if (ki < 0)
+            continue;
+        ch->R[(size_t)ki * q] += W[i * p1];
+        if (p == 0 || i + 1 >= n)
+            continue;
+        long kj = ch->kidx[i + 1];
+        double a = W[i * p1 + 1];
+        if (kj < 0 || a == 0)
+            continue;
+        ch->R[(size_t)ki * q + 1] += a;   /* kj = ki + 1: free neighbours are consecutive unknowns */
+    }
+    if (*pr == 1 && dp_band_cholesky(ch->R, nr, 1) != DP_OK)
+        return 0;
+    for (size_t k = 0; *pr == 0 && k < nr; k++) {
+        if (!(ch->R[k] > 0))
+            return 0;
+        ch->R[k] = sqrt(ch->R[k]);
+    }
+    ch->factored = 1, ch->fac_pr = *pr;
+    memcpy(ch->fac_held, ch->held, n);
+    return 1;
+}
+
+/* solve_assignment: v = T y + c with R y = T^T (rhs_eff - W c). */
+static void chain_solve_assignment(struct network_chain *ch, const double *W, size_t p, size_t nr, size_t pr)
+{
+    size_t n = ch->n;
+    dp_band_symv(W, n, p, ch->c, ch->res);
+    memset(ch->y, 0, nr * sizeof *ch->y);
+    for (size_t i = 0; i < n; i++)
+        if (ch->kidx[i] >= 0)
+            ch->y[ch->kidx[i]] += ch->rhs_eff[i] - ch->res[i];
+    if (nr && pr == 1) {
+        dp_band_cholesky_solve(ch->R, nr, 1, ch->y);
+    } else if (nr) {   /* GSL's two triangular sweeps of a diagonal factor */
+        for (size_t k = 0; k < nr; k++)
+            ch->y[k] = ch->y[k] / ch->R[k];
+        for (size_t k = nr; k-- > 0;)
+            ch->y[k] = ch->y[k] / ch->R[k];
+    }
+    for (size_t i = 0; i < n; i++)
+        ch->vs[i] = (ch->kidx[i] >= 0 ? ch->y[ch->kidx[i]] : 0) + ch->c[i];
+}
+
+/* Row i of W v in dp_band_symv's order (network_step.c's band_row). */
+static double chain_row(const double *W, size_t n, size_t p, const double *v, size_t i)
+{
+    double y = W[i * (p + 1)] * v[i];
+    if (p == 1 && i > 0)
+        y += W[2 * (i - 1) + 1] * v[i - 1];
+    if (p == 1 && i + 1 < n)
+        y += W[2 * i + 1] * v[i + 1];
+    return y;
+}
+
+/* multipliers() and bulk_update(): how many contacts changed, or -1 for a multiplier that is not a number
+ * (the general path decides). */
+static long chain_update(struct network_chain *ch, const double *W, size_t p, double h)
+{
+    long changed = 0;
+    for (size_t c = 0; c < ch->nc; c++) {
+        chain_contact *k = &ch->ct[c];
+        if (!k->fixed)
+            continue;
+        size_t i = k->node;
+        double Hv = chain_row(W, ch->n, p, ch->vs, i);
+        double res_err = 8 * DBL_EPSILON * (fabs(ch->rhs_eff[i]) + fabs(Hv)), res = ch->rhs_eff[i] - Hv;
+        double sign = k->up ? 1 : -1;
+        k->lam = res / (h * sign);
+        k->lam_err = res_err / h;
+        if (isnan(k->lam))
+            return -1;
+    }
+    for (size_t c = 0; c < ch->nc; c++) {
+        chain_contact *k = &ch->ct[c];
+        if (!k->fixed) {
+            if (chain_rel(k, ch->vs) < k->lo)   /* follow: fixed at the vertex below */
+                k->fixed = 1, k->fz = k->lo, changed++;
+            continue;
+        }
+        double lam = k->lam, tol = 1e-12 * (1 + fabs(lam) + 0 + 0) + k->lam_err;
+        if (lam >= -INFINITY - tol && lam <= 0 + tol)
+            continue;
+        k->fixed = 0, k->lo = k->fz, k->zref = k->fz;   /* released onto the cone's right piece */
+        changed++;
+    }
+    return changed;
+}
+
+/* report() for the contacts: z at the step's end (the vertex's v_b for a fixed one, at rest), the force. */
+static void chain_report(const struct network_chain *ch, const dp_network_step_element *act, double *v,
+                         dp_network_step_forces *f)
+{
+    for (size_t c = 0; c < ch->nc; c++) {
+        const chain_contact *k = &ch->ct[c];
+        double z = chain_rel(k, v);
+        if (k->fixed) {
+            double lambda = k->lam;
+            lambda += 0 + 0 * (k->fz - 0);
+            f[c] = (dp_network_step_forces){ .z = act[c].vb, .lambda = lambda, .a = lambda - 0, .s = 0, .at_rest = 1 };
+        } else {
+            double lambda = 0 + 0 * (z - k->zref);
+            lambda += 0 + 0 * (z - 0);
+            f[c] = (dp_network_step_forces){ .z = z, .lambda = lambda, .a = lambda - 0, .s = 0, .at_rest = 0 };
+        }
+    }
+}
+
+/* network_run_step_poll, its common case written here: the work counted, the run's hook asked when due. */
+static int chain_poll(dp_run *r, struct dp_network_run *nr, unsigned long long units)
+{
+    nr->work += units;
+    if (network_run_cancelled(r))
+        return 1;
+    if (r->stop == NULL || nr->work < r->poll_at)
+        return 0;
+    return network_run_step_poll(r, 0);
+}
+
+/* dp_network_step_solve for the stop chain (pdas from assign_start): v1 and the contacts' forces; DP_ECANCEL
+ * when the poll said stop, 1 when the general solve must decide. */
+static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
+{
+    struct dp_network_run *nr = r->state;
+    const double *W = dp_network_step_W(nr->ws);
+    size_t p = nr->p, nr_, pr;
+    for (size_t c = 0; c < ch->nc; c++)
+        if (!chain_start(&nr->act[c], &ch->ct[c], chain_rel(&ch->ct[c], nr->v)))
+            return 1;
+    unsigned long long iters = 0;
+    for (int it = 0; it < 12; it++) {
+        iters++;
+        nr_ = chain_forest(ch);
+        chain_rhs_eff(ch, nr->rhs);
+        if (h != ch->fac_h || W != ch->fac_W)   /* W rebuilt for another step length */
+            ch->factored = 0, ch->fac_h = h, ch->fac_W = W;
+        if (!chain_factor(ch, W, p, nr_, &pr))
+            return 1;
+        chain_solve_assignment(ch, W, p, nr_, pr);
+        /* the solve's work as polled_stop counts it, and the factor's at every solve (the general workspace
+         * counts it only when it factors anew: the stop hook may be asked a few steps apart from there) */
+        if (chain_poll(r, nr, ch->n * (p + 1) + ch->nc + nr_ * (pr + 1) * (pr + 1)))
+            return DP_ECANCEL;
+        long changed = chain_update(ch, W, p, h);
+        if (changed < 0)
+            return 1;
+        if (changed == 0) {
+            r->sum.iterations += iters;
+            memcpy(nr->v1, ch->vs, ch->n * sizeof *nr->v1);
+            chain_report(ch, nr->act, nr->v1, nr->force);
+            return DP_OK;
+        }
+    }
+    return 1;
+}
+
+/* ---- the run ------------------------------------------------------------------------------------------ */
+
+/* Moreau-Jean's arming (network_run_contacts_arm_mj) for the chain's contacts, none behind another. */
+static void chain_arm(struct dp_network_run *nr, const struct network_chain *ch, double h)
+{
+    int changed = 0;
+    for (size_t c = 0; c < ch->nc; c++) {
+        const chain_contact *k = &ch->ct[c];
+        double g = chain_rel(k, nr->x) - nr->ct[c].law.distance, gd = chain_rel(k, nr->v);
+        if (fabs(gd) < DBL_MIN)
+            gd = 0;
+        int was = nr->ct_on[c], on = g + 0.5 * h * gd <= 0;
+        dp_network_step_element *a = &nr->act[c];
+        changed |= (a->A != NULL) != on;
+        a->A = on ? &nr->cone : NULL;
+        a->vb = on ? -nr->ct[c].law.restitution * gd : 0;
+        nr->ct_on[c] = (unsigned char)on;
+        nr->ct_pre[c] = was ? 0 : gd;
+    }
+    if (changed)   /* the general workspace's factor cache, for a step it takes over */
+        dp_network_step_W_changed(nr->ws);
+}
+
+/* network_run_element_forces after a step for the chain's elements: the linear parts' forces (the others'
+ * stay +0, no phase: none can stick), the contacts' multipliers (network_run_contacts_forces). Returns
+ * whether those forces are finite (network_run_state_finite's second half). */
+static int chain_forces(struct dp_network_run *nr, const struct network_chain *ch)
+{
+    int finite = 1;
+    for (size_t j = 0; j < ch->nlin; j++) {
+        const chain_element *e = &ch->lin[j];
+        double u = network_run_rel(e->a, e->b, nr->x), z = network_run_rel(e->a, e->b, nr->v);
+        double fs = e->k != 0 ? e->k * u : 0, fd = e->c != 0 ? e->c * (z - e->vb) : 0;
+        nr->Fs[e->i] = fs, nr->Fd[e->i] = fd;
+        finite &= isfinite(fs) && isfinite(fd);
+    }
+    for (size_t c = 0; c < ch->nc; c++)
+        nr->Fn[nr->ct_el[c]] = nr->ct_on[c] ? nr->force[c].lambda : 0;
+    return finite;
+}
+
+/* network_run_state_finite: the positions and velocities, and the forces' check (`forces`). */
+static int chain_finite(const struct dp_network_run *nr, int forces)
+{
+    for (size_t i = 0; forces && i < nr->n; i++)
+        if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
+            return 0;
+    return forces;
+}
+
+/* One Moreau-Jean step (network_run_net_step) and the elements' forces after it; *finite: the state's. */
+static int chain_step(dp_run *r, struct network_chain *ch, double t, double h, int *finite)
+{
+    struct dp_network_run *nr = r->state;
+    chain_arm(nr, ch, h);
+    network_run_step_rhs(nr, t, h);
+    int s = chain_step_solve(r, ch, h);
+    if (s == 1)   /* the general solve decides */
+        s = dp_network_step_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+    nr->solved = s == DP_OK;
+    if (s != DP_OK)
+        return s;
+    network_run_take_velocity(nr, h);
+    network_run_contacts_mj_events(r, t, h);
+    *finite = chain_finite(nr, chain_forces(nr, ch));
+    return DP_OK;
+}
+
+/* network_run_advance's loop with the chain's step (no element can stick: no phase, stick or slip event). */
+static int chain_advance(dp_run *r)
+{
+    struct dp_network_run *nr = r->state;
+    struct network_chain *ch = nr->chain;
+    if (ch == NULL)
+        return dp_run_network.advance(r);
+    if (network_run_reserve_rows(r) != DP_OK)
+        return DP_ENOMEM;
+    network_run_flush(r);
+    int due;
+    while (network_run_step_due(r, &due)) {
+        double h = dp_run_step_length(r), t = r->cur.t;
+        nr->impacts_step = 0;
+        memcpy(nr->phase_prev, nr->phase, nr->nel);
+        int finite = 0, s = chain_step(r, ch, t, h, &finite);
+        if (s != DP_OK && network_run_cancelled(r))
+            return r->status;
+        if (s != DP_OK)
+            return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
+        if ((s = network_run_step_taken(r, finite)) != DP_OK)
+            return s;
+    }
+    return due;
+}
+
+static void chain_release(struct network_chain *ch)
+{
+    if (ch == NULL)
+        return;
+    void *p[] = { ch->ct, ch->lin, ch->kidx, ch->down, ch->held, ch->fac_held, ch->c, ch->res, ch->rhs_eff, ch->vs,
+                  ch->y, ch->R };
+    for (size_t i = 0; i < sizeof p / sizeof *p; i++)
+        free(p[i]);
+    free(ch);
+}
+
+static void chain_free(void *state)
+{
+    struct dp_network_run *nr = state;
+    if (nr != NULL)
+        chain_release(nr->chain);
+    network_run_free(state);
+}
+
+/* The workspace, where the run's ordering left W tridiagonal (or diagonal) and every contact in the step's
+ * problem joins the ground to a node of its own; else none (the general advance). */
+static int chain_setup(struct dp_network_run *nr)
+{
+    if (nr->p > 1 || nr->nact != nr->nc || nr->nact_el != 0 || nr->nrope != 0 || nr->locate)
+        return DP_OK;
+    size_t n = nr->n, nc = nr->nc;
+    struct network_chain *ch = calloc(1, sizeof *ch);
+    if (ch == NULL)
+        return DP_ENOMEM;
+    nr->chain = ch;
+    ch->n = n, ch->nc = nc;
+    ch->ct = calloc(nc ? nc : 1, sizeof *ch->ct);
+    ch->kidx = calloc(n, sizeof *ch->kidx);
+    double **d[] = { &ch->c, &ch->res, &ch->rhs_eff, &ch->vs, &ch->y };
+    for (size_t i = 0; i < sizeof d / sizeof *d; i++)
+        *d[i] = calloc(n + 1, sizeof(double));
+    ch->R = calloc(2 * n, sizeof *ch->R);
+    ch->lin = calloc(nr->nel ? nr->nel : 1, sizeof *ch->lin);
+    ch->down = calloc(n, 1), ch->held = calloc(n, 1), ch->fac_held = calloc(n, 1);
+    if (!ch->ct || !ch->kidx || !ch->c || !ch->res || !ch->rhs_eff || !ch->vs || !ch->y || !ch->R || !ch->lin ||
+        !ch->down || !ch->held || !ch->fac_held)
+        return DP_ENOMEM;
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        if (nr->k[i] != 0 || nr->c[i] != 0)
+            ch->lin[ch->nlin++] = (chain_element){ .i = i, .a = e->a, .b = e->b, .k = nr->k[i], .c = nr->c[i],
+                                                   .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+    }
+    unsigned char *seen = calloc(n, 1);
+    if (seen == NULL)
+        return DP_ENOMEM;
+    int ok = 1;
+    for (size_t c = 0; c < nc; c++) {
+        const dp_network_step_element *e = &nr->act[c];
+        int up = e->a < 0 && e->b >= 0, down = e->b < 0 && e->a >= 0;
+        size_t node = (size_t)(up ? e->b : e->a);
+        if (!(up || down) || e->S != NULL || nr->ct[c].law.compliance != 0 || nr->ct_shadow[c] || seen[node]) {
+            ok = 0;
+            break;
+        }
+        seen[node] = 1;
+        ch->ct[c] = (chain_contact){ .node = node, .up = up };
+    }
+    free(seen);
+    if (!ok) {   /* not a stop chain after all: the general advance */
+        nr->chain = NULL;
+        chain_release(ch);
+    }
+    return DP_OK;
+}
+
+/* The network run's own set-up, initial probe and first row (network_run.c), then the chain's workspace. */
+static int chain_init(dp_run *r)
+{
+    int s = dp_run_network.init(r);
+    return s != DP_OK ? s : chain_setup(r->state);
+}
+
+const dp_run_type dp_run_network_contact_chain = {
+    .name = "stick-slip", .variant = "exact", .events_mode = network_run_events_mode, .check = dp_rules_network,
+    .init = chain_init, .advance = chain_advance, .pending = network_run_pending, .free = chain_free,
+};
