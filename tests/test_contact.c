@@ -963,9 +963,10 @@ static void contact_chain_doc(char *d, size_t cap)
     add(d, cap, &len, "],\"v\":[");
     for (size_t i = 0; i < n; i++)
         add(d, cap, &len, "%s%.6g", i ? "," : "", vs[i]);
+    /* every step written, or every few (the lean step forms the forces only for the steps it writes) */
     add(d, cap, &len, "]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":%.6g,\"theta\":%g,\"events\":\"none\"},"
-        "\"output\":{\"every\":1}}", dts[(int)(3 * rnd())], 0.5 + 1.5 * rnd(),
-        rnd() < 0.4 ? 0.5 : rnd() < 0.5 ? 1 : 0.5 + 0.5 * rnd());
+        "\"output\":{\"every\":%d}}", dts[(int)(3 * rnd())], 0.5 + 1.5 * rnd(),
+        rnd() < 0.4 ? 0.5 : rnd() < 0.5 ? 1 : 0.5 + 0.5 * rnd(), rnd() < 0.5 ? 1 : 2 + (int)(9 * rnd()));
 }
 
 /* The chain's step is the general step: every record of 120 random stop chains the same bytes. */
@@ -988,6 +989,27 @@ static void test_lean_chain_bit_for_bit(void **state)
     }
     /* the chains do hit their stops: the comparison covers impacts and resting blocks, not only flights */
     assert_true(impacts > 1000 && bouncing > 80);
+    /* hostile magnitudes, every few steps written: k |u| past the bound by which a step without a row shows
+     * its forces finite (they are then formed and checked), and subnormal coefficients and states */
+    const char *hostile[] = { "1e150", "1e150", "1", "5e-324", "1e-300", "5e-324" };
+    for (size_t h = 0; h < 2; h++) {
+        snprintf(doc, sizeof doc,
+                 "{\"model\":{\"masses\":[1,1,1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
+                 "\"linear\",\"k\":%s}},{\"between\":[\"ground\",1],\"spring\":{\"law\":\"linear\",\"k\":%s}},"
+                 "{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"linear\",\"c\":%s}},"
+                 "{\"between\":[1,2],\"spring\":{\"law\":\"linear\",\"k\":1}},{\"between\":[\"ground\",0],\"contact\":"
+                 "{\"distance\":-1,\"restitution\":0.5}},{\"between\":[\"ground\",2],\"contact\":{\"distance\":-1,"
+                 "\"restitution\":0.5}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-1}]},\"initial\":"
+                 "{\"x\":[%s,%s,0],\"v\":[0,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":0.05,"
+                 "\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":3}}",
+                 hostile[3 * h], hostile[3 * h + 1], hostile[3 * h + 2], hostile[3 * h + 1], hostile[3 * h + 2]);
+        bytes lean = { 0 }, gen = { 0 };
+        run_type_bytes(doc, &dp_run_network_contact_chain, 0, 64, &lean);
+        run_type_bytes(doc, &dp_run_network_contact_chain, 1, 64, &gen);
+        assert_int_equal(lean.n, gen.n);
+        assert_memory_equal(lean.p, gen.p, lean.n);
+        free(lean.p), free(gen.p);
+    }
 }
 
 int main(void)

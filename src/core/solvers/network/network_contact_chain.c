@@ -46,6 +46,7 @@ typedef struct chain_element {
 
 struct network_chain {
     size_t n, nc, nlin;
+    double kmax, cmax, vbmax;   /* over lin: the largest |k|, |c| and |v_b| (chain_finite_bounded) */
     chain_contact *ct;  /* per contact, in the step's element order */
     chain_element *lin; /* the elements with a spring or a damper of nonzero coefficient */
     long *kidx;         /* per node: its reduced unknown, -1 when held to the ground */
@@ -346,6 +347,29 @@ static int chain_finite(const struct dp_network_run *nr, int forces)
     return forces;
 }
 
+/* Whether the step being taken writes a row or the final state (network_run_step_taken): only those read
+ * the elements' forces. */
+static int chain_writes_row(const dp_run *r)
+{
+    return (r->countdown <= 1 && r->spec.output.samples) || r->n + 1 >= r->nsteps;
+}
+
+/* network_run_state_finite for a step that writes no row, without forming the forces: the positions and
+ * velocities checked as it checks them, and the forces shown finite by a bound (|k u| <= k_max 2 max|x|,
+ * |c (z - v_b)| <= c_max (2 max|v| + max|v_b|), each below 1e300 with room for the rounding of u and z).
+ * -1 when the bound does not show it: the forces are formed and checked. */
+static int chain_finite_bounded(const struct dp_network_run *nr, const struct network_chain *ch)
+{
+    double xm = 0, vm = 0;
+    for (size_t i = 0; i < nr->n; i++) {
+        double ax = fabs(nr->x[i]), av = fabs(nr->v[i]);
+        if (!(ax < 1e300 && av < 1e300))
+            return 0;
+        xm = ax > xm ? ax : xm, vm = av > vm ? av : vm;
+    }
+    return ch->kmax * (2 * xm) < 1e300 && ch->cmax * (2 * vm + ch->vbmax) < 1e300 ? 1 : -1;
+}
+
 /* network_run_step_rhs for a tridiagonal W in one sweep: M v, C v and K (x + h theta (1-theta) v) formed
  * row by row as dp_band_symv's tridiagonal loop forms them (the diagonal term plus row i-1's, then row
  * i+1's), combined as the general right side combines them, the loads added in their order (a constant one
@@ -402,7 +426,9 @@ static int chain_step(dp_run *r, struct network_chain *ch, double t, double h, i
         return s;
     network_run_take_velocity(nr, h);
     network_run_contacts_mj_events(r, t, h);
-    *finite = chain_finite(nr, chain_forces(nr, ch));
+    *finite = chain_writes_row(r) ? -1 : chain_finite_bounded(nr, ch);
+    if (*finite < 0)
+        *finite = chain_finite(nr, chain_forces(nr, ch));
     return DP_OK;
 }
 
@@ -476,9 +502,13 @@ static int chain_setup(struct dp_network_run *nr)
         return DP_ENOMEM;
     for (size_t i = 0; i < nr->nel; i++) {
         const dp_element *e = &nr->net->el[i];
-        if (nr->k[i] != 0 || nr->c[i] != 0)
-            ch->lin[ch->nlin++] = (chain_element){ .i = i, .a = e->a, .b = e->b, .k = nr->k[i], .c = nr->c[i],
-                                                   .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+        if (nr->k[i] == 0 && nr->c[i] == 0)
+            continue;
+        chain_element *l = &ch->lin[ch->nlin++];
+        *l = (chain_element){ .i = i, .a = e->a, .b = e->b, .k = nr->k[i], .c = nr->c[i],
+                              .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+        ch->kmax = fmax(ch->kmax, fabs(l->k)), ch->cmax = fmax(ch->cmax, fabs(l->c));
+        ch->vbmax = fmax(ch->vbmax, fabs(l->vb));
     }
     unsigned char *seen = calloc(n, 1);
     if (seen == NULL)
