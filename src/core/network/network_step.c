@@ -107,6 +107,15 @@ struct dp_network_step {
     /* parent, pot, kidx, c and nr hold build_forest's result for the current fixed elements (no element
      * fixed, freed or moved since): a held solve of event location then reuses them */
     int forest_ok;
+    /* The fixed elements (key_fixed) and their vertices (key_z, by their bits) whose forest kidx, c and nr
+     * hold since the active-set pass last indexed one (key_ok; any other indexing clears it). Those
+     * depend on nothing else (the joins from a reset in the elements' order, then the index), and the
+     * union-find's partition is theirs whenever the fixed elements are: a pass whose fixed elements are
+     * the last pass's (a chain whose stuck blocks stay stuck) keeps the index instead of joining and
+     * indexing the same forest again. */
+    unsigned char *key_fixed;
+    double *key_z;
+    int key_ok;
     /* Event location evaluates a held step at the same length more than once (a root search's ends, then
      * the root again to take the state there): with the assignment the buffer `memo_for` holds and the same
      * elements (memo_el), the same h, W, rhs and u give the same bits, so the answer is copied. */
@@ -169,7 +178,9 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     w->gshift = calloc(m, sizeof *w->gshift);
     w->fac_st = calloc(m, 1);
     w->fac_slope = calloc(m, sizeof *w->fac_slope);
-    if (!w->dirty || !w->dirty_list || !w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
+    w->key_fixed = calloc(m, 1);
+    w->key_z = calloc(m, sizeof *w->key_z);
+    if (!w->key_fixed || !w->key_z || !w->dirty || !w->dirty_list || !w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
         !w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
         !w->y || !w->vs || !w->d || !w->res || !w->res_err || !w->head || !w->next_edge || !w->deg || !w->queue) {
         dp_network_step_free(w);
@@ -191,6 +202,7 @@ void dp_network_step_free(dp_network_step *w)
     free(w->next_edge), free(w->deg), free(w->queue);
     free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->fac_st), free(w->fac_slope);
     drop_spares(w);
+    free(w->key_fixed), free(w->key_z);
     free(w);
 }
 
@@ -443,6 +455,7 @@ static void build_forest(dp_network_step *w)
 /* The map node -> reduced unknown of the forest just joined. */
 static void index_forest(dp_network_step *w)
 {
+    w->key_ok = 0;   /* the active-set pass keeps its key after indexing (pass_forest) */
     long ground = find(w, (long)w->n);
     size_t nr = 0;
     for (size_t i = 0; i <= w->n; i++)
@@ -1205,14 +1218,47 @@ static size_t bulk_update(dp_network_step *w, double h, const double *u)
     return changed;
 }
 
-/* Whether the fixed elements still form a forest (bulk updates may close a cycle). */
+/* Whether the fixed elements still form a forest (bulk updates may close a cycle); each element's part of
+ * the key (pass_forest) on the way. */
 static int fixed_forest(dp_network_step *w)
 {
     w->forest_ok = 0;   /* joined here, indexed by the caller */
+    w->key_ok = 0;
     forest_reset(w);
-    for (size_t i = 0; i < w->ne; i++)
-        if (w->es[i].st == FIXED && !join(w, &w->el[i], w->es[i].fix.z))
+    for (size_t i = 0; i < w->ne; i++) {
+        int fx = w->es[i].st == FIXED;
+        w->key_fixed[i] = (unsigned char)fx, w->key_z[i] = w->es[i].fix.z;
+        if (fx && !join(w, &w->el[i], w->es[i].fix.z))
             return 0;
+    }
+    return 1;
+}
+
+/* Whether a and b have the same bits (a vertex's z: -0 and 0 differ in a forest's potentials). */
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* The forest of the fixed elements and its index for an iteration of the active-set pass: as fixed_forest
+ * and index_forest would give them, kept when the fixed elements and their vertices are those of the last
+ * one (the union-find then holds their partition: joined by assign_start, or unchanged since). 0 when the
+ * fixed elements close a cycle. */
+static int pass_forest(dp_network_step *w)
+{
+    int same = w->key_ok;
+    for (size_t i = 0; same && i < w->ne; i++) {
+        int fx = w->es[i].st == FIXED;
+        same = fx == w->key_fixed[i] && (!fx || same_bits(w->es[i].fix.z, w->key_z[i]));
+    }
+    if (same) {
+        w->forest_ok = 0;   /* as fixed_forest leaves it: not build_forest's compression */
+        return 1;
+    }
+    if (!fixed_forest(w))
+        return 0;
+    index_forest(w);
+    w->key_ok = 1;
     return 1;
 }
 
@@ -1222,10 +1268,9 @@ static int fixed_forest(dp_network_step *w)
 static int pdas(dp_network_step *w, double h, const double *rhs, const double *u, double *v, unsigned long long *iters)
 {
     for (int it = 0; it < 12; it++) {
-        if (!fixed_forest(w))   /* joins the fixed forest, as build_forest would */
+        if (!pass_forest(w))   /* the fixed forest and its index, as build_forest would give them */
             return 1;
         (*iters)++;
-        index_forest(w);
         if (prepare(w, h, rhs) != DP_OK || solve_assignment(w) != DP_OK)
             return 1;
         if (polled_stop(w))
