@@ -533,12 +533,114 @@ static void test_rope_on_belt_documents(void **state)
     }
 }
 
+/* Kept factors: a workspace that lives through many solves keeps its contracted factors for the structures
+ * it met (the current one and spares of W itself), compares W by its bytes after W_changed and keeps the
+ * fixed forest's index while the fixed elements stay; each solve must still give the bits of a fresh
+ * workspace, while W is rewritten with the same numbers, changed and changed back, and belts change speed
+ * (a stuck element's vertex moves). A chain of 6 blocks, on each a Coulomb element on a belt, Coulomb
+ * between neighbours, and graphs whose rays have a slope (their free pieces add to W, so H is formed) on
+ * none, one or every other block, or Moreau-Jean's contacts on every other block, pushed onto them and
+ * re-armed at -e times their last rate each step (a resting contact's vertex moves every step); warm
+ * starts from the last velocity as a run makes them, and random ones. The poll's units show that factors
+ * were reused. */
+static unsigned long long kept_units;
+static int count_units(void *ctx, unsigned long long units) { (void)ctx, kept_units += units; return 0; }
+
+static void kept_W(double *W, size_t n, double scale)
+{
+    for (size_t i = 0; i < n; i++)
+        W[2 * i] = scale * (3 + (double)i / 7), W[2 * i + 1] = i + 1 < n ? -scale : 0;
+}
+
+enum { KN = 6, KNE = 2 * KN - 1 };
+
+/* One solve by w and by a fresh workspace on the same inputs: the same bits. */
+static void kept_solve_once(dp_network_step *w, const dp_network_step_element *el, double scale, const double *rhs,
+                            double *v, unsigned long long *kept, unsigned long long *fresh_units)
+{
+    double u[KNE] = { 0 }, v1[KN], v2[KN];
+    unsigned long long it = 0;
+    dp_network_step_forces f1[KNE], f2[KNE];
+    kept_units = 0;
+    assert_int_equal(dp_network_step_solve(w, 0.01, rhs, u, v, v1, f1, &it), DP_OK);
+    *kept += kept_units;
+    dp_network_step *fresh = dp_network_step_alloc(KN, 1, KNE, el);
+    assert_non_null(fresh);
+    dp_network_step_set_poll(fresh, count_units, NULL);
+    kept_W(dp_network_step_W(fresh), KN, scale);
+    dp_network_step_W_changed(fresh);
+    kept_units = 0;
+    assert_int_equal(dp_network_step_solve(fresh, 0.01, rhs, u, v, v2, f2, &it), DP_OK);
+    *fresh_units += kept_units;
+    dp_network_step_free(fresh);
+    assert_memory_equal(v1, v2, sizeof v1);
+    for (size_t e = 0; e < KNE; e++) {   /* field by field: the struct's padding is not an answer */
+        assert_memory_equal(&f1[e].z, &f2[e].z, sizeof f1[e].z);
+        assert_memory_equal(&f1[e].lambda, &f2[e].lambda, sizeof f1[e].lambda);
+        assert_memory_equal(&f1[e].a, &f2[e].a, sizeof f1[e].a);
+        assert_memory_equal(&f1[e].s, &f2[e].s, sizeof f1[e].s);
+        assert_int_equal(f1[e].at_rest, f2[e].at_rest);
+    }
+    memcpy(v, v1, sizeof v1);
+}
+
+static void test_kept_factors_bit_for_bit(void **state)
+{
+    (void)state;
+    for (int sloped = 0; sloped < 4; sloped++) {   /* rays with a slope on no block, on block 0, on odd blocks;
+                                                      contacts on odd blocks */
+        dp_graph g[KNE];
+        dp_network_step_element el[KNE];
+        for (size_t e = 0; e < KNE; e++) {
+            double y[2] = { 0, 0 }, f[2] = { -0.3 - 0.1 * (double)(e % 3), 0.3 + 0.1 * (double)(e % 3) };
+            int slope = e < KN && (sloped == 1 ? e == 0 : sloped == 2 && e % 2);
+            double ray[2] = { 1, slope ? 0.5 : 0 }, down[2] = { 0, 1 }, zero = 0;
+            if (sloped == 3 && e < KN && e % 2)   /* the rigid cone of a contact */
+                assert_int_equal(dp_graph_init(&g[e], 1, &zero, &zero, down, ray), DP_OK);
+            else
+                assert_int_equal(dp_graph_init(&g[e], 2, y, f, ray, ray), DP_OK);
+            el[e] = e < KN ? (dp_network_step_element){ .a = -1, .b = (long)e, .A = &g[e], .vb = 0.05 * (double)(e % 2) }
+                           : (dp_network_step_element){ .a = (long)(e - KN), .b = (long)(e - KN + 1), .A = &g[e] };
+        }
+        dp_network_step *w = dp_network_step_alloc(KN, 1, KNE, el);
+        assert_non_null(w);
+        dp_network_step_set_poll(w, count_units, NULL);
+        double v[KN] = { 0 }, rhs[KN], scale = 1;
+        unsigned long long kept = 0, fresh_units = 0;
+        kept_W(dp_network_step_W(w), KN, scale);
+        dp_network_step_W_changed(w);
+        for (int step = 0; step < 600; step++) {
+            if (step % 7 == 3 || step % 50 == 10 || step % 50 == 24) {   /* the same numbers, another W and back */
+                scale = step % 50 == 10 ? 1.5 : step % 50 == 24 ? 1 : scale;
+                kept_W(dp_network_step_W(w), KN, scale);
+                dp_network_step_W_changed(w);
+            }
+            if (step % 60 == 30 && sloped < 3)   /* the odd blocks' belts change speed: stuck vertices move */
+                for (size_t e = 1; e < KN; e += 2)
+                    el[e].vb = 0.05 * cos(0.1 * step);
+            for (size_t e = 1; sloped == 3 && e < KN; e += 2)   /* re-armed at -e u' (e = 1/2) */
+                el[e].vb = fabs(v[e]) < 1e-300 ? 0 : -0.5 * v[e];
+            for (size_t i = 0; i < KN; i++)
+                rhs[i] = 0.8 * (urand() - 0.5) + 0.3 * sin(0.05 * step + (double)i) - (sloped == 3 ? 0.5 : 0);
+            if (step % 11 == 0)
+                for (size_t i = 0; i < KN; i++)
+                    v[i] = urand() - 0.5;
+            kept_solve_once(w, el, scale, rhs, v, &kept, &fresh_units);
+        }
+        assert_true(kept < fresh_units);   /* a fresh workspace factors every solve, the kept one reuses */
+        dp_network_step_free(w);
+        for (size_t e = 0; e < KNE; e++)
+            dp_graph_clear(&g[e]);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coulomb_step_against_brute_force),
         cmocka_unit_test(test_polled_factorization),
+        cmocka_unit_test(test_kept_factors_bit_for_bit),
         cmocka_unit_test(test_held_solves_after_restore),
         cmocka_unit_test(test_taut_rope_on_belt_reproducers),
         cmocka_unit_test(test_rope_on_belt_against_bisection),

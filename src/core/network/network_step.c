@@ -30,6 +30,7 @@
 enum { FREE = 0, FIXED = 1 };
 enum { HELD_MEMO = 4 };   /* held solves remembered: a root search's two ends and the last evaluations */
 enum { SRC_NONE = 0, SRC_A = 1, SRC_S = 2 };
+enum { SPARES = 2 };      /* factors kept beside the current one */
 
 /* A vertex of Sigma_e in z, remembered with the graph vertex it comes from so that the force interval is
  * read at that vertex exactly (u + h z need not round back to it). */
@@ -49,6 +50,17 @@ typedef struct held_memo {
     double *lam, *lam_err;           /* ne: the fixed elements' multipliers it left */
     dp_network_step_forces *f;       /* ne */
 } held_memo;
+
+/* A factor kept for a structure other than the current one (dp_network_step's spare). */
+typedef struct kept_factor {
+    double *R;
+    size_t cap, pr;
+    int ok;
+    double h;
+    unsigned char *st;
+    double *slope;
+    unsigned long long stamp;   /* when it was last the current factor */
+} kept_factor;
 
 typedef struct elem_state {
     int st;
@@ -72,6 +84,18 @@ struct dp_network_step {
     double h_factored;
     unsigned char *fac_st;
     double *fac_slope;
+    /* Factors kept beside R (`spare`), of the structures factored before it: a step whose active-set pass
+     * starts from one assignment and ends on another alternates between structures, each factored again
+     * every step otherwise (resting contacts re-armed at a vertex -e g' whose sign alternates start free
+     * one step and fixed the next, then all end fixed: three structures in turn). Only factors of W itself
+     * (no free slope adds to it) are kept there, so H stays the current factor's. W_fac is the W they all
+     * were formed from: after dp_network_step_W_changed they hold while W has the same bytes (Moreau-Jean's
+     * arming calls it whenever a contact is armed or disarmed, which leaves W as it was). They are extras
+     * within R_max: dropped when R must grow into their room. */
+    kept_factor spare[SPARES];
+    double *W_fac;
+    int W_dirty;
+    unsigned long long fac_clock;
     elem_state *es;
     /* The elements whose state may differ from the pattern buffer last saved or restored (`synced`): a held
      * solve of event location changes a few (the fixed ones' multipliers, a switch), and restoring those
@@ -83,6 +107,15 @@ struct dp_network_step {
     /* parent, pot, kidx, c and nr hold build_forest's result for the current fixed elements (no element
      * fixed, freed or moved since): a held solve of event location then reuses them */
     int forest_ok;
+    /* The fixed elements (key_fixed) and their vertices (key_z, by their bits) whose forest kidx, c and nr
+     * hold since the active-set pass last indexed one (key_ok; any other indexing clears it). Those
+     * depend on nothing else (the joins from a reset in the elements' order, then the index), and the
+     * union-find's partition is theirs whenever the fixed elements are: a pass whose fixed elements are
+     * the last pass's (a chain whose stuck blocks stay stuck) keeps the index instead of joining and
+     * indexing the same forest again. */
+    unsigned char *key_fixed;
+    double *key_z;
+    int key_ok;
     /* Event location evaluates a held step at the same length more than once (a root search's ends, then
      * the root again to take the state there): with the assignment the buffer `memo_for` holds and the same
      * elements (memo_el), the same h, W, rhs and u give the same bits, so the answer is copied. */
@@ -145,7 +178,9 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
     w->gshift = calloc(m, sizeof *w->gshift);
     w->fac_st = calloc(m, 1);
     w->fac_slope = calloc(m, sizeof *w->fac_slope);
-    if (!w->dirty || !w->dirty_list || !w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
+    w->key_fixed = calloc(m, 1);
+    w->key_z = calloc(m, sizeof *w->key_z);
+    if (!w->key_fixed || !w->key_z || !w->dirty || !w->dirty_list || !w->zk || !w->g0 || !w->g1 || !w->gshift || !w->fac_st || !w->fac_slope ||
         !w->W || !w->H || !w->R || !w->es || !w->parent || !w->pot || !w->kidx || !w->c || !w->rhs_eff ||
         !w->y || !w->vs || !w->d || !w->res || !w->res_err || !w->head || !w->next_edge || !w->deg || !w->queue) {
         dp_network_step_free(w);
@@ -155,6 +190,7 @@ dp_network_step *dp_network_step_alloc(size_t n, size_t p, size_t ne, const dp_n
 }
 
 static void memo_free(dp_network_step *w);
+static void drop_spares(dp_network_step *w);
 
 void dp_network_step_free(dp_network_step *w)
 {
@@ -165,6 +201,8 @@ void dp_network_step_free(dp_network_step *w)
     free(w->c), free(w->rhs_eff), free(w->y), free(w->vs), free(w->d), free(w->res), free(w->res_err), free(w->head);
     free(w->next_edge), free(w->deg), free(w->queue);
     free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->fac_st), free(w->fac_slope);
+    drop_spares(w);
+    free(w->key_fixed), free(w->key_z);
     free(w);
 }
 
@@ -252,7 +290,7 @@ double *dp_network_step_W(dp_network_step *w)
 
 void dp_network_step_W_changed(dp_network_step *w)
 {
-    w->factored = 0;
+    w->W_dirty = 1;   /* prepare compares W with the W its factors were formed from */
 }
 
 /* ---- the graphs Sigma_e ------------------------------------------------------------------------------ */
@@ -417,6 +455,7 @@ static void build_forest(dp_network_step *w)
 /* The map node -> reduced unknown of the forest just joined. */
 static void index_forest(dp_network_step *w)
 {
+    w->key_ok = 0;   /* the active-set pass keeps its key after indexing (pass_forest) */
     long ground = find(w, (long)w->n);
     size_t nr = 0;
     for (size_t i = 0; i <= w->n; i++)
@@ -490,11 +529,22 @@ static void assemble_H(dp_network_step *w, double h)
     }
 }
 
+/* The doubles the spares and W_fac take. */
+static size_t spares_size(const dp_network_step *w)
+{
+    size_t size = w->W_fac ? w->n * (w->p + 1) : 0;
+    for (int k = 0; k < SPARES; k++)
+        size += w->spare[k].cap;
+    return size;
+}
+
 static int reduced_storage(dp_network_step *w)
 {
     size_t need = w->nr * (w->pr + 1);
     if (w->R_max && need > w->R_max)
         return DP_ELIMIT;
+    if (w->R_max && need + spares_size(w) > w->R_max)
+        drop_spares(w);   /* R needs their room */
     if (need > w->R_cap) {
         double *R = realloc(w->R, need * sizeof *R);
         if (R == NULL)
@@ -505,27 +555,106 @@ static int reduced_storage(dp_network_step *w)
     return DP_OK;
 }
 
-/* Whether the assignment's structure (which elements are fixed, the free ones' slopes) is the factored one:
- * H and R depend on nothing else, so a quiet step reuses them. */
-static int same_structure(const dp_network_step *w)
+/* Whether the assignment's structure (which elements are fixed, the free ones' slopes) is the one of a
+ * factor's st and slope: H and R depend on nothing else, so a quiet step reuses them. */
+static int same_structure(const dp_network_step *w, const unsigned char *st, const double *slope)
 {
     for (size_t i = 0; i < w->ne; i++) {
         const elem_state *s = &w->es[i];
-        if (w->fac_st[i] != s->st || (s->st == FREE && w->fac_slope[i] != s->slope))
+        if (st[i] != s->st || (s->st == FREE && slope[i] != s->slope))
             return 0;
     }
     return 1;
 }
 
+static void drop_spares(dp_network_step *w)
+{
+    for (int k = 0; k < SPARES; k++) {
+        kept_factor *f = &w->spare[k];
+        free(f->R), free(f->st), free(f->slope);
+        *f = (kept_factor){ 0 };
+    }
+    free(w->W_fac);
+    w->W_fac = NULL;
+}
+
+/* A spare to keep the current factor in: an empty one, else the least recently current; its storage taken
+ * where R_max leaves room beside R's (NULL when it does not). W_fac holds the current W from then on. */
+static kept_factor *spare_slot(dp_network_step *w)
+{
+    size_t band = w->n * (w->p + 1), m = w->ne ? w->ne : 1;
+    kept_factor *f = &w->spare[0];
+    for (int k = 1; k < SPARES; k++)
+        if (!w->spare[k].ok ? f->ok : w->spare[k].stamp < f->stamp && f->ok)
+            f = &w->spare[k];
+    if (f->R != NULL)
+        return f;
+    if (w->R_max && w->R_cap + spares_size(w) + band + (w->W_fac ? 0 : band) > w->R_max)
+        return NULL;
+    if (w->W_fac == NULL && (w->W_fac = malloc(band * sizeof *w->W_fac)) != NULL)
+        memcpy(w->W_fac, w->W, band * sizeof *w->W);
+    f->R = malloc(band * sizeof *f->R), f->st = malloc(m), f->slope = malloc(m * sizeof *f->slope);
+    if (!w->W_fac || !f->R || !f->st || !f->slope) {
+        drop_spares(w);
+        return NULL;
+    }
+    f->cap = band, f->ok = 0;
+    return f;
+}
+
+/* The current factor and spare f change places (the current one kept only as a factor of W). */
+static void swap_spare(dp_network_step *w, kept_factor *f)
+{
+    kept_factor cur = { w->R, w->R_cap, w->pr, w->factored && w->Hm == w->W, w->h_factored, w->fac_st, w->fac_slope,
+                        ++w->fac_clock };
+    w->R = f->R, w->R_cap = f->cap, w->pr = f->pr, w->factored = f->ok, w->h_factored = f->h;
+    w->fac_st = f->st, w->fac_slope = f->slope;
+    *f = cur;
+}
+
+/* After dp_network_step_W_changed: the factors hold if W has the bytes they were formed from. */
+static void check_W(dp_network_step *w)
+{
+    size_t bytes = w->n * (w->p + 1) * sizeof *w->W;
+    w->W_dirty = 0;
+    if (w->W_fac != NULL && memcmp(w->W_fac, w->W, bytes) == 0)
+        return;
+    w->factored = 0;
+    for (int k = 0; k < SPARES; k++)
+        w->spare[k].ok = 0;
+    if (w->W_fac != NULL)
+        memcpy(w->W_fac, w->W, bytes);
+}
+
+/* The spare that holds the current structure's factor for h, or NULL. */
+static kept_factor *spare_for(dp_network_step *w, double h)
+{
+    for (int k = 0; k < SPARES; k++)
+        if (w->spare[k].ok && h == w->spare[k].h && same_structure(w, w->spare[k].st, w->spare[k].slope))
+            return &w->spare[k];
+    return NULL;
+}
+
 static int factor_reduced(dp_network_step *w);
 
 /* rhs_eff for the current assignment; H and R's factor only where the structure changed (build_forest must
- * have run: R is over its trees). */
+ * have run: R is over its trees): the current factor's, else a spare's, else a new one, the current going
+ * to a spare where it is a factor of W. */
 static int prepare(dp_network_step *w, double h, const double *rhs)
 {
     effective_rhs(w, h, rhs);
-    if (w->factored && h == w->h_factored && same_structure(w))
+    if (w->W_dirty)
+        check_W(w);
+    if (w->factored && h == w->h_factored && same_structure(w, w->fac_st, w->fac_slope))
         return DP_OK;
+    kept_factor *f = spare_for(w, h);
+    if (f != NULL) {
+        swap_spare(w, f);
+        w->Hm = w->W;   /* the spares hold factors of W only */
+        return DP_OK;
+    }
+    if (w->factored && w->Hm == w->W && (f = spare_slot(w)) != NULL)
+        swap_spare(w, f);   /* the current factor kept; the spare's storage is overwritten */
     assemble_H(w, h);
     int s = factor_reduced(w);
     w->factored = s == DP_OK;
@@ -1089,14 +1218,47 @@ static size_t bulk_update(dp_network_step *w, double h, const double *u)
     return changed;
 }
 
-/* Whether the fixed elements still form a forest (bulk updates may close a cycle). */
+/* Whether the fixed elements still form a forest (bulk updates may close a cycle); each element's part of
+ * the key (pass_forest) on the way. */
 static int fixed_forest(dp_network_step *w)
 {
     w->forest_ok = 0;   /* joined here, indexed by the caller */
+    w->key_ok = 0;
     forest_reset(w);
-    for (size_t i = 0; i < w->ne; i++)
-        if (w->es[i].st == FIXED && !join(w, &w->el[i], w->es[i].fix.z))
+    for (size_t i = 0; i < w->ne; i++) {
+        int fx = w->es[i].st == FIXED;
+        w->key_fixed[i] = (unsigned char)fx, w->key_z[i] = w->es[i].fix.z;
+        if (fx && !join(w, &w->el[i], w->es[i].fix.z))
             return 0;
+    }
+    return 1;
+}
+
+/* Whether a and b have the same bits (a vertex's z: -0 and 0 differ in a forest's potentials). */
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* The forest of the fixed elements and its index for an iteration of the active-set pass: as fixed_forest
+ * and index_forest would give them, kept when the fixed elements and their vertices are those of the last
+ * one (the union-find then holds their partition: joined by assign_start, or unchanged since). 0 when the
+ * fixed elements close a cycle. */
+static int pass_forest(dp_network_step *w)
+{
+    int same = w->key_ok;
+    for (size_t i = 0; same && i < w->ne; i++) {
+        int fx = w->es[i].st == FIXED;
+        same = fx == w->key_fixed[i] && (!fx || same_bits(w->es[i].fix.z, w->key_z[i]));
+    }
+    if (same) {
+        w->forest_ok = 0;   /* as fixed_forest leaves it: not build_forest's compression */
+        return 1;
+    }
+    if (!fixed_forest(w))
+        return 0;
+    index_forest(w);
+    w->key_ok = 1;
     return 1;
 }
 
@@ -1106,10 +1268,9 @@ static int fixed_forest(dp_network_step *w)
 static int pdas(dp_network_step *w, double h, const double *rhs, const double *u, double *v, unsigned long long *iters)
 {
     for (int it = 0; it < 12; it++) {
-        if (!fixed_forest(w))   /* joins the fixed forest, as build_forest would */
+        if (!pass_forest(w))   /* the fixed forest and its index, as build_forest would give them */
             return 1;
         (*iters)++;
-        index_forest(w);
         if (prepare(w, h, rhs) != DP_OK || solve_assignment(w) != DP_OK)
             return 1;
         if (polled_stop(w))
