@@ -665,6 +665,66 @@ static char *random_graph(size_t n, size_t m, int chain)
     return d;
 }
 
+/* The dampers without a relaxation (the steps that write no row skip their forces), then the others. */
+static const size_t plain_dampers[] = { 0, 1, 2, 3, 4, 5, 8 }, relaxed_dampers[] = { 6, 7, 9 };
+
+/* A chain of 6 blocks, each on a ground spring and a damper of the list `ds` (from d0 on), neighbours on
+ * springs of stiffness kc with dampers of the same list, a harmonic and a constant load; every `every`-th step
+ * written. */
+static void decimated_doc(char *d, size_t cap, const size_t *ds, size_t nds, size_t d0, const char *kc,
+                          const char *events, int every)
+{
+    size_t len = (size_t)snprintf(d, cap, "{\"model\":{\"masses\":[1,2,1,1.5,1,1],\"elements\":[");
+    for (size_t i = 0; i < 6; i++) {
+        len += (size_t)snprintf(d + len, cap - len, "{\"between\":[\"ground\",%zu],\"spring\":{\"law\":\"linear\","
+                                "\"k\":%g},\"damper\":%s},", i, 1 + 0.3 * (double)i, dampers[ds[(d0 + i) % nds]]);
+        if (i + 1 < 6)
+            len += (size_t)snprintf(d + len, cap - len, "{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\","
+                                    "\"k\":%s},\"damper\":%s},", i, i + 1, kc, dampers[ds[(d0 + 2 * i + 1) % nds]]);
+    }
+    len--;   /* the last comma */
+    snprintf(d + len, cap - len, "],\"forcing\":[{\"node\":0,%s},{\"node\":4,%s}]},\"initial\":{\"x\":[1,-0.5,0.3,"
+             "0.8,-1,0.2],\"v\":[0,0.4,0,-0.3,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":3,"
+             "\"theta\":0.5,\"events\":\"%s\"},\"output\":{\"every\":%d}}", loads[1], loads[2], events, every);
+}
+
+/* A step that writes no row forms no forces (network_run_element_phases: its phases, and a bound that shows
+ * the forces finite): the rows written every 5th step are those rows of the run that writes every step, bit
+ * for bit, for plain laws, for laws whose forces are formed every step, and where the bound fails (k 1e200). */
+static void test_decimated_rows_are_the_full_rows(void **state)
+{
+    (void)state;
+    static char doc[8192];
+    const char *kcs[] = { "2", "1e200" };
+    int ran = 0;
+    for (size_t d0 = 0; d0 < 10; d0++)
+        for (size_t c = 0; c < 2; c++)
+            for (int loc = 0; loc < 2; loc++) {
+                rows all = { 0 }, some = { 0 };
+                const size_t *ds = d0 < 7 ? plain_dampers : relaxed_dampers, nds = d0 < 7 ? 7 : 3;
+                decimated_doc(doc, sizeof doc, ds, nds, d0, kcs[c], loc ? "locate" : "none", 1);
+                rows_run(doc, 64, &all);
+                decimated_doc(doc, sizeof doc, ds, nds, d0, kcs[c], loc ? "locate" : "none", 5);
+                rows_run(doc, 64, &some);
+                assert_int_equal(all.status, some.status);
+                ran += all.status == DP_DONE && c == 1;
+                /* t = 0, every 5th step and the last; a run that fails writes its rows up to the failure */
+                assert_true(some.n >= (all.n - 1) / 5 + (all.status == DP_DONE));
+                for (size_t j = 0, i = 0; j < some.n; j++) {
+                    while (i < all.n && all.d[i * all.width] != some.d[j * some.width])
+                        i++;
+                    assert_true(i < all.n && (i % 5 == 0 || i == all.n - 1));
+                    assert_memory_equal(some.d + j * some.width, all.d + i * all.width, some.width * sizeof(double));
+                    /* and the forces are the row's own: a ground spring's k x (element 2b of block b) */
+                    const double *row = some.d + j * some.width + 1, *Fs = row + 2 * some.nx;
+                    for (size_t b = 0; b < 6; b++)
+                        assert_true(fabs(Fs[2 * b] - (1 + 0.3 * (double)b) * row[b]) <= 1e-12 * (1 + fabs(row[b])));
+                }
+                free(all.d), free(some.d), free(all.quakes), free(some.quakes);
+            }
+    assert_true(ran >= 10);   /* most runs past the bound end well */
+}
+
 static void test_working_memory_limit(void **state)
 {
     (void)state;
@@ -749,6 +809,7 @@ int main(void)
         cmocka_unit_test(test_yield_inside_a_step),
         cmocka_unit_test(test_working_memory_limit),
         cmocka_unit_test(test_hostile_magnitudes),
+        cmocka_unit_test(test_decimated_rows_are_the_full_rows),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -347,13 +347,6 @@ static int chain_finite(const struct dp_network_run *nr, int forces)
     return forces;
 }
 
-/* Whether the step being taken writes a row or the final state (network_run_step_taken): only those read
- * the elements' forces. */
-static int chain_writes_row(const dp_run *r)
-{
-    return (r->countdown <= 1 && r->spec.output.samples) || r->n + 1 >= r->nsteps;
-}
-
 /* network_run_state_finite for a step that writes no row, without forming the forces: the positions and
  * velocities checked as it checks them, and the forces shown finite by a bound (|k u| <= k_max 2 max|x|,
  * |c (z - v_b)| <= c_max (2 max|v| + max|v_b|), each below 1e300 with room for the rounding of u and z).
@@ -426,7 +419,7 @@ static int chain_step(dp_run *r, struct network_chain *ch, double t, double h, i
         return s;
     network_run_take_velocity(nr, h);
     network_run_contacts_mj_events(r, t, h);
-    *finite = chain_writes_row(r) ? -1 : chain_finite_bounded(nr, ch);
+    *finite = network_run_writes_row(r) ? -1 : chain_finite_bounded(nr, ch);
     if (*finite < 0)
         *finite = chain_finite(nr, chain_forces(nr, ch));
     return DP_OK;

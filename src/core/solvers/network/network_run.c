@@ -241,6 +241,8 @@ static int setup_laws(struct dp_network_run *nr)
         nr->k[i] = rope ? e->spring.k : e->has_spring ? dp_spring_stiffness(&e->spring) : 0;
         nr->c[i] = e->has_damper ? dp_damper_viscous(&e->damper) : 0;
         nr->vb[i] = e->has_damper ? e->damper.belt_velocity : 0;
+        nr->kmax = fmax(nr->kmax, fabs(nr->k[i])), nr->cmax = fmax(nr->cmax, fabs(nr->c[i]));
+        nr->vbmax = fmax(nr->vbmax, fabs(nr->vb[i]));
         nr->belt_viscous |= e->has_damper && nr->c[i] != 0 && e->damper.belt_velocity != 0;
         int set_damper = e->has_damper && (!dp_damper_linear(&e->damper)
                                            || e->damper.relaxation.kind != DP_RELAX_NONE);
@@ -619,7 +621,7 @@ static int network_run_advance(dp_run *r)
     int due;
     while (network_run_step_due(r, &due)) {
         double h = dp_run_step_length(r), t = r->cur.t;
-        int s;
+        int s, bounded = 0;
         nr->impacts_step = 0;
         if (nr->nm) {
             if ((s = newmark_step(r, t, h)) == DP_OK) {
@@ -631,7 +633,10 @@ static int network_run_advance(dp_run *r)
         } else {
             memcpy(nr->phase_prev, nr->phase, nr->nel);
             if ((s = network_run_net_step(r, t, h)) == DP_OK) {
-                network_run_element_forces(nr, 1);
+                /* the forces only for a row (phases and a bound for the others) */
+                bounded = !network_run_writes_row(r) && network_run_element_phases(nr);
+                if (!bounded)
+                    network_run_element_forces(nr, 1);
                 network_run_step_events(r, nr->phase_prev, t + h);
                 network_run_plastic_events(r, t + h);
                 network_run_stick_time(r, nr->phase, h);
@@ -646,7 +651,7 @@ static int network_run_advance(dp_run *r)
                                DP_NETWORK_MAX_RUN_BYTES / (1024.0 * 1024.0));
         if (s != DP_OK)
             return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
-        if ((s = network_run_step_taken(r, network_run_state_finite(nr))) != DP_OK)
+        if ((s = network_run_step_taken(r, bounded || network_run_state_finite(nr))) != DP_OK)
             return s;
     }
     return due;

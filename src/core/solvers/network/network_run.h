@@ -52,6 +52,7 @@ struct dp_network_run {
     int Mv_valid;
     double *vb;                 /* nel: each element's belt velocity (0 without a damper), beside the element
                                  * structs whose damper it would otherwise read a cache line further on */
+    double kmax, cmax, vbmax;   /* the largest |k|, |c| and |v_b| over the elements (network_run_element_phases) */
     int belt_viscous;           /* some element's viscous damper rides a moving belt (a term of each right side) */
     dp_network_step_forces *force_keep;   /* per active element, likewise */
     struct dp_network_regularized *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
@@ -204,6 +205,13 @@ static inline int network_run_step_due(dp_run *r, int *status)
     return 1;
 }
 
+/* Whether the step being taken writes a row or the final state (network_run_step_taken): only those read
+ * the elements' forces. */
+static inline int network_run_writes_row(const dp_run *r)
+{
+    return (r->countdown <= 1 && r->spec.output.samples) || r->n + 1 >= r->nsteps;
+}
+
 /* The stepping pieces located events are made of (network_stepping.c): the right side of a step of length h
  * from time t, its exact solution into v1 and the forces (state unmoved), moving the state by it, and the
  * elements' forces and phases (`stepped`: from the last solution; else the initial state). */
@@ -211,6 +219,10 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h);
 int network_run_net_step_keep(dp_run *r, double t, double h);
 void network_run_take_velocity(struct dp_network_run *nr, double h);
 void network_run_element_forces(struct dp_network_run *nr, int stepped);
+/* After a step that writes no row: the phases network_run_element_forces would set, without the forces; 1
+ * when a bound shows the forces and the state finite, 0 when they must be formed and checked (then nothing
+ * is set; also for networks whose forces are more than k u + c (z - v_b) + the step's part). */
+int network_run_element_phases(struct dp_network_run *nr);
 /* W for step length h into the workspace; one whole step from t (the state moved, the forces set). */
 void network_run_build_W(struct dp_network_run *nr, double h);
 int network_run_net_step(dp_run *r, double t, double h);

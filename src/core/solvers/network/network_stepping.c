@@ -131,6 +131,41 @@ void network_run_element_forces(struct dp_network_run *nr, int stepped)
     network_run_contacts_forces(nr, stepped);
 }
 
+int network_run_element_phases(struct dp_network_run *nr)
+{
+    if (nr->has_ep || nr->has_smooth || nr->relaxed || nr->jump || nr->nc)
+        return 0;
+    const dp_element *el = nr->net->el;
+    const double *x = nr->x, *v = nr->v, *vbs = nr->vb;
+    const long *act_of = nr->act_of;
+    const unsigned char *can_stick = nr->can_stick;
+    const dp_network_step_forces *force = nr->force;
+    double xm = 0, vm = 0;
+    for (size_t i = 0, n = nr->n; i < n; i++) {   /* network_run_state_finite's test, and the largest */
+        double ax = fabs(x[i]), av = fabs(v[i]);
+        if (!(ax < 1e300 && av < 1e300))
+            return 0;
+        xm = ax > xm ? ax : xm, vm = av > vm ? av : vm;
+    }
+    /* |F_s| <= k_max 2 max|x| + |s|, |F_d| <= c_max (2 max|v| + max|v_b|) + |a|: each part below 1e300 */
+    if (!(nr->kmax * (2 * xm) < 1e300 && nr->cmax * (2 * vm + nr->vbmax) < 1e300))
+        return 0;
+    unsigned char *phase = nr->phase;
+    for (size_t i = 0, nel = nr->nel; i < nel; i++) {
+        long k = act_of[i];
+        int rest;
+        if (k >= 0) {
+            if (!(fabs(force[k].s) < 1e300 && fabs(force[k].a) < 1e300))
+                return 0;   /* the phases set so far are set again by the forces' pass */
+            rest = force[k].at_rest;
+        } else {
+            rest = network_run_rel(el[i].a, el[i].b, v) == vbs[i];
+        }
+        phase[i] = !can_stick[i] ? DP_PHASE_NONE : rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
+    }
+    return 1;
+}
+
 /* ---- stepping --------------------------------------------------------------------------------------- */
 
 /* Generalized Coulomb (the rest branch, as one mass takes it): an element at rest at the step's start, or
