@@ -315,6 +315,84 @@ static void test_held_solves_after_restore(void **state)
     assert_true(switched > 1500);   /* and changes the held pattern between them */
 }
 
+/* Held solves over blocks of a chain (dp_network_step_blocks, _solve_blocks) give the candidates' margins
+ * and the fixed ones' multipliers of the whole held solve bit for bit: random chains of 2..40 nodes with a
+ * Coulomb element from the ground to each (so that the stuck ones split the chain), some neighbours
+ * uncoupled, random assignments from whole solves and random candidate sets. */
+static void test_held_blocks_are_the_whole_solve(void **state)
+{
+    (void)state;
+    enum { N = 40 };
+    size_t compared = 0, split = 0;
+    for (int trial = 0; trial < 300; trial++) {
+        size_t n = 2 + (size_t)(urand() * (N - 1));
+        double W[2 * N], rhs[N], u[N] = { 0 }, h = 0.01 + urand(), guess[N], v[N], va[N], ma[N], mb[N];
+        unsigned char couple[N], cand[N];
+        dp_graph g[N];
+        dp_network_step_element el[N];
+        dp_network_step_forces f[N];
+        for (size_t i = 0; i < n; i++) {
+            couple[i] = i + 1 < n && urand() < 0.9;
+            W[2 * i] = 1.5 + urand(), W[2 * i + 1] = couple[i] ? -0.5 * urand() - 0.01 : 0;
+            rhs[i] = 2 * (urand() - 0.5), guess[i] = urand() < 0.5 ? 0 : urand() - 0.5;
+            coulomb_graph(&g[i], 0.05 + 0.5 * urand());
+            el[i] = (dp_network_step_element){ .a = urand() < 0.8 ? -1 : (long)i, .b = -1, .A = &g[i],
+                                               .vb = urand() < 0.5 ? 0 : urand() - 0.5 };
+            if (el[i].a < 0)
+                el[i].b = (long)i;
+        }
+        dp_network_step *w = dp_network_step_alloc(n, 1, n, el);
+        assert_non_null(w);
+        memcpy(dp_network_step_W(w), W, 2 * n * sizeof *W);
+        dp_network_step_W_changed(w);
+        unsigned long long it = 0;
+        assert_int_equal(dp_network_step_solve(w, h, rhs, u, guess, v, f, &it), DP_OK);
+        void *buf = malloc(dp_network_step_pattern_bytes(w));
+        assert_non_null(buf);
+        dp_network_step_pattern_save(w, buf);
+        for (int op = 0; op < 8; op++) {
+            double hh = h * (urand() < 0.3 ? 1e-9 : 0.05 + urand());
+            dp_network_step_pattern_restore(w, buf);
+            if (dp_network_step_solve_frozen(w, hh, rhs, u, va, f, ma) != DP_OK)
+                continue;
+            double lam[N];
+            for (size_t k = 0; k < n; k++)
+                lam[k] = dp_network_step_violation(w, k, hh, u);
+            for (size_t k = 0; k < n; k++)
+                cand[k] = urand() < 0.15;
+            dp_network_step_pattern_restore(w, buf);
+            size_t blk[6 * N + 2], nb = dp_network_step_blocks(w, cand, couple, blk, 3 * N + 1);
+            if (nb == 0)
+                continue;
+            double Wl[4 * N + 4], rl[N + 1];
+            size_t off = 0, covered = 0;
+            for (size_t b = 0; b < nb; b++) {   /* rows lo-1 .. hi of W, lo .. hi of the right side */
+                size_t lo = blk[2 * b], hi = blk[2 * b + 1];
+                for (size_t r = lo; r <= hi + 1; r++)
+                    for (size_t d = 0; d < 2; d++)
+                        Wl[2 * (off + b) + 2 * (r - lo) + d] = r == 0 ? 0 : W[2 * (r - 1) + d];
+                memcpy(rl + off, rhs + lo, (hi - lo + 1) * sizeof *rl);
+                off += hi - lo + 1, covered += hi - lo + 1;
+            }
+            for (size_t k = 0; k < n; k++)
+                mb[k] = -12345;
+            assert_int_equal(dp_network_step_solve_blocks(w, hh, blk, nb, Wl, rl, u, cand, mb), 1);
+            for (size_t k = 0; k < n; k++) {
+                if (!cand[k])
+                    continue;
+                assert_memory_equal(&ma[k], &mb[k], sizeof ma[k]);
+                assert_true(lam[k] == dp_network_step_violation(w, k, hh, u));
+            }
+            compared++, split += covered < n;
+        }
+        free(buf);
+        dp_network_step_free(w);
+        for (size_t i = 0; i < n; i++)
+            dp_graph_clear(&g[i]);
+    }
+    assert_true(compared > 1000 && split > 500);   /* many sets, most of them on part of the chain */
+}
+
 /* The long factorization asked for polls (network_step.c's polled_cholesky, past 2^22 multiply-adds) gives
  * GSL's answer to rounding: a band W of 600 nodes and half-bandwidth 100 with one Coulomb element, solved
  * without a poll (GSL's factor) and with one that never stops (ours, polled during the factorization);
@@ -642,6 +720,7 @@ int main(void)
         cmocka_unit_test(test_polled_factorization),
         cmocka_unit_test(test_kept_factors_bit_for_bit),
         cmocka_unit_test(test_held_solves_after_restore),
+        cmocka_unit_test(test_held_blocks_are_the_whole_solve),
         cmocka_unit_test(test_taut_rope_on_belt_reproducers),
         cmocka_unit_test(test_rope_on_belt_against_bisection),
         cmocka_unit_test(test_rope_on_belt_documents),

@@ -136,6 +136,12 @@ struct dp_network_step {
     const dp_relaxation *const *gamma;
     double theta;
     double *zk, *g0, *g1, *gshift;
+    /* held solves over blocks of a chain (dp_network_step_blocks): the elements of each node in their order
+     * (inc_start, inc_el: built once), each node's velocity in the blocks (vloc) and the blocks' reduced
+     * system (loc_*: right side, factor, unknowns) */
+    size_t *inc_start, *inc_el;
+    unsigned long long *blk_mark, blk_gen;   /* per node: the blocks call that last covered it */
+    double *vloc, *loc_rhs, *loc_R, *loc_y;
     /* the stop hook's poll (network_step.h), asked after every solve with the work done since the last one */
     dp_network_step_poll_fn poll;
     void *poll_ctx;
@@ -203,6 +209,7 @@ void dp_network_step_free(dp_network_step *w)
     free(w->zk), free(w->g0), free(w->g1), free(w->gshift), free(w->fac_st), free(w->fac_slope);
     drop_spares(w);
     free(w->key_fixed), free(w->key_z);
+    free(w->inc_start), free(w->inc_el), free(w->blk_mark), free(w->vloc), free(w->loc_rhs), free(w->loc_R), free(w->loc_y);
     free(w);
 }
 
@@ -1694,4 +1701,226 @@ void dp_network_step_slip(dp_network_step *w, size_t i, double h, const double *
 {
     vertex at = w->es[i].fix;
     set_free(w, i, u[i], h, &at, dir);
+}
+
+/* ---- held solves over blocks of a chain ----------------------------------------------------------------
+ *
+ * A root search of event location asks a held step's margins for a few candidates only. On a chain (half-
+ * bandwidth one) whose fixed elements each hold one node to the ground, those nodes split the contracted
+ * system into segments that do not couple (nor do two nodes that no spring, damper or mass couples): a
+ * candidate's margin needs its ends' segments only, and a fixed one's its node's two neighbours'. Solved
+ * alone, a segment gives its velocities bit for bit as the whole solve does: the factor's entries across a
+ * zero coupling are zero, the pivots the same, and the sweeps differ at most by the sign of a zero (x - 0 y),
+ * which the potential's +0 or the forest's c then removes; the multipliers and margins follow. */
+
+/* The elements of each node, in the elements' order (effective_rhs adds their terms in that order). */
+static int incidence(dp_network_step *w)
+{
+    if (w->inc_start != NULL)
+        return 1;
+    size_t n = w->n, *start = calloc(n + 2, sizeof *start), *el = malloc((2 * w->ne + 1) * sizeof *el);
+    double *vl = calloc(n + 1, sizeof *vl), *rl = calloc(n + 1, sizeof *rl), *Rl = calloc(2 * n + 2, sizeof *Rl);
+    double *yl = calloc(n + 1, sizeof *yl);
+    unsigned long long *mark = calloc(n + 1, sizeof *mark);
+    if (!start || !el || !vl || !rl || !Rl || !yl || !mark) {
+        free(start), free(el), free(vl), free(rl), free(Rl), free(yl), free(mark);
+        return 0;
+    }
+    w->blk_mark = mark;
+    for (size_t k = 0; k < w->ne; k++) {
+        if (w->el[k].a >= 0)
+            start[w->el[k].a + 2]++;
+        if (w->el[k].b >= 0)
+            start[w->el[k].b + 2]++;
+    }
+    for (size_t i = 2; i <= n + 1; i++)
+        start[i] += start[i - 1];
+    for (size_t k = 0; k < w->ne; k++) {   /* start[i + 1] runs as node i's cursor, then is its end */
+        if (w->el[k].a >= 0)
+            el[start[w->el[k].a + 1]++] = k;
+        if (w->el[k].b >= 0)
+            el[start[w->el[k].b + 1]++] = k;
+    }
+    w->inc_start = start, w->inc_el = el, w->vloc = vl, w->loc_rhs = rl, w->loc_R = Rl, w->loc_y = yl;
+    return 1;
+}
+
+/* Node i's one fixed element when it holds i to the ground and is i's only fixed one; -1 when i has none;
+ * -2 otherwise (not a chain's held node: the blocks do not apply). */
+static long held_by(const dp_network_step *w, size_t i)
+{
+    long k = -1;
+    for (size_t j = w->inc_start[i]; j < w->inc_start[i + 1]; j++) {
+        size_t e = w->inc_el[j];
+        if (w->es[e].st != FIXED)
+            continue;
+        if (k >= 0 || (w->el[e].a >= 0 && w->el[e].b >= 0))
+            return -2;
+        k = (long)e;
+    }
+    return k;
+}
+
+/* The segment of free node j (the run of free nodes coupled to it, `couple[i]`: nodes i and i+1 are
+ * coupled in W), with the held nodes that bound it, into blk as [lo, hi]. */
+static void segment(const dp_network_step *w, size_t j, const unsigned char *couple, size_t *blk)
+{
+    size_t lo = j, hi = j;
+    while (lo > 0 && w->kidx[lo - 1] >= 0 && couple[lo - 1])
+        lo--;
+    while (hi + 1 < w->n && w->kidx[hi + 1] >= 0 && couple[hi])
+        hi++;
+    blk[0] = lo > 0 && w->kidx[lo - 1] < 0 ? lo - 1 : lo;
+    blk[1] = hi + 1 < w->n && w->kidx[hi + 1] < 0 ? hi + 1 : hi;
+}
+
+static int block_cmp(const void *a, const void *b)
+{
+    size_t x = *(const size_t *)a, y = *(const size_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+size_t dp_network_step_blocks(dp_network_step *w, const unsigned char *cand, const unsigned char *couple,
+                              size_t *blk, size_t cap)
+{
+    if (w->p != 1 || w->gamma != NULL || !w->forest_ok || couple == NULL || !incidence(w))
+        return 0;
+    size_t nb = 0;
+    w->blk_gen++;
+    for (size_t k = 0; k < w->ne; k++) {
+        if (!cand[k])
+            continue;
+        const dp_network_step_element *e = &w->el[k];
+        long seeds[3] = { e->a, e->b, -1 };
+        if (w->es[k].st == FIXED) {   /* its node and both neighbours */
+            if (e->a >= 0 && e->b >= 0)
+                return 0;
+            long i = e->a >= 0 ? e->a : e->b;
+            seeds[0] = i - 1, seeds[1] = i, seeds[2] = i + 1 < (long)w->n ? i + 1 : -1;
+        }
+        for (int s = 0; s < 3; s++) {
+            if (seeds[s] < 0 || w->blk_mark[seeds[s]] == w->blk_gen)
+                continue;   /* no seed, or in a block already (a segment is walked once) */
+            if (nb + 1 >= cap)
+                return 0;
+            size_t j = (size_t)seeds[s];
+            if (w->kidx[j] >= 0)
+                segment(w, j, couple, blk + 2 * nb);
+            else
+                blk[2 * nb] = blk[2 * nb + 1] = j;
+            for (size_t i = blk[2 * nb]; i <= blk[2 * nb + 1]; i++)
+                w->blk_mark[i] = w->blk_gen;
+            nb++;
+        }
+    }
+    qsort(blk, nb, 2 * sizeof *blk, block_cmp);
+    size_t m = 0;
+    for (size_t b = 0; b < nb; b++) {   /* merged where they overlap or touch */
+        if (m > 0 && blk[2 * b] <= blk[2 * m - 1] + 1) {
+            if (blk[2 * b + 1] > blk[2 * m - 1])
+                blk[2 * m - 1] = blk[2 * b + 1];
+            continue;
+        }
+        blk[2 * m] = blk[2 * b], blk[2 * m + 1] = blk[2 * b + 1], m++;
+    }
+    return m;
+}
+
+/* Row i of W c or W v (band_row) from the block's rows: Wl holds rows lo-1 .. hi of W (two entries each). */
+static double block_row(const double *Wl, size_t lo, size_t n, const double *x, size_t i)
+{
+    const double *row = Wl + 2 * (i + 1 - lo);
+    double y = row[0] * x[i];
+    if (i > 0)
+        y += row[-1] * x[i - 1];
+    if (i + 1 < n)
+        y += row[1] * x[i + 1];
+    return y;
+}
+
+/* One block [lo, hi]: the effective right side, the reduced system of its free nodes (consecutive unknowns)
+ * factored and solved, every node's velocity into vloc. 0 when it is not a chain's block (or not positive). */
+static int block_solve(dp_network_step *w, double h, size_t lo, size_t hi, const double *Wl, const double *rl)
+{
+    size_t n = w->n, m = 0;
+    long k0 = -1;
+    for (size_t i = lo; i <= hi; i++) {
+        double r = rl[i - lo];
+        for (size_t j = w->inc_start[i]; j < w->inc_start[i + 1]; j++) {   /* effective_rhs */
+            size_t e = w->inc_el[j];
+            const elem_state *st = &w->es[e];
+            if (st->st != FREE)
+                continue;
+            if (h * st->slope != 0 || w->el[e].S != NULL)
+                return 0;   /* H is not W here */
+            double g = h * (st->lam0 - st->slope * st->zref);
+            r = (long)i == w->el[e].a ? r + g : r - g;
+        }
+        w->loc_rhs[i] = r;
+        if (w->kidx[i] < 0) {
+            if (held_by(w, i) == -2)
+                return 0;
+            continue;
+        }
+        if (k0 < 0)
+            k0 = w->kidx[i];
+        if (w->kidx[i] != k0 + (long)m || held_by(w, i) != -1)
+            return 0;
+        double *R = w->loc_R + 2 * m, y = 0, a = Wl[2 * (i + 1 - lo) + 1];
+        R[0] = 0, R[1] = 0;
+        R[0] += Wl[2 * (i + 1 - lo)];
+        if (i + 1 <= hi && w->kidx[i + 1] >= 0 && a != 0)
+            R[1] += a;
+        y += w->loc_rhs[i] - block_row(Wl, lo, n, w->c, i);
+        w->loc_y[m++] = y;
+    }
+    size_t q = m > 1;   /* one unknown: a 1 x 1 band, as the whole factor takes a lone one */
+    if (m > 0 && (dp_band_cholesky(w->loc_R, m, q) != DP_OK || dp_band_cholesky_solve(w->loc_R, m, q, w->loc_y) != DP_OK))
+        return 0;
+    for (size_t i = lo; i <= hi; i++)
+        w->vloc[i] = (w->kidx[i] >= 0 ? w->loc_y[w->kidx[i] - k0] : 0) + w->c[i];
+    return 1;
+}
+
+int dp_network_step_solve_blocks(dp_network_step *w, double h, const size_t *blk, size_t nb, const double *Wl,
+                                 const double *rl, const double *u, const unsigned char *cand, double *margin)
+{
+    size_t off = 0, work = 0;
+    for (size_t b = 0; b < nb; b++) {
+        size_t lo = blk[2 * b], hi = blk[2 * b + 1];
+        if (!block_solve(w, h, lo, hi, Wl + 2 * off + 2 * b, rl + off))
+            return 0;
+        off += hi - lo + 1, work += 3 * (hi - lo + 1);
+    }
+    off = 0;
+    for (size_t b = 0; b < nb; b++) {   /* the fixed candidates' multipliers (a leaf of the ground's star) */
+        size_t lo = blk[2 * b], hi = blk[2 * b + 1];
+        for (size_t i = lo; i <= hi; i++) {
+            long k = w->kidx[i] < 0 ? held_by(w, i) : -1;
+            if (k < 0 || !cand[k])
+                continue;
+            const dp_network_step_element *e = &w->el[k];
+            double Hv = block_row(Wl + 2 * off + 2 * b, lo, w->n, w->vloc, i), r = w->loc_rhs[i];
+            double sign_i = (long)i == e->b ? 1 : -1;
+            touch_values(w, (size_t)k);
+            w->es[k].lam = (r - Hv) / (h * sign_i);
+            w->es[k].lam_err = 8 * DBL_EPSILON * (fabs(r) + fabs(Hv)) / h;
+        }
+        off += hi - lo + 1;
+    }
+    for (size_t k = 0; k < w->ne; k++) {   /* the candidates' margins, as dp_network_step_solve_frozen's */
+        if (!cand[k])
+            continue;
+        const elem_state *e = &w->es[k];
+        if (e->st == FREE) {
+            double z = rel_velocity(&w->el[k], w->vloc);
+            margin[k] = fmin(z - e->lo.z, e->hi.z - z);
+        } else {
+            double lo, hi;
+            sigma_interval(w, k, u[k], h, &e->fix, &lo, &hi);
+            margin[k] = fmin(e->lam - lo, hi - e->lam);
+        }
+    }
+    w->work += work;
+    return polled_stop_units(w) ? -1 : 1;
 }

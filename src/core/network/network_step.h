@@ -89,6 +89,18 @@ void dp_network_step_pattern_restore(dp_network_step *w, const void *buf);
 int dp_network_step_solve_frozen(dp_network_step *w, double h, const double *rhs, const double *u, double *v, dp_network_step_forces *f,
                         double *margin);
 
+/* A held solve's margins for the candidates `cand` (ne flags) alone, on a chain (half-bandwidth one; couple[i]:
+ * nodes i and i+1 coupled in W) whose fixed elements each hold one node to the ground: blocks_for writes into
+ * blk (pairs lo, hi of node indices, at most cap / 2) the sorted, disjoint blocks of nodes those margins need
+ * and returns how many (0: not such a chain now, or too many: solve the whole step). solve_blocks takes, for
+ * each block in turn, rows lo-1 .. hi of W (two entries a row, concatenated: Wl) and rows lo .. hi of the
+ * right side (rl), and writes the candidates' margins as solve_frozen would, bit for bit, and the fixed ones'
+ * multipliers; 1 done, 0 not such a block (solve the whole step), -1 the poll said stop. */
+size_t dp_network_step_blocks(dp_network_step *w, const unsigned char *cand, const unsigned char *couple,
+                              size_t *blk, size_t cap);
+int dp_network_step_solve_blocks(dp_network_step *w, double h, const size_t *blk, size_t nb, const double *Wl,
+                                 const double *rl, const double *u, const unsigned char *cand, double *margin);
+
 /* With relaxation: the velocity a held step starts from (gamma's argument is theta z + (1-theta) z_start);
  * solve_frozen then iterates on gamma as a whole solve does. Nothing without relaxation. */
 void dp_network_step_relaxation_start(dp_network_step *w, const double *v_start);

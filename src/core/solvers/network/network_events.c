@@ -83,13 +83,44 @@ static double ep_margin(const struct dp_network_run *nr, size_t k, double s)
     return sp->yield - fabs(sp->k * (nr->u[k] + s * nr->theta * z - nr->ep_p[i]));
 }
 
+/* The candidates' held margins on a chain, each from the blocks of nodes it needs (network_step.h): 1 with
+ * their smallest in *m (NAN when the stop hook said stop), 0 when the whole step must be solved. */
+static int held_margin_blocks(held_ctx *c, double s, double *m)
+{
+    struct dp_network_run *nr = c->r->state;
+    if (nr->couple == NULL || nr->nc || nr->has_ep || nr->has_smooth || nr->jump || nr->relaxed || nr->belt_viscous)
+        return 0;
+    size_t nb = dp_network_step_blocks(nr->ws, c->cand, nr->couple, nr->blk, nr->blk_cap / 2);
+    if (nb == 0)
+        return 0;
+    for (size_t b = 0, off = 0; b < nb; b++) {
+        size_t lo = nr->blk[2 * b], hi = nr->blk[2 * b + 1];
+        network_run_block_rows(nr, c->t, s, lo, hi, nr->blk_W + 2 * (off + b), nr->blk_rhs + off);
+        off += hi - lo + 1;
+    }
+    int done = dp_network_step_solve_blocks(nr->ws, s, nr->blk, nb, nr->blk_W, nr->blk_rhs, nr->u, c->cand,
+                                            nr->margin);
+    if (done == 0)
+        return 0;
+    *m = INFINITY;
+    for (size_t k = 0; done > 0 && k < nr->nact; k++)
+        if (c->cand[k])
+            *m = fmin(*m, nr->margin[k]);
+    if (done < 0)
+        *m = NAN;
+    return 1;
+}
+
 /* The smallest margin among the candidates after a step of length s with the sub-step's starting
- * assignment held (nr->margin gets every element's). */
+ * assignment held (nr->margin gets every element's, or on a chain the candidates' alone). */
 static double held_margin(void *vctx, double s)
 {
     held_ctx *c = vctx;
     struct dp_network_run *nr = c->r->state;
     dp_network_step_pattern_restore(nr->ws, nr->pattern);
+    double mb;
+    if (c->cand != NULL && held_margin_blocks(c, s, &mb))
+        return mb;
     network_run_step_rhs(nr, c->t, s);
     dp_network_step_relaxation_start(nr->ws, nr->v);
     if (dp_network_step_solve_frozen(nr->ws, s, nr->rhs, nr->u, nr->v1, nr->force, nr->margin) != DP_OK)
@@ -127,27 +158,41 @@ static double earliest_event(dp_run *r, double t, double h, unsigned char *fails
     struct dp_network_run *nr = r->state;
     size_t m = nr->nact;
     held_ctx c = { r, t, NULL };
-    double th = nr->theta, s0 = 1e-9 * h, *start = nr->roots, *scale = nr->scale;
-    unsigned char *fixed = nr->fixed, *cand = nr->cand;
+    double th = nr->theta, s0 = 1e-9 * h, *start = nr->roots, *scale = nr->scale, *end = nr->end_margin;
+    unsigned char *fixed = nr->fixed, *cand = nr->cand, *failing = nr->fails_at;
     memset(fails, 0, m ? m : 1);
-    held_margin(&c, s0);             /* just after the start: the assignment holds there, or fails at once */
-    memcpy(start, nr->margin, m * sizeof *start);
-    int any_fixed = 0, any_free = 0;
+    memset(failing, 0, m ? m : 1);
+    int any_fixed = 0, any_free = 0, any = 0;
+    dp_network_step_pattern_restore(nr->ws, nr->pattern);   /* the held assignment's fixed elements */
     for (size_t k = 0; k < m; k++)
         fixed[k] = (unsigned char)dp_network_step_fixed(nr->ws, k);
     for (int pass = 0; pass < 2; pass++) {   /* free elements over h, fixed ones over h / theta */
         double g = held_margin(&c, pass ? h / th : h);   /* once: each evaluation is a held solve */
         if (!(g == g))
             return h;
+        for (size_t k = 0; k < m; k++)
+            if (fixed[k] == pass && nr->margin[k] < 0)
+                failing[k] = (unsigned char)(pass + 1), end[k] = nr->margin[k], any = 1;
+    }
+    /* just after the start the assignment holds, or fails at once: the failing ones' margins there (on a
+     * chain from their blocks alone) */
+    if (any) {
+        c.cand = failing;
+        held_margin(&c, s0);
+        for (size_t k = 0; k < m; k++)
+            start[k] = failing[k] ? nr->margin[k] : 0;
+        c.cand = NULL;
+    }
+    for (int pass = 0; pass < 2; pass++) {
         for (size_t k = 0; k < m; k++) {
-            if (fixed[k] != pass || !(nr->margin[k] < 0))
+            if (failing[k] != pass + 1)
                 continue;
             if (!(start[k] >= 0)) {
                 fails[k] = 1;
                 return 0;
             }
             cand[k] = (unsigned char)(pass + 1);
-            scale[k] = fabs(start[k]) + fabs(nr->margin[k]);
+            scale[k] = fabs(start[k]) + fabs(end[k]);
             pass ? (any_fixed = 1) : (any_free = 1);
         }
     }

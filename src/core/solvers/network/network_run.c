@@ -332,7 +332,7 @@ void network_run_free(void *state)
     free(nr->stop_S), free(nr->jump_S), free(nr->jump);
     dp_row_queue_clear(&nr->queue);
     network_quakes_free(nr->quakes);
-    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->Mv, nr->Cv, nr->Mv_at, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->vb, nr->x, nr->v, nr->v1, nr->rhs,
+    void *p[] = { nr->nm_ea, nr->nm_eb, nr->nm_ek, nr->nm_F, nr->nm_P, nr->nm_flow, nr->nm_el, nr->ep_p, nr->ep_F, nr->ep_flow, nr->ep_flow_prev, (void *)nr->ep_graph, nr->ep_cols, nr->node_pos, nr->static_A, nr->held, nr->broke, nr->act_el, nr->pattern, nr->margin, nr->roots, nr->end_margin, nr->fails, nr->scale, nr->fixed, nr->cand, nr->fails_at, nr->v1_keep, nr->force_keep, nr->Mv, nr->Cv, nr->Mv_at, nr->couple, nr->blk, nr->blk_W, nr->blk_rhs, nr->M, nr->K, nr->C, nr->act, nr->act_of, (void *)nr->gamma, nr->k, nr->c, nr->vb, nr->x, nr->v, nr->v1, nr->rhs,
                   nr->tmp, nr->u, nr->force, nr->Fs, nr->Fd, nr->phase, nr->phase_prev, nr->can_stick, nr->all_nodes,
                   nr->all_elements, nr->slots.data, nr->final_row, nr->pending_row };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
@@ -497,6 +497,23 @@ static int check_step_magnitudes(dp_run *r)
     return DP_OK;
 }
 
+/* A located run on a chain: which neighbours M, C or K couple, and room for a held solve's blocks (at most
+ * three a candidate, merged; their rows of W and of the right side: network_events.c). */
+static int chain_blocks_setup(struct dp_network_run *nr)
+{
+    size_t n = nr->n, na = nr->nact ? nr->nact : 1;
+    nr->couple = calloc(n, 1);
+    nr->blk_cap = 6 * na + 2;
+    nr->blk = calloc(nr->blk_cap, sizeof *nr->blk);
+    nr->blk_W = calloc(4 * n + 4, sizeof *nr->blk_W);
+    nr->blk_rhs = calloc(n + 1, sizeof *nr->blk_rhs);
+    if (!nr->couple || !nr->blk || !nr->blk_W || !nr->blk_rhs)
+        return DP_ENOMEM;
+    for (size_t i = 0; i + 1 < n; i++)
+        nr->couple[i] = nr->M[2 * i + 1] != 0 || nr->C[2 * i + 1] != 0 || nr->K[2 * i + 1] != 0;
+    return DP_OK;
+}
+
 /* The state, the laws, the columns and the workspace: what the network run and the one-mass network share. */
 int network_run_setup(dp_run *r)
 {
@@ -538,6 +555,7 @@ int network_run_setup(dp_run *r)
     size_t na = nr->nact ? nr->nact : 1;
     nr->fails = calloc(na, 1);
     nr->scale = calloc(na, sizeof *nr->scale);
+    nr->end_margin = calloc(na, sizeof *nr->end_margin);
     nr->fixed = calloc(na, 1), nr->cand = calloc(na, 1), nr->fails_at = calloc(na, 1);
     nr->v1_keep = calloc(nr->n, sizeof *nr->v1_keep);
     nr->force_keep = calloc(na, sizeof *nr->force_keep);
@@ -547,7 +565,9 @@ int network_run_setup(dp_run *r)
         if (nr->Mv == NULL || nr->Cv == NULL || nr->Mv_at == NULL)
             return DP_ENOMEM;
     }
-    if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL || nr->fails == NULL || nr->scale == NULL ||
+    if (nr->locate && nr->p == 1 && (s = chain_blocks_setup(nr)) != DP_OK)
+        return s;
+    if (nr->pattern == NULL || nr->margin == NULL || nr->roots == NULL || nr->end_margin == NULL || nr->fails == NULL || nr->scale == NULL ||
         nr->fixed == NULL || nr->cand == NULL || nr->fails_at == NULL || nr->v1_keep == NULL ||
         nr->force_keep == NULL)
         return DP_ENOMEM;

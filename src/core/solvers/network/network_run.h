@@ -53,7 +53,13 @@ struct dp_network_run {
     double *vb;                 /* nel: each element's belt velocity (0 without a damper), beside the element
                                  * structs whose damper it would otherwise read a cache line further on */
     double kmax, cmax, vbmax;   /* the largest |k|, |c| and |v_b| over the elements (network_run_element_phases) */
-    int belt_viscous;           /* some element's viscous damper rides a moving belt (a term of each right side) */
+    int belt_viscous;
+    /* located runs on a chain (half-bandwidth one): couple[i], nodes i and i+1 coupled in M, C or K; the
+     * blocks of a held solve over candidates (pairs), their rows of W and of the right side (network_events.c) */
+    unsigned char *couple;
+    size_t *blk, blk_cap;
+    double *blk_W, *blk_rhs;
+    double *end_margin;         /* nact: the failing elements' margins at the held step's end (earliest_event) */           /* some element's viscous damper rides a moving belt (a term of each right side) */
     dp_network_step_forces *force_keep;   /* per active element, likewise */
     struct dp_network_regularized *reg;     /* the regularized scheme's integrator (network_regularized.c), or NULL */
     int one_mass;               /* stepped by the one-mass solver (network_one_mass.c) */
@@ -216,6 +222,11 @@ static inline int network_run_writes_row(const dp_run *r)
  * from time t, its exact solution into v1 and the forces (state unmoved), moving the state by it, and the
  * elements' forces and phases (`stepped`: from the last solution; else the initial state). */
 void network_run_step_rhs(struct dp_network_run *nr, double t, double h);
+/* Rows lo-1 .. hi of W (two entries each; zeros for row -1) and lo .. hi of the right side of a step of length h
+ * from t, each entry as network_run_build_W and network_run_step_rhs form it, at half-bandwidth one on a
+ * network without a viscous damper on a moving belt nor theta-weighted springs. */
+void network_run_block_rows(const struct dp_network_run *nr, double t, double h, size_t lo, size_t hi, double *Wl,
+                            double *rl);
 int network_run_net_step_keep(dp_run *r, double t, double h);
 void network_run_take_velocity(struct dp_network_run *nr, double h);
 void network_run_element_forces(struct dp_network_run *nr, int stepped);

@@ -299,6 +299,50 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
     }
 }
 
+/* Row i of a tridiagonal band product A x, in dp_band_symv's order: the diagonal term plus row i-1's, then
+ * row i+1's. */
+static double row3(const double *A, size_t n, const double *x, size_t i)
+{
+    double y = A[2 * i] * x[i];
+    if (i > 0)
+        y += A[2 * (i - 1) + 1] * x[i - 1];
+    if (i + 1 < n)
+        y += A[2 * i + 1] * x[i + 1];
+    return y;
+}
+
+void network_run_block_rows(const struct dp_network_run *nr, double t, double h, size_t lo, size_t hi, double *Wl,
+                            double *rl)
+{
+    size_t n = nr->n;
+    const double *x = nr->x, *v = nr->v, *K = nr->K, th = nr->theta;
+    for (size_t r = lo; r <= hi + 1; r++) {   /* row r - 1 */
+        double *w = Wl + 2 * (r - lo);
+        for (size_t d = 0; d < 2; d++) {
+            size_t e = 2 * (r - 1) + d;
+            w[d] = r == 0 ? 0 : nr->M[e] + h * th * nr->C[e] + h * h * th * th * nr->K[e];
+        }
+    }
+    double a1 = h * (1 - th), b1 = h * th * (1 - th);
+    for (size_t i = lo; i <= hi; i++) {
+        double v1m = i > 0 ? x[i - 1] + b1 * v[i - 1] : 0, v10 = x[i] + b1 * v[i];
+        double v1p = i + 1 < n ? x[i + 1] + b1 * v[i + 1] : 0, kv = K[2 * i] * v10;
+        if (i > 0)
+            kv += K[2 * (i - 1) + 1] * v1m;
+        if (i + 1 < n)
+            kv += K[2 * i + 1] * v1p;
+        double r = row3(nr->M, n, v, i);
+        r -= a1 * row3(nr->C, n, v, i);
+        r -= h * kv;
+        rl[i - lo] = r;
+    }
+    for (size_t i = 0; i < nr->net->nforce; i++) {
+        size_t node = nr->net->force[i].node;
+        if (node >= lo && node <= hi)
+            rl[node - lo] += h * dp_forcing_eval(&nr->net->force[i].f, t + th * h);
+    }
+}
+
 /* x+ = x + h ((1-theta) v + theta v+), v = v+. */
 void network_run_take_velocity(struct dp_network_run *nr, double h)
 {
