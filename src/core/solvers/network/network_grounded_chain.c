@@ -1,0 +1,656 @@
+/* src/core/solvers/network/network_grounded_chain.c - a network of masses on linear springs and linear
+ * dampers whose set-valued laws each tie one node to the ground: rigid contacts (Newton restitution; a stop
+ * chain, Moreau 1988, Jean 1999, Siconos' MoreauJeanOSI) and Coulomb dampers on a belt (a friction chain, the
+ * Burridge-Knopoff chain of Carlson & Langer 1989), stepped without located events ("events": "none"). Its
+ * step is the general network step (network_stepping.c, network_contact.c, network/network_step.c, the
+ * elements' forces, phases and stick-slip events of network_stepping.c and network_output.c) written out for
+ * such networks at half-bandwidth at most one after the run's own node ordering: the same floating-point
+ * operations in the same order, so the same answers bit for bit, without the graphs, the union-find forest,
+ * the active-set bookkeeping and the per-element dispatch that make most of a general step's cost.
+ *
+ * Why it is exact: every set-valued law joins its node to the ground, so the fixed forest is a set of nodes
+ * held at their laws' vertices (each its own tree with the ground), the free nodes are singleton trees
+ * numbered in node order, and the contracted matrix R is W restricted to the free nodes (tridiagonal, or
+ * diagonal where no two free neighbours are coupled). A law is free on one piece of its graph, or fixed at
+ * its vertex with its multiplier read off its node's residual: a contact free above its cone's vertex (or on
+ * the whole line when it is not armed), a Coulomb damper free on a flat piece +-phi0 of phi0 Sgn(z - v_b) on
+ * either side of the belt's speed (Babovakova 2012; Prazak & Rajagopal 2016), both fixed at the vertex with
+ * the interval (-inf, 0] or [-phi0, phi0]. That is the primal-dual active-set pass of network_step.c from
+ * the previous velocity's assignment, with its forest potentials ((z + 0) - 0, then 0 + pot, then - 0), its
+ * rounding tolerance on the multipliers and its +0 and -0 kept. The lean ball (network_contact_lean.c) is the
+ * same pass for one node.
+ *
+ * Anything outside this (a NaN, a pass that does not settle in the general path's twelve updates, a pivot
+ * that is not positive) hands the step to the general solve itself; a network whose ordering leaves a wider
+ * band, or two set-valued laws on one node, runs the general advance.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/band.h"
+#include "solvers/network/network_run.h"
+
+/* A set-valued law's state in the step's active-set pass (network_step.c's elem_state), one per entry of the
+ * step's problem in its order: free on the piece (lo, hi) of force lam0 (the whole line when not armed), or
+ * fixed at the vertex fz with multiplier lam. The law's constants: its force on the piece right and left of
+ * its vertex (a contact: +0 right, fixed when its start lies left), and its force interval [flo, fhi] at the
+ * vertex with the magnitudes its tolerance adds (aflo, afhi: 0 for an infinite end). */
+typedef struct chain_law {
+    size_t node;
+    int up;             /* the law is [ground, node] (z = v), else [node, ground] (z = -v) */
+    int cone;           /* a contact: beyond its vertical ray the start is fixed at the vertex */
+    int fixed;
+    double lo, hi, zref, lam0, fz, lam, lam_err;
+    double fr, fl, flo, fhi, aflo, afhi;
+} chain_law;
+
+/* An element with a linear part or a set-valued law, for its forces (network_run_element_forces): the
+ * others' are +0 throughout. act: its entry in the step's problem, or -1. */
+typedef struct chain_element {
+    size_t i;
+    long a, b, act;
+    double k, c, vb;
+} chain_element;
+
+/* A Coulomb element's phase to set after each step (network_run_element_phases). */
+typedef struct chain_friction {
+    size_t i, act;
+} chain_friction;
+
+struct network_chain {
+    size_t n, nlaw, nlin, nfric;
+    double kmax, cmax, vbmax;   /* over lin: the largest |k|, |c| and |v_b| (chain_finite_bounded) */
+    chain_law *law;     /* per entry of the step's problem: the Coulomb elements, then the contacts */
+    chain_element *lin; /* the elements with a spring or a damper of nonzero coefficient, or a law */
+    chain_friction *fric;
+    size_t *changed;    /* per Coulomb element: the elements whose phase a step changed */
+    unsigned char *was; /* and their phases before it */
+    long *kidx;         /* per node: its reduced unknown, -1 when held to the ground */
+    unsigned char *held, *fac_held;   /* per node: held to the ground now / in R's factor */
+    unsigned long long handed;   /* steps the general solve decided */
+    int factored;       /* R holds the factor for fac_held of W = fac_W built for step fac_h (prepare's reuse) */
+    double fac_h;
+    const double *fac_W;
+    size_t fac_pr;
+    double *c, *res, *rhs_eff, *vs, *y, *R;
+};
+
+/* ---- the active-set pass ------------------------------------------------------------------------------ */
+
+static double chain_rel(const chain_law *k, const double *v)
+{
+    return k->up ? v[k->node] - 0 : 0 - v[k->node];
+}
+
+static void chain_free_on(chain_law *k, double lo, double hi, double lam0, double zref)
+{
+    k->fixed = 0, k->lo = lo, k->hi = hi, k->lam0 = lam0, k->zref = zref;
+}
+
+/* The start assignment at the previous velocity (start_inside_piece, start_lawless, assign_start); 0 when z
+ * is not finite (the general path decides). On a flat piece the force is f0 + 0 (y - y0), f0 itself. */
+static int chain_start(const dp_network_step_element *e, chain_law *k, double z)
+{
+    if (!isfinite(z))
+        return 0;
+    k->lam = k->lam_err = 0;
+    if (e->A == NULL) {
+        chain_free_on(k, -INFINITY, INFINITY, 0, z);
+        return 1;
+    }
+    double y = z - e->vb;
+    if (y > 0)          /* on the right piece: free above its vertex */
+        chain_free_on(k, 0 + e->vb, INFINITY, k->fr, z);
+    else if (y == 0)    /* on the vertex */
+        k->fixed = 1, k->fz = z;
+    else if (k->cone)   /* beyond the vertical ray: fixed at the domain's end */
+        k->fixed = 1, k->fz = 0 + e->vb;
+    else                /* on the left piece: free below its vertex */
+        chain_free_on(k, -INFINITY, 0 + e->vb, k->fl, z);
+    return 1;
+}
+
+/* fixed_forest and index_forest: a fixed node's potential (join, find, the ground's subtracted), a free
+ * node its own unknown at potential +0. Returns the number of unknowns. */
+static size_t chain_forest(struct network_chain *ch)
+{
+    memset(ch->held, 0, ch->n);
+    for (size_t c = 0; c < ch->nlaw; c++) {
+        const chain_law *k = &ch->law[c];
+        if (!k->fixed)
+            continue;
+        double pot = k->up ? (k->fz + 0) - 0 : (0 - 0) - k->fz;
+        ch->held[k->node] = 1;
+        ch->c[k->node] = (0 + pot) - 0;
+    }
+    size_t nr = 0;
+    for (size_t i = 0; i < ch->n; i++) {
+        ch->kidx[i] = ch->held[i] ? -1 : (long)nr++;
+        if (!ch->held[i])
+            ch->c[i] = 0;
+    }
+    return nr;
+}
+
+/* effective_rhs: a free law's g = h (lam0 - slope zref) = h lam0 (slope +0, zref finite, lam0 +0 or a
+ * nonzero force), taken from its node's entry ([ground, node]) or added to it ([node, ground]); a contact's
+ * +0 keeps x - +0 = x and turns x + +0 = -0 into +0. */
+static void chain_rhs_eff(struct network_chain *ch, const double *rhs, double h)
+{
+    memcpy(ch->rhs_eff, rhs, ch->n * sizeof *rhs);
+    for (size_t c = 0; c < ch->nlaw; c++) {
+        const chain_law *k = &ch->law[c];
+        if (k->fixed)
+            continue;
+        double g = h * k->lam0;
+        ch->rhs_eff[k->node] = k->up ? rhs[k->node] - g : rhs[k->node] + g;
+    }
+}
+
+/* factor_reduced: R = W on the free nodes, factored by base/band.c (GSL's band Cholesky; at half-bandwidth 0
+ * GSL's pivots' square roots). *pr its half-bandwidth; 0 when a pivot is not positive. */
+static int chain_factor(struct network_chain *ch, const double *W, size_t p, size_t nr, size_t *pr)
+{
+    size_t n = ch->n, p1 = p + 1;
+    if (ch->factored && memcmp(ch->held, ch->fac_held, n) == 0) {   /* the structure factored: R as it is */
+        *pr = ch->fac_pr;
+        return 1;
+    }
+    ch->factored = 0;
+    *pr = 0;
+    for (size_t i = 0; p == 1 && i + 1 < n; i++)
+        if (W[i * p1 + 1] != 0 && ch->kidx[i] >= 0 && ch->kidx[i + 1] >= 0)
+            *pr = 1;
+    if (nr == 0)
+        return 1;
+    size_t q = *pr + 1;
+    memset(ch->R, 0, nr * q * sizeof *ch->R);
+    for (size_t i = 0; i < n; i++) {
+        long ki = ch->kidx[i];
+        if (ki < 0)
+            continue;
+        ch->R[(size_t)ki * q] += W[i * p1];
+        if (p == 0 || i + 1 >= n)
+            continue;
+        long kj = ch->kidx[i + 1];
+        double a = W[i * p1 + 1];
+        if (kj < 0 || a == 0)
+            continue;
+        ch->R[(size_t)ki * q + 1] += a;   /* kj = ki + 1: free neighbours are consecutive unknowns */
+    }
+    if (*pr == 1 && dp_band_cholesky(ch->R, nr, 1) != DP_OK)
+        return 0;
+    for (size_t k = 0; *pr == 0 && k < nr; k++) {
+        if (!(ch->R[k] > 0))
+            return 0;
+        ch->R[k] = sqrt(ch->R[k]);
+    }
+    ch->factored = 1, ch->fac_pr = *pr;
+    memcpy(ch->fac_held, ch->held, n);
+    return 1;
+}
+
+/* solve_assignment: v = T y + c with R y = T^T (rhs_eff - W c). */
+static void chain_solve_assignment(struct network_chain *ch, const double *W, size_t p, size_t nr, size_t pr)
+{
+    size_t n = ch->n;
+    dp_band_symv(W, n, p, ch->c, ch->res);
+    memset(ch->y, 0, nr * sizeof *ch->y);
+    for (size_t i = 0; i < n; i++)
+        if (ch->kidx[i] >= 0)
+            ch->y[ch->kidx[i]] += ch->rhs_eff[i] - ch->res[i];
+    if (nr && pr == 1) {
+        dp_band_cholesky_solve(ch->R, nr, 1, ch->y);
+    } else if (nr) {   /* GSL's two triangular sweeps of a diagonal factor */
+        for (size_t k = 0; k < nr; k++)
+            ch->y[k] = ch->y[k] / ch->R[k];
+        for (size_t k = nr; k-- > 0;)
+            ch->y[k] = ch->y[k] / ch->R[k];
+    }
+    for (size_t i = 0; i < n; i++)
+        ch->vs[i] = (ch->kidx[i] >= 0 ? ch->y[ch->kidx[i]] : 0) + ch->c[i];
+}
+
+/* Row i of W v in dp_band_symv's order (network_step.c's band_row). */
+static double chain_row(const double *W, size_t n, size_t p, const double *v, size_t i)
+{
+    double y = W[i * (p + 1)] * v[i];
+    if (p == 1 && i > 0)
+        y += W[2 * (i - 1) + 1] * v[i - 1];
+    if (p == 1 && i + 1 < n)
+        y += W[2 * i + 1] * v[i + 1];
+    return y;
+}
+
+/* multipliers() and bulk_update() in one pass (a fixed law's multiplier is read off its own node's residual,
+ * which no update changes): how many laws changed, or -1 for a multiplier that is not a number (the general
+ * path decides). A free law whose z left its piece is fixed at the vertex it crossed (follow: every vertex
+ * has a force interval); a fixed one whose multiplier left its interval (inside(): the rounding tolerance
+ * of its terms) is freed onto the piece on that side. */
+static long chain_update(struct network_chain *ch, const double *W, size_t p, double h)
+{
+    long changed = 0;
+    for (size_t c = 0; c < ch->nlaw; c++) {
+        chain_law *k = &ch->law[c];
+        if (!k->fixed) {
+            double z = chain_rel(k, ch->vs);
+            if (z > k->hi || z < k->lo)
+                k->fixed = 1, k->fz = z > k->hi ? k->hi : k->lo, changed++;
+            continue;
+        }
+        size_t i = k->node;
+        double Hv = chain_row(W, ch->n, p, ch->vs, i);
+        double res_err = 8 * DBL_EPSILON * (fabs(ch->rhs_eff[i]) + fabs(Hv)), res = ch->rhs_eff[i] - Hv;
+        double sign = k->up ? 1 : -1, lam = res / (h * sign);
+        k->lam = lam, k->lam_err = res_err / h;
+        if (isnan(lam))
+            return -1;
+        double tol = 1e-12 * (1 + fabs(lam) + k->aflo + k->afhi) + k->lam_err;
+        if (lam >= k->flo - tol && lam <= k->fhi + tol)
+            continue;
+        if (lam > k->fhi)   /* released onto the piece above the vertex, or below it */
+            chain_free_on(k, k->fz, INFINITY, k->fr, k->fz);
+        else
+            chain_free_on(k, -INFINITY, k->fz, k->fl, k->fz);
+        changed++;
+    }
+    return changed;
+}
+
+/* report(): z at the step's end (the vertex's v_b for a fixed law, at rest), the force (the graphs' part
+ * lam0 + 0 (z - zref), or the multiplier, plus the relaxation's 0 + 0 (z - z_k)), all of it the damper's. */
+static void chain_report(const struct network_chain *ch, const dp_network_step_element *act, double *v,
+                         dp_network_step_forces *f)
+{
+    for (size_t c = 0; c < ch->nlaw; c++) {
+        const chain_law *k = &ch->law[c];
+        if (k->fixed) {
+            double lambda = k->lam;
+            lambda += 0 + 0 * (k->fz - 0);
+            f[c] = (dp_network_step_forces){ .z = act[c].vb, .lambda = lambda, .a = lambda - 0, .s = 0, .at_rest = 1 };
+        } else {
+            double z = chain_rel(k, v);
+            double lambda = k->lam0 + 0 * (z - k->zref);
+            lambda += 0 + 0 * (z - 0);
+            f[c] = (dp_network_step_forces){ .z = z, .lambda = lambda, .a = lambda - 0, .s = 0, .at_rest = 0 };
+        }
+    }
+}
+
+/* network_run_step_poll, its common case written here: the work counted, the run's hook asked when due. */
+static int chain_poll(dp_run *r, struct dp_network_run *nr, unsigned long long units)
+{
+    nr->work += units;
+    if (network_run_cancelled(r))
+        return 1;
+    if (r->stop == NULL || nr->work < r->poll_at)
+        return 0;
+    return network_run_step_poll(r, 0);
+}
+
+/* dp_network_step_solve for the chain (pdas from assign_start): v1 and the laws' forces; DP_ECANCEL when the
+ * poll said stop, 1 when the general solve must decide. */
+static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
+{
+    struct dp_network_run *nr = r->state;
+    const double *W = dp_network_step_W(nr->ws);
+    size_t p = nr->p, nr_, pr;
+    for (size_t c = 0; c < ch->nlaw; c++)
+        if (!chain_start(&nr->act[c], &ch->law[c], chain_rel(&ch->law[c], nr->v)))
+            return 1;
+    unsigned long long iters = 0;
+    for (int it = 0; it < 12; it++) {
+        iters++;
+        nr_ = chain_forest(ch);
+        chain_rhs_eff(ch, nr->rhs, h);
+        if (h != ch->fac_h || W != ch->fac_W)   /* W rebuilt for another step length */
+            ch->factored = 0, ch->fac_h = h, ch->fac_W = W;
+        if (!chain_factor(ch, W, p, nr_, &pr))
+            return 1;
+        chain_solve_assignment(ch, W, p, nr_, pr);
+        /* the solve's work as polled_stop counts it, and the factor's at every solve (the general workspace
+         * counts it only when it factors anew: the stop hook may be asked a few steps apart from there) */
+        if (chain_poll(r, nr, ch->n * (p + 1) + ch->nlaw + nr_ * (pr + 1) * (pr + 1)))
+            return DP_ECANCEL;
+        long changed = chain_update(ch, W, p, h);
+        if (changed < 0)
+            return 1;
+        if (changed == 0) {
+            r->sum.iterations += iters;
+            memcpy(nr->v1, ch->vs, ch->n * sizeof *nr->v1);
+            chain_report(ch, nr->act, nr->v1, nr->force);
+            return DP_OK;
+        }
+    }
+    return 1;
+}
+
+/* ---- the run ------------------------------------------------------------------------------------------ */
+
+/* Moreau-Jean's arming (network_run_contacts_arm_mj) for the chain's contacts, none behind another: the
+ * step's entries after the elements' own laws. */
+static void chain_arm(struct dp_network_run *nr, const struct network_chain *ch, double h)
+{
+    int changed = 0;
+    for (size_t c = 0; c < nr->nc; c++) {
+        const chain_law *k = &ch->law[nr->nact_el + c];
+        double g = chain_rel(k, nr->x) - nr->ct[c].law.distance, gd = chain_rel(k, nr->v);
+        if (fabs(gd) < DBL_MIN)
+            gd = 0;
+        int was = nr->ct_on[c], on = g + 0.5 * h * gd <= 0;
+        dp_network_step_element *a = &nr->act[nr->nact_el + c];
+        changed |= (a->A != NULL) != on;
+        a->A = on ? &nr->cone : NULL;
+        a->vb = on ? -nr->ct[c].law.restitution * gd : 0;
+        nr->ct_on[c] = (unsigned char)on;
+        nr->ct_pre[c] = was ? 0 : gd;
+    }
+    if (changed)   /* the general workspace's factor cache, for a step it takes over */
+        dp_network_step_W_changed(nr->ws);
+}
+
+/* network_run_element_forces after a step for the chain's elements: the linear parts' forces plus their
+ * laws' parts from the step (the others stay +0), the contacts' multipliers (network_run_contacts_forces).
+ * Returns whether those forces are finite (network_run_state_finite's second half). */
+static int chain_forces(struct dp_network_run *nr, const struct network_chain *ch)
+{
+    int finite = 1;
+    for (size_t j = 0; j < ch->nlin; j++) {
+        const chain_element *e = &ch->lin[j];
+        double u = network_run_rel(e->a, e->b, nr->x), z = network_run_rel(e->a, e->b, nr->v);
+        double fs = e->k != 0 ? e->k * u : 0, fd = e->c != 0 ? e->c * (z - e->vb) : 0;
+        if (e->act >= 0)
+            fs += nr->force[e->act].s, fd += nr->force[e->act].a;
+        nr->Fs[e->i] = fs, nr->Fd[e->i] = fd;
+        finite &= isfinite(fs) && isfinite(fd);
+    }
+    for (size_t c = 0; c < nr->nc; c++)
+        nr->Fn[nr->ct_el[c]] = nr->ct_on[c] ? nr->force[nr->nact_el + c].lambda : 0;
+    return finite;
+}
+
+/* network_run_state_finite: the positions and velocities, and the forces' check (`forces`). */
+static int chain_finite(const struct dp_network_run *nr, int forces)
+{
+    for (size_t i = 0; forces && i < nr->n; i++)
+        if (!(fabs(nr->x[i]) < 1e300 && fabs(nr->v[i]) < 1e300))
+            return 0;
+    return forces;
+}
+
+/* network_run_state_finite for a step that writes no row, without forming the forces: the positions and
+ * velocities checked as it checks them, and the forces shown finite by a bound (|k u| <= k_max 2 max|x|,
+ * |c (z - v_b)| <= c_max (2 max|v| + max|v_b|), each below 1e300 with room for the rounding of u and z; a
+ * Coulomb element's F_d adds its force, finite: `laws`). -1 when the bound does not show it: the forces are
+ * formed and checked. */
+static int chain_finite_bounded(const struct dp_network_run *nr, const struct network_chain *ch, int laws)
+{
+    double xm = 0, vm = 0;
+    for (size_t i = 0; i < nr->n; i++) {
+        double ax = fabs(nr->x[i]), av = fabs(nr->v[i]);
+        if (!(ax < 1e300 && av < 1e300))
+            return 0;
+        xm = ax > xm ? ax : xm, vm = av > vm ? av : vm;
+    }
+    if (!(ch->kmax * (2 * xm) < 1e300 && ch->cmax * (2 * vm + ch->vbmax) < 1e300))
+        return -1;
+    return laws;
+}
+
+/* The Coulomb elements' phases after a step (at rest: sticking, else slipping), their stick time, and the
+ * stick and slip events of those that changed (network_run_step_events, in element order, for the elements
+ * whose phase differs from the one before the step; with none it has nothing to write). Returns whether
+ * their forces are finite. */
+static int chain_phases(dp_run *r, const struct network_chain *ch, double t, double h)
+{
+    struct dp_network_run *nr = r->state;
+    unsigned char *phase = nr->phase;
+    const dp_network_step_forces *force = nr->force;
+    size_t nchanged = 0;
+    int finite = 1;
+    for (size_t j = 0; j < ch->nfric; j++) {
+        size_t i = ch->fric[j].i, k = ch->fric[j].act;
+        unsigned char ph = force[k].at_rest ? DP_PHASE_STICK : DP_PHASE_SLIP;
+        finite &= isfinite(force[k].a);
+        if (ph == DP_PHASE_STICK)
+            r->sum.stick_time += h;
+        if (ph == phase[i])
+            continue;
+        ch->changed[nchanged] = i, ch->was[nchanged++] = phase[i];
+        phase[i] = ph;
+    }
+    if (nchanged) {
+        memcpy(nr->phase_prev, phase, nr->nel);
+        for (size_t j = 0; j < nchanged; j++)
+            nr->phase_prev[ch->changed[j]] = ch->was[j];
+        network_run_step_events(r, nr->phase_prev, t + h);
+    }
+    return finite;
+}
+
+/* network_run_step_rhs for a tridiagonal W in one sweep: M v, C v and K (x + h theta (1-theta) v) formed
+ * row by row as dp_band_symv's tridiagonal loop forms them (the diagonal term plus row i-1's, then row
+ * i+1's), combined as the general right side combines them, the loads added in their order (a constant one
+ * read, not dispatched), the contacts' elongations (no graph: as they are). The same numbers bit for bit,
+ * in one pass over the nodes instead of six. */
+static void chain_rhs(struct dp_network_run *nr, double t, double h)
+{
+    size_t n = nr->n;
+    if (nr->p != 1 || n < 2 || nr->Mv || nr->belt_viscous) {
+        network_run_step_rhs(nr, t, h);
+        return;
+    }
+    if (h != nr->h_W)
+        network_run_build_W(nr, h);
+    const double *M = nr->M, *C = nr->C, *K = nr->K, *x = nr->x, *v = nr->v;
+    double *rhs = nr->rhs, *v1 = nr->v1, th = nr->theta;
+    double a1 = h * (1 - th), b1 = h * th * (1 - th);
+    v1[0] = x[0] + b1 * v[0];
+    double cm = M[0] * v[0], cc = C[0] * v[0], ck = K[0] * v1[0];   /* row i's sums so far */
+    for (size_t i = 0; i + 1 < n; i++) {
+        v1[i + 1] = x[i + 1] + b1 * v[i + 1];
+        double am = M[2 * i + 1], ac = C[2 * i + 1], ak = K[2 * i + 1];
+        double ym = cm + am * v[i + 1], yc = cc + ac * v[i + 1], yk = ck + ak * v1[i + 1];
+        cm = M[2 * (i + 1)] * v[i + 1] + am * v[i];
+        cc = C[2 * (i + 1)] * v[i + 1] + ac * v[i];
+        ck = K[2 * (i + 1)] * v1[i + 1] + ak * v1[i];
+        double r = ym;
+        r -= a1 * yc;
+        r -= h * yk;
+        rhs[i] = r;
+    }
+    double r = cm;
+    r -= a1 * cc;
+    r -= h * ck;
+    rhs[n - 1] = r;
+    const dp_node_forcing *f = nr->net->force;
+    for (size_t i = 0; i < nr->net->nforce; i++)
+        rhs[f[i].node] += h * (f[i].f.kind == DP_FORCING_CONSTANT ? f[i].f.value : dp_forcing_eval(&f[i].f, t + th * h));
+    for (size_t k = 0; k < nr->nact; k++)
+        nr->u[k] = network_run_rel(nr->act[k].a, nr->act[k].b, x);
+}
+
+/* One Moreau-Jean step (network_run_net_step), the Coulomb elements' phases and events after it, and the
+ * elements' forces where a row is written or a bound does not show them finite; *finite: the state's. */
+static int chain_step(dp_run *r, struct network_chain *ch, double t, double h, int *finite)
+{
+    struct dp_network_run *nr = r->state;
+    chain_arm(nr, ch, h);
+    chain_rhs(nr, t, h);
+    int s = chain_step_solve(r, ch, h);
+    if (s == 1)   /* the general solve decides */
+        ch->handed++, s = dp_network_step_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+    nr->solved = s == DP_OK;
+    if (s != DP_OK)
+        return s;
+    network_run_take_velocity(nr, h);
+    network_run_contacts_mj_events(r, t, h);
+    int laws = chain_phases(r, ch, t, h);
+    *finite = network_run_writes_row(r) ? -1 : chain_finite_bounded(nr, ch, laws);
+    if (*finite < 0)
+        *finite = chain_finite(nr, chain_forces(nr, ch));
+    return DP_OK;
+}
+
+/* network_run_advance's loop with the chain's step. */
+static int chain_advance(dp_run *r)
+{
+    struct dp_network_run *nr = r->state;
+    struct network_chain *ch = nr->chain;
+    if (ch == NULL)
+        return dp_run_network.advance(r);
+    if (network_run_reserve_rows(r) != DP_OK)
+        return DP_ENOMEM;
+    network_run_flush(r);
+    int due;
+    while (network_run_step_due(r, &due)) {
+        double h = dp_run_step_length(r), t = r->cur.t;
+        nr->impacts_step = 0;
+        int finite = 0, s = chain_step(r, ch, t, h, &finite);
+        if (s != DP_OK && network_run_cancelled(r))
+            return r->status;
+        if (s != DP_OK)
+            return dp_run_fail(r, s, "the implicit step at t = %.17g has no solution (%s)", t, dp_strerror(s));
+        if ((s = network_run_step_taken(r, finite)) != DP_OK)
+            return s;
+    }
+    return due;
+}
+
+static void chain_release(struct network_chain *ch)
+{
+    if (ch == NULL)
+        return;
+    void *p[] = { ch->law, ch->lin, ch->fric, ch->changed, ch->was, ch->kidx, ch->held, ch->fac_held, ch->c,
+                  ch->res, ch->rhs_eff, ch->vs, ch->y, ch->R };
+    for (size_t i = 0; i < sizeof p / sizeof *p; i++)
+        free(p[i]);
+    free(ch);
+}
+
+static void chain_free(void *state)
+{
+    struct dp_network_run *nr = state;
+    if (nr != NULL)
+        chain_release(nr->chain);
+    network_run_free(state);
+}
+
+/* The node entry e ties to the ground, or -1. */
+static long grounded_node(const dp_network_step_element *e)
+{
+    return e->a < 0 && e->b >= 0 ? e->b : e->b < 0 && e->a >= 0 ? e->a : -1;
+}
+
+/* Whether A is Coulomb's graph phi Sgn(y), phi > 0 (laws/law_table.c, dp_threshold_graph): the vertices
+ * (+0, -phi) and (+0, phi), flat rays. */
+static int coulomb_graph(const dp_graph *A)
+{
+    return A != NULL && A->n == 2 && A->y[0] == 0 && A->y[1] == 0 && !signbit(A->y[0]) && !signbit(A->y[1]) &&
+           A->f[1] > 0 && isfinite(A->f[1]) && A->f[0] == -A->f[1] && A->left[0] > 0 && A->left[1] == 0 &&
+           A->right[0] > 0 && A->right[1] == 0;
+}
+
+/* Entry k's law: a Coulomb element's (k < nact_el) or a rigid contact's; 0 when it is neither, or its node
+ * holds another (seen). */
+static int chain_law_of(const struct dp_network_run *nr, size_t k, chain_law *law, unsigned char *seen)
+{
+    const dp_network_step_element *e = &nr->act[k];
+    long node = grounded_node(e);
+    if (node < 0 || seen[node] || e->S != NULL || e->ep_theta != 0 || nr->gamma[k] != NULL)
+        return 0;
+    seen[node] = 1;
+    *law = (chain_law){ .node = (size_t)node, .up = e->a < 0 };
+    if (k < nr->nact_el) {
+        if (!coulomb_graph(e->A) || nr->static_A[k].n != 0)
+            return 0;
+        law->fl = e->A->f[0], law->fr = e->A->f[1];
+        law->flo = law->fl, law->fhi = law->fr, law->aflo = fabs(law->fl), law->afhi = fabs(law->fr);
+        return 1;
+    }
+    size_t c = k - nr->nact_el;
+    if (nr->ct[c].law.compliance != 0 || nr->ct[c].rope || nr->ct_shadow[c])
+        return 0;
+    law->cone = 1, law->fr = 0, law->flo = -INFINITY, law->fhi = 0;
+    return 1;
+}
+
+/* The elements whose forces a row needs (a linear part or a law) and the Coulomb elements' phases. */
+static void chain_elements(struct dp_network_run *nr, struct network_chain *ch)
+{
+    for (size_t i = 0; i < nr->nel; i++) {
+        const dp_element *e = &nr->net->el[i];
+        long k = nr->act_of[i];
+        if (nr->k[i] == 0 && nr->c[i] == 0 && k < 0)
+            continue;
+        chain_element *l = &ch->lin[ch->nlin++];
+        *l = (chain_element){ .i = i, .a = e->a, .b = e->b, .act = k, .k = nr->k[i], .c = nr->c[i],
+                              .vb = e->has_damper ? e->damper.belt_velocity : 0 };
+        ch->kmax = fmax(ch->kmax, fabs(l->k)), ch->cmax = fmax(ch->cmax, fabs(l->c));
+        ch->vbmax = fmax(ch->vbmax, fabs(l->vb));
+        if (k >= 0 && nr->can_stick[i])
+            ch->fric[ch->nfric++] = (chain_friction){ .i = i, .act = (size_t)k };
+    }
+}
+
+/* The workspace, where the run's ordering left W tridiagonal (or diagonal) and every set-valued law in the
+ * step's problem is a Coulomb element's or a rigid contact's joining the ground to a node of its own; else
+ * none (the general advance). */
+static int chain_setup(struct dp_network_run *nr)
+{
+    if (nr->p > 1 || nr->nact != nr->nact_el + nr->nc || nr->nrope != 0 || nr->locate || nr->relaxed ||
+        nr->has_static || nr->has_ep || nr->has_smooth || nr->jump != NULL || nr->stop_S != NULL)
+        return DP_OK;
+    size_t n = nr->n, na = nr->nact;
+    struct network_chain *ch = calloc(1, sizeof *ch);
+    if (ch == NULL)
+        return DP_ENOMEM;
+    nr->chain = ch;
+    ch->n = n, ch->nlaw = na;
+    ch->law = calloc(na ? na : 1, sizeof *ch->law);
+    ch->kidx = calloc(n, sizeof *ch->kidx);
+    double **d[] = { &ch->c, &ch->res, &ch->rhs_eff, &ch->vs, &ch->y };
+    for (size_t i = 0; i < sizeof d / sizeof *d; i++)
+        *d[i] = calloc(n + 1, sizeof(double));
+    ch->R = calloc(2 * n, sizeof *ch->R);
+    size_t ne = nr->nel ? nr->nel : 1;
+    ch->lin = calloc(ne, sizeof *ch->lin), ch->fric = calloc(ne, sizeof *ch->fric);
+    ch->changed = calloc(ne, sizeof *ch->changed), ch->was = calloc(ne, 1);
+    ch->held = calloc(n, 1), ch->fac_held = calloc(n, 1);
+    unsigned char *seen = calloc(n, 1);
+    if (!ch->law || !ch->kidx || !ch->c || !ch->res || !ch->rhs_eff || !ch->vs || !ch->y || !ch->R || !ch->lin ||
+        !ch->fric || !ch->changed || !ch->was || !ch->held || !ch->fac_held || !seen) {
+        free(seen);
+        return DP_ENOMEM;
+    }
+    int ok = 1;
+    for (size_t k = 0; ok && k < na; k++)
+        ok = chain_law_of(nr, k, &ch->law[k], seen);
+    free(seen);
+    if (!ok) {   /* not such a chain after all: the general advance */
+        nr->chain = NULL;
+        chain_release(ch);
+        return DP_OK;
+    }
+    chain_elements(nr, ch);
+    return DP_OK;
+}
+
+long long network_chain_handed(const struct dp_network_run *nr)
+{
+    return nr->chain ? (long long)nr->chain->handed : -1;
+}
+
+/* The network run's own set-up, initial probe and first row (network_run.c), then the chain's workspace. */
+static int chain_init(dp_run *r)
+{
+    int s = dp_run_network.init(r);
+    return s != DP_OK ? s : chain_setup(r->state);
+}
+
+const dp_run_type dp_run_network_grounded_chain = {
+    .name = "stick-slip", .variant = "exact", .events_mode = network_run_events_mode, .check = dp_rules_network,
+    .init = chain_init, .advance = chain_advance, .pending = network_run_pending, .free = chain_free,
+};
