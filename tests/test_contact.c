@@ -1138,6 +1138,29 @@ static void test_lean_friction_chain_bit_for_bit(void **state)
             "%.4g s stuck\n", events, impacts, handed, steps, stuck);
     assert_true(events > 5000 && impacts > 200 && stuck > 100);
     assert_true(handed * 100 < steps);
+    /* hostile magnitudes, every few steps written: thresholds of 1e300 (h phi0 and the multipliers near
+     * overflow), k |u| past the bound by which a step without a row shows its forces finite, subnormal
+     * thresholds, stiffnesses, viscosities and states */
+    const char *hostile[] = { "1e300", "1", "1", "0", "5e-324", "1e150", "1", "1e150", "0.5", "5e-324", "5e-324",
+                              "5e-324" };
+    for (size_t h = 0; h < 3; h++) {
+        const char **w = hostile + 4 * h;
+        snprintf(doc, sizeof doc,
+                 "{\"model\":{\"masses\":[1,1,1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
+                 "\"linear\",\"k\":%s},\"damper\":{\"law\":\"coulomb\",\"phi0\":%s,\"belt_velocity\":0.5}},"
+                 "{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"linear\",\"c\":%s}},"
+                 "{\"between\":[1,2],\"spring\":{\"law\":\"linear\",\"k\":1}},{\"between\":[2,\"ground\"],\"damper\":"
+                 "{\"law\":\"coulomb\",\"phi0\":%s}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-1}]},"
+                 "\"initial\":{\"x\":[%s,0,0],\"v\":[0.5,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,"
+                 "\"t_end\":0.05,\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":3}}",
+                 w[1], w[0], w[2], w[0], w[3]);
+        bytes lean = { 0 }, gen = { 0 };
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
+        assert_int_equal(lean.n, gen.n);
+        assert_memory_equal(lean.p, gen.p, lean.n);
+        free(lean.p), free(gen.p);
+    }
 }
 
 int main(void)

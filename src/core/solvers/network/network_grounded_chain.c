@@ -32,13 +32,13 @@
 #include "base/band.h"
 #include "solvers/network/network_run.h"
 
-/* A set-valued law's state in the step's active-set pass (network_step.c's elem_state), one per entry of the
- * step's problem in its order: free on the piece (lo, hi) of force lam0 (the whole line when not armed), or
+/* A set-valued law's state in the step's active-set pass (network_step.c's elem_state), one per entry `act`
+ * of the step's problem, in the order of their nodes: free on the piece (lo, hi) of force lam0 (the whole line when not armed), or
  * fixed at the vertex fz with multiplier lam. The law's constants: its force on the piece right and left of
  * its vertex (a contact: +0 right, fixed when its start lies left), and its force interval [flo, fhi] at the
  * vertex with the magnitudes its tolerance adds (aflo, afhi: 0 for an infinite end). */
 typedef struct chain_law {
-    size_t node;
+    size_t node, act;
     int up;             /* the law is [ground, node] (z = v), else [node, ground] (z = -v) */
     int cone;           /* a contact: beyond its vertical ray the start is fixed at the vertex */
     int fixed;
@@ -62,7 +62,7 @@ typedef struct chain_friction {
 struct network_chain {
     size_t n, nlaw, nlin, nfric;
     double kmax, cmax, vbmax;   /* over lin: the largest |k|, |c| and |v_b| (chain_finite_bounded) */
-    chain_law *law;     /* per entry of the step's problem: the Coulomb elements, then the contacts */
+    chain_law *law;     /* per entry of the step's problem, in node order (one law a node) */
     chain_element *lin; /* the elements with a spring or a damper of nonzero coefficient, or a law */
     chain_friction *fric;
     size_t *changed;    /* per Coulomb element: the elements whose phase a step changed */
@@ -74,7 +74,7 @@ struct network_chain {
     double fac_h;
     const double *fac_W;
     size_t fac_pr;
-    double *c, *res, *rhs_eff, *vs, *y, *R;
+    double *c, *rhs_eff, *y, *R;
 };
 
 /* ---- the active-set pass ------------------------------------------------------------------------------ */
@@ -112,49 +112,71 @@ static int chain_start(const dp_network_step_element *e, chain_law *k, double z)
     return 1;
 }
 
-/* fixed_forest and index_forest: a fixed node's potential (join, find, the ground's subtracted), a free
- * node its own unknown at potential +0. Returns the number of unknowns. */
-static size_t chain_forest(struct network_chain *ch)
+/* Node i's part of the assignment's system: held to the ground at its law's vertex (fixed_forest and
+ * index_forest: the potential (z + 0) - 0 or (0 - 0) - z, found as 0 + pot, the ground's - 0), or an
+ * unknown of its own at potential +0 with its right side (effective_rhs: a free law's g = h (lam0 - slope
+ * zref) = h lam0, slope +0 and zref finite, taken from the node's entry for [ground, node], added for [node,
+ * ground]: x - +0 = x keeps a -0, x + +0 turns it into +0). Returns whether it is held. */
+static int chain_node(const chain_law *k, double rhs, double h, double *c, double *re)
 {
-    memset(ch->held, 0, ch->n);
-    for (size_t c = 0; c < ch->nlaw; c++) {
-        const chain_law *k = &ch->law[c];
-        if (!k->fixed)
-            continue;
+    *c = 0, *re = rhs;
+    if (k == NULL)
+        return 0;
+    if (k->fixed) {
         double pot = k->up ? (k->fz + 0) - 0 : (0 - 0) - k->fz;
-        ch->held[k->node] = 1;
-        ch->c[k->node] = (0 + pot) - 0;
+        *c = (0 + pot) - 0;
+        return 1;
     }
-    size_t nr = 0;
-    for (size_t i = 0; i < ch->n; i++) {
-        ch->kidx[i] = ch->held[i] ? -1 : (long)nr++;
-        if (!ch->held[i])
-            ch->c[i] = 0;
+    double g = h * k->lam0;
+    *re = k->up ? rhs - g : rhs + g;
+    return 0;
+}
+
+/* The assignment's system in one sweep over the nodes (laws in node order): each node's potential c, right
+ * side and unknown, and the reduced right side y = T^T (rhs_eff - W c) (solve_assignment: W c in
+ * dp_band_symv's order, row i's diagonal term plus row i-1's, then row i+1's, lagging a node behind; y from
+ * +0). Returns the number of unknowns; *same: the held nodes are those of R's factor. */
+static size_t chain_assemble(struct network_chain *ch, const double *W, size_t p, const double *rhs, double h,
+                             int *same)
+{
+    size_t n = ch->n, nr = 0;
+    const chain_law *k = ch->law, *kend = ch->law + ch->nlaw;
+    double *c = ch->c, *re = ch->rhs_eff, *y = ch->y, carry = 0;
+    long *kidx = ch->kidx;
+    int eq = ch->factored;
+    for (size_t i = 0; i < n; i++) {
+        const chain_law *at = k < kend && k->node == i ? k++ : NULL;
+        int held = chain_node(at, rhs[i], h, &c[i], &re[i]);
+        kidx[i] = held ? -1 : (long)nr++;
+        eq &= held == ch->fac_held[i];
+        ch->held[i] = (unsigned char)held;
+        if (p == 0) {
+            if (!held)
+                y[kidx[i]] = 0 + (re[i] - W[i] * c[i]);
+            continue;
+        }
+        if (i == 0) {
+            carry = W[0] * c[0];
+            continue;
+        }
+        double a = W[2 * (i - 1) + 1], res = carry + a * c[i];   /* row i-1 of W c */
+        carry = W[2 * i] * c[i] + a * c[i - 1];
+        if (kidx[i - 1] >= 0)
+            y[kidx[i - 1]] = 0 + (re[i - 1] - res);
     }
+    if (p == 1 && kidx[n - 1] >= 0)
+        y[kidx[n - 1]] = 0 + (re[n - 1] - carry);
+    *same = eq;
     return nr;
 }
 
-/* effective_rhs: a free law's g = h (lam0 - slope zref) = h lam0 (slope +0, zref finite, lam0 +0 or a
- * nonzero force), taken from its node's entry ([ground, node]) or added to it ([node, ground]); a contact's
- * +0 keeps x - +0 = x and turns x + +0 = -0 into +0. */
-static void chain_rhs_eff(struct network_chain *ch, const double *rhs, double h)
-{
-    memcpy(ch->rhs_eff, rhs, ch->n * sizeof *rhs);
-    for (size_t c = 0; c < ch->nlaw; c++) {
-        const chain_law *k = &ch->law[c];
-        if (k->fixed)
-            continue;
-        double g = h * k->lam0;
-        ch->rhs_eff[k->node] = k->up ? rhs[k->node] - g : rhs[k->node] + g;
-    }
-}
-
 /* factor_reduced: R = W on the free nodes, factored by base/band.c (GSL's band Cholesky; at half-bandwidth 0
- * GSL's pivots' square roots). *pr its half-bandwidth; 0 when a pivot is not positive. */
-static int chain_factor(struct network_chain *ch, const double *W, size_t p, size_t nr, size_t *pr)
+ * GSL's pivots' square roots); kept while the held nodes and W are those it was formed for (prepare's
+ * reuse). *pr its half-bandwidth; 0 when a pivot is not positive. */
+static int chain_factor(struct network_chain *ch, const double *W, size_t p, size_t nr, int same, size_t *pr)
 {
     size_t n = ch->n, p1 = p + 1;
-    if (ch->factored && memcmp(ch->held, ch->fac_held, n) == 0) {   /* the structure factored: R as it is */
+    if (same) {
         *pr = ch->fac_pr;
         return 1;
     }
@@ -192,25 +214,34 @@ static int chain_factor(struct network_chain *ch, const double *W, size_t p, siz
     return 1;
 }
 
-/* solve_assignment: v = T y + c with R y = T^T (rhs_eff - W c). */
-static void chain_solve_assignment(struct network_chain *ch, const double *W, size_t p, size_t nr, size_t pr)
+/* R y = T^T (rhs_eff - W c) by base/band.c's bidiagonal sweeps (or GSL's two sweeps of a diagonal factor),
+ * the backward one giving v = T y + c node by node on its way. */
+static void chain_solve(struct network_chain *ch, size_t nr, size_t pr, double *vs)
 {
-    size_t n = ch->n;
-    dp_band_symv(W, n, p, ch->c, ch->res);
-    memset(ch->y, 0, nr * sizeof *ch->y);
-    for (size_t i = 0; i < n; i++)
-        if (ch->kidx[i] >= 0)
-            ch->y[ch->kidx[i]] += ch->rhs_eff[i] - ch->res[i];
+    const double *F = ch->R;
+    double *y = ch->y;
     if (nr && pr == 1) {
-        dp_band_cholesky_solve(ch->R, nr, 1, ch->y);
-    } else if (nr) {   /* GSL's two triangular sweeps of a diagonal factor */
-        for (size_t k = 0; k < nr; k++)
-            ch->y[k] = ch->y[k] / ch->R[k];
-        for (size_t k = nr; k-- > 0;)
-            ch->y[k] = ch->y[k] / ch->R[k];
+        y[0] = y[0] / F[0];
+        for (size_t j = 1; j < nr; j++)
+            y[j] = (y[j] - F[2 * (j - 1) + 1] * y[j - 1]) / F[2 * j];
+        y[nr - 1] = y[nr - 1] / F[2 * (nr - 1)];
+    } else {
+        for (size_t j = 0; j < nr; j++)
+            y[j] = y[j] / F[j];
+        for (size_t j = 0; j < nr; j++)
+            y[j] = y[j] / F[j];
     }
-    for (size_t i = 0; i < n; i++)
-        ch->vs[i] = (ch->kidx[i] >= 0 ? ch->y[ch->kidx[i]] : 0) + ch->c[i];
+    size_t j = nr;   /* the unknown of the node below i, + 1 */
+    for (size_t i = ch->n; i-- > 0;) {
+        if (ch->kidx[i] < 0) {
+            vs[i] = 0 + ch->c[i];
+            continue;
+        }
+        j--;
+        if (pr == 1 && j + 1 < nr)
+            y[j] = (y[j] - F[2 * j + 1] * y[j + 1]) / F[2 * j];
+        vs[i] = y[j] + ch->c[i];
+    }
 }
 
 /* Row i of W v in dp_band_symv's order (network_step.c's band_row). */
@@ -224,32 +255,54 @@ static double chain_row(const double *W, size_t n, size_t p, const double *v, si
     return y;
 }
 
-/* multipliers() and bulk_update() in one pass (a fixed law's multiplier is read off its own node's residual,
- * which no update changes): how many laws changed, or -1 for a multiplier that is not a number (the general
- * path decides). A free law whose z left its piece is fixed at the vertex it crossed (follow: every vertex
- * has a force interval); a fixed one whose multiplier left its interval (inside(): the rounding tolerance
- * of its terms) is freed onto the piece on that side. */
-static long chain_update(struct network_chain *ch, const double *W, size_t p, double h)
+/* report() for law k as its state stands: z at the step's end (the vertex's v_b for a fixed law, at rest),
+ * the force (the graphs' part lam0 + 0 (z - zref), or the multiplier, plus the relaxation's 0 + 0 (z - z_k)),
+ * all of it the damper's. */
+static void chain_report(const chain_law *k, double vb, double z, dp_network_step_forces *f)
+{
+    if (k->fixed) {
+        double lambda = k->lam;
+        lambda += 0 + 0 * (k->fz - 0);
+        *f = (dp_network_step_forces){ .z = vb, .lambda = lambda, .a = lambda - 0, .s = 0, .at_rest = 1 };
+    } else {
+        double lambda = k->lam0 + 0 * (z - k->zref);
+        lambda += 0 + 0 * (z - 0);
+        *f = (dp_network_step_forces){ .z = z, .lambda = lambda, .a = lambda - 0, .s = 0, .at_rest = 0 };
+    }
+}
+
+/* multipliers(), bulk_update() and, for the laws it leaves as they were, report() in one pass (a fixed law's
+ * multiplier is read off its own node's residual, which no update changes; the report stands when nothing
+ * changed): how many laws changed, or -1 for a multiplier that is not a number (the general path decides).
+ * A free law whose z left its piece is fixed at the vertex it crossed (follow: every vertex has a force
+ * interval); a fixed one whose multiplier left its interval (inside(): the rounding tolerance of its terms)
+ * is freed onto the piece on that side. */
+static long chain_update(struct network_chain *ch, const dp_network_step_element *act, const double *W, size_t p,
+                         double h, const double *vs, dp_network_step_forces *f)
 {
     long changed = 0;
     for (size_t c = 0; c < ch->nlaw; c++) {
         chain_law *k = &ch->law[c];
+        double z = chain_rel(k, vs);
         if (!k->fixed) {
-            double z = chain_rel(k, ch->vs);
             if (z > k->hi || z < k->lo)
                 k->fixed = 1, k->fz = z > k->hi ? k->hi : k->lo, changed++;
+            else
+                chain_report(k, 0, z, &f[k->act]);
             continue;
         }
         size_t i = k->node;
-        double Hv = chain_row(W, ch->n, p, ch->vs, i);
+        double Hv = chain_row(W, ch->n, p, vs, i);
         double res_err = 8 * DBL_EPSILON * (fabs(ch->rhs_eff[i]) + fabs(Hv)), res = ch->rhs_eff[i] - Hv;
         double sign = k->up ? 1 : -1, lam = res / (h * sign);
         k->lam = lam, k->lam_err = res_err / h;
         if (isnan(lam))
             return -1;
         double tol = 1e-12 * (1 + fabs(lam) + k->aflo + k->afhi) + k->lam_err;
-        if (lam >= k->flo - tol && lam <= k->fhi + tol)
+        if (lam >= k->flo - tol && lam <= k->fhi + tol) {
+            chain_report(k, act[k->act].vb, z, &f[k->act]);
             continue;
+        }
         if (lam > k->fhi)   /* released onto the piece above the vertex, or below it */
             chain_free_on(k, k->fz, INFINITY, k->fr, k->fz);
         else
@@ -257,26 +310,6 @@ static long chain_update(struct network_chain *ch, const double *W, size_t p, do
         changed++;
     }
     return changed;
-}
-
-/* report(): z at the step's end (the vertex's v_b for a fixed law, at rest), the force (the graphs' part
- * lam0 + 0 (z - zref), or the multiplier, plus the relaxation's 0 + 0 (z - z_k)), all of it the damper's. */
-static void chain_report(const struct network_chain *ch, const dp_network_step_element *act, double *v,
-                         dp_network_step_forces *f)
-{
-    for (size_t c = 0; c < ch->nlaw; c++) {
-        const chain_law *k = &ch->law[c];
-        if (k->fixed) {
-            double lambda = k->lam;
-            lambda += 0 + 0 * (k->fz - 0);
-            f[c] = (dp_network_step_forces){ .z = act[c].vb, .lambda = lambda, .a = lambda - 0, .s = 0, .at_rest = 1 };
-        } else {
-            double z = chain_rel(k, v);
-            double lambda = k->lam0 + 0 * (z - k->zref);
-            lambda += 0 + 0 * (z - 0);
-            f[c] = (dp_network_step_forces){ .z = z, .lambda = lambda, .a = lambda - 0, .s = 0, .at_rest = 0 };
-        }
-    }
 }
 
 /* network_run_step_poll, its common case written here: the work counted, the run's hook asked when due. */
@@ -298,29 +331,27 @@ static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
     const double *W = dp_network_step_W(nr->ws);
     size_t p = nr->p, nr_, pr;
     for (size_t c = 0; c < ch->nlaw; c++)
-        if (!chain_start(&nr->act[c], &ch->law[c], chain_rel(&ch->law[c], nr->v)))
+        if (!chain_start(&nr->act[ch->law[c].act], &ch->law[c], chain_rel(&ch->law[c], nr->v)))
             return 1;
+    if (h != ch->fac_h || W != ch->fac_W)   /* W rebuilt for another step length */
+        ch->factored = 0, ch->fac_h = h, ch->fac_W = W;
     unsigned long long iters = 0;
     for (int it = 0; it < 12; it++) {
         iters++;
-        nr_ = chain_forest(ch);
-        chain_rhs_eff(ch, nr->rhs, h);
-        if (h != ch->fac_h || W != ch->fac_W)   /* W rebuilt for another step length */
-            ch->factored = 0, ch->fac_h = h, ch->fac_W = W;
-        if (!chain_factor(ch, W, p, nr_, &pr))
+        int same;
+        nr_ = chain_assemble(ch, W, p, nr->rhs, h, &same);
+        if (!chain_factor(ch, W, p, nr_, same, &pr))
             return 1;
-        chain_solve_assignment(ch, W, p, nr_, pr);
+        chain_solve(ch, nr_, pr, nr->v1);
         /* the solve's work as polled_stop counts it, and the factor's at every solve (the general workspace
          * counts it only when it factors anew: the stop hook may be asked a few steps apart from there) */
         if (chain_poll(r, nr, ch->n * (p + 1) + ch->nlaw + nr_ * (pr + 1) * (pr + 1)))
             return DP_ECANCEL;
-        long changed = chain_update(ch, W, p, h);
+        long changed = chain_update(ch, nr->act, W, p, h, nr->v1, nr->force);
         if (changed < 0)
             return 1;
         if (changed == 0) {
             r->sum.iterations += iters;
-            memcpy(nr->v1, ch->vs, ch->n * sizeof *nr->v1);
-            chain_report(ch, nr->act, nr->v1, nr->force);
             return DP_OK;
         }
     }
@@ -334,8 +365,11 @@ static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
 static void chain_arm(struct dp_network_run *nr, const struct network_chain *ch, double h)
 {
     int changed = 0;
-    for (size_t c = 0; c < nr->nc; c++) {
-        const chain_law *k = &ch->law[nr->nact_el + c];
+    for (size_t l = 0; l < ch->nlaw; l++) {
+        const chain_law *k = &ch->law[l];
+        if (!k->cone)
+            continue;
+        size_t c = k->act - nr->nact_el;
         double g = chain_rel(k, nr->x) - nr->ct[c].law.distance, gd = chain_rel(k, nr->v);
         if (fabs(gd) < DBL_MIN)
             gd = 0;
@@ -381,19 +415,14 @@ static int chain_finite(const struct dp_network_run *nr, int forces)
 }
 
 /* network_run_state_finite for a step that writes no row, without forming the forces: the positions and
- * velocities checked as it checks them, and the forces shown finite by a bound (|k u| <= k_max 2 max|x|,
- * |c (z - v_b)| <= c_max (2 max|v| + max|v_b|), each below 1e300 with room for the rounding of u and z; a
- * Coulomb element's F_d adds its force, finite: `laws`). -1 when the bound does not show it: the forces are
- * formed and checked. */
-static int chain_finite_bounded(const struct dp_network_run *nr, const struct network_chain *ch, int laws)
+ * velocities checked as it checks them (`state`, their largest magnitudes xm, vm), and the forces shown
+ * finite by a bound (|k u| <= k_max 2 max|x|, |c (z - v_b)| <= c_max (2 max|v| + max|v_b|), each below 1e300
+ * with room for the rounding of u and z; a Coulomb element's F_d adds its force, finite: `laws`). -1 when
+ * the bound does not show it: the forces are formed and checked. */
+static int chain_finite_bounded(const struct network_chain *ch, int state, double xm, double vm, int laws)
 {
-    double xm = 0, vm = 0;
-    for (size_t i = 0; i < nr->n; i++) {
-        double ax = fabs(nr->x[i]), av = fabs(nr->v[i]);
-        if (!(ax < 1e300 && av < 1e300))
-            return 0;
-        xm = ax > xm ? ax : xm, vm = av > vm ? av : vm;
-    }
+    if (!state)
+        return 0;
     if (!(ch->kmax * (2 * xm) < 1e300 && ch->cmax * (2 * vm + ch->vbmax) < 1e300))
         return -1;
     return laws;
@@ -433,8 +462,9 @@ static int chain_phases(dp_run *r, const struct network_chain *ch, double t, dou
 /* network_run_step_rhs for a tridiagonal W in one sweep: M v, C v and K (x + h theta (1-theta) v) formed
  * row by row as dp_band_symv's tridiagonal loop forms them (the diagonal term plus row i-1's, then row
  * i+1's), combined as the general right side combines them, the loads added in their order (a constant one
- * read, not dispatched), the contacts' elongations (no graph: as they are). The same numbers bit for bit,
- * in one pass over the nodes instead of six. */
+ * read, not dispatched). The same numbers bit for bit, in one pass over the nodes instead of six. The
+ * elongations u the laws see are formed only for a step the general solve takes over (chain_handover): with
+ * no spring graph in the step, nothing else reads them. */
 static void chain_rhs(struct dp_network_run *nr, double t, double h)
 {
     size_t n = nr->n;
@@ -468,8 +498,34 @@ static void chain_rhs(struct dp_network_run *nr, double t, double h)
     const dp_node_forcing *f = nr->net->force;
     for (size_t i = 0; i < nr->net->nforce; i++)
         rhs[f[i].node] += h * (f[i].f.kind == DP_FORCING_CONSTANT ? f[i].f.value : dp_forcing_eval(&f[i].f, t + th * h));
+}
+
+/* The step handed to the general solve, with the elongations network_run_step_rhs gives it. */
+static int chain_handover(dp_run *r, struct network_chain *ch, double h)
+{
+    struct dp_network_run *nr = r->state;
+    ch->handed++;
     for (size_t k = 0; k < nr->nact; k++)
-        nr->u[k] = network_run_rel(nr->act[k].a, nr->act[k].b, x);
+        nr->u[k] = network_run_rel(nr->act[k].a, nr->act[k].b, nr->x);
+    return dp_network_step_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+}
+
+/* network_run_take_velocity (no elastoplastic or sloped spring to follow it) and network_run_state_finite's
+ * test of the positions and velocities on the way, their largest magnitudes into *xm, *vm: 1 when finite. */
+static int chain_take_velocity(struct dp_network_run *nr, double h, double *xm, double *vm)
+{
+    double *x = nr->x, *v = nr->v, th = nr->theta, xmax = 0, vmax = 0;
+    const double *v1 = nr->v1;
+    int finite = 1;
+    for (size_t i = 0, n = nr->n; i < n; i++) {
+        x[i] += h * ((1 - th) * v[i] + th * v1[i]);
+        v[i] = v1[i];
+        double ax = fabs(x[i]), av = fabs(v[i]);
+        finite &= ax < 1e300 && av < 1e300;
+        xmax = ax > xmax ? ax : xmax, vmax = av > vmax ? av : vmax;
+    }
+    *xm = xmax, *vm = vmax;
+    return finite;
 }
 
 /* One Moreau-Jean step (network_run_net_step), the Coulomb elements' phases and events after it, and the
@@ -481,14 +537,15 @@ static int chain_step(dp_run *r, struct network_chain *ch, double t, double h, i
     chain_rhs(nr, t, h);
     int s = chain_step_solve(r, ch, h);
     if (s == 1)   /* the general solve decides */
-        ch->handed++, s = dp_network_step_solve(nr->ws, h, nr->rhs, nr->u, nr->v, nr->v1, nr->force, &r->sum.iterations);
+        s = chain_handover(r, ch, h);
     nr->solved = s == DP_OK;
     if (s != DP_OK)
         return s;
-    network_run_take_velocity(nr, h);
+    double xm, vm;
+    int state = chain_take_velocity(nr, h, &xm, &vm);
     network_run_contacts_mj_events(r, t, h);
     int laws = chain_phases(r, ch, t, h);
-    *finite = network_run_writes_row(r) ? -1 : chain_finite_bounded(nr, ch, laws);
+    *finite = network_run_writes_row(r) ? -1 : chain_finite_bounded(ch, state, xm, vm, laws);
     if (*finite < 0)
         *finite = chain_finite(nr, chain_forces(nr, ch));
     return DP_OK;
@@ -524,7 +581,7 @@ static void chain_release(struct network_chain *ch)
     if (ch == NULL)
         return;
     void *p[] = { ch->law, ch->lin, ch->fric, ch->changed, ch->was, ch->kidx, ch->held, ch->fac_held, ch->c,
-                  ch->res, ch->rhs_eff, ch->vs, ch->y, ch->R };
+                  ch->rhs_eff, ch->y, ch->R };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
     free(ch);
@@ -562,7 +619,7 @@ static int chain_law_of(const struct dp_network_run *nr, size_t k, chain_law *la
     if (node < 0 || seen[node] || e->S != NULL || e->ep_theta != 0 || nr->gamma[k] != NULL)
         return 0;
     seen[node] = 1;
-    *law = (chain_law){ .node = (size_t)node, .up = e->a < 0 };
+    *law = (chain_law){ .node = (size_t)node, .act = k, .up = e->a < 0 };
     if (k < nr->nact_el) {
         if (!coulomb_graph(e->A) || nr->static_A[k].n != 0)
             return 0;
@@ -575,6 +632,12 @@ static int chain_law_of(const struct dp_network_run *nr, size_t k, chain_law *la
         return 0;
     law->cone = 1, law->fr = 0, law->flo = -INFINITY, law->fhi = 0;
     return 1;
+}
+
+static int by_node(const void *a, const void *b)
+{
+    size_t x = ((const chain_law *)a)->node, y = ((const chain_law *)b)->node;
+    return (x > y) - (x < y);
 }
 
 /* The elements whose forces a row needs (a linear part or a law) and the Coulomb elements' phases. */
@@ -611,7 +674,7 @@ static int chain_setup(struct dp_network_run *nr)
     ch->n = n, ch->nlaw = na;
     ch->law = calloc(na ? na : 1, sizeof *ch->law);
     ch->kidx = calloc(n, sizeof *ch->kidx);
-    double **d[] = { &ch->c, &ch->res, &ch->rhs_eff, &ch->vs, &ch->y };
+    double **d[] = { &ch->c, &ch->rhs_eff, &ch->y };
     for (size_t i = 0; i < sizeof d / sizeof *d; i++)
         *d[i] = calloc(n + 1, sizeof(double));
     ch->R = calloc(2 * n, sizeof *ch->R);
@@ -620,7 +683,7 @@ static int chain_setup(struct dp_network_run *nr)
     ch->changed = calloc(ne, sizeof *ch->changed), ch->was = calloc(ne, 1);
     ch->held = calloc(n, 1), ch->fac_held = calloc(n, 1);
     unsigned char *seen = calloc(n, 1);
-    if (!ch->law || !ch->kidx || !ch->c || !ch->res || !ch->rhs_eff || !ch->vs || !ch->y || !ch->R || !ch->lin ||
+    if (!ch->law || !ch->kidx || !ch->c || !ch->rhs_eff || !ch->y || !ch->R || !ch->lin ||
         !ch->fric || !ch->changed || !ch->was || !ch->held || !ch->fac_held || !seen) {
         free(seen);
         return DP_ENOMEM;
@@ -634,6 +697,7 @@ static int chain_setup(struct dp_network_run *nr)
         chain_release(ch);
         return DP_OK;
     }
+    qsort(ch->law, na, sizeof *ch->law, by_node);
     chain_elements(nr, ch);
     return DP_OK;
 }
