@@ -67,14 +67,17 @@ struct network_chain {
     chain_friction *fric;
     size_t *changed;    /* per Coulomb element: the elements whose phase a step changed */
     unsigned char *was; /* and their phases before it */
-    long *kidx;         /* per node: its reduced unknown, -1 when held to the ground */
+    long *law_at;       /* per node: its law, or -1 */
     unsigned char *held, *fac_held;   /* per node: held to the ground now / in R's factor */
+    size_t nfree;       /* the free nodes: the reduced system's unknowns */
+    size_t *dirty, ndirty;   /* the nodes whose law the last update changed, or whose hold R's factor lacks */
+    size_t *rlo, *rhi;  /* stretches of nodes to assemble, factor and solve again (chain_ranges) */
     unsigned long long handed;   /* steps the general solve decided */
-    int factored;       /* R holds the factor for fac_held of W = fac_W built for step fac_h (prepare's reuse) */
+    int factored;       /* L, off hold R's factor for fac_held of W = fac_W built for step fac_h (prepare's
+                         * reuse): per free node its pivot and its scaled coupling to the next node */
     double fac_h;
     const double *fac_W;
-    size_t fac_pr;
-    double *c, *rhs_eff, *y, *R;
+    double *c, *rhs_eff, *y, *L, *off;   /* per node; y: the reduced right side and solution, by node */
 };
 
 /* ---- the active-set pass ------------------------------------------------------------------------------ */
@@ -132,27 +135,31 @@ static int chain_node(const chain_law *k, double rhs, double h, double *c, doubl
     return 0;
 }
 
-/* The assignment's system in one sweep over the nodes (laws in node order): each node's potential c, right
- * side and unknown, and the reduced right side y = T^T (rhs_eff - W c) (solve_assignment: W c in
+static const chain_law *chain_law_at(const struct network_chain *ch, size_t i)
+{
+    return ch->law_at[i] >= 0 ? &ch->law[ch->law_at[i]] : NULL;
+}
+
+/* The assignment's system in one sweep over the nodes: each node's potential c, right side and whether it is
+ * held, and for the free ones the reduced right side y = T^T (rhs_eff - W c) (solve_assignment: W c in
  * dp_band_symv's order, row i's diagonal term plus row i-1's, then row i+1's, lagging a node behind; y from
- * +0). Returns the number of unknowns; *same: the held nodes are those of R's factor. */
+ * +0, so never -0), kept by node. Returns the number of unknowns; the nodes whose hold differs from R's
+ * factor's into ch->dirty (all of them when there is no factor: *whole). */
 static size_t chain_assemble(struct network_chain *ch, const double *W, size_t p, const double *rhs, double h,
-                             int *same)
+                             int *whole)
 {
     size_t n = ch->n, nr = 0;
-    const chain_law *k = ch->law, *kend = ch->law + ch->nlaw;
     double *c = ch->c, *re = ch->rhs_eff, *y = ch->y, carry = 0;
-    long *kidx = ch->kidx;
-    int eq = ch->factored;
+    unsigned char *held = ch->held;
+    ch->ndirty = 0;
     for (size_t i = 0; i < n; i++) {
-        const chain_law *at = k < kend && k->node == i ? k++ : NULL;
-        int held = chain_node(at, rhs[i], h, &c[i], &re[i]);
-        kidx[i] = held ? -1 : (long)nr++;
-        eq &= held == ch->fac_held[i];
-        ch->held[i] = (unsigned char)held;
+        held[i] = (unsigned char)chain_node(chain_law_at(ch, i), rhs[i], h, &c[i], &re[i]);
+        nr += !held[i];
+        if (held[i] != ch->fac_held[i])
+            ch->dirty[ch->ndirty++] = i;
         if (p == 0) {
-            if (!held)
-                y[kidx[i]] = 0 + (re[i] - W[i] * c[i]);
+            if (!held[i])
+                y[i] = 0 + (re[i] - W[i] * c[i]);
             continue;
         }
         if (i == 0) {
@@ -161,86 +168,118 @@ static size_t chain_assemble(struct network_chain *ch, const double *W, size_t p
         }
         double a = W[2 * (i - 1) + 1], res = carry + a * c[i];   /* row i-1 of W c */
         carry = W[2 * i] * c[i] + a * c[i - 1];
-        if (kidx[i - 1] >= 0)
-            y[kidx[i - 1]] = 0 + (re[i - 1] - res);
+        if (!held[i - 1])
+            y[i - 1] = 0 + (re[i - 1] - res);
     }
-    if (p == 1 && kidx[n - 1] >= 0)
-        y[kidx[n - 1]] = 0 + (re[n - 1] - carry);
-    *same = eq;
+    if (p == 1 && !held[n - 1])
+        y[n - 1] = 0 + (re[n - 1] - carry);
+    *whole = !ch->factored;
     return nr;
 }
 
-/* factor_reduced: R = W on the free nodes, factored by base/band.c (GSL's band Cholesky; at half-bandwidth 0
- * GSL's pivots' square roots); kept while the held nodes and W are those it was formed for (prepare's
- * reuse). *pr its half-bandwidth; 0 when a pivot is not positive. */
-static int chain_factor(struct network_chain *ch, const double *W, size_t p, size_t nr, int same, size_t *pr)
+/* The same for nodes lo..hi (their neighbours' potentials as they stand), row i of W c summed as
+ * dp_band_symv sums it. */
+static void chain_assemble_range(struct network_chain *ch, const double *W, size_t p, const double *rhs, double h,
+                                 size_t lo, size_t hi)
 {
-    size_t n = ch->n, p1 = p + 1;
-    if (same) {
-        *pr = ch->fac_pr;
-        return 1;
+    size_t n = ch->n;
+    double *c = ch->c, *re = ch->rhs_eff;
+    for (size_t i = lo; i <= hi; i++)
+        ch->held[i] = (unsigned char)chain_node(chain_law_at(ch, i), rhs[i], h, &c[i], &re[i]);
+    for (size_t i = lo; i <= hi; i++) {
+        if (ch->held[i])
+            continue;
+        double res;
+        if (p == 0)
+            res = W[i] * c[i];
+        else if (i == 0)
+            res = W[0] * c[0] + W[1] * c[1];
+        else if (i + 1 < n)
+            res = (W[2 * i] * c[i] + W[2 * (i - 1) + 1] * c[i - 1]) + W[2 * i + 1] * c[i + 1];
+        else
+            res = W[2 * i] * c[i] + W[2 * (i - 1) + 1] * c[i - 1];
+        ch->y[i] = 0 + (re[i] - res);
     }
-    ch->factored = 0;
-    *pr = 0;
-    for (size_t i = 0; p == 1 && i + 1 < n; i++)
-        if (W[i * p1 + 1] != 0 && ch->kidx[i] >= 0 && ch->kidx[i + 1] >= 0)
-            *pr = 1;
-    if (nr == 0)
-        return 1;
-    size_t q = *pr + 1;
-    memset(ch->R, 0, nr * q * sizeof *ch->R);
-    for (size_t i = 0; i < n; i++) {
-        long ki = ch->kidx[i];
-        if (ki < 0)
-            continue;
-        ch->R[(size_t)ki * q] += W[i * p1];
-        if (p == 0 || i + 1 >= n)
-            continue;
-        long kj = ch->kidx[i + 1];
-        double a = W[i * p1 + 1];
-        if (kj < 0 || a == 0)
-            continue;
-        ch->R[(size_t)ki * q + 1] += a;   /* kj = ki + 1: free neighbours are consecutive unknowns */
+}
+
+/* The held nodes on either side of each node of `list` (sorted), or the chain's ends: the stretch whose free
+ * nodes a change at the node couples, with the held nodes whose multipliers they enter. Overlapping
+ * stretches merged into ch->rlo, ch->rhi; returns how many. */
+static size_t chain_ranges(struct network_chain *ch, const size_t *list, size_t m)
+{
+    size_t nr = 0;
+    for (size_t j = 0; j < m; j++) {
+        size_t i = list[j], lo = i, hi = i;
+        while (lo > 0 && !(lo < i && ch->held[lo]))
+            lo--;
+        while (hi + 1 < ch->n && !(hi > i && ch->held[hi]))
+            hi++;
+        if (nr && lo <= ch->rhi[nr - 1])
+            ch->rhi[nr - 1] = hi > ch->rhi[nr - 1] ? hi : ch->rhi[nr - 1];
+        else
+            ch->rlo[nr] = lo, ch->rhi[nr++] = hi;
     }
-    if (*pr == 1 && dp_band_cholesky(ch->R, nr, 1) != DP_OK)
-        return 0;
-    for (size_t k = 0; *pr == 0 && k < nr; k++) {
-        if (!(ch->R[k] > 0))
+    return nr;
+}
+
+/* factor_reduced over nodes lo..hi: R = W on the free nodes, factored as base/band.c's bidiagonal Cholesky
+ * (GSL's: the pivot's square root, the coupling scaled by its inverse, the next pivot less its square), kept
+ * by node. A free node whose neighbour below is held or outside starts afresh: R couples consecutive
+ * unknowns with +0 there, whose scaled coupling +0 leaves the next pivot as it is (x + +0 (-1 +0) = x); at
+ * half-bandwidth 0 GSL's pivots are the same square roots. 0 when a pivot is not positive. */
+static int chain_factor_range(struct network_chain *ch, const double *W, size_t p, size_t lo, size_t hi)
+{
+    size_t n = ch->n;
+    for (size_t i = lo; i <= hi; i++) {
+        ch->fac_held[i] = ch->held[i];
+        if (ch->held[i])
+            continue;
+        double d = W[i * (p + 1)];
+        if (i > lo && !ch->held[i - 1])
+            d += ch->off[i - 1] * (-1.0 * ch->off[i - 1]);
+        if (!(d > 0))
             return 0;
-        ch->R[k] = sqrt(ch->R[k]);
+        ch->L[i] = sqrt(d);
+        double a = p == 1 && i + 1 < n && !ch->held[i + 1] ? W[2 * i + 1] : 0;
+        ch->off[i] = a != 0 ? (1.0 / ch->L[i]) * a : 0;
     }
-    ch->factored = 1, ch->fac_pr = *pr;
-    memcpy(ch->fac_held, ch->held, n);
     return 1;
 }
 
-/* R y = T^T (rhs_eff - W c) by base/band.c's bidiagonal sweeps (or GSL's two sweeps of a diagonal factor),
- * the backward one giving v = T y + c node by node on its way. */
-static void chain_solve(struct network_chain *ch, size_t nr, size_t pr, double *vs)
+/* R's factor for the current hold: kept where it holds (prepare's reuse), made again around the nodes whose
+ * hold changed, or throughout. 0 when a pivot is not positive. */
+static int chain_factor(struct network_chain *ch, const double *W, size_t p, int whole)
 {
-    const double *F = ch->R;
-    double *y = ch->y;
-    if (nr && pr == 1) {
-        y[0] = y[0] / F[0];
-        for (size_t j = 1; j < nr; j++)
-            y[j] = (y[j] - F[2 * (j - 1) + 1] * y[j - 1]) / F[2 * j];
-        y[nr - 1] = y[nr - 1] / F[2 * (nr - 1)];
-    } else {
-        for (size_t j = 0; j < nr; j++)
-            y[j] = y[j] / F[j];
-        for (size_t j = 0; j < nr; j++)
-            y[j] = y[j] / F[j];
+    size_t m = whole ? 0 : chain_ranges(ch, ch->dirty, ch->ndirty);
+    if (whole || m > ch->n / 8) {
+        ch->factored = chain_factor_range(ch, W, p, 0, ch->n - 1);
+        return ch->factored;
     }
-    size_t j = nr;   /* the unknown of the node below i, + 1 */
-    for (size_t i = ch->n; i-- > 0;) {
-        if (ch->kidx[i] < 0) {
+    for (size_t r = 0; r < m; r++)
+        if (!chain_factor_range(ch, W, p, ch->rlo[r], ch->rhi[r]))
+            return ch->factored = 0;
+    return 1;
+}
+
+/* R y = T^T (rhs_eff - W c) over nodes lo..hi by the bidiagonal sweeps (or a diagonal factor's two), the
+ * backward one giving v = T y + c node by node on its way. Where a free node's neighbour is held or outside,
+ * the coupling is +0 and y is never -0: y - +0 y' = y, so a stretch of free nodes is solved as the whole
+ * band solves it. */
+static void chain_solve_range(struct network_chain *ch, size_t lo, size_t hi, double *vs)
+{
+    const double *L = ch->L, *off = ch->off;
+    const unsigned char *held = ch->held;
+    double *y = ch->y;
+    for (size_t i = lo; i <= hi; i++)
+        if (!held[i])
+            y[i] = i > lo && !held[i - 1] ? (y[i] - off[i - 1] * y[i - 1]) / L[i] : y[i] / L[i];
+    for (size_t i = hi + 1; i-- > lo;) {
+        if (held[i]) {
             vs[i] = 0 + ch->c[i];
             continue;
         }
-        j--;
-        if (pr == 1 && j + 1 < nr)
-            y[j] = (y[j] - F[2 * j + 1] * y[j + 1]) / F[2 * j];
-        vs[i] = y[j] + ch->c[i];
+        y[i] = i < hi && !held[i + 1] ? (y[i] - off[i] * y[i + 1]) / L[i] : y[i] / L[i];
+        vs[i] = y[i] + ch->c[i];
     }
 }
 
@@ -271,27 +310,29 @@ static void chain_report(const chain_law *k, double vb, double z, dp_network_ste
     }
 }
 
-/* multipliers(), bulk_update() and, for the laws it leaves as they were, report() in one pass (a fixed law's
- * multiplier is read off its own node's residual, which no update changes; the report stands when nothing
- * changed): how many laws changed, or -1 for a multiplier that is not a number (the general path decides).
- * A free law whose z left its piece is fixed at the vertex it crossed (follow: every vertex has a force
- * interval); a fixed one whose multiplier left its interval (inside(): the rounding tolerance of its terms)
- * is freed onto the piece on that side. */
-static long chain_update(struct network_chain *ch, const dp_network_step_element *act, const double *W, size_t p,
-                         double h, const double *vs, dp_network_step_forces *f)
+/* multipliers(), bulk_update() and, for the laws it leaves as they were, report() in one pass over the laws
+ * of nodes lo..hi (a fixed law's multiplier is read off its own node's residual, which no update changes; the
+ * report stands when nothing changed): the nodes whose law changed appended to ch->dirty, or -1 for a
+ * multiplier that is not a number (the general path decides). A free law whose z left its piece is fixed at
+ * the vertex it crossed (follow: every vertex has a force interval); a fixed one whose multiplier left its
+ * interval (inside(): the rounding tolerance of its terms) is freed onto the piece on that side. */
+static int chain_update(struct network_chain *ch, const dp_network_step_element *act, const double *W, size_t p,
+                        double h, const double *vs, dp_network_step_forces *f, size_t lo, size_t hi)
 {
-    long changed = 0;
-    for (size_t c = 0; c < ch->nlaw; c++) {
-        chain_law *k = &ch->law[c];
+    for (size_t i = lo; i <= hi; i++) {
+        if (ch->law_at[i] < 0)
+            continue;
+        chain_law *k = &ch->law[ch->law_at[i]];
         double z = chain_rel(k, vs);
         if (!k->fixed) {
-            if (z > k->hi || z < k->lo)
-                k->fixed = 1, k->fz = z > k->hi ? k->hi : k->lo, changed++;
-            else
+            if (z > k->hi || z < k->lo) {
+                k->fixed = 1, k->fz = z > k->hi ? k->hi : k->lo;
+                ch->held[i] = 1, ch->dirty[ch->ndirty++] = i, ch->nfree--;
+            } else {
                 chain_report(k, 0, z, &f[k->act]);
+            }
             continue;
         }
-        size_t i = k->node;
         double Hv = chain_row(W, ch->n, p, vs, i);
         double res_err = 8 * DBL_EPSILON * (fabs(ch->rhs_eff[i]) + fabs(Hv)), res = ch->rhs_eff[i] - Hv;
         double sign = k->up ? 1 : -1, lam = res / (h * sign);
@@ -307,9 +348,9 @@ static long chain_update(struct network_chain *ch, const dp_network_step_element
             chain_free_on(k, k->fz, INFINITY, k->fr, k->fz);
         else
             chain_free_on(k, -INFINITY, k->fz, k->fl, k->fz);
-        changed++;
+        ch->held[i] = 0, ch->dirty[ch->ndirty++] = i, ch->nfree++;
     }
-    return changed;
+    return 0;
 }
 
 /* network_run_step_poll, its common case written here: the work counted, the run's hook asked when due. */
@@ -323,13 +364,41 @@ static int chain_poll(dp_run *r, struct dp_network_run *nr, unsigned long long u
     return network_run_step_poll(r, 0);
 }
 
+/* The first solve of a step: the whole system, R's factor kept where the hold is the one it was made for. */
+static int chain_first_solve(struct network_chain *ch, const double *W, size_t p, const double *rhs, double h,
+                             double *vs)
+{
+    int whole;
+    ch->nfree = chain_assemble(ch, W, p, rhs, h, &whole);
+    if ((whole || ch->ndirty) && !chain_factor(ch, W, p, whole))
+        return 0;
+    chain_solve_range(ch, 0, ch->n - 1, vs);
+    return 1;
+}
+
+/* A later solve: only the stretches around the laws the last update changed (ch->dirty) are assembled,
+ * factored and solved again; elsewhere the system, its factor and its solution are the same numbers. Their
+ * count into *m (ch->rlo, ch->rhi). */
+static int chain_next_solve(struct network_chain *ch, const double *W, size_t p, const double *rhs, double h,
+                            double *vs, size_t *m)
+{
+    *m = chain_ranges(ch, ch->dirty, ch->ndirty);
+    for (size_t r = 0; r < *m; r++) {
+        chain_assemble_range(ch, W, p, rhs, h, ch->rlo[r], ch->rhi[r]);
+        if (!chain_factor_range(ch, W, p, ch->rlo[r], ch->rhi[r]))
+            return ch->factored = 0;
+        chain_solve_range(ch, ch->rlo[r], ch->rhi[r], vs);
+    }
+    return 1;
+}
+
 /* dp_network_step_solve for the chain (pdas from assign_start): v1 and the laws' forces; DP_ECANCEL when the
  * poll said stop, 1 when the general solve must decide. */
 static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
 {
     struct dp_network_run *nr = r->state;
     const double *W = dp_network_step_W(nr->ws);
-    size_t p = nr->p, nr_, pr;
+    size_t p = nr->p, n = ch->n;
     for (size_t c = 0; c < ch->nlaw; c++)
         if (!chain_start(&nr->act[ch->law[c].act], &ch->law[c], chain_rel(&ch->law[c], nr->v)))
             return 1;
@@ -338,19 +407,20 @@ static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
     unsigned long long iters = 0;
     for (int it = 0; it < 12; it++) {
         iters++;
-        int same;
-        nr_ = chain_assemble(ch, W, p, nr->rhs, h, &same);
-        if (!chain_factor(ch, W, p, nr_, same, &pr))
+        size_t m = 1;
+        int ok = it == 0 ? chain_first_solve(ch, W, p, nr->rhs, h, nr->v1)
+                         : chain_next_solve(ch, W, p, nr->rhs, h, nr->v1, &m);
+        if (!ok)
             return 1;
-        chain_solve(ch, nr_, pr, nr->v1);
         /* the solve's work as polled_stop counts it, and the factor's at every solve (the general workspace
          * counts it only when it factors anew: the stop hook may be asked a few steps apart from there) */
-        if (chain_poll(r, nr, ch->n * (p + 1) + ch->nlaw + nr_ * (pr + 1) * (pr + 1)))
+        if (chain_poll(r, nr, n * (p + 1) + ch->nlaw + ch->nfree * (p + 1) * (p + 1)))
             return DP_ECANCEL;
-        long changed = chain_update(ch, nr->act, W, p, h, nr->v1, nr->force);
-        if (changed < 0)
-            return 1;
-        if (changed == 0) {
+        ch->ndirty = 0;
+        for (size_t k = 0; k < m; k++)
+            if (chain_update(ch, nr->act, W, p, h, nr->v1, nr->force, it ? ch->rlo[k] : 0, it ? ch->rhi[k] : n - 1))
+                return 1;
+        if (ch->ndirty == 0) {
             r->sum.iterations += iters;
             return DP_OK;
         }
@@ -580,8 +650,8 @@ static void chain_release(struct network_chain *ch)
 {
     if (ch == NULL)
         return;
-    void *p[] = { ch->law, ch->lin, ch->fric, ch->changed, ch->was, ch->kidx, ch->held, ch->fac_held, ch->c,
-                  ch->rhs_eff, ch->y, ch->R };
+    void *p[] = { ch->law, ch->lin, ch->fric, ch->changed, ch->was, ch->law_at, ch->held, ch->fac_held, ch->c,
+                  ch->rhs_eff, ch->y, ch->L, ch->off, ch->dirty, ch->rlo, ch->rhi };
     for (size_t i = 0; i < sizeof p / sizeof *p; i++)
         free(p[i]);
     free(ch);
@@ -673,17 +743,18 @@ static int chain_setup(struct dp_network_run *nr)
     nr->chain = ch;
     ch->n = n, ch->nlaw = na;
     ch->law = calloc(na ? na : 1, sizeof *ch->law);
-    ch->kidx = calloc(n, sizeof *ch->kidx);
-    double **d[] = { &ch->c, &ch->rhs_eff, &ch->y };
+    ch->law_at = calloc(n, sizeof *ch->law_at);
+    ch->dirty = calloc(n, sizeof *ch->dirty), ch->rlo = calloc(n, sizeof *ch->rlo), ch->rhi = calloc(n, sizeof *ch->rhi);
+    double **d[] = { &ch->c, &ch->rhs_eff, &ch->y, &ch->L, &ch->off };
     for (size_t i = 0; i < sizeof d / sizeof *d; i++)
         *d[i] = calloc(n + 1, sizeof(double));
-    ch->R = calloc(2 * n, sizeof *ch->R);
     size_t ne = nr->nel ? nr->nel : 1;
     ch->lin = calloc(ne, sizeof *ch->lin), ch->fric = calloc(ne, sizeof *ch->fric);
     ch->changed = calloc(ne, sizeof *ch->changed), ch->was = calloc(ne, 1);
     ch->held = calloc(n, 1), ch->fac_held = calloc(n, 1);
     unsigned char *seen = calloc(n, 1);
-    if (!ch->law || !ch->kidx || !ch->c || !ch->rhs_eff || !ch->y || !ch->R || !ch->lin ||
+    if (!ch->law || !ch->law_at || !ch->dirty || !ch->rlo || !ch->rhi || !ch->c || !ch->rhs_eff || !ch->y ||
+        !ch->L || !ch->off || !ch->lin ||
         !ch->fric || !ch->changed || !ch->was || !ch->held || !ch->fac_held || !seen) {
         free(seen);
         return DP_ENOMEM;
@@ -698,6 +769,10 @@ static int chain_setup(struct dp_network_run *nr)
         return DP_OK;
     }
     qsort(ch->law, na, sizeof *ch->law, by_node);
+    for (size_t i = 0; i < n; i++)
+        ch->law_at[i] = -1;
+    for (size_t k = 0; k < na; k++)
+        ch->law_at[ch->law[k].node] = (long)k;
     chain_elements(nr, ch);
     return DP_OK;
 }
