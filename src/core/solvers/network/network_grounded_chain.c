@@ -20,6 +20,11 @@
  * rounding tolerance on the multipliers and its +0 and -0 kept. The lean ball (network_contact_lean.c) is the
  * same pass for one node.
  *
+ * The held nodes cut R into independent stretches of free nodes: a stretch's couplings to the nodes beyond
+ * it are +0 and its right side is never -0, so its factor and both sweeps give the numbers the whole band's
+ * give. An update that changes a few laws (many blocks of a long chain stick or slip in one step) is
+ * therefore solved again only on the stretches around them, and the factor made again only there.
+ *
  * Anything outside this (a NaN, a pass that does not settle in the general path's twelve updates, a pivot
  * that is not positive) hands the step to the general solve itself; a network whose ordering leaves a wider
  * band, or two set-valued laws on one node, runs the general advance.
@@ -33,10 +38,11 @@
 #include "solvers/network/network_run.h"
 
 /* A set-valued law's state in the step's active-set pass (network_step.c's elem_state), one per entry `act`
- * of the step's problem, in the order of their nodes: free on the piece (lo, hi) of force lam0 (the whole line when not armed), or
- * fixed at the vertex fz with multiplier lam. The law's constants: its force on the piece right and left of
- * its vertex (a contact: +0 right, fixed when its start lies left), and its force interval [flo, fhi] at the
- * vertex with the magnitudes its tolerance adds (aflo, afhi: 0 for an infinite end). */
+ * of the step's problem, in the order of their nodes: free on the piece (lo, hi) of force lam0 (the whole
+ * line when not armed), or fixed at the vertex fz with multiplier lam. The law's constants: its force on the
+ * piece right and left of its vertex (a contact: +0 right, fixed when its start lies left), and its force
+ * interval [flo, fhi] at the vertex with the magnitudes its tolerance adds (aflo, afhi: 0 for an infinite
+ * end). */
 typedef struct chain_law {
     size_t node, act;
     int up;             /* the law is [ground, node] (z = v), else [node, ground] (z = -v) */
@@ -144,16 +150,18 @@ static const chain_law *chain_law_at(const struct network_chain *ch, size_t i)
  * held, and for the free ones the reduced right side y = T^T (rhs_eff - W c) (solve_assignment: W c in
  * dp_band_symv's order, row i's diagonal term plus row i-1's, then row i+1's, lagging a node behind; y from
  * +0, so never -0), kept by node. Returns the number of unknowns; the nodes whose hold differs from R's
- * factor's into ch->dirty (all of them when there is no factor: *whole). */
+ * factor's into ch->dirty; *whole: there is no factor to keep. */
 static size_t chain_assemble(struct network_chain *ch, const double *W, size_t p, const double *rhs, double h,
                              int *whole)
 {
     size_t n = ch->n, nr = 0;
     double *c = ch->c, *re = ch->rhs_eff, *y = ch->y, carry = 0;
     unsigned char *held = ch->held;
+    const chain_law *k = ch->law, *kend = ch->law + ch->nlaw;   /* in node order */
     ch->ndirty = 0;
     for (size_t i = 0; i < n; i++) {
-        held[i] = (unsigned char)chain_node(chain_law_at(ch, i), rhs[i], h, &c[i], &re[i]);
+        const chain_law *at = k < kend && k->node == i ? k++ : NULL;
+        held[i] = (unsigned char)chain_node(at, rhs[i], h, &c[i], &re[i]);
         nr += !held[i];
         if (held[i] != ch->fac_held[i])
             ch->dirty[ch->ndirty++] = i;
@@ -319,10 +327,12 @@ static void chain_report(const chain_law *k, double vb, double z, dp_network_ste
 static int chain_update(struct network_chain *ch, const dp_network_step_element *act, const double *W, size_t p,
                         double h, const double *vs, dp_network_step_forces *f, size_t lo, size_t hi)
 {
-    for (size_t i = lo; i <= hi; i++) {
-        if (ch->law_at[i] < 0)
-            continue;
-        chain_law *k = &ch->law[ch->law_at[i]];
+    size_t l = ch->nlaw;   /* the first law at lo or above */
+    for (size_t i = lo; l == ch->nlaw && i <= hi; i++)
+        l = ch->law_at[i] >= 0 ? (size_t)ch->law_at[i] : l;
+    for (; l < ch->nlaw && ch->law[l].node <= hi; l++) {
+        chain_law *k = &ch->law[l];
+        size_t i = k->node;
         double z = chain_rel(k, vs);
         if (!k->fixed) {
             if (z > k->hi || z < k->lo) {
@@ -435,7 +445,7 @@ static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
 static void chain_arm(struct dp_network_run *nr, const struct network_chain *ch, double h)
 {
     int changed = 0;
-    for (size_t l = 0; l < ch->nlaw; l++) {
+    for (size_t l = 0; nr->nc && l < ch->nlaw; l++) {   /* a friction chain has none */
         const chain_law *k = &ch->law[l];
         if (!k->cone)
             continue;
@@ -744,7 +754,8 @@ static int chain_setup(struct dp_network_run *nr)
     ch->n = n, ch->nlaw = na;
     ch->law = calloc(na ? na : 1, sizeof *ch->law);
     ch->law_at = calloc(n, sizeof *ch->law_at);
-    ch->dirty = calloc(n, sizeof *ch->dirty), ch->rlo = calloc(n, sizeof *ch->rlo), ch->rhi = calloc(n, sizeof *ch->rhi);
+    ch->dirty = calloc(n, sizeof *ch->dirty);
+    ch->rlo = calloc(n, sizeof *ch->rlo), ch->rhi = calloc(n, sizeof *ch->rhi);
     double **d[] = { &ch->c, &ch->rhs_eff, &ch->y, &ch->L, &ch->off };
     for (size_t i = 0; i < sizeof d / sizeof *d; i++)
         *d[i] = calloc(n + 1, sizeof(double));
