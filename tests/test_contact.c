@@ -22,6 +22,7 @@
 #include "dashpot/json.h"
 #include "dashpot/run.h"
 #include "rows.h"
+#include "solvers/network/network_run.h"
 #include "solvers/run_types.h"
 
 #define G 9.81
@@ -781,6 +782,9 @@ typedef struct bytes {
     unsigned char *p;
     size_t n, cap;
     unsigned long long impacts;   /* the run's */
+    unsigned long long events, steps, iterations;   /* the run's, and its time stuck summed over the elements */
+    double stick_time;
+    long long handed;             /* the grounded chain's steps the general solve decided (-1: no chain) */
 } bytes;
 
 static void put(bytes *b, const void *src, size_t n)
@@ -821,6 +825,8 @@ static void run_type_bytes(const char *json, const dp_run_type *lean, int genera
     if (run == NULL)
         fprintf(stderr, "%s: %s\n", errs.item[0].pointer, errs.item[0].message);
     assert_non_null(run);
+    if (run->type != lean)
+        fprintf(stderr, "not the lean type: %s\n", json);
     assert_ptr_equal(run->type, lean);
     dp_run_type gen = dp_run_network;
     gen.free = lean->free;   /* the state the lean type's init made, its workspace with it */
@@ -850,7 +856,9 @@ static void run_type_bytes(const char *json, const dp_run_type *lean, int genera
     const dp_summary *sum = dp_run_summary(run);
     unsigned long long counts[5] = { sum->steps, sum->samples, sum->events, sum->iterations, sum->impacts };
     put(out, counts, sizeof counts);
-    out->impacts = sum->impacts;
+    out->impacts = sum->impacts, out->events = sum->events, out->steps = sum->steps, out->iterations = sum->iterations;
+    out->stick_time = sum->stick_time;
+    out->handed = network_chain_handed(run->state);
     put(out, &sum->stick_time, sizeof(double));
     put(out, &sum->final_row.t, sizeof(double));
     put(out, sum->final_row.val, width * sizeof(double));
@@ -880,7 +888,7 @@ static void test_lean_ball_bit_for_bit(void **state)
     assert_true(impacts > 200 && bouncing > 80);
 }
 
-/* ---- stop chains' lean step (network_contact_chain.c) against the general network step ---- */
+/* ---- stop chains' lean step (network_grounded_chain.c) against the general network step ---- */
 
 /* Appends to a document being written. */
 static void add(char *d, size_t cap, int *len, const char *fmt, ...)
@@ -978,8 +986,8 @@ static void test_lean_chain_bit_for_bit(void **state)
     for (int k = 0; k < 120; k++) {
         contact_chain_doc(doc, sizeof doc);
         bytes lean = { 0 }, gen = { 0 };
-        run_type_bytes(doc, &dp_run_network_contact_chain, 0, 64, &lean);
-        run_type_bytes(doc, &dp_run_network_contact_chain, 1, 64, &gen);
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
         if (lean.n != gen.n || memcmp(lean.p, gen.p, lean.n) != 0)
             fprintf(stderr, "case %d differs: %s\n", k, doc);
         assert_int_equal(lean.n, gen.n);
@@ -1004,12 +1012,195 @@ static void test_lean_chain_bit_for_bit(void **state)
                  "\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":3}}",
                  hostile[3 * h], hostile[3 * h + 1], hostile[3 * h + 2], hostile[3 * h + 1], hostile[3 * h + 2]);
         bytes lean = { 0 }, gen = { 0 };
-        run_type_bytes(doc, &dp_run_network_contact_chain, 0, 64, &lean);
-        run_type_bytes(doc, &dp_run_network_contact_chain, 1, 64, &gen);
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
         assert_int_equal(lean.n, gen.n);
         assert_memory_equal(lean.p, gen.p, lean.n);
         free(lean.p), free(gen.p);
     }
+}
+
+/* ---- friction chains' lean step (network_grounded_chain.c) against the general network step ---- */
+
+/* A random friction chain (Moreau-Jean's chain, Burridge-Knopoff's): n = 2..40 blocks (their labels maybe
+ * shuffled), a Coulomb damper from the ground on most blocks ([ground, i] or [i, ground]) of random
+ * threshold phi0 (1 + het sin 2.3 i) on a belt at rest, moving either way or varying from block to block,
+ * maybe with a linear spring in the same element, maybe a ground spring or damper of its own, neighbour
+ * springs and dampers (some missing or of zero stiffness); `mixed`: a rigid contact from the ground on some
+ * other blocks instead (random distance and restitution). Constant and maybe harmonic loads; blocks start
+ * stuck to their belts (exactly at its speed), a hair off it, slipping or at rest; random dt and theta,
+ * events "none", every step written or every few. */
+static void friction_chain_doc(char *d, size_t cap, int mixed)
+{
+    static const double dts[] = { 1e-3, 0.01, 0.05 };
+    size_t n = 2 + (size_t)(39 * rnd()), lab[40];
+    for (size_t i = 0; i < n; i++)
+        lab[i] = i;
+    for (size_t i = n - 1; rnd() < 0.3 && i > 0; i--) {   /* a shuffled numbering */
+        size_t j = (size_t)((double)(i + 1) * rnd()), t = lab[i];
+        lab[i] = lab[j], lab[j] = t;
+    }
+    int len = 0, first = 1, belts = (int)(4 * rnd());   /* at rest, forward, backward, each its own */
+    double kg = rnd() < 0.2 ? 0 : 3 * rnd(), kc = rnd() < 0.1 ? 0 : 12 * rnd(), cg = rnd() < 0.7 ? 0 : rnd();
+    double phi0 = 0.05 + 2 * rnd(), het = 0.6 * rnd(), x0[40], v0[40];
+    add(d, cap, &len, "{\"model\":{\"masses\":[");
+    for (size_t i = 0; i < n; i++)
+        add(d, cap, &len, "%s%.6g", i ? "," : "", 0.3 + 2 * rnd());
+    add(d, cap, &len, "],\"elements\":[");
+    for (size_t i = 0; i < n; i++) {
+        double r = rnd(), vb = belts == 0 ? 0 : belts == 1 ? 0.5 : belts == 2 ? -0.1 : 2 * rnd() - 1;
+        int law = r < 0.75 || i == 0 ? 1 : mixed && r < 0.95 ? 2 : 0;   /* 1: Coulomb, 2: a contact, 0: neither */
+        int flip = rnd() < 0.3, both = law == 1 && kg > 0 && rnd() < 0.7;
+        x0[i] = 2 * rnd() - 1, v0[i] = rnd() < 0.2 ? 0 : 3 * rnd() - 1.5;
+        if (law == 1) {
+            double s = rnd();   /* stuck to the belt, a hair off it, slipping (as drawn) */
+            double z = s < 0.35 ? vb : s < 0.45 ? vb + 1e-9 * (rnd() - 0.5) : v0[i];
+            v0[i] = flip ? 0 - z : z;
+            add(d, cap, &len, "%s{\"between\":", first ? "" : ",");
+            add(d, cap, &len, flip ? "[%zu,\"ground\"]" : "[\"ground\",%zu]", lab[i]);
+            add(d, cap, &len, ",\"damper\":{\"law\":\"coulomb\",\"phi0\":%.17g", phi0 * (1 + het * sin(2.3 * (double)i)));
+            if (vb != 0 || rnd() < 0.5)   /* a belt at rest written, or left to its default */
+                add(d, cap, &len, ",\"belt_velocity\":%.17g", vb);
+            add(d, cap, &len, "}");
+            if (both)
+                add(d, cap, &len, ",\"spring\":{\"law\":\"linear\",\"k\":%.6g}", kg);
+            add(d, cap, &len, "}"), first = 0;
+        } else if (law == 2) {
+            double dist = 2 * rnd() - 1;
+            x0[i] = rnd() < 0.3 ? dist : dist + 2 * rnd();
+            add(d, cap, &len, "%s{\"between\":", first ? "" : ",");
+            add(d, cap, &len, flip ? "[%zu,\"ground\"]" : "[\"ground\",%zu]", lab[i]);
+            add(d, cap, &len, ",\"contact\":{\"distance\":%.17g,\"restitution\":%g}}", flip ? -dist : dist, rnd());
+            if (flip)   /* [i, ground] holds -x_i >= -d_i: a stop from above; starts on its side of it */
+                x0[i] = 2 * dist - x0[i];
+            first = 0;
+        }
+        if ((kg > 0 && !both) || cg > 0) {
+            add(d, cap, &len, "%s{\"between\":[\"ground\",%zu]", first ? "" : ",", lab[i]);
+            if (kg > 0 && !both)
+                add(d, cap, &len, ",\"spring\":{\"law\":\"linear\",\"k\":%.6g}", kg);
+            if (cg > 0)
+                add(d, cap, &len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g}", cg);
+            add(d, cap, &len, "}"), first = 0;
+        }
+        if (i + 1 < n && rnd() < 0.9) {
+            add(d, cap, &len, "%s{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":%.6g}", first ? "" : ",",
+                lab[i], lab[i + 1], rnd() < 0.1 ? 0 : kc);
+            if (rnd() < 0.2)
+                add(d, cap, &len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g}", rnd());
+            add(d, cap, &len, "}"), first = 0;
+        }
+    }
+    add(d, cap, &len, "],\"forcing\":[");
+    for (size_t i = 0; i < n; i++) {
+        add(d, cap, &len, "%s{\"node\":%zu,\"kind\":\"constant\",\"value\":%.6g}", i ? "," : "", lab[i], 4 * rnd() - 2);
+        if (rnd() < 0.3)
+            add(d, cap, &len, ",{\"node\":%zu,\"kind\":\"harmonic\",\"amplitude\":%.6g,\"omega\":%.6g}", lab[i],
+                3 * rnd(), 20 * rnd());
+    }
+    double xs[40], vs[40];
+    for (size_t i = 0; i < n; i++)
+        xs[lab[i]] = x0[i], vs[lab[i]] = v0[i];
+    add(d, cap, &len, "]},\"initial\":{\"x\":[");
+    for (size_t i = 0; i < n; i++)
+        add(d, cap, &len, "%s%.17g", i ? "," : "", xs[i]);
+    add(d, cap, &len, "],\"v\":[");
+    for (size_t i = 0; i < n; i++)
+        add(d, cap, &len, "%s%.17g", i ? "," : "", vs[i]);
+    add(d, cap, &len, "]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":%.6g,\"theta\":%g,\"events\":\"none\"},"
+        "\"output\":{\"every\":%d}}", dts[(int)(3 * rnd())], 0.5 + 2.5 * rnd(),
+        rnd() < 0.4 ? 0.5 : rnd() < 0.5 ? 1 : 0.5 + 0.5 * rnd(), rnd() < 0.5 ? 1 : 2 + (int)(9 * rnd()));
+}
+
+/* The friction chain's step is the general step: every record (rows, stick and slip events, impacts) and
+ * the summary of 160 random friction chains and 120 with contacts on some blocks the same bytes; the lean
+ * step takes almost every step itself, and the blocks do stick, slip and change between them. */
+static void test_lean_friction_chain_bit_for_bit(void **state)
+{
+    (void)state;
+    static char doc[65536];
+    unsigned long long events = 0, steps = 0, handed = 0, impacts = 0;
+    double stuck = 0;
+    for (int k = 0; k < 280; k++) {
+        friction_chain_doc(doc, sizeof doc, k >= 160);
+        bytes lean = { 0 }, gen = { 0 };
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
+        if (lean.n != gen.n || memcmp(lean.p, gen.p, lean.n) != 0)
+            fprintf(stderr, "case %d differs: %s\n", k, doc);
+        assert_int_equal(lean.n, gen.n);
+        assert_memory_equal(lean.p, gen.p, lean.n);
+        assert_true(lean.handed >= 0);   /* a chain workspace: the lean step ran */
+        events += gen.events, impacts += gen.impacts, handed += (unsigned long long)lean.handed, stuck += gen.stick_time;
+        steps += gen.steps;
+        free(lean.p), free(gen.p);
+    }
+    fprintf(stderr, "friction chains: %llu stick/slip events, %llu impacts, %llu of %llu steps handed over, "
+            "%.4g s stuck\n", events, impacts, handed, steps, stuck);
+    assert_true(events > 5000 && impacts > 200 && stuck > 100);
+    assert_true(handed * 100 < steps);
+    /* hostile magnitudes, every few steps written: thresholds of 1e300 (h phi0 and the multipliers near
+     * overflow), k |u| past the bound by which a step without a row shows its forces finite, subnormal
+     * thresholds, stiffnesses, viscosities and states */
+    const char *hostile[] = { "1e300", "1", "1", "0", "5e-324", "1e150", "1", "1e150", "0.5", "5e-324", "5e-324",
+                              "5e-324" };
+    for (size_t h = 0; h < 3; h++) {
+        const char **w = hostile + 4 * h;
+        snprintf(doc, sizeof doc,
+                 "{\"model\":{\"masses\":[1,1,1],\"elements\":[{\"between\":[\"ground\",0],\"spring\":{\"law\":"
+                 "\"linear\",\"k\":%s},\"damper\":{\"law\":\"coulomb\",\"phi0\":%s,\"belt_velocity\":0.5}},"
+                 "{\"between\":[0,1],\"spring\":{\"law\":\"linear\",\"k\":1},\"damper\":{\"law\":\"linear\",\"c\":%s}},"
+                 "{\"between\":[1,2],\"spring\":{\"law\":\"linear\",\"k\":1}},{\"between\":[2,\"ground\"],\"damper\":"
+                 "{\"law\":\"coulomb\",\"phi0\":%s}}],\"forcing\":[{\"node\":0,\"kind\":\"constant\",\"value\":-1}]},"
+                 "\"initial\":{\"x\":[%s,0,0],\"v\":[0.5,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,"
+                 "\"t_end\":0.05,\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":3}}",
+                 w[1], w[0], w[2], w[0], w[3]);
+        bytes lean = { 0 }, gen = { 0 };
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
+        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
+        assert_int_equal(lean.n, gen.n);
+        assert_memory_equal(lean.p, gen.p, lean.n);
+        free(lean.p), free(gen.p);
+    }
+}
+
+/* Burridge-Knopoff's chain of 600 blocks (bench/network.sh's: kg = 1, kc = 10, phi0 (1 + 0.5 sin 2.3 i), the
+ * belt at -0.1, x_i(0) = 0.5 cos 1.3 i): many blocks stick and slip in each step, so the active-set pass
+ * takes a second update in a fifth of the steps, which the lean step solves again only around the blocks that changed
+ * (the stretches between stuck blocks); every record and the summary the general step's bytes. */
+static void test_lean_burridge_knopoff_bit_for_bit(void **state)
+{
+    (void)state;
+    size_t n = 600, cap = 200000, len = 0;
+    char *doc = malloc(cap);
+    assert_non_null(doc);
+    len += (size_t)snprintf(doc + len, cap - len, "{\"model\":{\"masses\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(doc + len, cap - len, "%s1", i ? "," : "");
+    len += (size_t)snprintf(doc + len, cap - len, "],\"elements\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(doc + len, cap - len, "%s{\"between\":[\"ground\",%zu],\"spring\":{\"law\":\"linear\","
+                                "\"k\":1},\"damper\":{\"law\":\"coulomb\",\"phi0\":%.17g,\"belt_velocity\":-0.1}}",
+                                i ? "," : "", i, 1 + 0.5 * sin(2.3 * (double)i));
+    for (size_t i = 0; i + 1 < n; i++)
+        len += (size_t)snprintf(doc + len, cap - len, ",{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":10}}",
+                                i, i + 1);
+    len += (size_t)snprintf(doc + len, cap - len, "]},\"initial\":{\"x\":[");
+    for (size_t i = 0; i < n; i++)
+        len += (size_t)snprintf(doc + len, cap - len, "%s%.17g", i ? "," : "", 0.5 * cos(1.3 * (double)i));
+    len += (size_t)snprintf(doc + len, cap - len, "]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":1e-3,\"t_end\":0.4,"
+                            "\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":9}}");
+    assert_true(len < cap);
+    bytes lean = { 0 }, gen = { 0 };
+    run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
+    run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
+    assert_int_equal(lean.n, gen.n);
+    assert_memory_equal(lean.p, gen.p, lean.n);
+    fprintf(stderr, "Burridge-Knopoff, 600 blocks: %llu events, %.3g iterations a step, %lld steps handed over\n",
+            gen.events, (double)gen.iterations / (double)gen.steps, lean.handed);
+    assert_true(gen.events > 100 && gen.iterations > gen.steps + gen.steps / 10 && lean.handed == 0);
+    free(lean.p), free(gen.p);
+    free(doc);
 }
 
 int main(void)
@@ -1017,6 +1208,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lean_ball_bit_for_bit),
         cmocka_unit_test(test_lean_chain_bit_for_bit),
+        cmocka_unit_test(test_lean_friction_chain_bit_for_bit),
+        cmocka_unit_test(test_lean_burridge_knopoff_bit_for_bit),
         cmocka_unit_test(test_ball_e09),
         cmocka_unit_test(test_ball_e05),
         cmocka_unit_test(test_ball_e0),

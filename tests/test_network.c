@@ -14,6 +14,8 @@
 #include <gsl/gsl_errno.h>
 
 #include "rows.h"
+#include "runs/run_table.h"
+#include "solvers/run_types.h"
 #include "trajectory.h"
 
 /* Runs a network document with blocks of `cap` records; its rows are x, v, Fs, Fd, phase (no contacts). */
@@ -789,6 +791,57 @@ static void test_hostile_magnitudes(void **state)
     }
 }
 
+/* Which friction chains the lean grounded chain steps (runs/run_table.c, dp_network_is_grounded_chain): Coulomb
+ * dampers from the ground to distinct nodes on any belt, with springs and linear dampers, and "events":
+ * "none"; not located events, generalized Coulomb's static threshold, relaxation, Bingham, friction between
+ * two nodes, two set-valued laws on one node, a chain without any. */
+static void test_grounded_chain_chosen(void **state)
+{
+    (void)state;
+    static const struct { const char *e0, *e2, *events; int lean; } cases[] = {
+        { "[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5,\"belt_velocity\":0.5}", "[2,\"ground\"],"
+          "\"damper\":{\"law\":\"coulomb\",\"phi0\":0.3}", "none", 1 },
+        { "[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5}", "[\"ground\",2],\"contact\":{\"distance\":-1,"
+          "\"restitution\":0.5}", "none", 1 },
+        { "[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5}", "[\"ground\",1],\"damper\":{\"law\":"
+          "\"linear\",\"c\":0.2,\"belt_velocity\":0.1}", "none", 1 },
+        { "[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5}", "[\"ground\",2],\"damper\":{\"law\":"
+          "\"coulomb\",\"phi0\":0.3}", "locate", 0 },
+        { "[\"ground\",0],\"damper\":{\"law\":\"generalized-coulomb\",\"phi0\":0.5,\"phi1\":0.7}", "[\"ground\",2],"
+          "\"damper\":{\"law\":\"coulomb\",\"phi0\":0.3}", "none", 0 },
+        { "[\"ground\",0],\"damper\":{\"law\":\"bingham\",\"tau\":0.5,\"c\":1}", "[\"ground\",2],\"damper\":{\"law\":"
+          "\"coulomb\",\"phi0\":0.3}", "none", 0 },
+        { "[0,1],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5}", "[\"ground\",2],\"damper\":{\"law\":\"coulomb\","
+          "\"phi0\":0.3}", "none", 0 },
+        { "[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5}", "[0,\"ground\"],\"damper\":{\"law\":"
+          "\"coulomb\",\"phi0\":0.3}", "none", 0 },
+        { "[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0.5},\"contact\":{\"distance\":-1}", "[\"ground\",2],"
+          "\"damper\":{\"law\":\"coulomb\",\"phi0\":0.3}", "none", 0 },
+        { "[\"ground\",0],\"damper\":{\"law\":\"coulomb\",\"phi0\":0}", "[\"ground\",2],\"damper\":{\"law\":\"linear\","
+          "\"c\":1}", "none", 0 },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char doc[1024];
+        snprintf(doc, sizeof doc, "{\"model\":{\"masses\":[1,1,1],\"elements\":[{\"between\":%s},{\"between\":[0,1],"
+                 "\"spring\":{\"law\":\"linear\",\"k\":1}},{\"between\":[1,2],\"spring\":{\"law\":\"linear\",\"k\":1}},"
+                 "{\"between\":%s}]},\"initial\":{\"x\":[1,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,"
+                 "\"t_end\":1,\"events\":\"%s\"}}", cases[i].e0, cases[i].e2, cases[i].events);
+        dp_spec spec;
+        dp_errors errs;
+        dp_spec_init(&spec);
+        dp_errors_init(&errs);
+        int s = dp_spec_parse(doc, strlen(doc), 0, &spec, &errs);
+        if (s != DP_OK)
+            fprintf(stderr, "%s\n%s: %s\n", doc, errs.n ? errs.item[0].pointer : "", errs.n ? errs.item[0].message : "");
+        assert_int_equal(s, DP_OK);
+        const dp_run_type *t = dp_run_type_of(&spec);
+        if ((t == &dp_run_network_grounded_chain) != cases[i].lean)
+            fprintf(stderr, "case %zu: %s\n", i, doc);
+        assert_int_equal(t == &dp_run_network_grounded_chain, cases[i].lean);
+        dp_spec_clear(&spec);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -810,6 +863,7 @@ int main(void)
         cmocka_unit_test(test_working_memory_limit),
         cmocka_unit_test(test_hostile_magnitudes),
         cmocka_unit_test(test_decimated_rows_are_the_full_rows),
+        cmocka_unit_test(test_grounded_chain_chosen),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -276,41 +276,47 @@ int dp_network_is_one_node_contact(const dp_spec *s)
     return !dp_element_can_stick(e) && s->solver.events == DP_EVENTS_NONE;
 }
 
-/* Whether element e's laws are a chain's: at most a linear spring, a linear damper without relaxation, and a
- * rigid contact from the ground to a node that no other contact holds (seen: the nodes held so far). */
-static int chain_element(const dp_element *e, unsigned char *seen)
+/* Whether element e's laws are a grounded chain's: at most a linear spring, a linear damper without relaxation
+ * or a Coulomb damper (phi0 > 0, on any belt; not generalized Coulomb's static threshold, no relaxation),
+ * and a rigid contact; a Coulomb damper or a contact joins the ground to a node that no other such law holds
+ * (seen: the nodes held so far). *laws counts them. */
+static int chain_element(const dp_element *e, unsigned char *seen, int *laws)
 {
     if (e->has_spring && (!dp_spring_linear(&e->spring) || dp_spring_plastic(&e->spring)))
         return 0;
-    if (e->has_damper && (!dp_damper_linear(&e->damper) || e->damper.relaxation.kind != DP_RELAX_NONE))
+    int coulomb = e->has_damper && e->damper.law == DP_DAMPER_COULOMB && dp_element_can_stick(e);
+    if (e->has_damper && (!(dp_damper_linear(&e->damper) || coulomb) ||
+                          e->damper.relaxation.kind != DP_RELAX_NONE))
         return 0;
-    if (dp_element_can_stick(e))
+    if (dp_element_can_stick(e) && !coulomb)
         return 0;
-    if (!e->has_contact)
+    if (e->has_contact && e->contact.compliance != 0)
+        return 0;
+    int held = coulomb + e->has_contact;
+    if (held == 0)
         return 1;
     long node = e->a == DP_GROUND ? e->b : e->b == DP_GROUND ? e->a : -1;
-    if (node < 0 || e->contact.compliance != 0 || seen[node])
+    if (held > 1 || node < 0 || seen[node])
         return 0;
-    seen[node] = 1;
+    seen[node] = 1, (*laws)++;
     return 1;
 }
 
-/* A network of masses on linear springs and dampers whose only set-valued laws are rigid contacts from the
- * ground to distinct nodes (a stop chain), stepped by Moreau-Jean's rule (events "none"): stepped by
- * solvers/network/network_contact_chain.c, the general network step written out (the same answers, bit for
- * bit), where the run's node ordering leaves W tridiagonal. */
-int dp_network_is_contact_chain(const dp_spec *s)
+/* A network of masses on linear springs and dampers whose only set-valued laws are rigid contacts and
+ * Coulomb dampers from the ground to distinct nodes (a stop chain, a friction chain, Burridge-Knopoff's),
+ * stepped by Moreau-Jean's rule (events "none"): stepped by solvers/network/network_grounded_chain.c, the
+ * general network step written out (the same answers, bit for bit), where the run's node ordering leaves W
+ * tridiagonal. */
+int dp_network_is_grounded_chain(const dp_spec *s)
 {
     const dp_network *n = s->net;
     if (n == NULL || n->n == 0 || s->solver.kind != DP_SOLVER_STICK_SLIP || s->output.quakes ||
         s->solver.events != DP_EVENTS_NONE)
         return 0;
     unsigned char *seen = calloc(n->n, 1);
-    int ok = seen != NULL, contacts = 0;
-    for (size_t i = 0; ok && i < n->nel; i++) {
-        ok = chain_element(&n->el[i], seen);
-        contacts += n->el[i].has_contact;
-    }
+    int ok = seen != NULL, laws = 0;
+    for (size_t i = 0; ok && i < n->nel; i++)
+        ok = chain_element(&n->el[i], seen, &laws);
     free(seen);
-    return ok && contacts > 0;
+    return ok && laws > 0;
 }

@@ -21,10 +21,10 @@ int dp_network_is_one_mass(const dp_spec *s);
 /* One node, one element: a rigid contact with at most a linear spring and damper, events "none"
  * (Moreau-Jean): stepped by network_contact_lean.c, bit for bit the general network step. */
 int dp_network_is_one_node_contact(const dp_spec *s);
-/* Masses on linear springs and dampers, rigid contacts from the ground to distinct nodes, no element that can
- * stick, events "none" (Moreau-Jean): stepped by network_contact_chain.c, bit for bit the general network
- * step (where the run's node ordering leaves W tridiagonal). */
-int dp_network_is_contact_chain(const dp_spec *s);
+/* Masses on linear springs and dampers, rigid contacts and Coulomb dampers from the ground to distinct nodes,
+ * events "none" (Moreau-Jean): stepped by network_grounded_chain.c, bit for bit the general network step
+ * (where the run's node ordering leaves W tridiagonal). */
+int dp_network_is_grounded_chain(const dp_spec *s);
 
 /* The model families a spec may hold beside the one-mass model (rules/spec.c): which one it is, and the
  * length of its initial state x0v, v0v. */

@@ -30,7 +30,7 @@ static const struct run_row {
     { is_right_hand, &dp_run_right_hand },
     { dp_network_is_one_mass, &dp_run_network_one_mass }, /* one mass on one element: the one-mass step */
     { dp_network_is_one_node_contact, &dp_run_network_contact_lean }, /* the bouncing ball: the lean step */
-    { dp_network_is_contact_chain, &dp_run_network_contact_chain }, /* stop chains: the lean step */
+    { dp_network_is_grounded_chain, &dp_run_network_grounded_chain }, /* stop and friction chains: the lean step */
     { is_regularized_network, &dp_run_network_regularized },
     { is_newmark_network, &dp_run_network_newmark },
     { is_network, &dp_run_network },

@@ -15,7 +15,8 @@ extern const dp_run_type dp_run_network_regularized; /* network/network_run.c: t
 extern const dp_run_type dp_run_network_newmark;   /* network/network_run.c: Newmark on networks */
 extern const dp_run_type dp_run_network_one_mass;  /* network/network_one_mass.c: one mass, one element */
 extern const dp_run_type dp_run_network_contact_lean; /* network/network_contact_lean.c: the bouncing ball */
-extern const dp_run_type dp_run_network_contact_chain; /* network/network_contact_chain.c: stop chains */
+extern const dp_run_type dp_run_network_grounded_chain; /* network/network_grounded_chain.c: stop and
+                                                          * friction chains */
 extern const dp_run_type dp_run_lcs;               /* lcs_run.c: linear complementarity systems */
 extern const dp_run_type dp_run_right_hand;        /* right_hand_run.c: friction with motion-dependent N */
 

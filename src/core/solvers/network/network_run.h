@@ -132,7 +132,7 @@ struct dp_network_run {
      * between them counted as nodes + elements), and a yield asked for inside a step, honoured after it */
     unsigned long long work;
     int yield;
-    /* the stop chain's workspace (network_contact_chain.c), NULL on every other run type */
+    /* the grounded chain's workspace (network_grounded_chain.c), NULL on every other run type */
     struct network_chain *chain;
 };
 
@@ -310,5 +310,10 @@ static inline struct dp_network_run *network_run_of(const dp_run *r)
 int dp_network_regularized_init(dp_run *r);
 int dp_network_regularized_advance(dp_run *r);
 void dp_network_regularized_free(struct dp_network_regularized *g);
+
+/* The grounded chain (network_grounded_chain.c): how many of its steps so far the general solve decided
+ * (a pass that did not settle, a NaN, a pivot not positive); -1 when the run has no chain workspace (the
+ * general advance steps it). For tests. */
+long long network_chain_handed(const struct dp_network_run *nr);
 
 #endif
