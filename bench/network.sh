@@ -127,10 +127,11 @@ echo "  a refactorization where the assignment's structure changed)"
 echo
 
 # The same chains with located events: every phase change splits its step at the instant it happens, found
-# by a bracketed root of the held assignment's margins (each evaluation one held solve of the whole band,
-# unless the same length was solved with the same inputs), so the cost per step is about (1 + assignment
-# changes per step x 10-15 held solves) x O(n): it grows with the number of changes per step, which grows with
-# n in this window (docs/benchmarks.md, "Networks").
+# by a bracketed root of the held assignment's margins (the root search's held solves over the stretches
+# between stuck blocks that its candidates need; the end margins, the state at the event and the rest of the
+# step over the whole band), so the cost per step is about (1 + assignment changes per step x a few whole
+# solves) x O(n): it grows with the number of changes per step, which grows with n in this window
+# (docs/benchmarks.md, "Networks").
 echo "the same chains with located events (\"events\":\"locate\"), 500 steps"
 printf '  %-6s %12s %12s %10s\n' blocks 'ns/step' 'ns/block' 'ev/step'
 for n in 100 1000 10000; do

@@ -798,17 +798,9 @@ static void put(bytes *b, const void *src, size_t n)
     b->n += n;
 }
 
-/* Runs the document through its own run type (which must be the lean one) or, `general`, through the
+/* Runs the document through its own run type (which must be the lean one, `lean`) or, `general`, through the
  * general network type after their common init, in blocks of `cap` records; every record's numbers and the
  * summary as bytes. */
-static void run_type_bytes(const char *json, const dp_run_type *lean, int general, size_t cap, bytes *out);
-
-static void run_bytes(const char *json, int general, size_t cap, bytes *out)
-{
-    run_type_bytes(json, &dp_run_network_contact_lean, general, cap, out);
-}
-
-/* run_bytes for the lean type `lean`. */
 static void run_type_bytes(const char *json, const dp_run_type *lean, int general, size_t cap, bytes *out)
 {
     dp_spec spec;
@@ -866,6 +858,25 @@ static void run_type_bytes(const char *json, const dp_run_type *lean, int genera
     dp_run_free(run);
 }
 
+/* Runs doc through the lean type `lean` and through the general step (run_type_bytes) and asserts the same
+ * bytes; the general run's figures into *gen_out (its bytes freed), the lean run's hand-overs returned. */
+static long long lean_is_general(const char *doc, const dp_run_type *lean_type, int k, bytes *gen_out)
+{
+    bytes lean = { 0 }, gen = { 0 };
+    run_type_bytes(doc, lean_type, 0, 64, &lean);
+    run_type_bytes(doc, lean_type, 1, 64, &gen);
+    if (lean.n != gen.n || memcmp(lean.p, gen.p, lean.n) != 0)
+        fprintf(stderr, "case %d differs: %s\n", k, doc);
+    assert_int_equal(lean.n, gen.n);
+    assert_memory_equal(lean.p, gen.p, lean.n);
+    long long handed = lean.handed;
+    free(lean.p), free(gen.p);
+    gen.p = NULL;
+    if (gen_out)
+        *gen_out = gen;
+    return handed;
+}
+
 /* The lean step is the general step for one node: every record of 200 random documents the same bytes. */
 static void test_lean_ball_bit_for_bit(void **state)
 {
@@ -874,15 +885,9 @@ static void test_lean_ball_bit_for_bit(void **state)
     unsigned long long impacts = 0, bouncing = 0;
     for (int k = 0; k < 200; k++) {
         one_node_contact_doc(doc, sizeof doc);
-        bytes lean = { 0 }, gen = { 0 };
-        run_bytes(doc, 0, 64, &lean);
-        run_bytes(doc, 1, 64, &gen);
-        if (lean.n != gen.n || memcmp(lean.p, gen.p, lean.n) != 0)
-            fprintf(stderr, "case %d differs: %s\n", k, doc);
-        assert_int_equal(lean.n, gen.n);
-        assert_memory_equal(lean.p, gen.p, lean.n);
+        bytes gen;
+        lean_is_general(doc, &dp_run_network_contact_lean, k, &gen);
         impacts += gen.impacts, bouncing += gen.impacts > 0;
-        free(lean.p), free(gen.p);
     }
     /* the documents do bounce: the comparison covers impacts, not only flights */
     assert_true(impacts > 200 && bouncing > 80);
@@ -898,6 +903,59 @@ static void add(char *d, size_t cap, int *len, const char *fmt, ...)
     *len += vsnprintf(d + *len, cap - (size_t)*len, fmt, ap);
     va_end(ap);
     assert_true((size_t)*len < cap);
+}
+
+/* A rigid contact of a random chain document between the ground and node `node` ([node, ground] when
+ * `flip`: a stop from above at -d), restitution e. */
+static void chain_doc_contact(char *d, size_t cap, int *len, int *first, size_t node, int flip, double dist, double e)
+{
+    add(d, cap, len, "%s{\"between\":", *first ? "" : ",");
+    add(d, cap, len, flip ? "[%zu,\"ground\"]" : "[\"ground\",%zu]", node);
+    add(d, cap, len, ",\"contact\":{\"distance\":%.17g,\"restitution\":%g}}", flip ? -dist : dist, e);
+    *first = 0;
+}
+
+/* A neighbours' spring kc (now and then none: a split W), with a linear damper with probability p_damper. */
+static void chain_doc_neighbours(char *d, size_t cap, int *len, int *first, size_t a, size_t b, double kc,
+                                 double p_damper)
+{
+    add(d, cap, len, "%s{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":%.6g}", *first ? "" : ",", a, b,
+        rnd() < 0.1 ? 0 : kc);
+    if (rnd() < p_damper)
+        add(d, cap, len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g}", rnd());
+    add(d, cap, len, "}"), *first = 0;
+}
+
+/* The loads: a constant one on every node (span times a random number plus offset), a harmonic one of
+ * amplitude up to amp on some. */
+static void chain_doc_loads(char *d, size_t cap, int *len, size_t n, const size_t *lab, double span, double offset,
+                            double amp)
+{
+    add(d, cap, len, "],\"forcing\":[");
+    for (size_t i = 0; i < n; i++) {
+        add(d, cap, len, "%s{\"node\":%zu,\"kind\":\"constant\",\"value\":%.6g}", i ? "," : "", lab[i],
+            span * rnd() + offset);
+        if (rnd() < 0.3)
+            add(d, cap, len, ",{\"node\":%zu,\"kind\":\"harmonic\",\"amplitude\":%.6g,\"omega\":%.6g}", lab[i],
+                amp * rnd(), 20 * rnd());
+    }
+}
+
+/* The end of a random chain document: its start (x, v by label), "events" "none" with step dt up to t_end,
+ * a random theta, every step written or every few (the lean step forms the forces only for those it writes). */
+static void chain_doc_end(char *d, size_t cap, int *len, size_t n, const double *xs, const double *vs, double dt,
+                          double t_end)
+{
+    add(d, cap, len, "]},\"initial\":{\"x\":[");
+    for (size_t i = 0; i < n; i++)
+        add(d, cap, len, "%s%.17g", i ? "," : "", xs[i]);
+    add(d, cap, len, "],\"v\":[");
+    for (size_t i = 0; i < n; i++)
+        add(d, cap, len, "%s%.17g", i ? "," : "", vs[i]);
+    double theta = rnd() < 0.4 ? 0.5 : rnd() < 0.5 ? 1 : 0.5 + 0.5 * rnd();
+    int every = rnd() < 0.5 ? 1 : 2 + (int)(9 * rnd());
+    add(d, cap, len, "]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":%.6g,\"theta\":%g,\"events\":\"none\"},"
+        "\"output\":{\"every\":%d}}", dt, t_end, theta, every);
 }
 
 /* A random stop chain: n = 2..40 blocks (their labels maybe shuffled, which the run's ordering undoes), maybe
@@ -935,46 +993,22 @@ static void contact_chain_doc(char *d, size_t cap)
                     rnd() < 0.3 ? ",\"belt_velocity\":0.5" : "");
             add(d, cap, &len, "}"), first = 0;
         }
-        if (i + 1 < n && rnd() < 0.9) {
-            add(d, cap, &len, "%s{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":%.6g}", first ? "" : ",",
-                lab[i], lab[i + 1], rnd() < 0.1 ? 0 : kc);
-            if (rnd() < 0.3)
-                add(d, cap, &len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g}", rnd());
-            add(d, cap, &len, "}"), first = 0;
-        }
+        if (i + 1 < n && rnd() < 0.9)
+            chain_doc_neighbours(d, cap, &len, &first, lab[i], lab[i + 1], kc, 0.3);
     }
     for (size_t i = 0; i < n; i++) {
         if (i > 0 && rnd() < 0.2)
             continue;
         int flip = rnd() < 0.3;
-        add(d, cap, &len, "%s{\"between\":", first ? "" : ",");
-        add(d, cap, &len, flip ? "[%zu,\"ground\"]" : "[\"ground\",%zu]", lab[i]);
-        add(d, cap, &len, ",\"contact\":{\"distance\":%.17g,\"restitution\":%g}}", flip ? -dist[i] : dist[i],
-            rnd() < 0.3 ? (double)(int)(2 * rnd()) : rnd());
-        first = 0;
+        chain_doc_contact(d, cap, &len, &first, lab[i], flip, dist[i], rnd() < 0.3 ? (double)(int)(2 * rnd()) : rnd());
         if (flip)   /* [i, ground] holds -x_i >= -d_i: a stop from above; starts on its side of it */
             x0[i] = 2 * dist[i] - x0[i];
     }
-    add(d, cap, &len, "],\"forcing\":[");
-    for (size_t i = 0; i < n; i++) {
-        add(d, cap, &len, "%s{\"node\":%zu,\"kind\":\"constant\",\"value\":%.6g}", i ? "," : "", lab[i], 20 * rnd() - 14);
-        if (rnd() < 0.3)
-            add(d, cap, &len, ",{\"node\":%zu,\"kind\":\"harmonic\",\"amplitude\":%.6g,\"omega\":%.6g}", lab[i],
-                10 * rnd(), 20 * rnd());
-    }
+    chain_doc_loads(d, cap, &len, n, lab, 20, -14, 10);
     double xs[40], vs[40];
     for (size_t i = 0; i < n; i++)
         xs[lab[i]] = x0[i], vs[lab[i]] = rnd() < 0.3 ? 0 : 4 * rnd() - 2;
-    add(d, cap, &len, "]},\"initial\":{\"x\":[");
-    for (size_t i = 0; i < n; i++)
-        add(d, cap, &len, "%s%.17g", i ? "," : "", xs[i]);
-    add(d, cap, &len, "],\"v\":[");
-    for (size_t i = 0; i < n; i++)
-        add(d, cap, &len, "%s%.6g", i ? "," : "", vs[i]);
-    /* every step written, or every few (the lean step forms the forces only for the steps it writes) */
-    add(d, cap, &len, "]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":%.6g,\"theta\":%g,\"events\":\"none\"},"
-        "\"output\":{\"every\":%d}}", dts[(int)(3 * rnd())], 0.5 + 1.5 * rnd(),
-        rnd() < 0.4 ? 0.5 : rnd() < 0.5 ? 1 : 0.5 + 0.5 * rnd(), rnd() < 0.5 ? 1 : 2 + (int)(9 * rnd()));
+    chain_doc_end(d, cap, &len, n, xs, vs, dts[(int)(3 * rnd())], 0.5 + 1.5 * rnd());
 }
 
 /* The chain's step is the general step: every record of 120 random stop chains the same bytes. */
@@ -985,15 +1019,9 @@ static void test_lean_chain_bit_for_bit(void **state)
     unsigned long long impacts = 0, bouncing = 0;
     for (int k = 0; k < 120; k++) {
         contact_chain_doc(doc, sizeof doc);
-        bytes lean = { 0 }, gen = { 0 };
-        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
-        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
-        if (lean.n != gen.n || memcmp(lean.p, gen.p, lean.n) != 0)
-            fprintf(stderr, "case %d differs: %s\n", k, doc);
-        assert_int_equal(lean.n, gen.n);
-        assert_memory_equal(lean.p, gen.p, lean.n);
+        bytes gen;
+        lean_is_general(doc, &dp_run_network_grounded_chain, k, &gen);
         impacts += gen.impacts, bouncing += gen.impacts > 0;
-        free(lean.p), free(gen.p);
     }
     /* the chains do hit their stops: the comparison covers impacts and resting blocks, not only flights */
     assert_true(impacts > 1000 && bouncing > 80);
@@ -1011,12 +1039,7 @@ static void test_lean_chain_bit_for_bit(void **state)
                  "{\"x\":[%s,%s,0],\"v\":[0,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,\"t_end\":0.05,"
                  "\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":3}}",
                  hostile[3 * h], hostile[3 * h + 1], hostile[3 * h + 2], hostile[3 * h + 1], hostile[3 * h + 2]);
-        bytes lean = { 0 }, gen = { 0 };
-        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
-        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
-        assert_int_equal(lean.n, gen.n);
-        assert_memory_equal(lean.p, gen.p, lean.n);
-        free(lean.p), free(gen.p);
+        lean_is_general(doc, &dp_run_network_grounded_chain, (int)h, NULL);
     }
 }
 
@@ -1068,12 +1091,9 @@ static void friction_chain_doc(char *d, size_t cap, int mixed)
         } else if (law == 2) {
             double dist = 2 * rnd() - 1;
             x0[i] = rnd() < 0.3 ? dist : dist + 2 * rnd();
-            add(d, cap, &len, "%s{\"between\":", first ? "" : ",");
-            add(d, cap, &len, flip ? "[%zu,\"ground\"]" : "[\"ground\",%zu]", lab[i]);
-            add(d, cap, &len, ",\"contact\":{\"distance\":%.17g,\"restitution\":%g}}", flip ? -dist : dist, rnd());
+            chain_doc_contact(d, cap, &len, &first, lab[i], flip, dist, rnd());
             if (flip)   /* [i, ground] holds -x_i >= -d_i: a stop from above; starts on its side of it */
                 x0[i] = 2 * dist - x0[i];
-            first = 0;
         }
         if ((kg > 0 && !both) || cg > 0) {
             add(d, cap, &len, "%s{\"between\":[\"ground\",%zu]", first ? "" : ",", lab[i]);
@@ -1083,33 +1103,14 @@ static void friction_chain_doc(char *d, size_t cap, int mixed)
                 add(d, cap, &len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g}", cg);
             add(d, cap, &len, "}"), first = 0;
         }
-        if (i + 1 < n && rnd() < 0.9) {
-            add(d, cap, &len, "%s{\"between\":[%zu,%zu],\"spring\":{\"law\":\"linear\",\"k\":%.6g}", first ? "" : ",",
-                lab[i], lab[i + 1], rnd() < 0.1 ? 0 : kc);
-            if (rnd() < 0.2)
-                add(d, cap, &len, ",\"damper\":{\"law\":\"linear\",\"c\":%.6g}", rnd());
-            add(d, cap, &len, "}"), first = 0;
-        }
+        if (i + 1 < n && rnd() < 0.9)
+            chain_doc_neighbours(d, cap, &len, &first, lab[i], lab[i + 1], kc, 0.2);
     }
-    add(d, cap, &len, "],\"forcing\":[");
-    for (size_t i = 0; i < n; i++) {
-        add(d, cap, &len, "%s{\"node\":%zu,\"kind\":\"constant\",\"value\":%.6g}", i ? "," : "", lab[i], 4 * rnd() - 2);
-        if (rnd() < 0.3)
-            add(d, cap, &len, ",{\"node\":%zu,\"kind\":\"harmonic\",\"amplitude\":%.6g,\"omega\":%.6g}", lab[i],
-                3 * rnd(), 20 * rnd());
-    }
+    chain_doc_loads(d, cap, &len, n, lab, 4, -2, 3);
     double xs[40], vs[40];
     for (size_t i = 0; i < n; i++)
         xs[lab[i]] = x0[i], vs[lab[i]] = v0[i];
-    add(d, cap, &len, "]},\"initial\":{\"x\":[");
-    for (size_t i = 0; i < n; i++)
-        add(d, cap, &len, "%s%.17g", i ? "," : "", xs[i]);
-    add(d, cap, &len, "],\"v\":[");
-    for (size_t i = 0; i < n; i++)
-        add(d, cap, &len, "%s%.17g", i ? "," : "", vs[i]);
-    add(d, cap, &len, "]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":%g,\"t_end\":%.6g,\"theta\":%g,\"events\":\"none\"},"
-        "\"output\":{\"every\":%d}}", dts[(int)(3 * rnd())], 0.5 + 2.5 * rnd(),
-        rnd() < 0.4 ? 0.5 : rnd() < 0.5 ? 1 : 0.5 + 0.5 * rnd(), rnd() < 0.5 ? 1 : 2 + (int)(9 * rnd()));
+    chain_doc_end(d, cap, &len, n, xs, vs, dts[(int)(3 * rnd())], 0.5 + 2.5 * rnd());
 }
 
 /* The friction chain's step is the general step: every record (rows, stick and slip events, impacts) and
@@ -1123,17 +1124,11 @@ static void test_lean_friction_chain_bit_for_bit(void **state)
     double stuck = 0;
     for (int k = 0; k < 280; k++) {
         friction_chain_doc(doc, sizeof doc, k >= 160);
-        bytes lean = { 0 }, gen = { 0 };
-        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
-        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
-        if (lean.n != gen.n || memcmp(lean.p, gen.p, lean.n) != 0)
-            fprintf(stderr, "case %d differs: %s\n", k, doc);
-        assert_int_equal(lean.n, gen.n);
-        assert_memory_equal(lean.p, gen.p, lean.n);
-        assert_true(lean.handed >= 0);   /* a chain workspace: the lean step ran */
-        events += gen.events, impacts += gen.impacts, handed += (unsigned long long)lean.handed, stuck += gen.stick_time;
+        bytes gen;
+        long long lean_handed = lean_is_general(doc, &dp_run_network_grounded_chain, k, &gen);
+        assert_true(lean_handed >= 0);   /* a chain workspace: the lean step ran */
+        events += gen.events, impacts += gen.impacts, handed += (unsigned long long)lean_handed, stuck += gen.stick_time;
         steps += gen.steps;
-        free(lean.p), free(gen.p);
     }
     fprintf(stderr, "friction chains: %llu stick/slip events, %llu impacts, %llu of %llu steps handed over, "
             "%.4g s stuck\n", events, impacts, handed, steps, stuck);
@@ -1155,12 +1150,7 @@ static void test_lean_friction_chain_bit_for_bit(void **state)
                  "\"initial\":{\"x\":[%s,0,0],\"v\":[0.5,0,0]},\"solver\":{\"kind\":\"stick-slip\",\"dt\":0.01,"
                  "\"t_end\":0.05,\"theta\":0.5,\"events\":\"none\"},\"output\":{\"every\":3}}",
                  w[1], w[0], w[2], w[0], w[3]);
-        bytes lean = { 0 }, gen = { 0 };
-        run_type_bytes(doc, &dp_run_network_grounded_chain, 0, 64, &lean);
-        run_type_bytes(doc, &dp_run_network_grounded_chain, 1, 64, &gen);
-        assert_int_equal(lean.n, gen.n);
-        assert_memory_equal(lean.p, gen.p, lean.n);
-        free(lean.p), free(gen.p);
+        lean_is_general(doc, &dp_run_network_grounded_chain, (int)h, NULL);
     }
 }
 

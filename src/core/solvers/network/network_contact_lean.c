@@ -127,17 +127,6 @@ static void lean_report(const dp_network_step_element *e, const lean_state *s, d
     }
 }
 
-/* network_run_step_poll, its common case written here: the work counted, the run's hook asked when due. */
-static int lean_poll(dp_run *r, struct dp_network_run *nr, unsigned long long units)
-{
-    nr->work += units;
-    if (network_run_cancelled(r))
-        return 1;
-    if (r->stop == NULL || nr->work < r->poll_at)
-        return 0;
-    return network_run_step_poll(r, 0);
-}
-
 /* dp_network_step_solve for the one element: v1 and the force; DP_ECANCEL when the poll said stop, 1 when
  * the general solve must decide. */
 static int lean_step_solve(dp_run *r, double h, double rhs)
@@ -156,7 +145,7 @@ static int lean_step_solve(dp_run *r, double h, double rhs)
         /* the solve's work as polled_stop counts it: W's band and the element, and R's factor at every free
          * solve (the general workspace counts it only when it factors anew, so the stop hook may be asked a
          * few steps apart from there; what is computed and recorded is the same) */
-        if (lean_poll(r, nr, 2 + !s.fixed))
+        if (network_run_poll_lean(r, nr, 2 + !s.fixed))
             return DP_ECANCEL;
         int changed = lean_update(e, &s, h, rhs_eff, W, vs);
         if (changed < 0)

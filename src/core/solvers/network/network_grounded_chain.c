@@ -363,17 +363,6 @@ static int chain_update(struct network_chain *ch, const dp_network_step_element 
     return 0;
 }
 
-/* network_run_step_poll, its common case written here: the work counted, the run's hook asked when due. */
-static int chain_poll(dp_run *r, struct dp_network_run *nr, unsigned long long units)
-{
-    nr->work += units;
-    if (network_run_cancelled(r))
-        return 1;
-    if (r->stop == NULL || nr->work < r->poll_at)
-        return 0;
-    return network_run_step_poll(r, 0);
-}
-
 /* The first solve of a step: the whole system, R's factor kept where the hold is the one it was made for. */
 static int chain_first_solve(struct network_chain *ch, const double *W, size_t p, const double *rhs, double h,
                              double *vs)
@@ -424,7 +413,7 @@ static int chain_step_solve(dp_run *r, struct network_chain *ch, double h)
             return 1;
         /* the solve's work as polled_stop counts it, and the factor's at every solve (the general workspace
          * counts it only when it factors anew: the stop hook may be asked a few steps apart from there) */
-        if (chain_poll(r, nr, n * (p + 1) + ch->nlaw + ch->nfree * (p + 1) * (p + 1)))
+        if (network_run_poll_lean(r, nr, n * (p + 1) + ch->nlaw + ch->nfree * (p + 1) * (p + 1)))
             return DP_ECANCEL;
         ch->ndirty = 0;
         for (size_t k = 0; k < m; k++)

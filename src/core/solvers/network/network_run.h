@@ -187,6 +187,18 @@ static inline int network_run_cancelled(const dp_run *r)
     return r->status == DP_ECANCEL;
 }
 
+/* network_run_step_poll for a lean step (network_contact_lean.c, network_grounded_chain.c), its common case
+ * inline: the work counted, the run's hook asked only when due. */
+static inline int network_run_poll_lean(dp_run *r, struct dp_network_run *nr, unsigned long long units)
+{
+    nr->work += units;
+    if (network_run_cancelled(r))
+        return 1;
+    if (r->stop == NULL || nr->work < r->poll_at)
+        return 0;
+    return network_run_step_poll(r, 0);
+}
+
 /* Before each step of an advance (the general and the lean contact run types): room in the caller's block,
  * the run's queue and the row slots, and the run not finished; then the step's work counted (at least a unit
  * per node and element, its solves' band entries polled inside it: 10^4 blocks poll every step or so, one
