@@ -87,6 +87,21 @@ static const struct base { const char *name, *doc; } bases[] = {
       "1}},{'between':[0,1],'spring':{'law':'rope','k':1,'length':1.5}}],'forcing':[{'node':1,'kind':'harmo"
       "nic','amplitude':2,'omega':1.5}]},'initial':{'x':[0.2,0.5],'v':[1,0]},'solver':{'dt':0.1,'t_end':2,'"
       "theta':0.5}}" },
+    { "net-grounded", /* network_grounded_chain.c: friction and a contact to the ground, "events" "none" */
+      "{'model':{'masses':[1,2,1],'elements':[{'between':['ground',0],'spring':{'law':'linear','k':1},'dampe"
+      "r':{'law':'coulomb','phi0':0.4,'belt_velocity':0.2}},{'between':[0,1],'spring':{'law':'linear','k':3}},{"
+      "'between':[1,2],'spring':{'law':'linear','k':2},'damper':{'law':'linear','c':0.1}},{'between':['ground"
+      "',2],'damper':{'law':'coulomb','phi0':0.3}},{'between':['ground',1],'contact':{'distance':-0.5,'restitu"
+      "tion':0.5}}],'forcing':[{'node':1,'kind':'constant','value':-2}]},'initial':{'x':[0.5,0,-0.2],'v':[0,0"
+      ".5,0]},'solver':{'dt':0.05,'t_end':2,'theta':0.5,'events':'none'},'output':{'every':3}}" },
+    { "net-blocks",   /* network_step.c's held solves over blocks: a located chain whose blocks stick */
+      "{'model':{'masses':[1,1,1,1],'elements':[{'between':['ground',0],'spring':{'law':'linear','k':1},'dam"
+      "per':{'law':'coulomb','phi0':1,'belt_velocity':-0.1}},{'between':['ground',1],'spring':{'law':'linear"
+      "','k':1},'damper':{'law':'coulomb','phi0':1.4,'belt_velocity':-0.1}},{'between':['ground',2],'damper':"
+      "{'law':'coulomb','phi0':0.6,'belt_velocity':-0.1}},{'between':['ground',3],'damper':{'law':'coulomb',"
+      "'phi0':1.2}},{'between':[0,1],'spring':{'law':'linear','k':10}},{'between':[1,2],'spring':{'law':'line"
+      "ar','k':10}},{'between':[2,3],'spring':{'law':'linear','k':10}}]},'initial':{'x':[0.5,-0.3,0.1,0.4],"
+      "'v':[0,0,0,0]},'solver':{'dt':0.05,'t_end':2,'theta':0.5}}" },
     { "piston",
       "{'model':{'kind':'piston-hinge','m1':1,'m2':1,'J_C':0.1,'r':0.5,'alpha':0.3,'f1':0.2,'f2':0.02,'g':9"
       ".81},'initial':{'x':[0,0.8],'v':[0,0]},'solver':{'kind':'right-hand','t_end':1,'dt':0.25,'rtol':1e-0"
