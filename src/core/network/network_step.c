@@ -773,19 +773,6 @@ static int solve_assignment(dp_network_step *w)
     return DP_OK;
 }
 
-/* Row i of the symmetric band product A x, its terms summed in dp_band_symv's order (the diagonal, the rows
- * above, then its own row), so that it equals that product's entry bit for bit. */
-static double band_row(const double *A, size_t n, size_t p, const double *x, size_t i)
-{
-    size_t p1 = p + 1;
-    double y = A[i * p1] * x[i];
-    for (size_t r = i > p ? i - p : 0; r < i; r++)
-        y += A[r * p1 + (i - r)] * x[r];
-    for (size_t d = 1; d <= p && i + d < n; d++)
-        y += A[i * p1 + d] * x[i + d];
-    return y;
-}
-
 /* The fixed elements' multipliers from the residual h sum_F b_e lambda_e = rhs_eff - H v, peeled off the
  * forest leaf by leaf (each leaf's residual belongs to its one remaining edge). */
 static void multipliers(dp_network_step *w, double h)
@@ -806,7 +793,7 @@ static void multipliers(dp_network_step *w, double h)
     for (size_t i = 0; i < n; i++) {   /* residuals on the forest's nodes only: no other is read */
         if (w->deg[i] == 0)
             continue;
-        double Hv = band_row(w->Hm, n, w->p, w->vs, i);
+        double Hv = dp_band_row(w->Hm + i * (w->p + 1), w->p, w->vs, i, n);
         w->res_err[i] = 8 * DBL_EPSILON * (fabs(w->rhs_eff[i]) + fabs(Hv));   /* eps times its two terms */
         w->res[i] = w->rhs_eff[i] - Hv;
         if (w->deg[i] == 1)
@@ -1713,8 +1700,9 @@ void dp_network_step_slip(dp_network_step *w, size_t i, double h, const double *
  * zero coupling are zero, the pivots the same, and the sweeps differ at most by the sign of a zero (x - 0 y),
  * which the potential's +0 or the forest's c then removes; the multipliers and margins follow. */
 
-/* The elements of each node, in the elements' order (effective_rhs adds their terms in that order). */
-static int incidence(dp_network_step *w)
+/* The blocks' workspace, made at the first call: the elements of each node in the elements' order
+ * (effective_rhs adds their terms in that order), and the blocks' marks, velocities and reduced system. */
+static int blocks_workspace(dp_network_step *w)
 {
     if (w->inc_start != NULL)
         return 1;
@@ -1783,7 +1771,7 @@ static int block_cmp(const void *a, const void *b)
 size_t dp_network_step_blocks(dp_network_step *w, const unsigned char *cand, const unsigned char *couple,
                               size_t *blk, size_t cap)
 {
-    if (w->p != 1 || w->gamma != NULL || !w->forest_ok || couple == NULL || !incidence(w))
+    if (w->p != 1 || w->gamma != NULL || !w->forest_ok || couple == NULL || !blocks_workspace(w))
         return 0;
     size_t nb = 0;
     w->blk_gen++;
@@ -1826,18 +1814,6 @@ size_t dp_network_step_blocks(dp_network_step *w, const unsigned char *cand, con
     return m;
 }
 
-/* Row i of W c or W v (band_row) from the block's rows: Wl holds rows lo-1 .. hi of W (two entries each). */
-static double block_row(const double *Wl, size_t lo, size_t n, const double *x, size_t i)
-{
-    const double *row = Wl + 2 * (i + 1 - lo);
-    double y = row[0] * x[i];
-    if (i > 0)
-        y += row[-1] * x[i - 1];
-    if (i + 1 < n)
-        y += row[1] * x[i + 1];
-    return y;
-}
-
 /* One block [lo, hi]: the effective right side, the reduced system of its free nodes (consecutive unknowns)
  * factored and solved, every node's velocity into vloc. 0 when it is not a chain's block (or not positive). */
 static int block_solve(dp_network_step *w, double h, size_t lo, size_t hi, const double *Wl, const double *rl)
@@ -1871,7 +1847,7 @@ static int block_solve(dp_network_step *w, double h, size_t lo, size_t hi, const
         R[0] += Wl[2 * (i + 1 - lo)];
         if (i + 1 <= hi && w->kidx[i + 1] >= 0 && a != 0)
             R[1] += a;
-        y += w->loc_rhs[i] - block_row(Wl, lo, n, w->c, i);
+        y += w->loc_rhs[i] - dp_band_row(Wl + 2 * (i + 1 - lo), 1, w->c, i, n);
         w->loc_y[m++] = y;
     }
     size_t q = m > 1;   /* one unknown: a 1 x 1 band, as the whole factor takes a lone one */
@@ -1900,7 +1876,7 @@ int dp_network_step_solve_blocks(dp_network_step *w, double h, const size_t *blk
             if (k < 0 || !cand[k])
                 continue;
             const dp_network_step_element *e = &w->el[k];
-            double Hv = block_row(Wl + 2 * off + 2 * b, lo, w->n, w->vloc, i), r = w->loc_rhs[i];
+            double Hv = dp_band_row(Wl + 2 * (off + b) + 2 * (i + 1 - lo), 1, w->vloc, i, w->n), r = w->loc_rhs[i];
             double sign_i = (long)i == e->b ? 1 : -1;
             touch_values(w, (size_t)k);
             w->es[k].lam = (r - Hv) / (h * sign_i);

@@ -88,7 +88,7 @@ static double ep_margin(const struct dp_network_run *nr, size_t k, double s)
 static int held_margin_blocks(held_ctx *c, double s, double *m)
 {
     struct dp_network_run *nr = c->r->state;
-    if (nr->couple == NULL || nr->nc || nr->has_ep || nr->has_smooth || nr->jump || nr->relaxed || nr->belt_viscous)
+    if (nr->couple == NULL)   /* not a chain whose held solves the blocks hold (network_run.c) */
         return 0;
     size_t nb = dp_network_step_blocks(nr->ws, c->cand, nr->couple, nr->blk, nr->blk_cap / 2);
     if (nb == 0)
@@ -100,15 +100,11 @@ static int held_margin_blocks(held_ctx *c, double s, double *m)
     }
     int done = dp_network_step_solve_blocks(nr->ws, s, nr->blk, nb, nr->blk_W, nr->blk_rhs, nr->u, c->cand,
                                             nr->margin);
-    if (done == 0)
-        return 0;
-    *m = INFINITY;
+    *m = done < 0 ? NAN : INFINITY;
     for (size_t k = 0; done > 0 && k < nr->nact; k++)
         if (c->cand[k])
             *m = fmin(*m, nr->margin[k]);
-    if (done < 0)
-        *m = NAN;
-    return 1;
+    return done != 0;
 }
 
 /* The smallest margin among the candidates after a step of length s with the sub-step's starting

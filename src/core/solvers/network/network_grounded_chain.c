@@ -67,7 +67,6 @@ typedef struct chain_friction {
 
 struct network_chain {
     size_t n, nlaw, nlin, nfric;
-    double kmax, cmax, vbmax;   /* over lin: the largest |k|, |c| and |v_b| (chain_finite_bounded) */
     chain_law *law;     /* per entry of the step's problem, in node order (one law a node) */
     chain_element *lin; /* the elements with a spring or a damper of nonzero coefficient, or a law */
     chain_friction *fric;
@@ -291,17 +290,6 @@ static void chain_solve_range(struct network_chain *ch, size_t lo, size_t hi, do
     }
 }
 
-/* Row i of W v in dp_band_symv's order (network_step.c's band_row). */
-static double chain_row(const double *W, size_t n, size_t p, const double *v, size_t i)
-{
-    double y = W[i * (p + 1)] * v[i];
-    if (p == 1 && i > 0)
-        y += W[2 * (i - 1) + 1] * v[i - 1];
-    if (p == 1 && i + 1 < n)
-        y += W[2 * i + 1] * v[i + 1];
-    return y;
-}
-
 /* report() for law k as its state stands: z at the step's end (the vertex's v_b for a fixed law, at rest),
  * the force (the graphs' part lam0 + 0 (z - zref), or the multiplier, plus the relaxation's 0 + 0 (z - z_k)),
  * all of it the damper's. */
@@ -343,7 +331,7 @@ static int chain_update(struct network_chain *ch, const dp_network_step_element 
             }
             continue;
         }
-        double Hv = chain_row(W, ch->n, p, vs, i);
+        double Hv = dp_band_row(W + i * (p + 1), p, vs, i, ch->n);
         double res_err = 8 * DBL_EPSILON * (fabs(ch->rhs_eff[i]) + fabs(Hv)), res = ch->rhs_eff[i] - Hv;
         double sign = k->up ? 1 : -1, lam = res / (h * sign);
         k->lam = lam, k->lam_err = res_err / h;
@@ -485,14 +473,13 @@ static int chain_finite(const struct dp_network_run *nr, int forces)
 
 /* network_run_state_finite for a step that writes no row, without forming the forces: the positions and
  * velocities checked as it checks them (`state`, their largest magnitudes xm, vm), and the forces shown
- * finite by a bound (|k u| <= k_max 2 max|x|, |c (z - v_b)| <= c_max (2 max|v| + max|v_b|), each below 1e300
- * with room for the rounding of u and z; a Coulomb element's F_d adds its force, finite: `laws`). -1 when
- * the bound does not show it: the forces are formed and checked. */
-static int chain_finite_bounded(const struct network_chain *ch, int state, double xm, double vm, int laws)
+ * finite by network_run_forces_bounded (a Coulomb element's F_d adds its force, finite: `laws`). -1 when the
+ * bound does not show it: the forces are formed and checked. */
+static int chain_finite_bounded(const struct dp_network_run *nr, int state, double xm, double vm, int laws)
 {
     if (!state)
         return 0;
-    if (!(ch->kmax * (2 * xm) < 1e300 && ch->cmax * (2 * vm + ch->vbmax) < 1e300))
+    if (!network_run_forces_bounded(nr, xm, vm))
         return -1;
     return laws;
 }
@@ -614,7 +601,7 @@ static int chain_step(dp_run *r, struct network_chain *ch, double t, double h, i
     int state = chain_take_velocity(nr, h, &xm, &vm);
     network_run_contacts_mj_events(r, t, h);
     int laws = chain_phases(r, ch, t, h);
-    *finite = network_run_writes_row(r) ? -1 : chain_finite_bounded(ch, state, xm, vm, laws);
+    *finite = network_run_writes_row(r) ? -1 : chain_finite_bounded(nr, state, xm, vm, laws);
     if (*finite < 0)
         *finite = chain_finite(nr, chain_forces(nr, ch));
     return DP_OK;
@@ -720,8 +707,6 @@ static void chain_elements(struct dp_network_run *nr, struct network_chain *ch)
         chain_element *l = &ch->lin[ch->nlin++];
         *l = (chain_element){ .i = i, .a = e->a, .b = e->b, .act = k, .k = nr->k[i], .c = nr->c[i],
                               .vb = e->has_damper ? e->damper.belt_velocity : 0 };
-        ch->kmax = fmax(ch->kmax, fabs(l->k)), ch->cmax = fmax(ch->cmax, fabs(l->c));
-        ch->vbmax = fmax(ch->vbmax, fabs(l->vb));
         if (k >= 0 && nr->can_stick[i])
             ch->fric[ch->nfric++] = (chain_friction){ .i = i, .act = (size_t)k };
     }

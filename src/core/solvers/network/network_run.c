@@ -498,9 +498,13 @@ static int check_step_magnitudes(dp_run *r)
 }
 
 /* A located run on a chain: which neighbours M, C or K couple, and room for a held solve's blocks (at most
- * three a candidate, merged; their rows of W and of the right side: network_events.c). */
+ * three a candidate, merged; their rows of W and of the right side: network_events.c). Not for a network
+ * whose held solves read more than the blocks hold (contacts' margins, theta-weighted springs, relaxation, a
+ * viscous damper's belt in the right side): nr->couple stays NULL, and they are solved whole. */
 static int chain_blocks_setup(struct dp_network_run *nr)
 {
+    if (nr->nc || nr->has_ep || nr->has_smooth || nr->jump || nr->relaxed || nr->belt_viscous)
+        return DP_OK;
     size_t n = nr->n, na = nr->nact ? nr->nact : 1;
     nr->couple = calloc(n, 1);
     nr->blk_cap = 6 * na + 2;

@@ -52,7 +52,7 @@ struct dp_network_run {
     int Mv_valid;
     double *vb;                 /* nel: each element's belt velocity (0 without a damper), beside the element
                                  * structs whose damper it would otherwise read a cache line further on */
-    double kmax, cmax, vbmax;   /* the largest |k|, |c| and |v_b| over the elements (network_run_element_phases) */
+    double kmax, cmax, vbmax;   /* the largest |k|, |c| and |v_b| over the elements (network_run_forces_bounded) */
     int belt_viscous;
     /* located runs on a chain (half-bandwidth one): couple[i], nodes i and i+1 coupled in M, C or K; the
      * blocks of a held solve over candidates (pairs), their rows of W and of the right side (network_events.c) */
@@ -221,6 +221,15 @@ static inline int network_run_step_due(dp_run *r, int *status)
         return 0;
     }
     return 1;
+}
+
+/* Whether every element's linear forces k u and c (z - v_b) are finite by a bound from the state's largest
+ * |x| and |v| (xm, vm; both below 1e300): |k u| <= k_max 2 xm, |c (z - v_b)| <= c_max (2 vm + max|v_b|), each
+ * below 1e300, with room for the rounding of u and z. A step that writes no row shows its forces finite by it
+ * instead of forming them. */
+static inline int network_run_forces_bounded(const struct dp_network_run *nr, double xm, double vm)
+{
+    return nr->kmax * (2 * xm) < 1e300 && nr->cmax * (2 * vm + nr->vbmax) < 1e300;
 }
 
 /* Whether the step being taken writes a row or the final state (network_run_step_taken): only those read

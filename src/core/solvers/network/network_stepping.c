@@ -43,12 +43,19 @@ int network_run_step_poll(void *run, unsigned long long units)
     return 0;
 }
 
+/* Entry e of W = M + h theta C + h^2 theta^2 K in band storage. */
+static double W_entry(const struct dp_network_run *nr, size_t e, double h)
+{
+    double th = nr->theta;
+    return nr->M[e] + h * th * nr->C[e] + h * h * th * th * nr->K[e];
+}
+
 void network_run_build_W(struct dp_network_run *nr, double h)
 {
     size_t len = nr->n * (nr->p + 1);
-    double *W = dp_network_step_W(nr->ws), th = nr->theta;
+    double *W = dp_network_step_W(nr->ws);
     for (size_t i = 0; i < len; i++)
-        W[i] = nr->M[i] + h * th * nr->C[i] + h * h * th * th * nr->K[i];
+        W[i] = W_entry(nr, i, h);
     dp_network_step_W_changed(nr->ws);
     nr->h_W = h;
 }
@@ -147,8 +154,8 @@ int network_run_element_phases(struct dp_network_run *nr)
             return 0;
         xm = ax > xm ? ax : xm, vm = av > vm ? av : vm;
     }
-    /* |F_s| <= k_max 2 max|x| + |s|, |F_d| <= c_max (2 max|v| + max|v_b|) + |a|: each part below 1e300 */
-    if (!(nr->kmax * (2 * xm) < 1e300 && nr->cmax * (2 * vm + nr->vbmax) < 1e300))
+    /* |F_s| <= |k u| + |s|, |F_d| <= |c (z - v_b)| + |a|: each part below 1e300 */
+    if (!network_run_forces_bounded(nr, xm, vm))
         return 0;
     unsigned char *phase = nr->phase;
     for (size_t i = 0, nel = nr->nel; i < nel; i++) {
@@ -299,18 +306,6 @@ void network_run_step_rhs(struct dp_network_run *nr, double t, double h)
     }
 }
 
-/* Row i of a tridiagonal band product A x, in dp_band_symv's order: the diagonal term plus row i-1's, then
- * row i+1's. */
-static double row3(const double *A, size_t n, const double *x, size_t i)
-{
-    double y = A[2 * i] * x[i];
-    if (i > 0)
-        y += A[2 * (i - 1) + 1] * x[i - 1];
-    if (i + 1 < n)
-        y += A[2 * i + 1] * x[i + 1];
-    return y;
-}
-
 void network_run_block_rows(const struct dp_network_run *nr, double t, double h, size_t lo, size_t hi, double *Wl,
                             double *rl)
 {
@@ -318,10 +313,8 @@ void network_run_block_rows(const struct dp_network_run *nr, double t, double h,
     const double *x = nr->x, *v = nr->v, *K = nr->K, th = nr->theta;
     for (size_t r = lo; r <= hi + 1; r++) {   /* row r - 1 */
         double *w = Wl + 2 * (r - lo);
-        for (size_t d = 0; d < 2; d++) {
-            size_t e = 2 * (r - 1) + d;
-            w[d] = r == 0 ? 0 : nr->M[e] + h * th * nr->C[e] + h * h * th * th * nr->K[e];
-        }
+        for (size_t d = 0; d < 2; d++)
+            w[d] = r == 0 ? 0 : W_entry(nr, 2 * (r - 1) + d, h);
     }
     double a1 = h * (1 - th), b1 = h * th * (1 - th);
     for (size_t i = lo; i <= hi; i++) {
@@ -331,8 +324,8 @@ void network_run_block_rows(const struct dp_network_run *nr, double t, double h,
             kv += K[2 * (i - 1) + 1] * v1m;
         if (i + 1 < n)
             kv += K[2 * i + 1] * v1p;
-        double r = row3(nr->M, n, v, i);
-        r -= a1 * row3(nr->C, n, v, i);
+        double r = dp_band_row(nr->M + 2 * i, 1, v, i, n);
+        r -= a1 * dp_band_row(nr->C + 2 * i, 1, v, i, n);
         r -= h * kv;
         rl[i - lo] = r;
     }
